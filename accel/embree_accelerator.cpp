@@ -1,0 +1,291 @@
+#include "accel/embree_accelerator.h"
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <atomic>
+#include <mutex>
+#include <string>
+#include <unordered_map>
+
+#include "core/error.h"
+#include "core/scene.h"
+
+namespace tray {
+namespace {
+
+// Embree rejects primitives whose bounds exceed ~1.8e18; infinite shapes (planes) are clamped
+// to this extent, far beyond any scene that single-precision hit points can resolve.
+constexpr float kMaxExtent = 1e17f;
+
+struct ShapeUserData {
+  const Scene* scene;
+  uint32_t primitive;
+};
+
+/// Intersect context for all-hits queries: the filter records every hit and rejects it, so
+/// traversal continues (Embree's tutorials/next_hit).
+struct AllHitsContext {
+  RTCIntersectContext base;
+  std::vector<Hit>* hits;
+};
+
+Hit hitFromEmbree(const RTCHit& h, float t) {
+  Hit hit;
+  hit.t = t;
+  if (h.instID[0] != RTC_INVALID_GEOMETRY_ID) {
+    hit.primitive = h.instID[0];
+    hit.triangle = h.primID;
+    hit.b1 = h.u;
+    hit.b2 = h.v;
+  } else {
+    // User geometry: primID carries the material override + 1 (0: none), Ng the object-space
+    // normal and u, v the shape's uv (see shapeIntersect).
+    hit.primitive = h.geomID;
+    hit.normal = {h.Ng_x, h.Ng_y, h.Ng_z};
+    hit.uv = {h.u, h.v};
+    hit.material = int(h.primID) - 1;
+  }
+  return hit;
+}
+
+void allHitsFilter(const RTCFilterFunctionNArguments* args) {
+  auto* ctx = reinterpret_cast<const AllHitsContext*>(args->context);
+  const RTCHit* h = reinterpret_cast<const RTCHit*>(args->hit);
+  const RTCRay* r = reinterpret_cast<const RTCRay*>(args->ray);
+  Hit hit = hitFromEmbree(*h, r->tfar);
+  // Embree may report a triangle more than once (RenderKit/embree#12): keep one.
+  auto same = [&](const Hit& o) {
+    return o.primitive == hit.primitive && o.triangle == hit.triangle && o.t == hit.t &&
+           o.material == hit.material;
+  };
+  if (std::none_of(ctx->hits->begin(), ctx->hits->end(), same)) ctx->hits->push_back(hit);
+  args->valid[0] = 0;  // reject: keep traversing
+}
+
+void reportShapeHit(const RTCIntersectFunctionNArguments* args, const Hit& hit, uint32_t geomID) {
+  RTCRayHit* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);
+  RTCHit candidate{};
+  candidate.Ng_x = hit.normal.x;
+  candidate.Ng_y = hit.normal.y;
+  candidate.Ng_z = hit.normal.z;
+  candidate.u = hit.uv.x;
+  candidate.v = hit.uv.y;
+  candidate.primID = uint32_t(hit.material + 1);
+  candidate.geomID = geomID;
+  candidate.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  float oldTfar = rh->ray.tfar;
+  rh->ray.tfar = hit.t;
+  int valid = -1;
+  if (args->context->filter) {
+    // Filters are not invoked for user geometry automatically (RenderKit/embree#478).
+    RTCFilterFunctionNArguments fargs{&valid, args->geometryUserPtr, args->context,
+                                      reinterpret_cast<RTCRayN*>(&rh->ray),
+                                      reinterpret_cast<RTCHitN*>(&candidate), 1};
+    rtcFilterIntersection(args, &fargs);
+  }
+  if (valid != 0) {
+    rh->hit = candidate;
+  } else {
+    rh->ray.tfar = oldTfar;
+  }
+}
+
+void shapeBounds(const RTCBoundsFunctionArguments* args) {
+  auto* data = static_cast<const ShapeUserData*>(args->geometryUserPtr);
+  const Primitive& p = data->scene->primitives[data->primitive];
+  Bounds3 b = p.toWorld.bounds(p.shape->bounds());
+  b.lo = max(b.lo, Vec3(-kMaxExtent));
+  b.hi = min(b.hi, Vec3(kMaxExtent));
+  RTCBounds* o = args->bounds_o;
+  o->lower_x = b.lo.x, o->lower_y = b.lo.y, o->lower_z = b.lo.z;
+  o->upper_x = b.hi.x, o->upper_y = b.hi.y, o->upper_z = b.hi.z;
+}
+
+void shapeIntersect(const RTCIntersectFunctionNArguments* args) {
+  if (!args->valid[0]) return;
+  auto* data = static_cast<const ShapeUserData*>(args->geometryUserPtr);
+  RTCRayHit* rh = reinterpret_cast<RTCRayHit*>(args->rayhit);
+  Ray ray{{rh->ray.org_x, rh->ray.org_y, rh->ray.org_z},
+          {rh->ray.dir_x, rh->ray.dir_y, rh->ray.dir_z},
+          rh->ray.tnear,
+          rh->ray.tfar};
+  if (args->context->filter) {
+    // All-hits query: report every boundary crossing of the solid within the range.
+    const Primitive& p = data->scene->primitives[data->primitive];
+    Ray local{p.toWorld.inversePoint(ray.o), p.toWorld.inverseVector(ray.d), ray.tmin, ray.tmax};
+    std::vector<Interval> spans;
+    p.shape->intervals(local, spans);
+    for (const Interval& s : spans)
+      for (const Crossing& c : {s.enter, s.exit})
+        if (c.t > ray.tmin && c.t < ray.tmax && std::isfinite(c.t)) {
+          Hit h;
+          h.t = c.t;
+          h.normal = c.normal;
+          h.uv = c.uv;
+          h.material = c.material;
+          reportShapeHit(args, h, args->geomID);
+        }
+    return;
+  }
+  Hit hit;
+  if (data->scene->intersectShape(data->primitive, ray, hit)) reportShapeHit(args, hit, args->geomID);
+}
+
+void shapeOccluded(const RTCOccludedFunctionNArguments* args) {
+  if (!args->valid[0]) return;
+  auto* data = static_cast<const ShapeUserData*>(args->geometryUserPtr);
+  RTCRay* r = reinterpret_cast<RTCRay*>(args->ray);
+  Ray ray{{r->org_x, r->org_y, r->org_z}, {r->dir_x, r->dir_y, r->dir_z}, r->tnear, r->tfar};
+  Hit hit;
+  if (data->scene->intersectShape(data->primitive, ray, hit)) r->tfar = -kInfinity;
+}
+
+class EmbreeAccelerator final : public Accelerator {
+ public:
+  explicit EmbreeAccelerator(const Scene& scene) : scene_(scene) {
+    device_ = rtcNewDevice(nullptr);
+    if (!device_) throw Error("Embree: cannot create a device", Error::Kind::kRender);
+    rtcSetDeviceErrorFunction(device_, onError, this);
+    rtcSetDeviceMemoryMonitorFunction(device_, onMemory, this);
+    build();
+  }
+  ~EmbreeAccelerator() override {
+    if (top_) rtcReleaseScene(top_);
+    for (auto& [mesh, s] : meshScenes_) rtcReleaseScene(s);
+    rtcReleaseDevice(device_);
+  }
+
+  bool intersect(const Ray& ray, Hit& hit) const override {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRayHit rh = toEmbree(ray);
+    rtcIntersect1(top_, &ctx, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+    hit = hitFromEmbree(rh.hit, rh.ray.tfar);
+    return true;
+  }
+
+  bool occluded(const Ray& ray) const override {
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRay r = toEmbree(ray).ray;
+    rtcOccluded1(top_, &ctx, &r);
+    return r.tfar < 0;
+  }
+
+  void allHits(const Ray& ray, std::vector<Hit>& hits) const override {
+    hits.clear();
+    AllHitsContext ctx;
+    rtcInitIntersectContext(&ctx.base);
+    ctx.base.filter = allHitsFilter;
+    ctx.hits = &hits;
+    RTCRayHit rh = toEmbree(ray);
+    rtcIntersect1(top_, &ctx.base, &rh);
+    std::sort(hits.begin(), hits.end(), [](const Hit& a, const Hit& b) {
+      if (a.t != b.t) return a.t < b.t;
+      if (a.primitive != b.primitive) return a.primitive < b.primitive;
+      return a.triangle < b.triangle;
+    });
+  }
+
+  size_t memoryBytes() const override { return size_t(std::max<int64_t>(memory_.load(), 0)); }
+
+ private:
+  static void onError(void* self, RTCError, const char* message) {
+    auto* a = static_cast<EmbreeAccelerator*>(self);
+    std::lock_guard<std::mutex> lock(a->errorMutex_);
+    if (a->error_.empty()) a->error_ = message ? message : "unknown error";
+  }
+  static bool onMemory(void* self, ssize_t bytes, bool) {
+    static_cast<EmbreeAccelerator*>(self)->memory_ += bytes;
+    return true;
+  }
+  void checkError() {
+    std::lock_guard<std::mutex> lock(errorMutex_);
+    if (!error_.empty()) throw Error("Embree: " + error_, Error::Kind::kRender);
+  }
+
+  static RTCRayHit toEmbree(const Ray& r) {
+    RTCRayHit rh{};
+    rh.ray.org_x = r.o.x;
+    rh.ray.org_y = r.o.y;
+    rh.ray.org_z = r.o.z;
+    rh.ray.dir_x = r.d.x;
+    rh.ray.dir_y = r.d.y;
+    rh.ray.dir_z = r.d.z;
+    rh.ray.tnear = r.tmin;
+    rh.ray.tfar = r.tmax;
+    rh.ray.mask = 0xffffffffu;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    return rh;
+  }
+
+  RTCScene meshScene(uint32_t meshIndex) {
+    auto it = meshScenes_.find(meshIndex);
+    if (it != meshScenes_.end()) return it->second;
+    const TriangleMesh& m = scene_.meshes[meshIndex];
+    RTCScene s = rtcNewScene(device_);
+    // ROBUST: watertight traversal, no cracks on shared edges (RenderKit/embree#381).
+    rtcSetSceneFlags(s, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
+    rtcSetSceneBuildQuality(s, RTC_BUILD_QUALITY_HIGH);
+    RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, m.positions.data(), 0,
+                               sizeof(Vec3), m.positions.size());
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m.indices.data(), 0,
+                               3 * sizeof(uint32_t), m.triangleCount());
+    rtcCommitGeometry(g);
+    rtcAttachGeometryByID(s, g, 0);
+    rtcReleaseGeometry(g);
+    rtcCommitScene(s);
+    meshScenes_[meshIndex] = s;
+    return s;
+  }
+
+  void build() {
+    top_ = rtcNewScene(device_);
+    rtcSetSceneFlags(top_, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
+    userData_.resize(scene_.primitives.size());
+    for (uint32_t i = 0; i < scene_.primitives.size(); ++i) {
+      const Primitive& p = scene_.primitives[i];
+      RTCGeometry g;
+      if (p.kind == Primitive::Kind::kMesh) {
+        if (scene_.meshes[p.mesh].triangleCount() == 0) continue;
+        g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
+        rtcSetGeometryInstancedScene(g, meshScene(p.mesh));
+        rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, &p.toWorld.m.m[0][0]);
+      } else {
+        userData_[i] = {&scene_, i};
+        g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_USER);
+        rtcSetGeometryUserPrimitiveCount(g, 1);
+        rtcSetGeometryUserData(g, &userData_[i]);
+        rtcSetGeometryBoundsFunction(g, shapeBounds, nullptr);
+        rtcSetGeometryIntersectFunction(g, shapeIntersect);
+        rtcSetGeometryOccludedFunction(g, shapeOccluded);
+      }
+      rtcCommitGeometry(g);
+      rtcAttachGeometryByID(top_, g, i);
+      rtcReleaseGeometry(g);
+    }
+    rtcCommitScene(top_);
+    checkError();
+  }
+
+  const Scene& scene_;
+  RTCDevice device_ = nullptr;
+  RTCScene top_ = nullptr;
+  std::unordered_map<uint32_t, RTCScene> meshScenes_;
+  std::vector<ShapeUserData> userData_;
+  std::atomic<int64_t> memory_{0};
+  std::mutex errorMutex_;
+  std::string error_;
+};
+
+}  // namespace
+
+std::unique_ptr<Accelerator> makeEmbreeAccelerator(const Scene& scene) {
+  return std::make_unique<EmbreeAccelerator>(scene);
+}
+
+}  // namespace tray

@@ -1,0 +1,35 @@
+#include <string>
+
+#include "accel/embree_accelerator.h"
+#include "core/error.h"
+
+namespace tray {
+namespace {
+
+struct AcceleratorEntry {
+  const char* name;
+  std::unique_ptr<Accelerator> (*create)(const Scene&);
+};
+
+// The accelerator table: one line per accelerator.
+const AcceleratorEntry kAccelerators[] = {
+    {"embree", makeEmbreeAccelerator},
+};
+
+}  // namespace
+
+std::unique_ptr<Accelerator> makeAccelerator(const std::string& name, const Scene& scene) {
+  for (const auto& e : kAccelerators)
+    if (name == e.name) return e.create(scene);
+  std::string known;
+  for (const auto& e : kAccelerators) known += std::string(known.empty() ? "" : ", ") + e.name;
+  throw Error("unknown accelerator '" + name + "' (known: " + known + ")");
+}
+
+std::vector<std::string> acceleratorNames() {
+  std::vector<std::string> names;
+  for (const auto& e : kAccelerators) names.push_back(e.name);
+  return names;
+}
+
+}  // namespace tray

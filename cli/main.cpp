@@ -1,0 +1,169 @@
+// tray-render: the command line. Parses options, loads the scene, renders, writes images.
+// Exit codes: 0 ok, 1 render error, 2 bad input or usage, 130 interrupted.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "cli/progress_bar.h"
+#include "core/accelerator.h"
+#include "core/error.h"
+#include "core/renderer.h"
+#include "io/gltf_loader.h"
+#include "io/image_output.h"
+
+namespace {
+
+struct CliOptions {
+  std::string scenePath;
+  std::vector<std::string> outputs{"out.exr"};
+  std::string resolution;
+  int camera = -1;
+  int scene = -1;
+  int threads = 0;
+  std::string accel = "embree";
+  bool floatOutput = false;
+  std::string outputColorspace = "lin_rec709";
+  std::string display, view;
+  bool allowAnyPath = false;
+  bool quiet = false;
+  tray::RenderSettings settings;
+};
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string s;
+  for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
+void parseResolution(const std::string& text, int& w, int& h) {
+  int consumed = 0;
+  if (std::sscanf(text.c_str(), "%dx%d%n", &w, &h, &consumed) != 2 || consumed != int(text.size()) ||
+      w <= 0 || h <= 0 || w > 16384 || h > 16384)
+    throw tray::Error("--resolution '" + text + "': expected WxH with 1..16384 pixels per side");
+}
+
+int run(const CliOptions& o) {
+  tray::LoadOptions loadOptions;
+  loadOptions.scene = o.scene;
+  loadOptions.allowAnyPath = o.allowAnyPath;
+  tray::LoadReport report;
+  tray::Scene scene = tray::loadGltf(o.scenePath, loadOptions, &report);
+  for (const auto& w : report.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+
+  // Camera: the chosen one, else the first, else one framing the scene.
+  tray::CameraDesc cam;
+  if (o.camera >= 0) {
+    if (size_t(o.camera) >= scene.cameras.size())
+      throw tray::Error(o.scenePath + ": --camera " + std::to_string(o.camera) + " but the scene has " +
+                        std::to_string(scene.cameras.size()) + " camera(s)");
+    cam = scene.cameras[size_t(o.camera)];
+  } else if (!scene.cameras.empty()) {
+    cam = scene.cameras.front();
+  } else {
+    cam = tray::Camera::framing(scene.bounds(), 4.0f / 3.0f);
+  }
+  int width = 640, height = 0;
+  if (!o.resolution.empty()) {
+    parseResolution(o.resolution, width, height);
+  } else {
+    float aspect = cam.aspectRatio > 0 ? cam.aspectRatio : 4.0f / 3.0f;
+    height = std::max(1, int(std::lround(width / aspect)));
+  }
+  auto camera = tray::Camera::create(cam, width, height);
+  auto accel = tray::makeAccelerator(o.accel, scene);
+  tray::RenderContext ctx{scene, *accel, *camera, o.settings, width, height};
+  auto integrator = tray::makeIntegrator(ctx);
+
+  tray::Film film(width, height);
+  tray::ProgressBar progress;
+  tray::RenderOptions renderOptions;
+  renderOptions.threads = o.threads;
+  if (!o.quiet) renderOptions.onProgress = [&](double f) { progress.update(f); };
+  tray::RenderStats stats = tray::renderImage(*integrator, film, renderOptions);
+  progress.finish();
+
+  tray::ImageOutputOptions out;
+  out.halfFloat = !o.floatOutput;
+  out.colorspace = o.outputColorspace;
+  out.display = o.display;
+  out.view = o.view;
+  out.stringMetadata = {{"tray:version", TRAY_VERSION},
+                        {"tray:integrator", o.settings.integrator},
+                        {"tray:accelerator", o.accel},
+                        {"tray:scene", o.scenePath},
+                        {"tray:seed", std::to_string(o.settings.seed)}};
+  out.floatMetadata = {{"tray:spp", float(o.settings.spp)}, {"tray:renderSeconds", float(stats.seconds)}};
+  for (const auto& path : o.outputs) tray::writeImage(film, path, out);
+
+  if (!o.quiet) {
+    std::printf("%s: %dx%d, %d spp, %s on %s: %.3f s, %.2f M rays, %.2f Mrays/s", o.scenePath.c_str(),
+                width, height, o.settings.spp, o.settings.integrator.c_str(), o.accel.c_str(),
+                stats.seconds, stats.rays.total() * 1e-6, stats.mraysPerSecond());
+    if (stats.rays.nanSamples) std::printf(", %llu NaN/Inf samples discarded",
+                                           (unsigned long long)stats.rays.nanSamples);
+    std::printf("\n");
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CliOptions o;
+  std::vector<std::string> integratorNames;
+  for (const auto& e : tray::integratorRegistry()) integratorNames.push_back(e.name);
+
+  CLI::App app{"TRay: offline renderer for glTF 2.0 scenes (Embree, Whitted and path tracing)"};
+  app.set_version_flag("--version", std::string("tray-render ") + TRAY_VERSION);
+  app.add_option("scene", o.scenePath, "glTF 2.0 scene (.gltf or .glb)")->required();
+  app.add_option("-o,--output", o.outputs,
+                 "output image(s): .exr (scene-linear) or .png/.jpg (display-referred); repeatable")
+      ->capture_default_str();
+  app.add_option("--integrator", o.settings.integrator, "integrator: " + joined(integratorNames))
+      ->capture_default_str();
+  app.add_option("--inner", o.settings.inner, "integrator wrapped by a wrapping integrator")
+      ->capture_default_str();
+  app.add_option("--spp", o.settings.spp, "samples per pixel")->check(CLI::Range(1, 1 << 20))
+      ->capture_default_str();
+  app.add_option("--max-depth", o.settings.maxDepth,
+                 "maximum recursion depth (default: the integrator's, 5 for whitted)")
+      ->check(CLI::Range(0, 1000));
+  app.add_option("--seed", o.settings.seed, "random seed")->capture_default_str();
+  app.add_option("--pixel-sampler", o.settings.pixelSampler,
+                 "where samples go in a pixel: auto, center, jitter")
+      ->check(CLI::IsMember({"auto", "center", "jitter"}))
+      ->capture_default_str();
+  app.add_option("--threads", o.threads, "worker threads (0: all cores)")->check(CLI::Range(0, 4096))
+      ->capture_default_str();
+  app.add_option("--resolution", o.resolution, "image size WxH (default 640 wide, height from the camera)");
+  app.add_option("--camera", o.camera, "index of the scene camera to render (default: the first)");
+  app.add_option("--scene", o.scene, "index of the glTF scene (default: the file's default scene)");
+  app.add_option("--accel", o.accel, "accelerator: " + joined(tray::acceleratorNames()))
+      ->capture_default_str();
+  app.add_flag("--float", o.floatOutput, "write 32-bit float EXR (default half)");
+  app.add_option("--output-colorspace", o.outputColorspace, "OCIO colorspace of EXR output")
+      ->capture_default_str();
+  app.add_option("--display", o.display, "OCIO display for PNG/JPG output (default: sRGB)");
+  app.add_option("--view", o.view, "OCIO view for PNG/JPG output (default: the display's first)");
+  app.add_flag("--allow-any-path", o.allowAnyPath, "let scene URIs leave the scene's folder");
+  app.add_flag("--debug-nan", o.settings.debugNan, "print where NaN/Inf samples arise");
+  app.add_flag("-q,--quiet", o.quiet, "no progress bar or summary");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  }
+  try {
+    return run(o);
+  } catch (const tray::Error& e) {
+    std::fprintf(stderr, "tray-render: error: %s\n", e.what());
+    return e.kind() == tray::Error::Kind::kInput ? 2 : 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "tray-render: error: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,36 @@
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/hit.h"
+#include "core/ray.h"
+
+namespace tray {
+
+struct Scene;
+
+/// Ray queries over a built scene. Implementations: Embree (accel/embree_accelerator.cpp) and
+/// the in-house BVH. All must return the same hits for the same scene (tested).
+class Accelerator {
+ public:
+  virtual ~Accelerator() = default;
+  /// Closest hit with t in (ray.tmin, ray.tmax); false if none.
+  virtual bool intersect(const Ray& ray, Hit& hit) const = 0;
+  /// True if anything lies in (ray.tmin, ray.tmax): shadow rays.
+  virtual bool occluded(const Ray& ray) const = 0;
+  /// Every hit in (ray.tmin, ray.tmax), sorted by t (ties by primitive then triangle). Used by
+  /// CSG with mesh children, and by tests.
+  virtual void allHits(const Ray& ray, std::vector<Hit>& hits) const = 0;
+  /// Memory held by the acceleration structure, in bytes (for benchmarks; 0 if unknown).
+  virtual size_t memoryBytes() const { return 0; }
+};
+
+/// Builds the named accelerator ("embree", ...) over the scene. The scene must outlive it.
+/// Throws tray::Error for an unknown name.
+std::unique_ptr<Accelerator> makeAccelerator(const std::string& name, const Scene& scene);
+/// Names accepted by makeAccelerator, for --help.
+std::vector<std::string> acceleratorNames();
+
+}  // namespace tray

@@ -1,0 +1,34 @@
+#pragma once
+#include <cstdint>
+
+#include "core/math.h"
+
+namespace tray {
+
+constexpr uint32_t kNoPrimitive = 0xffffffffu;
+
+/// What an accelerator reports: the cheap first phase of an intersection. The full surface
+/// (normals, uv, material) is computed only for the closest hit by Scene::surface().
+struct Hit {
+  float t = kInfinity;
+  uint32_t primitive = kNoPrimitive;  ///< index into Scene::primitives
+  uint32_t triangle = 0;              ///< triangle index within the mesh (meshes only)
+  float b1 = 0, b2 = 0;               ///< barycentrics of vertices 1 and 2 (meshes only)
+  Vec3 normal;                        ///< object-space geometric normal (analytic shapes only)
+  Vec2 uv;                            ///< surface parameterisation (analytic shapes only)
+  int material = -1;                  ///< overrides the primitive's material when >= 0 (CSG)
+  bool valid() const { return primitive != kNoPrimitive; }
+};
+
+/// The second phase: everything shading needs, in world space.
+struct SurfacePoint {
+  Vec3 p;                   ///< hit position (refined onto the surface)
+  Vec3 ng;                  ///< unit geometric normal, on the outward side of the surface
+  Vec3 n;                   ///< unit shading normal (interpolated for smooth meshes)
+  Vec2 uv;                  ///< texture coordinates
+  int material = 0;         ///< index into Scene::materials
+  uint32_t primitive = kNoPrimitive;
+  bool frontFace = true;    ///< the ray arrived from the side ng points to
+};
+
+}  // namespace tray

@@ -1,0 +1,94 @@
+#include "core/scene.h"
+
+#include "core/error.h"
+
+namespace tray {
+
+void Scene::finalize() {
+  if (materials.empty()) {
+    Material m;
+    m.name = "default";
+    m.metallic = 0.0f;
+    m.baseColor = Color(0.8f);
+    m.phong = phongFromPbr(m);
+    materials.push_back(m);
+  }
+  auto check = [&](int mat, const std::string& what) {
+    if (mat < 0 || size_t(mat) >= materials.size())
+      throw Error(what + " refers to material " + std::to_string(mat) + " which does not exist");
+  };
+  for (auto& m : meshes) check(m.material, "mesh '" + m.name + "'");
+  for (auto& p : primitives) {
+    if (p.kind == Primitive::Kind::kMesh && p.mesh >= meshes.size())
+      throw Error("primitive '" + p.name + "' refers to a missing mesh");
+    if (p.kind == Primitive::Kind::kShape && !p.shape)
+      throw Error("primitive '" + p.name + "' has no shape");
+    if (p.kind == Primitive::Kind::kShape) check(p.material, "shape '" + p.name + "'");
+  }
+}
+
+Bounds3 Scene::bounds() const {
+  Bounds3 b;
+  for (const auto& p : primitives) {
+    Bounds3 local = p.kind == Primitive::Kind::kMesh ? meshes[p.mesh].bounds() : p.shape->bounds();
+    if (local.finite()) b.extend(p.toWorld.bounds(local));
+  }
+  return b;
+}
+
+bool Scene::intersectShape(uint32_t i, const Ray& r, Hit& hit) const {
+  const Primitive& prim = primitives[i];
+  Ray local{prim.toWorld.inversePoint(r.o), prim.toWorld.inverseVector(r.d), r.tmin, r.tmax};
+  Hit h;
+  if (!prim.shape->intersect(local, h)) return false;
+  hit = h;
+  hit.primitive = i;
+  return true;
+}
+
+SurfacePoint Scene::surface(const Ray& ray, const Hit& hit) const {
+  const Primitive& prim = primitives[hit.primitive];
+  SurfacePoint s;
+  s.primitive = hit.primitive;
+  if (prim.kind == Primitive::Kind::kShape) {
+    // Recompute the point in object space and project it back onto the surface: the world
+    // point o + t d loses precision far from the origin.
+    Ray local{prim.toWorld.inversePoint(ray.o), prim.toWorld.inverseVector(ray.d)};
+    Vec3 pl = prim.shape->refine(local.o + hit.t * local.d);
+    s.p = prim.toWorld.point(pl);
+    s.ng = normalize(prim.toWorld.normal(hit.normal));
+    s.n = s.ng;
+    s.uv = hit.uv;
+    s.material = hit.material >= 0 ? hit.material : prim.material;
+  } else {
+    const TriangleMesh& m = meshes[prim.mesh];
+    uint32_t i0 = m.indices[3 * hit.triangle], i1 = m.indices[3 * hit.triangle + 1],
+             i2 = m.indices[3 * hit.triangle + 2];
+    float b0 = 1.0f - hit.b1 - hit.b2;
+    const Vec3 &p0 = m.positions[i0], &p1 = m.positions[i1], &p2 = m.positions[i2];
+    s.p = prim.toWorld.point(b0 * p0 + hit.b1 * p1 + hit.b2 * p2);
+    Vec3 ngLocal = cross(p1 - p0, p2 - p0);
+    s.ng = normalize(prim.toWorld.normal(ngLocal));
+    if (!m.normals.empty()) {
+      Vec3 nl = b0 * m.normals[i0] + hit.b1 * m.normals[i1] + hit.b2 * m.normals[i2];
+      Vec3 nw = prim.toWorld.normal(nl);
+      float len = length(nw);
+      s.n = len > 0 && std::isfinite(len) ? nw / len : s.ng;
+      // Keep the shading normal on the geometric normal's side (flat fallback otherwise).
+      if (dot(s.n, s.ng) < 0) s.ng = -s.ng;
+    } else {
+      s.n = s.ng;
+    }
+    if (!m.uvs.empty()) {
+      s.uv = {b0 * m.uvs[i0].x + hit.b1 * m.uvs[i1].x + hit.b2 * m.uvs[i2].x,
+              b0 * m.uvs[i0].y + hit.b1 * m.uvs[i1].y + hit.b2 * m.uvs[i2].y};
+    } else {
+      s.uv = {hit.b1, hit.b2};
+    }
+    s.material = hit.material >= 0 ? hit.material : m.material;
+  }
+  s.frontFace = dot(ray.d, s.ng) < 0;
+  return s;
+}
+
+}  // namespace tray

@@ -1,0 +1,59 @@
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/camera.h"
+#include "core/hit.h"
+#include "core/light.h"
+#include "core/material.h"
+#include "core/transform.h"
+#include "shapes/shape.h"
+#include "shapes/triangle_mesh.h"
+
+namespace tray {
+
+/// One placed object: a mesh instance or an analytic shape, with its object-to-world transform.
+struct Primitive {
+  enum class Kind { kMesh, kShape };
+  Kind kind = Kind::kMesh;
+  uint32_t mesh = 0;                   ///< kMesh: index into Scene::meshes
+  std::shared_ptr<const Shape> shape;  ///< kShape
+  Transform toWorld;
+  int material = 0;  ///< kShape: its material (meshes carry their own)
+  int objectId = 0;  ///< glTF node index, for AOVs and mattes
+  std::string name;
+};
+
+/// A decoded texture image (linear float RGBA unless noted), filled by the texture loader.
+struct TextureImage {
+  std::string path;  ///< file path, or empty for embedded images
+  int width = 0, height = 0, channels = 0;
+  std::vector<float> pixels;
+  bool srgb = false;
+};
+
+/// Everything a render needs, as plain data. Filled by io/ (glTF) or by tests in code; the
+/// accelerator is built from it separately (core/accelerator.h).
+struct Scene {
+  std::string sourcePath;
+  std::vector<TriangleMesh> meshes;
+  std::vector<Primitive> primitives;
+  std::vector<Material> materials;  ///< never empty once finalize() ran
+  std::vector<Light> lights;
+  std::vector<CameraDesc> cameras;
+  std::vector<TextureImage> textures;
+  Environment environment;
+
+  /// Adds the default material if none, checks indices; call after filling.
+  void finalize();
+  /// World bounds of the finite primitives.
+  Bounds3 bounds() const;
+  /// Intersects primitive i (an analytic shape) with a world-space ray: hit.t, normal, uv.
+  bool intersectShape(uint32_t i, const Ray& worldRay, Hit& hit) const;
+  /// The surface at a hit found by an accelerator.
+  SurfacePoint surface(const Ray& ray, const Hit& hit) const;
+  const Material& material(int i) const { return materials[size_t(i)]; }
+};
+
+}  // namespace tray

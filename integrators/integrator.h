@@ -1,0 +1,102 @@
+#pragma once
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/accelerator.h"
+#include "core/camera.h"
+#include "core/math.h"
+#include "core/sampler.h"
+#include "core/scene.h"
+
+namespace tray {
+
+/// Every option an integrator may read; the CLI fills it, tests set fields directly.
+struct RenderSettings {
+  std::string integrator = "whitted";
+  std::string inner = "whitted";  ///< integrator wrapped by a wrapping integrator (adaptive)
+  int maxDepth = -1;              ///< -1: the integrator's own default
+  int spp = 1;
+  uint64_t seed = 0;
+  std::string pixelSampler = "auto";  ///< center | grid | jitter | auto (center at 1 spp)
+  std::string filter = "box";
+  float aaThreshold = 0.05f;
+  int aaDepth = 4;
+  float clampIndirect = 0.0f;  ///< 0 = off
+  bool debugNan = false;
+};
+
+/// Counters gathered per tile and summed for the summary line.
+struct RayStats {
+  uint64_t cameraRays = 0, shadowRays = 0, secondaryRays = 0, nanSamples = 0;
+  uint64_t total() const { return cameraRays + shadowRays + secondaryRays; }
+  RayStats& operator+=(const RayStats& o) {
+    cameraRays += o.cameraRays;
+    shadowRays += o.shadowRays;
+    secondaryRays += o.secondaryRays;
+    nanSamples += o.nanSamples;
+    return *this;
+  }
+};
+
+/// What the camera ray saw first, for alpha and AOVs. Filled by Li for depth-0 rays.
+struct PrimaryHit {
+  bool hit = false;
+  float depth = 0;  ///< distance along the camera ray
+  Vec3 position, normal;
+  Color albedo;
+  int objectId = -1, materialId = -1;
+};
+
+/// The averaged result of one pixel.
+struct PixelValue {
+  Color radiance;
+  float alpha = 0;
+  PrimaryHit primary;  ///< of the pixel's first sample
+  uint32_t samples = 0;  ///< camera rays traced for this pixel
+};
+
+/// What every integrator sees: the scene, its accelerator, the camera and the settings.
+struct RenderContext {
+  const Scene& scene;
+  const Accelerator& accel;
+  const Camera& camera;
+  RenderSettings settings;
+  int width, height;
+};
+
+/// A light transport algorithm. Ray-based integrators implement Li; renderPixel's default
+/// averages settings.spp samples placed by the pixel sampler. Wrapping integrators (adaptive
+/// anti-aliasing) override renderPixel and call an inner integrator's Li.
+class Integrator {
+ public:
+  explicit Integrator(const RenderContext& ctx) : ctx_(ctx) {}
+  virtual ~Integrator() = default;
+  /// Radiance arriving along ray (towards its origin). `primary`, when not null, receives the
+  /// first surface hit.
+  virtual Color Li(const Ray& ray, Sampler& sampler, RayStats& stats,
+                   PrimaryHit* primary) const = 0;
+  virtual PixelValue renderPixel(int x, int y, RayStats& stats) const;
+  const RenderContext& context() const { return ctx_; }
+
+ protected:
+  RenderContext ctx_;
+};
+
+using IntegratorFactory = std::unique_ptr<Integrator> (*)(const RenderContext&);
+
+struct IntegratorEntry {
+  const char* name;
+  const char* description;
+  IntegratorFactory create;
+};
+
+/// The registry: one line per integrator in integrators/registry.cpp.
+const std::vector<IntegratorEntry>& integratorRegistry();
+/// Creates the integrator named ctx.settings.integrator (or `name` if given); throws
+/// tray::Error naming the choices for an unknown name.
+std::unique_ptr<Integrator> makeIntegrator(const RenderContext& ctx, const std::string& name = "");
+
+}  // namespace tray

@@ -1,0 +1,15 @@
+#include "integrators/integrator.h"
+#include "integrators/whitted.h"
+
+namespace tray {
+
+// The integrator table: a new integrator is one file plus one line here.
+const std::vector<IntegratorEntry>& integratorRegistry() {
+  static const std::vector<IntegratorEntry> table = {
+      {"whitted", "recursive ray tracing: Phong, shadows, mirror reflection, refraction",
+       makeWhitted},
+  };
+  return table;
+}
+
+}  // namespace tray

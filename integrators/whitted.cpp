@@ -1,0 +1,103 @@
+#include "integrators/whitted.h"
+
+namespace tray {
+
+Color phongDirect(const PhongParams& p, const Vec3& n, const Vec3& wo, const Vec3& wi,
+                  const Color& irradiance) {
+  float cosI = dot(n, wi);
+  if (cosI <= 0) return Color(0.0f);
+  Color f = p.diffuse * (1.0f / kPi);
+  if (!isBlack(p.specular)) {
+    Vec3 r = reflect(-wi, n);
+    float cosR = std::max(0.0f, dot(r, wo));
+    f += p.specular * ((p.shininess + 2.0f) / (2.0f * kPi) * std::pow(cosR, p.shininess));
+  }
+  return f * irradiance * cosI;
+}
+
+namespace {
+
+class WhittedIntegrator final : public Integrator {
+ public:
+  explicit WhittedIntegrator(const RenderContext& ctx)
+      : Integrator(ctx), maxDepth_(ctx.settings.maxDepth >= 0 ? ctx.settings.maxDepth : 5) {}
+
+  Color Li(const Ray& ray, Sampler&, RayStats& stats, PrimaryHit* primary) const override {
+    return trace(ray, 0, stats, primary);
+  }
+
+ private:
+  Color trace(const Ray& ray, int depth, RayStats& stats, PrimaryHit* primary) const {
+    const Scene& scene = ctx_.scene;
+    Hit hit;
+    if (!ctx_.accel.intersect(ray, hit)) return scene.environment.background;
+    SurfacePoint s = scene.surface(ray, hit);
+    const Material& mat = scene.material(s.material);
+    const PhongParams& ph = mat.phong;
+    // Shade on the side the ray arrived from.
+    Vec3 n = s.frontFace ? s.n : -s.n;
+    Vec3 ng = s.frontFace ? s.ng : -s.ng;
+    Vec3 wo = -normalize(ray.d);
+    if (primary) {
+      primary->hit = true;
+      primary->depth = hit.t * length(ray.d);
+      primary->position = s.p;
+      primary->normal = s.n;
+      primary->albedo = ph.diffuse;
+      primary->objectId = scene.primitives[s.primitive].objectId;
+      primary->materialId = s.material;
+    }
+
+    Color L = ph.ambient * scene.environment.ambient + mat.emissive;
+    for (const Light& light : scene.lights) L += directLight(light, s.p, ng, n, wo, ph, stats);
+
+    if (depth >= maxDepth_) return L;
+    if (ph.reflectance > 0) {
+      ++stats.secondaryRays;
+      L += ph.reflectance * trace(spawnRay(s.p, ng, reflect(ray.d, n)), depth + 1, stats, nullptr);
+    }
+    if (ph.transmittance > 0) {
+      // Snell's law with eta = n_from / n_to; total internal reflection sends the light back.
+      float eta = s.frontFace ? 1.0f / mat.ior : mat.ior;
+      Vec3 d = normalize(ray.d), t;
+      Vec3 next = refract(d, n, eta, t) ? t : reflect(d, n);
+      ++stats.secondaryRays;
+      L += ph.transmittance * trace(spawnRay(s.p, ng, next), depth + 1, stats, nullptr);
+    }
+    return L;
+  }
+
+  Color directLight(const Light& light, const Vec3& p, const Vec3& ng, const Vec3& n,
+                    const Vec3& wo, const PhongParams& ph, RayStats& stats) const {
+    Vec3 wi;
+    Color E;
+    Ray shadow;
+    if (light.type == Light::Type::kDirectional) {
+      wi = -light.direction;
+      E = light.intensity;
+      if (dot(wi, n) <= 0) return Color(0.0f);
+      shadow = spawnRay(p, ng, wi);
+    } else {
+      Vec3 toLight = light.position - p;
+      float dist2 = lengthSquared(toLight);
+      wi = toLight / std::sqrt(dist2);
+      if (dot(wi, n) <= 0) return Color(0.0f);
+      E = light.intensity * (light.spotFalloff(-wi) / dist2);
+      if (isBlack(E)) return E;
+      shadow = spawnRayTo(p, ng, light.position);
+    }
+    ++stats.shadowRays;
+    if (ctx_.accel.occluded(shadow)) return Color(0.0f);
+    return phongDirect(ph, n, wo, wi, E);
+  }
+
+  int maxDepth_;
+};
+
+}  // namespace
+
+std::unique_ptr<Integrator> makeWhitted(const RenderContext& ctx) {
+  return std::make_unique<WhittedIntegrator>(ctx);
+}
+
+}  // namespace tray

@@ -1,0 +1,16 @@
+#pragma once
+#include "shapes/shape.h"
+
+namespace tray {
+
+/// The infinite plane y = 0 of object space, normal +Y. As a CSG solid: the half-space y <= 0.
+/// uv: planar (x, z), tiling with period 1.
+class Plane final : public Shape {
+ public:
+  Bounds3 bounds() const override;
+  bool intersect(const Ray& ray, Hit& hit) const override;
+  void intervals(const Ray& ray, std::vector<Interval>& out) const override;
+  Vec3 refine(const Vec3& p) const override { return {p.x, 0.0f, p.z}; }
+};
+
+}  // namespace tray

@@ -1,0 +1,30 @@
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/bounds.h"
+#include "core/math.h"
+
+namespace tray {
+
+/// Indexed triangle mesh in object space, one material (one glTF primitive). Instanced by
+/// Primitives that reference it by index, so it is stored and built once.
+struct TriangleMesh {
+  std::string name;
+  std::vector<Vec3> positions;
+  std::vector<Vec3> normals;   ///< per vertex; empty = flat shading
+  std::vector<Vec2> uvs;       ///< per vertex; may be empty
+  std::vector<Vec3> tangents;  ///< per vertex, xyz; empty = derive from uvs when needed
+  std::vector<float> tangentSigns;
+  std::vector<uint32_t> indices;  ///< 3 per triangle
+  int material = 0;
+  size_t triangleCount() const { return indices.size() / 3; }
+  Bounds3 bounds() const {
+    Bounds3 b;
+    for (const auto& p : positions) b.extend(p);
+    return b;
+  }
+};
+
+}  // namespace tray

@@ -1,0 +1,83 @@
+#include "shapes/sphere.h"
+
+#include <gtest/gtest.h>
+
+namespace tray {
+namespace {
+
+Ray ray(Vec3 o, Vec3 d) { return Ray{o, d, 0.0f, kInfinity}; }
+
+TEST(Sphere, HitFromOutside) {
+  Sphere s(2.0f);
+  Hit h;
+  ASSERT_TRUE(s.intersect(ray({0, 0, -10}, {0, 0, 1}), h));
+  EXPECT_FLOAT_EQ(h.t, 8.0f);
+  EXPECT_FLOAT_EQ(normalize(h.normal).z, -1.0f);
+}
+
+TEST(Sphere, FromInsideFindsTheExit) {
+  Sphere s(1.0f);
+  Hit h;
+  ASSERT_TRUE(s.intersect(ray({0, 0, 0.5f}, {0, 0, 1}), h));
+  EXPECT_FLOAT_EQ(h.t, 0.5f);
+  EXPECT_GT(h.normal.z, 0.0f);  // outward normal at the exit
+}
+
+TEST(Sphere, BehindTheRayIsAMiss) {
+  Sphere s(1.0f);
+  Hit h;
+  EXPECT_FALSE(s.intersect(ray({0, 0, 5}, {0, 0, 1}), h));
+}
+
+TEST(Sphere, TangentRayTouchesOnce) {
+  Sphere s(1.0f);
+  Hit h;
+  ASSERT_TRUE(s.intersect(ray({1, 0, -5}, {0, 0, 1}), h));
+  EXPECT_NEAR(h.t, 5.0f, 1e-3f);
+  EXPECT_FALSE(s.intersect(ray({1.0001f, 0, -5}, {0, 0, 1}), h));
+}
+
+TEST(Sphere, DistantSmallSphereStaysPrecise) {
+  // The textbook b^2 - 4ac loses every digit here; Ray Tracing Gems ch. 7's form does not.
+  Sphere s(0.01f);
+  Hit h;
+  ASSERT_TRUE(s.intersect(ray({0, 0, -1e5f}, {0, 0, 1}), h));
+  EXPECT_NEAR(h.t, 1e5f - 0.01f, 0.02f);
+  ASSERT_TRUE(s.intersect(ray({0.0099f, 0, -1e5f}, {0, 0, 1}), h));
+}
+
+TEST(Sphere, UnnormalisedDirectionKeepsParameter) {
+  Sphere s(1.0f);
+  Hit h;
+  ASSERT_TRUE(s.intersect(ray({0, 0, -3}, {0, 0, 2}), h));
+  EXPECT_FLOAT_EQ(h.t, 1.0f);
+}
+
+TEST(Sphere, IntervalSpansBothRoots) {
+  Sphere s(1.0f);
+  std::vector<Interval> iv;
+  s.intervals(ray({0, 0, -3}, {0, 0, 1}), iv);
+  ASSERT_EQ(iv.size(), 1u);
+  EXPECT_FLOAT_EQ(iv[0].enter.t, 2.0f);
+  EXPECT_FLOAT_EQ(iv[0].exit.t, 4.0f);
+  EXPECT_LT(iv[0].enter.normal.z, 0.0f);
+  EXPECT_GT(iv[0].exit.normal.z, 0.0f);
+}
+
+TEST(Sphere, UvAtKnownPoints) {
+  Sphere s(1.0f);
+  Vec2 top = s.uvAt({0, 1, 0}), front = s.uvAt({0, 0, 1}), side = s.uvAt({1, 0, 0});
+  EXPECT_NEAR(top.y, 0.0f, 1e-6f);
+  EXPECT_NEAR(front.x, 0.0f, 1e-6f);
+  EXPECT_NEAR(front.y, 0.5f, 1e-6f);
+  EXPECT_NEAR(side.x, 0.25f, 1e-6f);
+}
+
+TEST(Sphere, RefineProjectsOntoSurface) {
+  Sphere s(3.0f);
+  Vec3 p = s.refine({0, 3.001f, 0});
+  EXPECT_FLOAT_EQ(p.y, 3.0f);
+}
+
+}  // namespace
+}  // namespace tray
