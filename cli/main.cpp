@@ -8,6 +8,7 @@
 
 #include "cli/progress_bar.h"
 #include "core/accelerator.h"
+#include "core/aov.h"
 #include "core/error.h"
 #include "core/renderer.h"
 #include "io/gltf_loader.h"
@@ -28,6 +29,7 @@ struct CliOptions {
   std::string display, view;
   bool allowAnyPath = false;
   bool quiet = false;
+  std::string aovs;
   tray::RenderSettings settings;
 };
 
@@ -80,6 +82,7 @@ int run(const CliOptions& o) {
   tray::ProgressBar progress;
   tray::RenderOptions renderOptions;
   renderOptions.threads = o.threads;
+  renderOptions.aovs = tray::AovSet::parse(o.aovs);
   if (!o.quiet) renderOptions.onProgress = [&](double f) { progress.update(f); };
   tray::RenderStats stats = tray::renderImage(*integrator, film, renderOptions);
   progress.finish();
@@ -148,6 +151,8 @@ int main(int argc, char** argv) {
   app.add_option("--display", o.display, "OCIO display for PNG/JPG output (default: sRGB)");
   app.add_option("--view", o.view, "OCIO view for PNG/JPG output (default: the display's first)");
   app.add_flag("--allow-any-path", o.allowAnyPath, "let scene URIs leave the scene's folder");
+  app.add_option("--aov", o.aovs,
+                 "extra EXR layers: comma-separated from " + joined(tray::AovSet::known()) + ", or all");
   app.add_flag("--debug-nan", o.settings.debugNan, "print where NaN/Inf samples arise");
   app.add_flag("-q,--quiet", o.quiet, "no progress bar or summary");
 

@@ -7,6 +7,8 @@
 #include <chrono>
 #include <mutex>
 
+#include "core/aov.h"
+
 namespace tray {
 
 RenderStats renderImage(const Integrator& integrator, Film& film, const RenderOptions& options) {
@@ -14,6 +16,7 @@ RenderStats renderImage(const Integrator& integrator, Film& film, const RenderOp
   const int tilesX = (film.width() + ts - 1) / ts, tilesY = (film.height() + ts - 1) / ts;
   const int tileCount = tilesX * tilesY;
   RenderStats result;
+  const AovSet aovs(film, options.aovs);
   std::mutex mutex;
   int tilesDone = 0;
   auto start = std::chrono::steady_clock::now();
@@ -27,6 +30,7 @@ RenderStats renderImage(const Integrator& integrator, Film& film, const RenderOp
         PixelValue v = integrator.renderPixel(x, y, local);
         float* px = film.pixel(Film::kBeauty, x, y);
         px[0] = v.radiance.x, px[1] = v.radiance.y, px[2] = v.radiance.z, px[3] = v.alpha;
+        aovs.write(film, x, y, v);
       }
     std::lock_guard<std::mutex> lock(mutex);
     result.rays += local;

@@ -1,5 +1,7 @@
 #pragma once
 #include <functional>
+#include <string>
+#include <vector>
 
 #include "core/film.h"
 #include "integrators/integrator.h"
@@ -9,6 +11,8 @@ namespace tray {
 struct RenderOptions {
   int threads = 0;     ///< 0: all cores
   int tileSize = 16;
+  /// AOV layers to fill beside the beauty (names from AovSet::known()).
+  std::vector<std::string> aovs;
   /// Called (serialised) after each tile with the fraction done; for progress bars.
   std::function<void(double fraction)> onProgress;
 };

@@ -1,0 +1,64 @@
+#include "core/aov.h"
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "core/renderer.h"
+#include "tests/scene_builder.h"
+
+namespace tray {
+namespace {
+
+using namespace tray::test;
+
+TEST(Aov, ParsesListsAndRejectsUnknownNames) {
+  EXPECT_EQ(AovSet::parse("depth,normal"), (std::vector<std::string>{"depth", "normal"}));
+  EXPECT_EQ(AovSet::parse("all").size(), AovSet::known().size());
+  EXPECT_THROW(AovSet::parse("depth,colour"), Error);
+}
+
+TEST(Aov, LayersHoldDepthNormalAndIdsOfTheFirstHit) {
+  // A floor plane at y = 0 and a unit sphere at (0, 1, -4), seen by a camera at the origin
+  // looking down -Z from height 1.
+  Scene s;
+  int floorMat = addMaterial(s, diffuse(Color(0.2f)));
+  int ballMat = addMaterial(s, diffuse(Color(0.9f, 0.5f, 0.1f)));
+  addShape(s, std::make_shared<Plane>(), Mat4::identity(), floorMat);
+  addSphere(s, {0, 1, -4}, 1.0f, ballMat);
+  s.finalize();
+  auto accel = makeAccelerator("embree", s);
+  CameraDesc cd = lookAt({0, 1, 0}, {0, 1, -1}, 1.0f);
+  const int W = 33, H = 33;
+  auto camera = Camera::create(cd, W, H);
+  RenderContext ctx{s, *accel, *camera, {}, W, H};
+  auto integrator = makeIntegrator(ctx);
+  Film film(W, H);
+  RenderOptions opt;
+  opt.aovs = AovSet::parse("all");
+  renderImage(*integrator, film, opt);
+
+  int Z = film.findLayer("Z"), N = film.findLayer("N"), obj = film.findLayer("objectid"),
+      mat = film.findLayer("materialid"), P = film.findLayer("P"), spp = film.findLayer("samples");
+  ASSERT_GE(Z, 0);
+  ASSERT_GE(N, 0);
+  // Centre pixel: the sphere's front point (0, 1, -3), normal +Z, depth 3.
+  EXPECT_NEAR(film.pixel(Z, 16, 16)[0], 3.0f, 1e-4f);
+  EXPECT_NEAR(film.pixel(N, 16, 16)[2], 1.0f, 1e-4f);
+  EXPECT_NEAR(film.pixel(P, 16, 16)[2], -3.0f, 1e-4f);
+  EXPECT_EQ(film.pixel(obj, 16, 16)[0], 1.0f);
+  EXPECT_EQ(film.pixel(mat, 16, 16)[0], float(ballMat));
+  EXPECT_EQ(film.pixel(spp, 16, 16)[0], 1.0f);
+  // Bottom-centre pixel: the floor, normal +Y, depth from the pixel's ray.
+  Ray r = camera->generateRay(16.5f, 32.5f);
+  float t = -r.o.y / r.d.y;
+  EXPECT_NEAR(film.pixel(Z, 16, 32)[0], t * length(r.d), 1e-3f);
+  EXPECT_NEAR(film.pixel(N, 16, 32)[1], 1.0f, 1e-5f);
+  EXPECT_EQ(film.pixel(obj, 16, 32)[0], 0.0f);
+  // Top row sees the sky: infinite depth, no object.
+  EXPECT_EQ(film.pixel(Z, 16, 0)[0], kInfinity);
+  EXPECT_EQ(film.pixel(obj, 16, 0)[0], -1.0f);
+  EXPECT_EQ(film.pixel(Film::kBeauty, 16, 0)[3], 0.0f);  // alpha = coverage
+}
+
+}  // namespace
+}  // namespace tray
