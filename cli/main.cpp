@@ -10,6 +10,7 @@
 #include "core/accelerator.h"
 #include "core/aov.h"
 #include "core/error.h"
+#include "core/render_setup.h"
 #include "core/renderer.h"
 #include "io/gltf_loader.h"
 #include "io/image_output.h"
@@ -39,40 +40,18 @@ std::string joined(const std::vector<std::string>& names) {
   return s;
 }
 
-void parseResolution(const std::string& text, int& w, int& h) {
-  int consumed = 0;
-  if (std::sscanf(text.c_str(), "%dx%d%n", &w, &h, &consumed) != 2 || consumed != int(text.size()) ||
-      w <= 0 || h <= 0 || w > 16384 || h > 16384)
-    throw tray::Error("--resolution '" + text + "': expected WxH with 1..16384 pixels per side");
-}
-
 int run(const CliOptions& o) {
   tray::LoadOptions loadOptions;
   loadOptions.scene = o.scene;
   loadOptions.allowAnyPath = o.allowAnyPath;
   tray::LoadReport report;
   tray::Scene scene = tray::loadGltf(o.scenePath, loadOptions, &report);
+  scene.sourcePath = o.scenePath;
   for (const auto& w : report.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
 
-  // Camera: the chosen one, else the first, else one framing the scene.
-  tray::CameraDesc cam;
-  if (o.camera >= 0) {
-    if (size_t(o.camera) >= scene.cameras.size())
-      throw tray::Error(o.scenePath + ": --camera " + std::to_string(o.camera) + " but the scene has " +
-                        std::to_string(scene.cameras.size()) + " camera(s)");
-    cam = scene.cameras[size_t(o.camera)];
-  } else if (!scene.cameras.empty()) {
-    cam = scene.cameras.front();
-  } else {
-    cam = tray::Camera::framing(scene.bounds(), 4.0f / 3.0f);
-  }
-  int width = 640, height = 0;
-  if (!o.resolution.empty()) {
-    parseResolution(o.resolution, width, height);
-  } else {
-    float aspect = cam.aspectRatio > 0 ? cam.aspectRatio : 4.0f / 3.0f;
-    height = std::max(1, int(std::lround(width / aspect)));
-  }
+  tray::CameraDesc cam = tray::chooseCamera(scene, o.camera);
+  const tray::ImageSize size = tray::resolveImageSize(o.resolution, cam);
+  const int width = size.width, height = size.height;
   auto camera = tray::Camera::create(cam, width, height);
   auto accel = tray::makeAccelerator(o.accel, scene);
   tray::RenderContext ctx{scene, *accel, *camera, o.settings, width, height};

@@ -1,0 +1,48 @@
+#include "bench/image_error.h"
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+
+#include <cmath>
+
+namespace tray {
+namespace {
+
+OIIO::ImageBuf beautyBuffer(const Film& f) {
+  OIIO::ImageSpec spec(f.width(), f.height(), 4, OIIO::TypeDesc::FLOAT);
+  // Wraps the film's memory; nothing is copied.
+  return OIIO::ImageBuf(spec, const_cast<float*>(f.layers()[Film::kBeauty].data.data()));
+}
+
+}  // namespace
+
+ImageError compareBeauty(const Film& a, const Film& b) {
+  if (a.width() != b.width() || a.height() != b.height())
+    throw Error("reference size " + std::to_string(b.width()) + "x" + std::to_string(b.height()) +
+                " differs from the render's " + std::to_string(a.width()) + "x" +
+                std::to_string(a.height()));
+  OIIO::ImageBuf ba = beautyBuffer(a), bb = beautyBuffer(b);
+  OIIO::ROI rgb = ba.roi();
+  rgb.chbegin = 0, rgb.chend = 3;
+  // RMSE and the largest difference from OIIO; relMSE and bias are not among its statistics.
+  auto cmp = OIIO::ImageBufAlgo::compare(ba, bb, 0.0f, 0.0f, rgb);
+  ImageError e;
+  e.rmse = cmp.rms_error;
+  e.maxAbs = cmp.maxerror;
+  double sumA = 0, sumB = 0, rel = 0;
+  for (int y = 0; y < a.height(); ++y)
+    for (int x = 0; x < a.width(); ++x) {
+      const float *pa = a.pixel(Film::kBeauty, x, y), *pb = b.pixel(Film::kBeauty, x, y);
+      for (int c = 0; c < 3; ++c) {
+        double d = double(pa[c]) - pb[c];
+        rel += d * d / (double(pb[c]) * pb[c] + 1e-2);
+        sumA += pa[c], sumB += pb[c];
+      }
+    }
+  const double n = 3.0 * a.width() * a.height();
+  e.relMse = rel / n;
+  e.bias = (sumA - sumB) / n;
+  return e;
+}
+
+}  // namespace tray

@@ -1,0 +1,17 @@
+#pragma once
+// Error of a render against a reference image: the figures the speed/accuracy charts plot.
+#include "core/film.h"
+
+namespace tray {
+
+struct ImageError {
+  double rmse = 0;     ///< sqrt(mean over pixels and RGB of (x - r)^2)
+  double relMse = 0;   ///< mean of (x - r)^2 / (r^2 + 1e-2), robust to dark pixels (Rousselle 2011)
+  double bias = 0;     ///< mean(x) - mean(r) over RGB: systematic error that more samples don't fix
+  double maxAbs = 0;   ///< largest single-channel difference
+};
+
+/// Compares the beauty RGB of two films of the same size (throws tray::Error otherwise).
+ImageError compareBeauty(const Film& render, const Film& reference);
+
+}  // namespace tray

@@ -1,0 +1,81 @@
+#include "bench/sweep.h"
+
+namespace tray {
+namespace {
+
+bool registered(const std::string& name) {
+  for (const auto& e : integratorRegistry())
+    if (name == e.name) return true;
+  return false;
+}
+
+}  // namespace
+
+std::vector<SweepConfig> standardSweep(const std::vector<std::string>& accels,
+                                       const std::vector<int>& threads, int maxSpp) {
+  std::vector<SweepConfig> base;
+  auto add = [&](std::string method, std::string setting, RenderSettings s) {
+    base.push_back({std::move(method), std::move(setting), std::move(s)});
+  };
+  // Whitted: anti-aliasing strategies at growing cost.
+  RenderSettings w;
+  w.integrator = "whitted";
+  w.pixelSampler = "center";
+  add("whitted center", "spp=1", w);
+  for (int n : {2, 4, 8}) {
+    if (n * n > maxSpp) break;
+    w.pixelSampler = "grid", w.spp = n * n;
+    add("whitted grid", "spp=" + std::to_string(n * n), w);
+    w.pixelSampler = "jitter";
+    add("whitted jitter", "spp=" + std::to_string(n * n), w);
+  }
+  if (registered("adaptive")) {
+    RenderSettings a;
+    a.integrator = "adaptive";
+    a.inner = "whitted";
+    for (float t : {0.2f, 0.1f, 0.05f, 0.02f}) {
+      a.aaThreshold = t;
+      add("whitted adaptive", "threshold=" + std::to_string(t).substr(0, 4), a);
+    }
+  }
+  // Path tracing: error against samples.
+  if (registered("path")) {
+    RenderSettings p;
+    p.integrator = "path";
+    p.pixelSampler = "jitter";
+    for (int spp = 1; spp <= maxSpp; spp *= 4) {
+      p.spp = spp;
+      add("path", "spp=" + std::to_string(spp), p);
+    }
+  }
+  // Every method on every accelerator and thread count: separate lines.
+  std::vector<SweepConfig> out;
+  for (const auto& accel : accels)
+    for (int t : threads)
+      for (SweepConfig c : base) {
+        if (accels.size() > 1) c.method += " [" + accel + "]";
+        if (threads.size() > 1) c.method += " [" + std::to_string(t) + "t]";
+        c.accel = accel;
+        c.threads = t;
+        out.push_back(std::move(c));
+      }
+  return out;
+}
+
+RenderSettings referenceSettings(const std::string& integrator, int referenceSpp) {
+  RenderSettings s;
+  if (integrator == "path") {
+    s.integrator = "path";
+    s.pixelSampler = "jitter";
+    s.spp = referenceSpp;
+  } else {
+    // Whitted-family methods converge to the 32x32 grid.
+    s.integrator = "whitted";
+    s.pixelSampler = "grid";
+    s.spp = 32 * 32;
+  }
+  s.seed = 0x5eed;  // a seed no sweep run uses, so reference noise is independent
+  return s;
+}
+
+}  // namespace tray

@@ -1,0 +1,159 @@
+// tray-bench: speed against accuracy. `tray-bench sweep SCENE` renders the scene with every
+// registered method and setting, measures wall time, rays and error against a converged
+// reference, and writes CSV for tools/plot_bench.py (charts + Pareto report).
+#include <CLI/CLI.hpp>
+#include <OpenImageIO/imageio.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+
+#include "bench/image_error.h"
+#include "bench/sweep.h"
+#include "core/error.h"
+#include "core/render_setup.h"
+#include "core/renderer.h"
+#include "io/gltf_loader.h"
+#include "io/image_output.h"
+
+namespace fs = std::filesystem;
+using namespace tray;
+
+namespace {
+
+/// Reads an EXR's RGBA into a film of the expected size.
+Film readReference(const std::string& path, int width, int height) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw Error(path + ": cannot read the reference image");
+  const OIIO::ImageSpec& spec = in->spec();
+  if (spec.width != width || spec.height != height)
+    throw Error(path + ": reference is " + std::to_string(spec.width) + "x" +
+                std::to_string(spec.height) + ", the render " + std::to_string(width) + "x" +
+                std::to_string(height) + " (use --resolution)");
+  Film film(width, height);
+  std::vector<float> rgb(size_t(width) * height * 3);
+  if (!in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, rgb.data()))
+    throw Error(path + ": " + in->geterror());
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      for (int c = 0; c < 3; ++c) film.pixel(Film::kBeauty, x, y)[c] = rgb[(size_t(y) * width + x) * 3 + c];
+  return film;
+}
+
+struct Bench {
+  const Scene& scene;
+  const Camera& camera;
+  ImageSize size;
+  std::map<std::string, std::unique_ptr<Accelerator>> accels;
+
+  const Accelerator& accel(const std::string& name) {
+    auto& a = accels[name];
+    if (!a) a = makeAccelerator(name, scene);
+    return *a;
+  }
+  std::pair<Film, RenderStats> render(const RenderSettings& s, const std::string& accelName, int threads) {
+    RenderContext ctx{scene, accel(accelName), camera, s, size.width, size.height};
+    auto integrator = makeIntegrator(ctx);
+    Film film(size.width, size.height);
+    RenderOptions opt;
+    opt.threads = threads;
+    RenderStats st = renderImage(*integrator, film, opt);
+    return {std::move(film), st};
+  }
+};
+
+std::vector<std::string> splitList(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  for (std::string item; std::getline(ss, item, ',');)
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+int sweep(const std::string& scenePath, const std::string& resolution, const std::string& outDir,
+          const std::string& referencePath, int referenceSpp, int maxSpp, const std::string& accelList,
+          const std::string& threadList) {
+  Scene scene = loadGltf(scenePath);
+  scene.sourcePath = scenePath;
+  CameraDesc cd = chooseCamera(scene, -1);
+  ImageSize size = resolveImageSize(resolution, cd);
+  auto camera = Camera::create(cd, size.width, size.height);
+  Bench bench{scene, *camera, size, {}};
+  fs::create_directories(outDir);
+  const std::string stem = fs::path(scenePath).stem().string();
+
+  // One converged reference per integrator family, cached beside the CSV.
+  std::map<std::string, Film> references;
+  auto reference = [&](const std::string& integrator) -> const Film& {
+    std::string family = integrator == "path" ? "path" : "whitted";
+    auto it = references.find(family);
+    if (it != references.end()) return it->second;
+    std::string path = !referencePath.empty() ? referencePath
+                                              : outDir + "/reference-" + stem + "-" + family + "-" +
+                                                    std::to_string(size.width) + "x" +
+                                                    std::to_string(size.height) + ".exr";
+    if (!fs::exists(path)) {
+      std::fprintf(stderr, "tray-bench: rendering the %s reference to %s\n", family.c_str(), path.c_str());
+      auto [film, st] = bench.render(referenceSettings(family, referenceSpp), "embree", 0);
+      ImageOutputOptions o;
+      o.halfFloat = false;
+      writeImage(film, path, o);
+    }
+    return references.emplace(family, readReference(path, size.width, size.height)).first->second;
+  };
+
+  std::vector<int> threads;
+  for (const auto& t : splitList(threadList)) threads.push_back(std::stoi(t));
+  std::string csvPath = outDir + "/" + stem + ".csv";
+  std::ofstream csv(csvPath);
+  csv << "scene,method,setting,integrator,accel,threads,spp,seconds,rays,rmse,relmse,bias,max_abs\n";
+  std::printf("%-34s %-16s %9s %10s %10s %10s %10s\n", "method", "setting", "seconds", "Mrays",
+              "RMSE", "relMSE", "bias");
+  for (const SweepConfig& c : standardSweep(splitList(accelList), threads, maxSpp)) {
+    const Film& ref = reference(c.settings.integrator == "adaptive" ? c.settings.inner
+                                                                    : c.settings.integrator);
+    auto [film, st] = bench.render(c.settings, c.accel, c.threads);
+    ImageError e = compareBeauty(film, ref);
+    std::printf("%-34s %-16s %9.3f %10.3f %10.3e %10.3e %+10.2e\n", c.method.c_str(), c.setting.c_str(),
+                st.seconds, st.rays.total() * 1e-6, e.rmse, e.relMse, e.bias);
+    std::fflush(stdout);
+    csv << stem << ',' << c.method << ',' << c.setting << ',' << c.settings.integrator << ','
+        << c.accel << ',' << c.threads << ',' << c.settings.spp << ',' << st.seconds << ','
+        << st.rays.total() << ',' << e.rmse << ',' << e.relMse << ',' << e.bias << ',' << e.maxAbs
+        << '\n';
+  }
+  std::printf("wrote %s (chart and Pareto report: tools/plot_bench.py %s)\n", csvPath.c_str(), csvPath.c_str());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"tray-bench: speed against accuracy for TRay's methods"};
+  app.require_subcommand(1);
+  auto* sw = app.add_subcommand("sweep", "sweep methods and settings over one scene");
+  std::string scene, resolution = "320x240", out = "bench-out", reference, accels = "embree",
+                     threads = "0";
+  int referenceSpp = 4096, maxSpp = 1024;
+  sw->add_option("scene", scene, "glTF scene")->required();
+  sw->add_option("--resolution", resolution, "image size WxH")->capture_default_str();
+  sw->add_option("--out", out, "output folder for CSV and cached references")->capture_default_str();
+  sw->add_option("--reference", reference, "converged reference EXR (default: rendered and cached)");
+  sw->add_option("--reference-spp", referenceSpp, "spp of a rendered path reference")->capture_default_str();
+  sw->add_option("--max-spp", maxSpp, "largest spp swept")->capture_default_str();
+  sw->add_option("--accels", accels, "comma-separated accelerators")->capture_default_str();
+  sw->add_option("--threads", threads, "comma-separated thread counts (0 = all)")->capture_default_str();
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  try {
+    return sweep(scene, resolution, out, reference, referenceSpp, maxSpp, accels, threads);
+  } catch (const Error& e) {
+    std::fprintf(stderr, "tray-bench: error: %s\n", e.what());
+    return e.kind() == Error::Kind::kInput ? 2 : 1;
+  }
+}

@@ -1,0 +1,72 @@
+#!/usr/bin/env python3
+"""Charts a tray-bench sweep: RMSE against wall time on log-log axes, one line per method, and
+a markdown report with the Pareto front (the cheapest method for each error level).
+Usage: tools/plot_bench.py SWEEP.csv [--out-dir DIR]   (needs python3-matplotlib)"""
+import argparse, csv, os, sys
+from collections import defaultdict
+
+def load(path):
+    with open(path) as f:
+        rows = list(csv.DictReader(f))
+    for r in rows:
+        for k in ("seconds", "rays", "rmse", "relmse", "bias", "max_abs"):
+            r[k] = float(r[k])
+    return rows
+
+def pareto(rows):
+    """Runs no other run beats on both time and RMSE, sorted by time."""
+    front, best = [], float("inf")
+    for r in sorted(rows, key=lambda r: (r["seconds"], r["rmse"])):
+        if r["rmse"] < best:
+            front.append(r)
+            best = r["rmse"]
+    return front
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("csv")
+    ap.add_argument("--out-dir", default=None)
+    a = ap.parse_args()
+    rows = load(a.csv)
+    if not rows:
+        sys.exit(f"plot_bench: {a.csv}: no rows")
+    out = a.out_dir or os.path.dirname(os.path.abspath(a.csv))
+    stem = os.path.splitext(os.path.basename(a.csv))[0]
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    by_method = defaultdict(list)
+    for r in rows:
+        by_method[r["method"]].append(r)
+    fig, ax = plt.subplots(figsize=(8, 5.5))
+    for method, rs in sorted(by_method.items()):
+        rs.sort(key=lambda r: r["seconds"])
+        ax.plot([r["seconds"] for r in rs], [max(r["rmse"], 1e-6) for r in rs], marker="o", label=method)
+    front = pareto(rows)
+    ax.plot([r["seconds"] for r in front], [max(r["rmse"], 1e-6) for r in front], "k--", lw=1,
+            label="Pareto front")
+    ax.set_xscale("log"); ax.set_yscale("log")
+    ax.set_xlabel("wall time (s)"); ax.set_ylabel("RMSE against reference")
+    ax.set_title(f"{stem}: error against time")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    png = os.path.join(out, f"{stem}-error-vs-time.png")
+    fig.savefig(png, dpi=110)
+
+    md = os.path.join(out, f"{stem}-report.md")
+    with open(md, "w") as f:
+        f.write(f"# {stem}: speed against accuracy\n\n![error vs time]({os.path.basename(png)})\n\n")
+        f.write("## Pareto front: the cheapest method for each error level\n\n")
+        f.write("| RMSE below | cheapest method | setting | seconds | Mrays |\n|---|---|---|---|---|\n")
+        for r in front:
+            f.write(f"| {r['rmse']:.3e} | {r['method']} | {r['setting']} | {r['seconds']:.3f} | {r['rays']*1e-6:.2f} |\n")
+        f.write("\n## All runs\n\n| method | setting | seconds | Mrays | RMSE | relMSE | bias |\n|---|---|---|---|---|---|---|\n")
+        for r in sorted(rows, key=lambda r: (r["method"], r["seconds"])):
+            f.write(f"| {r['method']} | {r['setting']} | {r['seconds']:.3f} | {r['rays']*1e-6:.2f} | "
+                    f"{r['rmse']:.3e} | {r['relmse']:.3e} | {r['bias']:+.2e} |\n")
+    print(f"wrote {png} and {md}")
+
+if __name__ == "__main__":
+    main()
