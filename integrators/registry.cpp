@@ -1,4 +1,5 @@
 #include "integrators/integrator.h"
+#include "integrators/path.h"
 #include "integrators/whitted.h"
 
 namespace tray {
@@ -8,6 +9,7 @@ const std::vector<IntegratorEntry>& integratorRegistry() {
   static const std::vector<IntegratorEntry> table = {
       {"whitted", "recursive ray tracing: Phong, shadows, mirror reflection, refraction",
        makeWhitted},
+      {"path", "path tracing: MIS next-event estimation, GGX/dielectric BSDFs, area lights", makePath},
   };
   return table;
 }

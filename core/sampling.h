@@ -1,0 +1,94 @@
+#pragma once
+// Warping functions: uniform numbers in [0,1)^2 to directions and points, each with its pdf.
+// Derivations in pbrt-v4 (Pharr, Jakob, Humphreys 2023), sections A.5 and 4.3.
+#include <cmath>
+
+#include "core/math.h"
+
+namespace tray {
+
+/// Uniform point on the unit disk, Shirley & Chiu's concentric map (pbrt-v4 A.5.1): keeps
+/// strata compact, so stratified input stays stratified.
+inline Vec2 sampleUniformDiskConcentric(Vec2 u) {
+  float ox = 2.0f * u.x - 1.0f, oy = 2.0f * u.y - 1.0f;
+  if (ox == 0 && oy == 0) return {0, 0};
+  float r, theta;
+  if (std::fabs(ox) > std::fabs(oy)) {
+    r = ox, theta = (kPi / 4.0f) * (oy / ox);
+  } else {
+    r = oy, theta = kPi / 2.0f - (kPi / 4.0f) * (ox / oy);
+  }
+  return {r * std::cos(theta), r * std::sin(theta)};
+}
+
+/// Uniform point on the unit disk in polar form (used by visible-normal sampling).
+inline Vec2 sampleUniformDiskPolar(Vec2 u) {
+  float r = std::sqrt(u.x), theta = 2.0f * kPi * u.y;
+  return {r * std::cos(theta), r * std::sin(theta)};
+}
+
+/// Cosine-weighted direction about +z (Malley's method); pdf = cos(theta) / pi.
+inline Vec3 sampleCosineHemisphere(Vec2 u) {
+  Vec2 d = sampleUniformDiskConcentric(u);
+  float z = std::sqrt(std::max(0.0f, 1.0f - d.x * d.x - d.y * d.y));
+  return {d.x, d.y, z};
+}
+inline float cosineHemispherePdf(float cosTheta) {
+  return std::max(0.0f, cosTheta) / kPi;
+}
+
+/// Uniform direction on the unit sphere; pdf = 1 / (4 pi).
+inline Vec3 sampleUniformSphere(Vec2 u) {
+  float z = 1.0f - 2.0f * u.x;
+  float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+  float phi = 2.0f * kPi * u.y;
+  return {r * std::cos(phi), r * std::sin(phi), z};
+}
+constexpr float kUniformSpherePdf = 1.0f / (4.0f * kPi);
+
+/// Uniform direction in the cone of half-angle acos(cosMax) about +z; pdf = 1 / (2 pi (1 -
+/// cosMax)). For tiny cones 1 - cosMax cancels: pass it directly as oneMinusCosMax.
+inline Vec3 sampleUniformCone(Vec2 u, float oneMinusCosMax) {
+  float oneMinusCos = u.x * oneMinusCosMax;
+  float cosTheta = 1.0f - oneMinusCos;
+  float sinTheta = std::sqrt(std::max(0.0f, oneMinusCos * (2.0f - oneMinusCos)));
+  float phi = 2.0f * kPi * u.y;
+  return {sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta};
+}
+inline float uniformConePdf(float oneMinusCosMax) {
+  return 1.0f / (2.0f * kPi * oneMinusCosMax);
+}
+
+/// Uniform barycentrics (b0, b1, b2) on a triangle (Heitz 2019, "A Low-Distortion Map Between
+/// Triangle and Square"); pdf = 1 / area.
+inline Vec3 sampleUniformTriangle(Vec2 u) {
+  float b0, b1;
+  if (u.x < u.y) {
+    b0 = u.x / 2, b1 = u.y - b0;
+  } else {
+    b1 = u.y / 2, b0 = u.x - b1;
+  }
+  return {b0, b1, 1.0f - b0 - b1};
+}
+
+/// Veach's power heuristic (beta = 2) for two strategies with nf and ng samples' pdfs.
+inline float powerHeuristic(float pf, float pg) {
+  if (std::isinf(pf)) return 1.0f;
+  float f2 = pf * pf, g2 = pg * pg;
+  return f2 + g2 > 0 ? f2 / (f2 + g2) : 0.0f;
+}
+
+/// A shading frame: local +z is the normal.
+struct Frame {
+  Vec3 t, b, n;
+  static Frame fromNormal(const Vec3& n) {
+    Frame f;
+    f.n = n;
+    orthonormalBasis(n, f.t, f.b);
+    return f;
+  }
+  Vec3 toLocal(const Vec3& v) const { return {dot(v, t), dot(v, b), dot(v, n)}; }
+  Vec3 toWorld(const Vec3& v) const { return v.x * t + v.y * b + v.z * n; }
+};
+
+}  // namespace tray

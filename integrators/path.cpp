@@ -1,0 +1,179 @@
+#include "integrators/path.h"
+
+#include <atomic>
+#include <cstdio>
+
+#include "lights/light_set.h"
+#include "materials/bsdf.h"
+#include "materials/medium_stack.h"
+
+namespace tray {
+namespace {
+
+/// The pixel being rendered on this thread, for --debug-nan reports (Li does not know it).
+thread_local int tlsPixelX = -1, tlsPixelY = -1;
+
+class PathIntegrator final : public Integrator {
+ public:
+  explicit PathIntegrator(const RenderContext& ctx)
+      : Integrator(ctx),
+        maxDepth_(ctx.settings.maxDepth >= 0 ? ctx.settings.maxDepth : 8),
+        lights_(ctx.scene) {}
+
+  PixelValue renderPixel(int x, int y, RayStats& stats) const override {
+    tlsPixelX = x, tlsPixelY = y;
+    return Integrator::renderPixel(x, y, stats);
+  }
+
+  Color Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats,
+           PrimaryHit* primary) const override;
+
+ private:
+  /// Prints where a non-finite value appeared (first few only); the base class then discards
+  /// and counts the sample.
+  void reportNan(const char* what, int depth) const {
+    if (!ctx_.settings.debugNan || nanReports_.fetch_add(1) >= kMaxNanReports) return;
+    std::fprintf(stderr, "debug-nan: pixel (%d, %d), depth %d: non-finite %s\n", tlsPixelX,
+                 tlsPixelY, depth, what);
+  }
+  static constexpr int kMaxNanReports = 10;
+  /// Mitsuba's default: Russian roulette from the fifth segment on.
+  static constexpr int kRouletteDepth = 5;
+  /// Passes through false interfaces of nested dielectrics before giving up on a path.
+  static constexpr int kMaxNullCrossings = 64;
+  int maxDepth_;
+  LightSet lights_;
+  mutable std::atomic<int> nanReports_{0};
+};
+
+Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats,
+                         PrimaryHit* primary) const {
+  const Scene& scene = ctx_.scene;
+  Color L(0.0f), beta(1.0f);
+  if (maxDepth_ == 0) return L;
+  Ray ray = cameraRay;
+  int depth = 1;  // segments so far, counting the one being traced
+  int nullCrossings = 0;
+  bool specular = true;  // the last scattering was a delta lobe (or the camera): no MIS
+  float prevPdf = 0;     // BSDF pdf of the last scattering, for MIS against light sampling
+  Vec3 prevP, prevN;     // the last scattering point and its shading normal
+  bool prevTransmits = false;
+  float etaFactor = 1;  // undoes the 1/eta^2 radiance scaling for Russian roulette
+  MediumStack media;
+  auto add = [&](const Color& c, const char* what) {
+    if (!isFinite(c)) reportNan(what, depth);
+    L += c;
+  };
+
+  for (;;) {
+    Hit hit;
+    if (!ctx_.accel.intersect(ray, hit)) {
+      // Escaped: the constant environment, weighted against its light-sampling pdf.
+      const Color& bg = scene.environment.background;
+      if (!isBlack(bg)) {
+        float w = specular ? 1.0f
+                           : powerHeuristic(prevPdf, lights_.environmentPdf(prevN, prevTransmits,
+                                                                            normalize(ray.d)));
+        add(beta * bg * w, "environment");
+      }
+      break;
+    }
+    SurfacePoint s = scene.surface(ray, hit);
+    const Material& m = scene.material(s.material);
+    const Vec3 wo = -normalize(ray.d);
+
+    // Nested dielectrics: a surface of a medium that is not in effect is passed straight by.
+    const bool refractive = m.transmission > 0 && m.metallic < 1;
+    float eta = m.ior / media.currentIor();
+    if (refractive) {
+      MediumStack::Interface iface = media.interface(s.material, m, s.frontFace);
+      if (!iface.real) {
+        media.cross(s.material, m, s.frontFace);
+        if (++nullCrossings > kMaxNullCrossings) break;
+        ray = spawnRay(s.p, s.ng, ray.d);
+        ++stats.secondaryRays;
+        continue;
+      }
+      eta = iface.etaT / iface.etaI;
+    }
+    if (primary && !primary->hit) {
+      primary->hit = true;
+      primary->depth = length(s.p - cameraRay.o);
+      primary->position = s.p;
+      primary->normal = s.n;
+      primary->albedo = m.baseColor;
+      primary->objectId = scene.primitives[s.primitive].objectId;
+      primary->materialId = s.material;
+    }
+
+    // Emission found by BSDF sampling (or seen directly), MIS-weighted against the chance
+    // that light sampling would have picked the same point.
+    if (!isBlack(m.emissive) && (s.frontFace || m.doubleSided)) {
+      float w = 1.0f;
+      int light = lights_.lightAt(hit.primitive, hit.triangle);
+      if (!specular && light >= 0) w = powerHeuristic(prevPdf, lights_.pdf(light, prevP, s.p));
+      add(beta * m.emissive * w, "emission");
+    }
+    if (depth + 1 > maxDepth_) break;
+
+    // Shade on the side the ray arrived from.
+    const Vec3 n = s.frontFace ? s.n : -s.n;
+    const Bsdf bsdf(m, Frame::fromNormal(n), eta);
+
+    // Next-event estimation: one light sample, MIS-weighted against BSDF sampling.
+    if (bsdf.hasNonDelta() && !lights_.empty()) {
+      float uLight = sampler.next1D();
+      LightSample ls = lights_.sample(s.p, n, bsdf.transmits(), uLight, sampler.next2D());
+      if (ls.valid() && !isBlack(ls.L)) {
+        Color f = bsdf.eval(wo, ls.wi) * std::fabs(dot(ls.wi, n));
+        if (!isBlack(f)) {
+          Ray shadow = ls.infinite ? spawnRay(s.p, s.ng, ls.wi) : spawnRayTo(s.p, s.ng, ls.p);
+          ++stats.shadowRays;
+          if (!ctx_.accel.occluded(shadow)) {
+            float w = ls.delta ? 1.0f : powerHeuristic(ls.pdf, bsdf.pdf(wo, ls.wi));
+            add(beta * f * ls.L * (w / ls.pdf), "light sample");
+          }
+        }
+      }
+    }
+
+    // BSDF sampling continues the path.
+    float uLobe = sampler.next1D();
+    BsdfSample bs = bsdf.sample(wo, uLobe, sampler.next2D());
+    if (!bs.valid()) break;
+    beta *= bs.f * (std::fabs(dot(bs.wi, n)) / bs.pdf);
+    if (!isFinite(beta)) {
+      reportNan("path throughput", depth);
+      return Color(std::numeric_limits<float>::quiet_NaN());  // counted and discarded upstream
+    }
+    if (isBlack(beta)) break;
+    specular = bs.delta;
+    prevPdf = bs.pdf;
+    prevP = s.p;
+    prevN = n;
+    prevTransmits = bsdf.transmits();
+    if (bs.transmission && refractive) {
+      media.cross(s.material, m, s.frontFace);
+      etaFactor /= bs.etaScale;
+    }
+    ray = spawnRay(s.p, s.ng, bs.wi);
+    ++stats.secondaryRays;
+    ++depth;
+
+    // Russian roulette (Arvo & Kirk 1990) with Mitsuba's survival probability.
+    if (depth > kRouletteDepth) {
+      float q = std::min(maxComponent(beta) * etaFactor, 0.95f);
+      if (!(sampler.next1D() < q)) break;
+      beta /= q;
+    }
+  }
+  return L;
+}
+
+}  // namespace
+
+std::unique_ptr<Integrator> makePath(const RenderContext& ctx) {
+  return std::make_unique<PathIntegrator>(ctx);
+}
+
+}  // namespace tray

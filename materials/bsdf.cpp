@@ -1,0 +1,115 @@
+#include "materials/bsdf.h"
+
+#include "materials/fresnel.h"
+
+namespace tray {
+
+Bsdf::Bsdf(const Material& m, const Frame& frame, float eta)
+    : frame_(frame),
+      wMetal_(std::clamp(m.metallic, 0.0f, 1.0f)),
+      wGlass_((1.0f - wMetal_) * std::clamp(m.transmission, 0.0f, 1.0f)),
+      wPlastic_(1.0f - wMetal_ - wGlass_),
+      coat_(std::clamp((1.0f - m.roughness) * 10.0f, 0.0f, 1.0f)),
+      metal_(GgxReflectionLobe::metal(m.roughness * m.roughness, m.baseColor)),
+      coatLobe_(GgxReflectionLobe::dielectric(m.roughness * m.roughness, eta)),
+      glass_(m.roughness * m.roughness, eta, m.baseColor),
+      diffuse_{m.baseColor},
+      coatEta_(eta) {
+  hasNonDelta_ = (wMetal_ > 0 && !metal_.isDelta()) || (wGlass_ > 0 && !glass_.isDelta()) ||
+                 (wPlastic_ > 0 && (!isBlack(m.baseColor) || (coat_ > 0 && !coatLobe_.isDelta())));
+}
+
+float Bsdf::coatFresnel(const Vec3& wo) const {
+  return coat_ > 0 ? coat_ * fresnelDielectric(absCosTheta(wo), coatEta_) : 0.0f;
+}
+
+Bsdf::Probabilities Bsdf::probabilities(const Vec3& wo) const {
+  // Roughly each lobe's share of the reflected energy; any positive choice is unbiased.
+  Probabilities p;
+  float fc = coatFresnel(wo);
+  p.metal = wMetal_;
+  p.glass = wGlass_;
+  p.coat = wPlastic_ * fc;
+  p.diffuse = wPlastic_ * (1.0f - fc) * maxComponent(diffuse_.albedo);
+  float sum = p.metal + p.glass + p.coat + p.diffuse;
+  if (sum > 0) {
+    float inv = 1.0f / sum;
+    p.metal *= inv, p.glass *= inv, p.coat *= inv, p.diffuse *= inv;
+  }
+  return p;
+}
+
+Color Bsdf::evalLocal(const Vec3& wo, const Vec3& wi) const {
+  Color f(0.0f);
+  if (wMetal_ > 0) f += wMetal_ * metal_.eval(wo, wi);
+  if (wGlass_ > 0) f += wGlass_ * glass_.eval(wo, wi);
+  if (wPlastic_ > 0) {
+    if (coat_ > 0) f += (wPlastic_ * coat_) * coatLobe_.eval(wo, wi);
+    f += (wPlastic_ * (1.0f - coatFresnel(wo))) * diffuse_.eval(wo, wi);
+  }
+  return f;
+}
+
+float Bsdf::pdfLocal(const Vec3& wo, const Vec3& wi) const {
+  Probabilities p = probabilities(wo);
+  float pdf = 0;
+  if (p.metal > 0) pdf += p.metal * metal_.pdf(wo, wi);
+  if (p.glass > 0) pdf += p.glass * glass_.pdf(wo, wi);
+  if (p.coat > 0) pdf += p.coat * coatLobe_.pdf(wo, wi);
+  if (p.diffuse > 0) pdf += p.diffuse * diffuse_.pdf(wo, wi);
+  return pdf;
+}
+
+BsdfSample Bsdf::sampleLocal(const Vec3& wo, float uc, Vec2 u) const {
+  Probabilities p = probabilities(wo);
+  BsdfSample s;
+  // Pick a lobe with uc, then rescale uc to [0,1) for the lobe's own discrete choice.
+  const float cdf[4] = {p.metal, p.metal + p.glass, p.metal + p.glass + p.coat, 1.0f};
+  int lobe = 0;
+  while (lobe < 3 && uc >= cdf[lobe]) ++lobe;
+  const float probs[4] = {p.metal, p.glass, p.coat, p.diffuse};
+  if (!(probs[lobe] > 0)) return s;
+  float lo = lobe == 0 ? 0.0f : cdf[lobe - 1];
+  float ucLobe = std::min((uc - lo) / probs[lobe], 0.99999994f);
+  float weight = 1.0f;
+  switch (lobe) {
+    case 0:
+      s = metal_.sample(wo, u), weight = wMetal_;
+      break;
+    case 1:
+      s = glass_.sample(wo, ucLobe, u), weight = wGlass_;
+      break;
+    case 2:
+      s = coatLobe_.sample(wo, u), weight = wPlastic_ * coat_;
+      break;
+    default:
+      s = diffuse_.sample(wo, u);
+      break;
+  }
+  if (!s.valid()) return s;
+  if (s.delta) {  // a discrete choice among delta and continuous lobes: probability x pdf
+    s.f *= weight;
+    s.pdf *= probs[lobe];
+    return s;
+  }
+  s.f = evalLocal(wo, s.wi);
+  s.pdf = pdfLocal(wo, s.wi);
+  if (!(s.pdf > 0) || !std::isfinite(s.pdf)) s.pdf = 0;
+  return s;
+}
+
+Color Bsdf::eval(const Vec3& wo, const Vec3& wi) const {
+  return evalLocal(frame_.toLocal(wo), frame_.toLocal(wi));
+}
+
+float Bsdf::pdf(const Vec3& wo, const Vec3& wi) const {
+  return pdfLocal(frame_.toLocal(wo), frame_.toLocal(wi));
+}
+
+BsdfSample Bsdf::sample(const Vec3& wo, float uc, Vec2 u) const {
+  BsdfSample s = sampleLocal(frame_.toLocal(wo), uc, u);
+  s.wi = frame_.toWorld(s.wi);
+  return s;
+}
+
+}  // namespace tray

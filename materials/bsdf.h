@@ -1,0 +1,56 @@
+#pragma once
+#include "core/material.h"
+#include "core/sampling.h"
+#include "materials/dielectric.h"
+#include "materials/ggx_reflection.h"
+#include "materials/lambert.h"
+
+namespace tray {
+
+/// glTF metallic-roughness as a physically based BSDF, a weighted sum of lobes
+/// (glTF 2.0 appendix B, KHR_materials_transmission):
+///   metallic                  x GGX reflection, Schlick Fresnel with F0 = baseColor
+///   (1-metallic) transmission x dielectric (GGX or smooth), exact Fresnel, tinted by baseColor
+///   (1-metallic)(1-transm.)   x plastic: c GGX coat (exact Fresnel, ior) +
+///                               (1 - c F(cos_o)) Lambert(baseColor)
+/// alpha = roughness^2. The coat strength c fades from 1 to 0 as roughness goes 0.9 -> 1, so
+/// roughness 1 with metallic 0 is exactly Lambert: what exporters write for matte surfaces
+/// (Mitsuba's `diffuse`, the Cornell box) -- documented in docs/path-tracing.md.
+/// Built per shading point on the stack; directions are world-space, frame.n faces wo's side.
+class Bsdf {
+ public:
+  /// eta = n_t / n_i across this interface for light arriving from frame.n's side (from the
+  /// MediumStack; for opaque materials simply ior / n_outside).
+  Bsdf(const Material& m, const Frame& frame, float eta);
+  Color eval(const Vec3& wo, const Vec3& wi) const;
+  float pdf(const Vec3& wo, const Vec3& wi) const;
+  /// uc picks the lobe (and reflection vs refraction), u the direction. wi comes back in world
+  /// space; an invalid sample has pdf 0.
+  BsdfSample sample(const Vec3& wo, float uc, Vec2 u) const;
+  /// False when every lobe is a delta: light sampling cannot help and MIS is off.
+  bool hasNonDelta() const { return hasNonDelta_; }
+  /// True when light can also scatter to the far side of the surface.
+  bool transmits() const { return wGlass_ > 0; }
+  const Frame& frame() const { return frame_; }
+
+  /// The same, in the local frame (tests use these directly).
+  Color evalLocal(const Vec3& wo, const Vec3& wi) const;
+  float pdfLocal(const Vec3& wo, const Vec3& wi) const;
+  BsdfSample sampleLocal(const Vec3& wo, float uc, Vec2 u) const;
+
+ private:
+  struct Probabilities {
+    float metal = 0, glass = 0, coat = 0, diffuse = 0;
+  };
+  Probabilities probabilities(const Vec3& wo) const;
+  float coatFresnel(const Vec3& wo) const;
+  Frame frame_;
+  float wMetal_, wGlass_, wPlastic_, coat_;
+  GgxReflectionLobe metal_, coatLobe_;
+  DielectricLobe glass_;
+  LambertLobe diffuse_;
+  float coatEta_;
+  bool hasNonDelta_;
+};
+
+}  // namespace tray

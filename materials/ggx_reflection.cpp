@@ -1,0 +1,56 @@
+#include "materials/ggx_reflection.h"
+
+#include "materials/fresnel.h"
+
+namespace tray {
+
+float GgxReflectionLobe::fresnelDielectricAbs(float cosI) const {
+  // Reflection stays on the side it arrived from: the outside (the coat faces outwards).
+  return fresnelDielectric(std::fabs(cosI), eta_);
+}
+
+Color GgxReflectionLobe::eval(const Vec3& wo, const Vec3& wi) const {
+  if (isDelta() || !sameHemisphere(wo, wi)) return Color(0.0f);
+  float cosO = absCosTheta(wo), cosI = absCosTheta(wi);
+  if (cosO == 0 || cosI == 0) return Color(0.0f);
+  Vec3 wm = wi + wo;
+  if (lengthSquared(wm) == 0) return Color(0.0f);
+  wm = normalize(wm);
+  if (wm.z < 0) wm = -wm;
+  return fresnel(dot(wo, wm)) * (dist_.D(wm) * dist_.G(wo, wi) / (4.0f * cosO * cosI));
+}
+
+float GgxReflectionLobe::pdf(const Vec3& wo, const Vec3& wi) const {
+  if (isDelta() || !sameHemisphere(wo, wi)) return 0.0f;
+  Vec3 wm = wi + wo;
+  if (lengthSquared(wm) == 0) return 0.0f;
+  wm = normalize(wm);
+  if (wm.z < 0) wm = -wm;
+  // Reflection's Jacobian dwm/dwi = 1 / (4 |wo.wm|) (Walter et al. eq. 14).
+  return dist_.visibleD(wo, wm) / (4.0f * std::fabs(dot(wo, wm)));
+}
+
+BsdfSample GgxReflectionLobe::sample(const Vec3& wo, Vec2 u) const {
+  BsdfSample s;
+  if (wo.z == 0) return s;
+  if (isDelta()) {
+    s.wi = {-wo.x, -wo.y, wo.z};
+    s.f = fresnel(wo.z) / absCosTheta(s.wi);
+    s.pdf = 1.0f;
+    s.delta = true;
+    return s;
+  }
+  // Sample visible normals on the upper side and mirror the answer for wo below.
+  Vec3 woUp = wo.z < 0 ? -wo : wo;
+  Vec3 wm = dist_.sampleVisibleNormal(woUp, u);
+  Vec3 wi = -woUp + 2.0f * dot(woUp, wm) * wm;
+  if (wi.z <= 0) return s;  // shadowed by the microsurface: no sample (pbrt-v4 does the same)
+  if (wo.z < 0) wi = -wi;
+  s.wi = wi;
+  s.pdf = pdf(wo, wi);
+  s.f = eval(wo, wi);
+  if (!(s.pdf > 0)) s.pdf = 0;
+  return s;
+}
+
+}  // namespace tray

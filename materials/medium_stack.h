@@ -1,0 +1,82 @@
+#pragma once
+#include "core/material.h"
+
+namespace tray {
+
+/// The refractive media a path is inside, for nested dielectrics (glass filled with water, a
+/// bubble in glass). Schmidt & Budge 2002, "Simple Nested Dielectrics in Ray Traced Images":
+/// the medium in effect is the entered one of highest Material::priority (ties: the most
+/// recently entered); crossing the surface of a medium that is not in effect on either side is
+/// a "false" interface, which the path passes straight through. A fixed array: no allocation.
+class MediumStack {
+ public:
+  static constexpr int kCapacity = 8;
+  /// What happens where a path meets the surface of transmissive material `id`.
+  struct Interface {
+    bool real = true;          ///< false: pass through without scattering
+    float etaI = 1, etaT = 1;  ///< IOR on the arriving side and on the far side
+  };
+
+  /// `entering`: the path arrives from the surface's outside (SurfacePoint::frontFace).
+  Interface interface(int id, const Material& m, bool entering) const {
+    Interface r;
+    int cur = current();
+    if (entering) {
+      r.real = cur < 0 || entries_[cur].priority <= m.priority;
+      r.etaI = cur < 0 ? 1.0f : entries_[cur].ior;
+      r.etaT = m.ior;
+      return r;
+    }
+    int at = find(id);
+    if (at < 0) {  // leaving a medium never entered (the path started inside it)
+      r.etaI = m.ior;
+      r.etaT = cur < 0 ? 1.0f : entries_[cur].ior;
+      return r;
+    }
+    r.real = at == cur;
+    r.etaI = m.ior;
+    int next = current(at);
+    r.etaT = next < 0 ? 1.0f : entries_[next].ior;
+    return r;
+  }
+  /// Records that the path went through `id`'s surface.
+  void cross(int id, const Material& m, bool entering) {
+    if (entering) {
+      if (size_ < kCapacity) entries_[size_++] = {id, m.priority, m.ior};
+      return;
+    }
+    int at = find(id);
+    if (at < 0) return;
+    for (int i = at; i + 1 < size_; ++i) entries_[i] = entries_[i + 1];
+    --size_;
+  }
+  /// IOR of the medium in effect (1 outside everything).
+  float currentIor() const {
+    int c = current();
+    return c < 0 ? 1.0f : entries_[c].ior;
+  }
+  int size() const { return size_; }
+
+ private:
+  struct Entry {
+    int id = -1;
+    int priority = 0;
+    float ior = 1;
+  };
+  /// Index of the medium in effect, ignoring entry `skip`; -1 if none.
+  int current(int skip = -1) const {
+    int best = -1;
+    for (int i = 0; i < size_; ++i)
+      if (i != skip && (best < 0 || entries_[i].priority >= entries_[best].priority)) best = i;
+    return best;
+  }
+  int find(int id) const {
+    for (int i = size_ - 1; i >= 0; --i)
+      if (entries_[i].id == id) return i;
+    return -1;
+  }
+  Entry entries_[kCapacity];
+  int size_ = 0;
+};
+
+}  // namespace tray
