@@ -19,8 +19,8 @@ class GgxDistribution {
 
   /// Microfacet normal density D(wm), projected-area normalised: integral D cos = 1.
   float D(const Vec3& wm) const {
+    if (!(wm.z > 0)) return 0;  // microfacets face the upper side only
     float cos2 = wm.z * wm.z;
-    if (cos2 <= 0) return 0;
     float sin2 = std::max(0.0f, 1.0f - cos2);
     float a2 = alpha_ * alpha_;
     float e = cos2 + sin2 / a2;  // cos^2 (1 + tan^2 / a^2)
