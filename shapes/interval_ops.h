@@ -1,0 +1,41 @@
+#pragma once
+#include <vector>
+
+#include "shapes/shape.h"
+
+namespace tray {
+
+/// The boolean operations of constructive solid geometry. Difference is the first operand
+/// minus all the others.
+enum class CsgOp { kUnion, kIntersection, kDifference };
+
+/// When two boundaries along a ray count as the same point. Boundaries computed through
+/// different transforms differ by a few float ULPs even where the surfaces coincide exactly;
+/// treating them as one event (and deciding the result from the state after all of them) is
+/// what keeps coincident faces free of speckle. The tolerance grows with the magnitude of the
+/// point, like float error does: tol(t) = relative * (originScale + |t|), where originScale is
+/// |o| / |d| of the ray (both in the space the intervals were computed in).
+struct TieTolerance {
+  float relative = 0.0f;
+  float originScale = 0.0f;
+  float at(float t) const { return relative * (originScale + std::fabs(t)); }
+};
+
+/// Combines the sorted interval lists of the operands (one list per child solid, each sorted
+/// by t; overlapping or touching intervals within one list are allowed) into the sorted,
+/// disjoint intervals of the result, in one sweep over all boundaries in t order.
+///
+/// Rules, so that every ray sees one consistent solid:
+/// - Boundaries closer than the tolerance are one event: the inside/outside state is decided
+///   after all of them. Touching solids merge, slivers thinner than the tolerance vanish, and
+///   where a subtracted solid's face coincides with the first solid's face, the subtracted one
+///   wins (the face is removed, never flickers).
+/// - Each result boundary reports the crossing of the lowest-indexed operand whose own change
+///   at that event agrees with the result's change (deterministic material on shared faces).
+/// - Crossings of subtracted operands have their normal flipped: the result's outward normal
+///   there points into the subtracted solid.
+/// `out` is overwritten. Infinite ends (half-spaces) are kept as infinite ends.
+void combineIntervals(CsgOp op, const std::vector<std::vector<Interval>>& operands,
+                      const TieTolerance& tolerance, std::vector<Interval>& out);
+
+}  // namespace tray

@@ -1,0 +1,63 @@
+#pragma once
+// Closed triangle meshes built in code for CSG tests: boxes, extruded polygons, a torus.
+#include <vector>
+
+#include "shapes/triangle_mesh.h"
+
+namespace tray::test {
+
+/// A prism: the counter-clockwise polygon `poly` (in xy) extruded over z in [z0, z1], wound
+/// outward. Side i runs from poly[i] to poly[i + 1]; `sides` picks which sides to emit
+/// (empty: all) and `caps` whether to emit the two polygon faces (fan from poly[0]: the
+/// polygon must be star-shaped around it).
+inline TriangleMesh prismMesh(const std::vector<Vec2>& poly, float z0, float z1, int material,
+                              std::vector<bool> sides = {}, bool caps = true) {
+  TriangleMesh m;
+  m.material = material;
+  auto add = [&](Vec3 a, Vec3 b, Vec3 c) {
+    uint32_t base = uint32_t(m.positions.size());
+    m.positions.insert(m.positions.end(), {a, b, c});
+    m.indices.insert(m.indices.end(), {base, base + 1, base + 2});
+  };
+  size_t n = poly.size();
+  for (size_t i = 0; i < n; ++i) {
+    if (!sides.empty() && !sides[i]) continue;
+    Vec2 a = poly[i], b = poly[(i + 1) % n];
+    add({a.x, a.y, z0}, {b.x, b.y, z0}, {b.x, b.y, z1});
+    add({a.x, a.y, z0}, {b.x, b.y, z1}, {a.x, a.y, z1});
+  }
+  if (caps)
+    for (size_t i = 1; i + 1 < n; ++i) {
+      Vec2 a = poly[0], b = poly[i], c = poly[i + 1];
+      add({a.x, a.y, z1}, {b.x, b.y, z1}, {c.x, c.y, z1});
+      add({a.x, a.y, z0}, {c.x, c.y, z0}, {b.x, b.y, z0});
+    }
+  return m;
+}
+
+/// The box [lo, hi] as 12 outward triangles.
+inline TriangleMesh boxMesh(const Vec3& lo, const Vec3& hi, int material = 0) {
+  return prismMesh({{lo.x, lo.y}, {hi.x, lo.y}, {hi.x, hi.y}, {lo.x, hi.y}}, lo.z, hi.z, material);
+}
+
+/// A torus around the y axis (ring radius R, tube radius r) with shared vertices.
+inline TriangleMesh torusMesh(float R, float r, int nu, int nv, int material = 0) {
+  TriangleMesh m;
+  m.name = "torus";
+  m.material = material;
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      float u = 2 * kPi * float(i) / float(nu), v = 2 * kPi * float(j) / float(nv);
+      float w = R + r * std::cos(v);
+      m.positions.push_back({w * std::cos(u), r * std::sin(v), w * std::sin(u)});
+    }
+  auto id = [&](int i, int j) { return uint32_t((i % nu) * nv + (j % nv)); };
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      uint32_t a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
+      m.indices.insert(m.indices.end(), {a, c, b, a, d, c});
+    }
+  return m;
+}
+
+}  // namespace tray::test
