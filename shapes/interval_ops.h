@@ -26,12 +26,14 @@ struct TieTolerance {
 /// disjoint intervals of the result, in one sweep over all boundaries in t order.
 ///
 /// Rules, so that every ray sees one consistent solid:
-/// - Boundaries closer than the tolerance are one event: the inside/outside state is decided
-///   after all of them. Touching solids merge, slivers thinner than the tolerance vanish, and
-///   where a subtracted solid's face coincides with the first solid's face, the subtracted one
-///   wins (the face is removed, never flickers).
-/// - Each result boundary reports the crossing of the lowest-indexed operand whose own change
-///   at that event agrees with the result's change (deterministic material on shared faces).
+/// - Boundaries closer than the tolerance are tied. Within a tie each operand's own
+///   boundaries keep their order (a thin chord through one child stays), while boundaries of
+///   different operands are ordered by the operation: a union takes entries first (touching
+///   solids merge, no inner face), an intersection and a difference take exits from the
+///   result first (no slivers; a subtracted face flush with the first solid's face removes
+///   that face: the subtracted solid wins).
+/// - Each result boundary reports the crossing of the lowest-indexed operand, among the tied
+///   boundaries that push the result the same way (deterministic material on shared faces).
 /// - Crossings of subtracted operands have their normal flipped: the result's outward normal
 ///   there points into the subtracted solid.
 /// `out` is overwritten. Infinite ends (half-spaces) are kept as infinite ends.

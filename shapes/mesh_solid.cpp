@@ -120,34 +120,26 @@ void MeshSolid::intervals(const Ray& ray, std::vector<Interval>& out) const {
       xs.push_back({{dir * h.t, n, uvAt(h), -1}, dn < 0 ? 1 : -1});
     }
   }
+  // At equal t an entry goes first, so a ray touching a silhouette edge (entering and
+  // leaving at once) makes a zero-length interval rather than a lost exit.
   std::sort(xs.begin(), xs.end(), [](const MeshCrossing& a, const MeshCrossing& b) {
-    return a.crossing.t < b.crossing.t;
+    return a.crossing.t != b.crossing.t ? a.crossing.t < b.crossing.t : a.sign > b.sign;
   });
-  // A ray through an edge or a vertex hits every triangle meeting there: crossings this
-  // close count as one, with the sign of their sum (two faces entering = one entry; a
-  // silhouette edge, entering and leaving = none). Then pair by winding number.
+  // A ray through an edge or a vertex hits every triangle meeting there: successive crossings
+  // of the same sign this close are one crossing. Then pair by winding number.
   const float kSameHit = 1e-6f, scale = length(ray.o) / length(ray.d);
   int winding = 0;
   Interval current;
-  for (size_t first = 0; first < xs.size();) {
-    size_t last = first + 1;
-    int sum = xs[first].sign;
-    while (last < xs.size() && xs[last].crossing.t - xs[last - 1].crossing.t <=
-                                   kSameHit * (scale + std::fabs(xs[last].crossing.t)))
-      sum += xs[last++].sign;
-    int step = (sum > 0) - (sum < 0);
-    const MeshCrossing* rep = &xs[first];
-    for (size_t i = first; i < last; ++i)
-      if (xs[i].sign == step) {
-        rep = &xs[i];
-        break;
-      }
-    if (step > 0 && winding++ == 0) current.enter = rep->crossing;
-    if (step < 0 && winding > 0 && --winding == 0) {
-      current.exit = rep->crossing;
+  for (size_t i = 0; i < xs.size(); ++i) {
+    const MeshCrossing& x = xs[i];
+    if (i > 0 && xs[i - 1].sign == x.sign &&
+        x.crossing.t - xs[i - 1].crossing.t <= kSameHit * (scale + std::fabs(x.crossing.t)))
+      continue;
+    if (x.sign > 0 && winding++ == 0) current.enter = x.crossing;
+    if (x.sign < 0 && winding > 0 && --winding == 0) {
+      current.exit = x.crossing;
       out.push_back(current);
     }
-    first = last;
   }
   // A closed mesh ends every interval; an unmatched entry (numerical loss) is dropped rather
   // than extended to infinity.

@@ -89,6 +89,13 @@ TEST(IntervalOps, BoundariesWithinToleranceAreOneEvent) {
   EXPECT_TRUE(combine(CsgOp::kDifference, {{span(1, 2)}, {span(1.00001f, 2)}}, tol).empty());
   // A near-gap in a union closes.
   EXPECT_EQ(ends(combine(CsgOp::kUnion, {{span(0, 1)}, {span(1.00001f, 2)}}, tol)), V({0, 2}));
+  // A thin chord through one solid (a ray grazing a corner) is real and stays, whatever its
+  // neighbours: the tolerance only orders boundaries of different operands.
+  EXPECT_EQ(ends(combine(CsgOp::kDifference, {{span(1, 1.000001f)}, {span(5, 6)}}, tol)),
+            V({1, 1.000001f}));
+  EXPECT_EQ(ends(combine(CsgOp::kUnion, {{span(1, 1.000001f)}, {}}, tol)), V({1, 1.000001f}));
+  EXPECT_EQ(ends(combine(CsgOp::kIntersection, {{span(1, 1.000001f)}, {span(0, 2)}}, tol)),
+            V({1, 1.000001f}));
   // Real features larger than the tolerance stay.
   EXPECT_EQ(ends(combine(CsgOp::kUnion, {{span(0, 1)}, {span(1.001f, 2)}}, tol)).size(), 4u);
 }
