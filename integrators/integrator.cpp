@@ -1,48 +1,48 @@
 #include "integrators/integrator.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.h"
+#include "core/filter.h"
+#include "core/pixel_sampler.h"
 
 namespace tray {
 
 PixelValue Integrator::renderPixel(int x, int y, RayStats& stats) const {
   const RenderSettings& s = ctx_.settings;
-  const int spp = std::max(1, s.spp);
+  const Filter filter = Filter::make(s.filter);
+  const PixelSampler pixelSampler(PixelSampler::parse(s.pixelSampler, s.spp), s.spp, filter.radius());
   const uint32_t pixelIndex = uint32_t(y) * uint32_t(ctx_.width) + uint32_t(x);
-  // Stratified jitter on the largest square grid that fits spp; the rest uniformly jittered.
-  // One sample sits at the pixel centre (the seed's ray casting) unless jitter is asked for.
-  const int strata = int(std::sqrt(double(spp)));
-  const bool center = s.pixelSampler == "center" || (s.pixelSampler == "auto" && spp == 1);
-  double sum[3] = {0, 0, 0}, alpha = 0;
+  const float cx = x + 0.5f, cy = y + 0.5f;
+  // Filter-weighted average, normalised by the weight sum (pbrt-v4 8.8's weighted estimator):
+  // each pixel owns its samples, so tiles never share film writes. Doubles keep the mean
+  // accurate at very high sample counts.
+  double sum[3] = {0, 0, 0}, alpha = 0, weights = 0;
   PixelValue out;
-  for (int i = 0; i < spp; ++i) {
+  const int n = pixelSampler.count();
+  for (int i = 0; i < n; ++i) {
     Sampler sampler(pixelIndex, uint32_t(i), s.seed);
-    Vec2 u = sampler.next2D();
-    float px, py;
-    if (center) {
-      px = x + 0.5f, py = y + 0.5f;
-    } else if (i < strata * strata) {
-      px = x + (float(i % strata) + u.x) / float(strata);
-      py = y + (float(i / strata) + u.y) / float(strata);
-    } else {
-      px = x + u.x, py = y + u.y;
-    }
-    Ray ray = ctx_.camera.generateRay(px, py);
+    const Vec2 d = pixelSampler.offset(i, sampler.next2D());
+    Ray ray = ctx_.camera.generateRay(cx + d.x, cy + d.y);
     ++stats.cameraRays;
     PrimaryHit primary;
-    Color L = Li(ray, sampler, stats, i == 0 ? &out.primary : &primary);
+    PrimaryHit& seen = i == 0 ? out.primary : primary;
+    Color L = Li(ray, sampler, stats, &seen);
     if (!isFinite(L)) {
       ++stats.nanSamples;
       L = Color(0.0f);
     }
-    // Double accumulation keeps the mean accurate at very high sample counts.
-    sum[0] += L.x, sum[1] += L.y, sum[2] += L.z;
-    alpha += (i == 0 ? out.primary.hit : primary.hit) ? 1.0 : 0.0;
+    const double w = filter.evaluate(d);
+    sum[0] += w * L.x, sum[1] += w * L.y, sum[2] += w * L.z;
+    alpha += seen.hit ? w : 0.0;
+    weights += w;
   }
-  out.radiance = Color(float(sum[0] / spp), float(sum[1] / spp), float(sum[2] / spp));
-  out.alpha = float(alpha / spp);
-  out.samples = uint32_t(spp);
+  if (weights != 0) {
+    out.radiance = Color(float(sum[0] / weights), float(sum[1] / weights), float(sum[2] / weights));
+    out.alpha = std::clamp(float(alpha / weights), 0.0f, 1.0f);  // Mitchell's lobes can overshoot
+  }
+  out.samples = uint32_t(n);
   return out;
 }
 

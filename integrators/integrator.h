@@ -20,10 +20,11 @@ struct RenderSettings {
   int maxDepth = -1;              ///< -1: the integrator's own default
   int spp = 1;
   uint64_t seed = 0;
-  std::string pixelSampler = "auto";  ///< center | grid | jitter | auto (center at 1 spp)
+  std::string pixelSampler = "auto";  ///< center | corners | grid | jitter | auto (center at 1 spp)
   std::string filter = "box";
   float aaThreshold = 0.05f;
   int aaDepth = 4;
+  bool aaRobust = false;  ///< adaptive: jittered lattice + minimum subdivision near thin features
   float clampIndirect = 0.0f;  ///< 0 = off
   bool debugNan = false;
 };

@@ -1,3 +1,4 @@
+#include "integrators/adaptive.h"
 #include "integrators/integrator.h"
 #include "integrators/path.h"
 #include "integrators/whitted.h"
@@ -9,6 +10,7 @@ const std::vector<IntegratorEntry>& integratorRegistry() {
   static const std::vector<IntegratorEntry> table = {
       {"whitted", "recursive ray tracing: Phong, shadows, mirror reflection, refraction",
        makeWhitted},
+      {"adaptive", "adaptive supersampling around --inner: corners, subdivide where they differ", makeAdaptive},
       {"path", "path tracing: MIS next-event estimation, GGX/dielectric BSDFs, area lights", makePath},
   };
   return table;

@@ -1,0 +1,186 @@
+#include "integrators/adaptive.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/aov.h"
+#include "core/renderer.h"
+#include "tests/raster_function.h"
+#include "tests/scene_builder.h"
+
+namespace tray {
+namespace {
+
+using namespace tray::test;
+
+struct Result {
+  Film film;
+  RenderStats stats;
+  size_t traced = 0;
+};
+
+/// Renders with `integrator`, filling the samples AOV.
+Result render(const Integrator& integrator, int w, int h, int threads = 0) {
+  Film film(w, h);
+  RenderOptions opt;
+  opt.threads = threads;
+  opt.aovs = {"samples"};
+  RenderStats st = renderImage(integrator, film, opt);
+  return {std::move(film), st, adaptiveTracedPoints(integrator)};
+}
+
+float samplesAt(const Film& f, int x, int y) {
+  return f.pixel(f.findLayer("samples"), x, y)[0];
+}
+float valueAt(const Film& f, int x, int y) {
+  return f.pixel(Film::kBeauty, x, y)[0];
+}
+
+RenderSettings adaptiveSettings(int depth = 4, float threshold = 0.05f) {
+  RenderSettings s;
+  s.integrator = "adaptive";
+  s.aaDepth = depth;
+  s.aaThreshold = threshold;
+  return s;
+}
+
+TEST(Adaptive, ContrastIsBoundedAndPerceptual) {
+  const Color same[2] = {Color(0.3f), Color(0.3f)};
+  EXPECT_EQ(adaptiveContrast(same, 2), 0.0f);
+  const Color extreme[2] = {Color(0.0f), Color(1e6f)};
+  EXPECT_LT(adaptiveContrast(extreme, 2), 1.0f);
+  EXPECT_GT(adaptiveContrast(extreme, 2), 0.99f);
+  // The same absolute step matters more in the dark than in the bright.
+  const Color dark[2] = {Color(0.01f), Color(0.06f)}, bright[2] = {Color(5.0f), Color(5.05f)};
+  EXPECT_GT(adaptiveContrast(dark, 2), 10 * adaptiveContrast(bright, 2));
+  // Chromatic edges of equal luminance still count.
+  const Color hue[2] = {Color(0.5f, 0.1f, 0.1f), Color(0.1f, 0.1f, 0.5f)};
+  EXPECT_GT(adaptiveContrast(hue, 2), 0.2f);
+}
+
+TEST(Adaptive, FlatRegionUsesOnlyPixelCorners) {
+  RasterWorld world;
+  const int W = 20, H = 12;
+  RenderContext ctx = world.context(adaptiveSettings(), W, H);
+  auto inner =
+      std::make_unique<RasterIntegrator>(ctx, RasterImage{[](float, float) { return 0.5f; }});
+  const RasterIntegrator& counter = *inner;
+  auto adaptive = makeAdaptiveAround(ctx, std::move(inner));
+  Result r = render(*adaptive, W, H);
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      EXPECT_EQ(samplesAt(r.film, x, y), 4.0f);
+      EXPECT_FLOAT_EQ(valueAt(r.film, x, y), 0.5f);
+    }
+  // Corners are shared: (W + 1)(H + 1) rays in all, about one per pixel.
+  EXPECT_EQ(counter.calls.load(), uint64_t((W + 1) * (H + 1)));
+  EXPECT_EQ(r.stats.rays.cameraRays, uint64_t((W + 1) * (H + 1)));
+}
+
+/// A disc and a step edge: curved and straight boundaries at every subpixel offset.
+RasterImage discAndEdge() {
+  return {[](float x, float y) {
+            float dx = x - 9.3f, dy = y - 7.1f;
+            return (dx * dx + dy * dy < 20.0f ? 1.0f : 0.0f) + (x > 17.37f ? 0.5f : 0.0f);
+          },
+          [](float x, float y) {
+            float dx = x - 9.3f, dy = y - 7.1f;
+            return dx * dx + dy * dy < 20.0f ? 1 : -1;
+          }};
+}
+
+TEST(Adaptive, EveryLatticePointIsTracedExactlyOnceAcrossThreads) {
+  RasterWorld world;
+  const int W = 24, H = 16;
+  RenderContext ctx = world.context(adaptiveSettings(), W, H);
+  auto inner = std::make_unique<RasterIntegrator>(ctx, discAndEdge(), true);
+  const RasterIntegrator& counter = *inner;
+  auto adaptive = makeAdaptiveAround(ctx, std::move(inner));
+  Result r = render(*adaptive, W, H, 2);
+  EXPECT_EQ(counter.calls.load(), r.traced);
+  EXPECT_EQ(r.stats.rays.cameraRays, r.traced);
+  std::set<std::pair<float, float>> distinct;
+  for (Vec2 p : counter.positions) distinct.insert({p.x, p.y});
+  EXPECT_EQ(distinct.size(), counter.positions.size());  // no point traced twice
+  EXPECT_GT(r.traced, size_t((W + 1) * (H + 1)));        // and the edges did subdivide
+}
+
+TEST(Adaptive, EdgesSubdivideToTheMaximumDepth) {
+  RasterWorld world;
+  const int W = 24, H = 16;
+  for (int depth : {2, 4}) {
+    RenderContext ctx = world.context(adaptiveSettings(depth), W, H);
+    auto adaptive =
+        makeAdaptiveAround(ctx, std::make_unique<RasterIntegrator>(ctx, discAndEdge(), true));
+    Result r = render(*adaptive, W, H);
+    // Pixel 17 straddles the step at x = 17.37: the squares along it halve `depth` times, so
+    // the pixel uses two full columns of finest-level points and its coverage is exact to
+    // one finest column (1 / 2^depth of a pixel).
+    const int n = 1 << depth;
+    for (int y = 0; y < H; ++y) {
+      EXPECT_GE(samplesAt(r.film, 17, y), 2.0f * (n + 1)) << y;
+      EXPECT_NEAR(valueAt(r.film, 17, y), 0.5f * 0.63f, 0.5f / n + 1e-6f) << y;
+      EXPECT_EQ(samplesAt(r.film, 22, y), 4.0f) << y;  // flat: corners only
+    }
+  }
+}
+
+/// A lit sphere on a floor, for thread-count determinism with a real inner integrator.
+Scene sphereScene() {
+  Scene s;
+  int mat = addMaterial(s, diffuse(Color(0.7f, 0.5f, 0.3f)));
+  addShape(s, std::make_shared<Plane>(), Mat4::identity(), mat);
+  addSphere(s, {0, 1, 0}, 1.0f, addMaterial(s, diffuse(Color(0.2f, 0.6f, 0.9f))));
+  s.lights.push_back(pointLight({2, 5, 2}, Color(40.0f)));
+  s.environment.background = Color(0.2f, 0.3f, 0.5f);
+  s.finalize();
+  return s;
+}
+
+TEST(Adaptive, SameImageAndRayCountsForOneAndTwoThreads) {
+  Scene scene = sphereScene();
+  auto accel = makeAccelerator("embree", scene);
+  const int W = 48, H = 32;
+  auto camera = Camera::create(lookAt({0, 3, 6}, {0, 0.5f, 0}), W, H);
+  for (bool robust : {false, true}) {
+    RenderSettings s = adaptiveSettings();
+    s.inner = "whitted";
+    s.aaRobust = robust;
+    RenderContext ctx{scene, *accel, *camera, s, W, H};
+    auto one = makeIntegrator(ctx), two = makeIntegrator(ctx);
+    Result a = render(*one, W, H, 1), b = render(*two, W, H, 2);
+    EXPECT_EQ(a.film.layers()[0].data, b.film.layers()[0].data) << robust;
+    const int layer = a.film.findLayer("samples");
+    EXPECT_EQ(a.film.layers()[size_t(layer)].data, b.film.layers()[size_t(layer)].data) << robust;
+    EXPECT_EQ(a.stats.rays.cameraRays, b.stats.rays.cameraRays) << robust;
+    EXPECT_EQ(a.traced, b.traced) << robust;
+  }
+}
+
+TEST(Adaptive, HeatmapRampsWithRaysPerPixel) {
+  Film film(3, 1);
+  int layer = film.addLayer("samples", {"count"});
+  film.pixel(layer, 0, 0)[0] = 4, film.pixel(layer, 1, 0)[0] = 30, film.pixel(layer, 2, 0)[0] = 289;
+  Film heat = samplesHeatmap(film);
+  auto brightness = [&](int x) {
+    return luminance(Color(heat.pixel(Film::kBeauty, x, 0)[0], heat.pixel(Film::kBeauty, x, 0)[1],
+                           heat.pixel(Film::kBeauty, x, 0)[2]));
+  };
+  EXPECT_LT(brightness(0), brightness(1));
+  EXPECT_LT(brightness(1), brightness(2));
+  EXPECT_FLOAT_EQ(brightness(2), 1.0f);  // the maximum is white
+  EXPECT_THROW(samplesHeatmap(Film(2, 2)), Error);
+}
+
+TEST(Adaptive, RejectsBadSettings) {
+  RasterWorld world;
+  RenderSettings s = adaptiveSettings(13);
+  EXPECT_THROW(makeIntegrator(world.context(s, 4, 4)), Error);
+  s = adaptiveSettings();
+  s.inner = "adaptive";
+  EXPECT_THROW(makeIntegrator(world.context(s, 4, 4)), Error);
+}
+
+}  // namespace
+}  // namespace tray
