@@ -81,7 +81,7 @@ roots = [node("floor", {"type": "plane", "material": 0})]
 # Lens: two unit spheres 1.2 apart; their intersection is a biconvex lens 0.8 thick.
 lens_a = node("lens front", sphere(1.0), translation=[0, 0, -0.6])
 lens_b = node("lens back", sphere(1.0), translation=[0, 0, 0.6])
-roots.append(node("lens", csg("intersection", [lens_a, lens_b], 1), translation=[0, 1.0, 1.2]))
+roots.append(node("lens", csg("intersection", [lens_a, lens_b], 1), translation=[-0.4, 1.0, 1.5]))
 
 # Die: rounded cube (box n sphere) minus six pip spheres on the faces.
 rounded = node("die body", csg("intersection", [node("die cube", box([-0.5] * 3, [0.5] * 3)),
@@ -101,7 +101,7 @@ roots.append(node("bowl", csg("difference", [bowl_outer, bowl_top, bowl_hollow])
 # Block with a groove: a box minus a torus mesh (closed triangle mesh as a CSG child).
 groove = node("groove torus", mesh=0, translation=[0, 0.5, 0], scale=[0.8, 0.8, 0.8])
 block = node("block", box([-1.1, 0, -1.1], [1.1, 0.5, 1.1]))
-roots.append(node("grooved block", csg("difference", [block, groove], 6), translation=[0, 0, -2.6]))
+roots.append(node("grooved block", csg("difference", [block, groove], 6), translation=[1.0, 0, -3.0]))
 
 # Ball cut by a tilted half-space (a plane inside CSG is the solid y <= 0 of its node).
 cut_plane = node("cut", {"type": "plane", "material": 8}, rotation=[0, 0, 0.258819, 0.9659258])
