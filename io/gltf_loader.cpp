@@ -1,0 +1,141 @@
+#include "io/gltf_loader.h"
+
+#include <filesystem>
+
+#include "io/gltf_cameras_lights.h"
+#include "io/gltf_container.h"
+#include "io/gltf_context.h"
+#include "io/gltf_file_access.h"
+#include "io/gltf_materials.h"
+#include "io/gltf_meshes.h"
+#include "io/gltf_scene_graph.h"
+#include "io/gltf_validate.h"
+
+// The loader in stages, each in its own file:
+//   1. read the file (gltf_file_access) and check its envelope (gltf_container);
+//   2. let tinygltf parse it, with file access routed through TRay's URI policy and images
+//      left undecoded;
+//   3. validate the whole document (gltf_validate, gltf_accessors, checkAllNodes);
+//   4. convert materials and meshes, then walk the chosen scene's nodes (gltf_scene_graph).
+
+namespace tray {
+
+namespace {
+
+/// Images are decoded later by the texture loader (OIIO, after validation): tinygltf must
+/// neither decode them nor keep their bytes.
+bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int,
+               const unsigned char*, int, void*) {
+  return true;
+}
+
+std::string firstLine(const std::string& text) {
+  size_t start = text.find_first_not_of("\r\n ");
+  if (start == std::string::npos) return "";
+  return text.substr(start, text.find_first_of("\r\n", start) - start);
+}
+
+tinygltf::Model parse(const std::string& path, const LoadOptions& options, LoadReport* report) {
+  std::vector<unsigned char> bytes;
+  std::string problem;
+  if (!readRegularFile(path, bytes, problem)) failFile(path, problem);
+  if (bytes.empty()) failFile(path, "file is empty");
+  const bool binary = isGlb(bytes);
+  std::string_view json =
+      binary ? glbJson(path, bytes)
+             : std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  checkJsonRoot(path, json);
+
+  std::string folder = std::filesystem::path(path).parent_path().string();
+  UriPolicy policy(folder.empty() ? "." : folder, options.allowAnyPath);
+  FileAccess access(policy);
+  tinygltf::TinyGLTF gltf;
+  gltf.SetFsCallbacks(access.callbacks());
+  gltf.SetImageLoader(&skipImage, nullptr);
+  tinygltf::Model model;
+  std::string err, warn;
+  // Sizes fit in unsigned int: readRegularFile caps files at 2 GiB.
+  bool ok = binary ? gltf.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(),
+                                               unsigned(bytes.size()), policy.folder())
+                   : gltf.LoadASCIIFromString(&model, &err, &warn, json.data(),
+                                              unsigned(json.size()), policy.folder());
+  // A refused or missing file is reported by tinygltf as "File not found" (or, for images,
+  // only as a warning): TRay's own reason is more precise and is always an error.
+  if (!access.firstProblem().empty()) failFile(path, access.firstProblem());
+  if (!ok)
+    failFile(path, firstLine(err).empty() ? "tinygltf could not parse the file" : firstLine(err));
+  if (report) {
+    for (size_t start = 0; start < warn.size();) {
+      size_t end = std::min(warn.find('\n', start), warn.size());
+      if (end > start)
+        report->warnings.push_back(oneLine(path + ": " + warn.substr(start, end - start)));
+      start = end + 1;
+    }
+  }
+  return model;
+}
+
+int chooseScene(const GltfContext& ctx, int requested) {
+  const int count = int(ctx.model.scenes.size());
+  if (requested < -1) ctx.fail("scene index " + std::to_string(requested) + " is invalid");
+  if (requested >= count)
+    ctx.fail("scene " + std::to_string(requested) + " does not exist (the file has " +
+             std::to_string(count) + ")");
+  if (requested >= 0) return requested;
+  if (ctx.model.defaultScene >= 0) return ctx.model.defaultScene;
+  return count > 0 ? 0 : -1;  // a file without scenes is valid and renders nothing
+}
+
+void reportMeshStats(const GltfContext& ctx, const MeshStats& s) {
+  if (s.pointAndLinePrimitives)
+    ctx.warn("skipped " + std::to_string(s.pointAndLinePrimitives) +
+             " point or line primitive(s): only triangles are rendered");
+  if (s.primitivesWithoutPosition)
+    ctx.warn("skipped " + std::to_string(s.primitivesWithoutPosition) +
+             " primitive(s) without POSITION");
+  if (s.degenerateTriangles)
+    ctx.warn("dropped " + std::to_string(s.degenerateTriangles) + " degenerate triangle(s)");
+  if (s.repairedAttributes)
+    ctx.warn("replaced " + std::to_string(s.repairedAttributes) +
+             " non-finite normal(s), tangent(s) or texture coordinate(s) with zero");
+}
+
+}  // namespace
+
+Scene loadGltf(const std::string& path, const LoadOptions& options, LoadReport* report) {
+  tinygltf::Model model = parse(path, options, report);
+  GltfContext ctx{model, path, report};
+  validateDocument(ctx);
+  checkAllNodes(ctx);
+  // Cameras and lights are placed by nodes later; check them all now, placed or not.
+  for (size_t i = 0; i < model.cameras.size(); ++i) convertCamera(ctx, int(i));
+  for (size_t i = 0; i < model.lights.size(); ++i) convertLight(ctx, int(i));
+  const int sceneIndex = chooseScene(ctx, options.scene);
+
+  Scene scene;
+  scene.sourcePath = path;
+  for (size_t i = 0; i < model.materials.size(); ++i)
+    scene.materials.push_back(convertMaterial(ctx, int(i)));
+  // Index of the glTF default material, appended below only if something uses it.
+  const int defaultMaterial = int(model.materials.size());
+
+  // Every mesh is converted (and so checked), used or not; the walk keeps the used ones.
+  MeshTable meshes;
+  MeshStats stats;
+  for (size_t i = 0; i < model.meshes.size(); ++i)
+    meshes.converted.push_back(convertMesh(ctx, int(i), defaultMaterial, stats));
+  meshes.placed.resize(model.meshes.size());
+  meshes.moved.assign(model.meshes.size(), false);
+  reportMeshStats(ctx, stats);
+
+  if (sceneIndex >= 0) addSceneNodes(ctx, sceneIndex, defaultMaterial, meshes, scene);
+
+  bool defaultUsed = false;
+  for (const auto& m : scene.meshes) defaultUsed = defaultUsed || m.material == defaultMaterial;
+  for (const auto& p : scene.primitives) defaultUsed = defaultUsed || p.material == defaultMaterial;
+  if (defaultUsed) scene.materials.push_back(defaultGltfMaterial());
+  scene.finalize();
+  return scene;
+}
+
+}  // namespace tray

@@ -1,0 +1,29 @@
+#pragma once
+// glTF 2.0 scene loading: the only entry point from the file system into a tray::Scene.
+#include <string>
+#include <vector>
+
+#include "core/scene.h"
+
+namespace tray {
+
+struct LoadOptions {
+  int scene = -1;  ///< glTF scene to load; -1: the file's default `scene` (or 0)
+  /// Let buffer and image URIs leave the scene's folder (absolute paths, `..`). Off by default
+  /// because scene files come from untrusted sources (docs/scene-format.md, "Validation").
+  bool allowAnyPath = false;
+};
+
+struct LoadReport {
+  std::vector<std::string> warnings;  ///< one line each, "PATH: message"
+};
+
+/// Loads a .gltf (with embedded data: URIs or external files) or .glb into a finalized Scene.
+/// The whole document is validated first, including parts the chosen scene does not use.
+/// Throws tray::Error with a one-line message "PATH: problem" on any bad input; never crashes
+/// on malformed files. Warnings (skipped line primitives, dropped degenerate triangles, unknown
+/// optional extensions) go to `report` when given.
+Scene loadGltf(const std::string& path, const LoadOptions& options = {},
+               LoadReport* report = nullptr);
+
+}  // namespace tray

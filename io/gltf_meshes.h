@@ -1,0 +1,26 @@
+#pragma once
+// glTF mesh primitives (glTF 2.0 §3.7.2) into tray::TriangleMesh, one per triangle primitive.
+#include <vector>
+
+#include "io/gltf_context.h"
+#include "shapes/triangle_mesh.h"
+
+namespace tray {
+
+/// Running totals over a file's meshes: caps are checked against them before allocating, and
+/// the loader turns the counts into one warning line each.
+struct MeshStats {
+  size_t triangles = 0, vertices = 0;
+  size_t pointAndLinePrimitives = 0;     ///< skipped: TRay renders surfaces only
+  size_t primitivesWithoutPosition = 0;  ///< skipped, as glTF 2.0 §3.7.2.1 advises
+  size_t degenerateTriangles = 0;        ///< dropped: zero area or repeated vertex
+  size_t repairedAttributes = 0;         ///< non-finite normals, tangents or uvs set to zero
+};
+
+/// Converts glTF mesh `index`: triangle lists, strips and fans become indexed triangle lists;
+/// POSITION, NORMAL, TANGENT and TEXCOORD_0 are read. Fails on out-of-range indices and on
+/// NaN or infinite positions. A primitive without material gets `defaultMaterial`.
+std::vector<TriangleMesh> convertMesh(const GltfContext& ctx, int index, int defaultMaterial,
+                                      MeshStats& stats);
+
+}  // namespace tray

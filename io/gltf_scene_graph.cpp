@@ -1,0 +1,196 @@
+#include "io/gltf_scene_graph.h"
+
+#include <cmath>
+
+#include "core/error.h"
+#include "io/gltf_cameras_lights.h"
+#include "io/gltf_value.h"
+#include "io/tray_shape.h"
+
+namespace tray {
+
+namespace {
+
+void checkNumbers(const GltfContext& ctx, const std::vector<double>& v, size_t size,
+                  const std::string& what) {
+  if (v.size() != size) ctx.fail(what + " needs " + std::to_string(size) + " numbers");
+  // Checked in single precision, which TRay computes in: 1e300 is finite only as a double.
+  for (double d : v)
+    if (!std::isfinite(float(d))) ctx.fail(what + " contains NaN or infinity");
+}
+
+/// The light a node carries through KHR_lights_punctual, or -1.
+int nodeLight(const GltfContext& ctx, int index) {
+  const auto& node = ctx.model.nodes[size_t(index)];
+  const tinygltf::Value* ext = findExtension(node.extensions, "KHR_lights_punctual");
+  if (!ext) return -1;
+  ExtensionReader r(ctx, *ext, nameOf("node", index, node.name) + " KHR_lights_punctual");
+  int light = r.integer("light", -1);
+  if (light < 0 || size_t(light) >= ctx.model.lights.size())
+    r.fail("refers to missing light " + std::to_string(light));
+  return light;
+}
+
+Environment sceneEnvironment(const GltfContext& ctx, int sceneIndex) {
+  const auto& s = ctx.model.scenes[size_t(sceneIndex)];
+  Environment env;
+  const tinygltf::Value* ext = findExtension(s.extensions, "TRAY_environment");
+  if (!ext) return env;
+  ExtensionReader r(ctx, *ext, nameOf("scene", sceneIndex, s.name) + " TRAY_environment");
+  env.ambient = r.vec3("ambient", env.ambient, 0.0);
+  env.background = r.vec3("background", env.background, 0.0);
+  r.finish();
+  return env;
+}
+
+/// A node's world transform as a tray::Transform; false if it is singular (a zero scale hides
+/// a node, which glTF allows). Overflow to infinity while composing is an error.
+bool worldTransform(const GltfContext& ctx, const Mat4& m, const std::string& where,
+                    Transform& out) {
+  if (!m.isFinite()) ctx.fail(where + " world transform overflows to infinity");
+  Mat4 inv;
+  if (!invert(m, inv)) return false;
+  out = Transform(m);
+  return true;
+}
+
+struct Walker {
+  const GltfContext& ctx;
+  int defaultMaterial;
+  MeshTable& meshes;
+  Scene& scene;
+  size_t hiddenNodes = 0;
+
+  void placeMesh(int node, int mesh, const Transform& toWorld) {
+    if (!meshes.moved[size_t(mesh)]) {
+      meshes.moved[size_t(mesh)] = true;
+      for (auto& m : meshes.converted[size_t(mesh)]) {
+        meshes.placed[size_t(mesh)].push_back(uint32_t(scene.meshes.size()));
+        scene.meshes.push_back(std::move(m));
+      }
+    }
+    for (uint32_t m : meshes.placed[size_t(mesh)]) {
+      Primitive p;
+      p.kind = Primitive::Kind::kMesh;
+      p.mesh = m;
+      p.material = scene.meshes[m].material;
+      addPrimitive(node, toWorld, p);
+    }
+  }
+
+  void addPrimitive(int node, const Transform& toWorld, Primitive& p) {
+    p.toWorld = toWorld;
+    p.objectId = node;
+    p.name = ctx.model.nodes[size_t(node)].name;
+    scene.primitives.push_back(std::move(p));
+  }
+
+  void visit(int index, const Mat4& world) {
+    const auto& node = ctx.model.nodes[size_t(index)];
+    const std::string where = nameOf("node", index, node.name);
+    Transform toWorld;
+    bool invertible = worldTransform(ctx, world, where, toWorld);
+    if (node.camera >= 0) {
+      if (!invertible) ctx.fail(where + " places a camera with a singular transform");
+      CameraDesc c = convertCamera(ctx, node.camera);
+      if (c.name.empty()) c.name = node.name;
+      c.toWorld = toWorld;
+      scene.cameras.push_back(c);
+    }
+    if (int l = nodeLight(ctx, index); l >= 0) {
+      Light light = convertLight(ctx, l);
+      // Lights sit at the node's origin and shine down its local -Z (KHR_lights_punctual).
+      light.position = {world.m[0][3], world.m[1][3], world.m[2][3]};
+      Vec3 d{-world.m[0][2], -world.m[1][2], -world.m[2][2]};
+      if (!(length(d) > 0)) ctx.fail(where + " places a light with a degenerate direction");
+      light.direction = normalize(d);
+      scene.lights.push_back(light);
+    }
+    const tinygltf::Value* shapeExt = findExtension(node.extensions, "TRAY_shape");
+    if ((shapeExt || node.mesh >= 0) && !invertible) {
+      ++hiddenNodes;
+    } else if (shapeExt) {  // a shape replaces the node's mesh, if any
+      TrayShape s = parseTrayShape(ctx, *shapeExt, where);
+      Primitive p;
+      p.kind = Primitive::Kind::kShape;
+      p.shape = s.shape;
+      p.material = s.material >= 0 ? s.material : defaultMaterial;
+      addPrimitive(index, toWorld, p);
+    } else if (node.mesh >= 0) {
+      placeMesh(index, node.mesh, toWorld);
+    }
+  }
+};
+
+}  // namespace
+
+Mat4 localMatrix(const GltfContext& ctx, int index) {
+  const auto& n = ctx.model.nodes[size_t(index)];
+  const std::string where = nameOf("node", index, n.name);
+  if (!n.matrix.empty()) {
+    // glTF 2.0 §3.5.2: a matrix excludes TRS, and must be affine (last row 0 0 0 1).
+    checkNumbers(ctx, n.matrix, 16, where + " matrix");
+    Mat4 m = Mat4::fromColumnMajor(n.matrix.data());
+    if (!m.isFinite()) ctx.fail(where + " matrix overflows single precision");
+    if (std::fabs(m.m[3][0]) > 1e-6f || std::fabs(m.m[3][1]) > 1e-6f ||
+        std::fabs(m.m[3][2]) > 1e-6f || std::fabs(m.m[3][3] - 1) > 1e-6f)
+      ctx.fail(where + " matrix is not affine (last row must be 0 0 0 1)");
+    return m;
+  }
+  Mat4 t, r, s;
+  if (!n.translation.empty()) {
+    checkNumbers(ctx, n.translation, 3, where + " translation");
+    t = Mat4::translate(
+        {float(n.translation[0]), float(n.translation[1]), float(n.translation[2])});
+  }
+  if (!n.rotation.empty()) {
+    checkNumbers(ctx, n.rotation, 4, where + " rotation");
+    const auto& q = n.rotation;
+    double len = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+    if (!(len > 0) || !std::isfinite(len)) ctx.fail(where + " rotation is not a unit quaternion");
+    // Exporters write quaternions rounded to a few digits: renormalise rather than refuse.
+    r = Mat4::rotate(float(q[0] / len), float(q[1] / len), float(q[2] / len), float(q[3] / len));
+  }
+  if (!n.scale.empty()) {
+    checkNumbers(ctx, n.scale, 3, where + " scale");
+    s = Mat4::scale({float(n.scale[0]), float(n.scale[1]), float(n.scale[2])});
+  }
+  Mat4 m = t * r * s;  // glTF 2.0 §3.5.2: M = T * R * S
+  if (!m.isFinite()) ctx.fail(where + " transform overflows to infinity");
+  return m;
+}
+
+void checkAllNodes(const GltfContext& ctx) {
+  for (size_t i = 0; i < ctx.model.nodes.size(); ++i) {
+    localMatrix(ctx, int(i));
+    nodeLight(ctx, int(i));
+    const auto& node = ctx.model.nodes[i];
+    if (const tinygltf::Value* ext = findExtension(node.extensions, "TRAY_shape"))
+      parseTrayShape(ctx, *ext, nameOf("node", int(i), node.name));
+  }
+  for (size_t i = 0; i < ctx.model.scenes.size(); ++i) sceneEnvironment(ctx, int(i));
+}
+
+void addSceneNodes(const GltfContext& ctx, int sceneIndex, int defaultMaterial, MeshTable& meshes,
+                   Scene& scene) {
+  Walker walker{ctx, defaultMaterial, meshes, scene, 0};
+  scene.environment = sceneEnvironment(ctx, sceneIndex);
+  // Explicit stack of (node, parent's world matrix); children pushed in reverse so nodes are
+  // visited in the order a recursive pre-order walk would (cameras keep the file's order).
+  std::vector<std::pair<int, Mat4>> stack;
+  const auto& roots = ctx.model.scenes[size_t(sceneIndex)].nodes;
+  for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, Mat4()});
+  while (!stack.empty()) {
+    auto [index, parentWorld] = stack.back();
+    stack.pop_back();
+    Mat4 world = parentWorld * localMatrix(ctx, index);
+    walker.visit(index, world);
+    const auto& children = ctx.model.nodes[size_t(index)].children;
+    for (auto it = children.rbegin(); it != children.rend(); ++it) stack.push_back({*it, world});
+  }
+  if (walker.hiddenNodes)
+    ctx.warn(std::to_string(walker.hiddenNodes) +
+             " node(s) with a singular (zero-scale) transform were skipped");
+}
+
+}  // namespace tray
