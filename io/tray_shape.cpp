@@ -1,6 +1,7 @@
 #include "io/tray_shape.h"
 
 #include "io/gltf_value.h"
+#include "io/tray_csg.h"
 #include "shapes/box.h"
 #include "shapes/plane.h"
 #include "shapes/sphere.h"
@@ -35,8 +36,9 @@ TrayShape parseTrayShape(const GltfContext& ctx, const tinygltf::Value& value,
     out.shape = std::make_shared<Plane>();
   } else if (type == "box") {
     out.shape = parseBox(r);
+  } else if (type == "csg") {
+    out.shape = parseCsg(ctx, value, r, where);
   } else {
-    // "csg" belongs here once CSG lands: a type per branch, each reading its own keys.
     r.fail(type.empty() ? "has no 'type'" : "has unknown TRAY_shape type '" + type + "'");
   }
   out.material = r.integer("material", -1);
