@@ -13,8 +13,8 @@ namespace tray {
 namespace {
 
 /// Writes a glTF file holding `nodes` (a JSON array body) with scene roots `roots`, two
-/// materials, and optionally a cube mesh (mesh 0, [-1, 1]^3, 24 vertices as exporters write
-/// it: hard edges, duplicated per face) or the same cube with one face missing.
+/// materials, and optionally a cube mesh (mesh 0, [-1, 1]^3, 8 shared corners) or the same
+/// cube with one face missing. (Welding of per-face vertices: mesh_solid_test, Khronos Box.)
 std::string writeGltf(const std::string& name, const std::string& nodes, const std::string& roots,
                       bool cube = false, bool open = false) {
   std::string meshes;

@@ -5,6 +5,7 @@
 #include <random>
 
 #include "core/error.h"
+#include "io/gltf_loader.h"
 #include "shapes/box.h"
 #include "tests/shapes/solid_meshes.h"
 
@@ -77,6 +78,30 @@ TEST(MeshSolid, TorusHasTwoIntervalsAcrossAndNoneThroughTheHole) {
   ASSERT_TRUE(torus.intersect(line({1, 0, 0.001f}, {0, 1, 0}), h));
   EXPECT_NEAR(h.t, 0.3f, 2e-3f);
   EXPECT_GT(h.normal.y, 0);
+}
+
+TEST(MeshSolid, KhronosBoxWithPerFaceVerticesIsAClosedSolid) {
+  // Box.glb duplicates its 8 corners into 24 vertices (hard edges): welding makes it closed.
+  Scene scene = loadGltf(std::string(TRAY_SHARED_DIR) + "/gltf-samples/Box.glb");
+  ASSERT_EQ(scene.meshes.size(), 1u);
+  EXPECT_EQ(scene.meshes[0].positions.size(), 24u);
+  MeshSolid solid(scene.meshes[0]);
+  Box box(Vec3(-0.5f), Vec3(0.5f));
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  int hits = 0;
+  for (int i = 0; i < 200; ++i) {
+    Vec3 o{3 * u(rng), 3 * u(rng), 3 * u(rng)}, target{0.6f * u(rng), 0.6f * u(rng), 0.6f * u(rng)};
+    std::vector<Interval> a, b;
+    solid.intervals(line(o, target - o), a);
+    box.intervals(line(o, target - o), b);
+    ASSERT_EQ(a.size(), b.size());
+    if (a.empty()) continue;
+    ++hits;
+    EXPECT_NEAR(a[0].enter.t, b[0].enter.t, 1e-5f);
+    EXPECT_NEAR(a[0].exit.t, b[0].exit.t, 1e-5f);
+  }
+  EXPECT_GT(hits, 100);
 }
 
 TEST(MeshSolid, InwardWoundMeshIsTurnedOutward) {
