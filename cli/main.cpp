@@ -10,8 +10,11 @@
 #include "core/accelerator.h"
 #include "core/aov.h"
 #include "core/error.h"
+#include "core/filter.h"
+#include "core/pixel_sampler.h"
 #include "core/render_setup.h"
 #include "core/renderer.h"
+#include "integrators/adaptive.h"
 #include "io/gltf_loader.h"
 #include "io/image_output.h"
 
@@ -31,6 +34,7 @@ struct CliOptions {
   bool allowAnyPath = false;
   bool quiet = false;
   std::string aovs;
+  std::string aaHeatmap;
   tray::RenderSettings settings;
 };
 
@@ -62,6 +66,7 @@ int run(const CliOptions& o) {
   tray::RenderOptions renderOptions;
   renderOptions.threads = o.threads;
   renderOptions.aovs = tray::AovSet::parse(o.aovs);
+  if (!o.aaHeatmap.empty()) renderOptions.aovs.push_back("samples");  // the heatmap's source
   if (!o.quiet) renderOptions.onProgress = [&](double f) { progress.update(f); };
   tray::RenderStats stats = tray::renderImage(*integrator, film, renderOptions);
   progress.finish();
@@ -78,6 +83,7 @@ int run(const CliOptions& o) {
                         {"tray:seed", std::to_string(o.settings.seed)}};
   out.floatMetadata = {{"tray:spp", float(o.settings.spp)}, {"tray:renderSeconds", float(stats.seconds)}};
   for (const auto& path : o.outputs) tray::writeImage(film, path, out);
+  if (!o.aaHeatmap.empty()) tray::writeImage(tray::samplesHeatmap(film), o.aaHeatmap);
 
   if (!o.quiet) {
     std::printf("%s: %dx%d, %d spp, %s on %s: %.3f s, %.2f M rays, %.2f Mrays/s", o.scenePath.c_str(),
@@ -114,9 +120,22 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 1000));
   app.add_option("--seed", o.settings.seed, "random seed")->capture_default_str();
   app.add_option("--pixel-sampler", o.settings.pixelSampler,
-                 "where samples go in a pixel: auto, center, jitter")
-      ->check(CLI::IsMember({"auto", "center", "jitter"}))
+                 "where samples go in a pixel: auto, center, corners, grid, jitter")
+      ->check(CLI::IsMember(tray::PixelSampler::names()))
       ->capture_default_str();
+  app.add_option("--filter", o.settings.filter, "reconstruction filter: box, tent, gaussian, mitchell")
+      ->check(CLI::IsMember(tray::Filter::names()))
+      ->capture_default_str();
+  app.add_option("--aa-threshold", o.settings.aaThreshold,
+                 "adaptive: corner contrast (max-min)/(max+min) above which a square subdivides")
+      ->check(CLI::Range(0.0f, 1.0f))
+      ->capture_default_str();
+  app.add_option("--aa-depth", o.settings.aaDepth, "adaptive: maximum subdivision depth")
+      ->check(CLI::Range(0, 12))
+      ->capture_default_str();
+  app.add_flag("--aa-robust", o.settings.aaRobust,
+               "adaptive: jittered corners + minimum subdivision near object boundaries (thin features)");
+  app.add_option("--aa-heatmap", o.aaHeatmap, "write an image of camera rays per pixel (PNG/EXR)");
   app.add_option("--threads", o.threads, "worker threads (0: all cores)")->check(CLI::Range(0, 4096))
       ->capture_default_str();
   app.add_option("--resolution", o.resolution, "image size WxH (default 640 wide, height from the camera)");

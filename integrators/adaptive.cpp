@@ -23,6 +23,9 @@ struct LatticeSample {
 // subdivision everywhere in them and in the 8 tiles around.
 constexpr int kTile = 8;
 constexpr int kRobustMinDepth = 2;
+// Keeps near-black noise from counting as contrast: differences among values far below this
+// (in scene-linear units, where a lit diffuse surface is ~0.1 to 1) are invisible.
+constexpr float kContrastFloor = 0.01f;
 
 class Adaptive final : public Integrator {
  public:
@@ -186,14 +189,16 @@ class Adaptive final : public Integrator {
 }  // namespace
 
 float adaptiveContrast(const Color* colors, int count) {
-  float lo[3] = {1, 1, 1}, hi[3] = {0, 0, 0};
-  for (int k = 0; k < count; ++k)
-    for (int ch = 0; ch < 3; ++ch) {
+  float contrast = 0;
+  for (int ch = 0; ch < 3; ++ch) {
+    float lo = kInfinity, hi = 0;
+    for (int k = 0; k < count; ++k) {
       const float c = std::max(0.0f, colors[k][ch]);
-      const float v = std::pow(c / (1 + c), 1 / 2.2f);
-      lo[ch] = std::min(lo[ch], v), hi[ch] = std::max(hi[ch], v);
+      lo = std::min(lo, c), hi = std::max(hi, c);
     }
-  return std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], 0.0f});
+    contrast = std::max(contrast, (hi - lo) / (hi + lo + kContrastFloor));
+  }
+  return contrast;
 }
 
 std::unique_ptr<Integrator> makeAdaptiveAround(const RenderContext& ctx,

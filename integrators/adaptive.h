@@ -19,10 +19,10 @@ std::unique_ptr<Integrator> makeAdaptive(const RenderContext& ctx);
 std::unique_ptr<Integrator> makeAdaptiveAround(const RenderContext& ctx,
                                                std::unique_ptr<Integrator> inner);
 
-/// The contrast between lattice samples that triggers subdivision: the largest per-channel
-/// spread after a display encoding v = (c / (1 + c))^(1/2.2) (Reinhard tone curve + gamma),
-/// so it is bounded in [0, 1) and roughly perceptually uniform (a 0.05 step is visible in dark
-/// and bright regions alike).
+/// The contrast between lattice samples that triggers subdivision: Mitchell's (1987) per-channel
+/// Weber-like contrast (max - min) / (max + min + 0.01), largest over R, G, B. It is bounded in
+/// [0, 1], relative (a step of 5% matters in shadows and highlights alike, so HDR highlights
+/// far above 1 still subdivide), and sees chromatic edges of equal luminance.
 float adaptiveContrast(const Color* colors, int count);
 
 /// Distinct lattice points traced so far by an adaptive integrator (0 for others).
