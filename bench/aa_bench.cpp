@@ -2,7 +2,8 @@
 // Renders the scene's reference (32x32 grid, box filter), the 4x4 grid, and adaptive (inner
 // whitted, depth 4) at falling thresholds; prints RMSE and camera rays of each, then the
 // cheapest adaptive setting that reaches the grid's RMSE and its rays as a share of the grid's.
-// Usage: aa_bench [scene.gltf] [WxH] [threads]   (default scenes/whitted.gltf 320x240, all)
+// Usage: aa_bench [scene.gltf] [WxH] [threads]   (default scenes/whitted.gltf at the CLI's
+// default size, 640x480 for it; all cores)
 #include <cstdio>
 #include <string>
 
@@ -49,7 +50,7 @@ int main(int argc, char** argv) {
     Scene scene = loadGltf(path);
     scene.sourcePath = path;
     const CameraDesc cd = chooseCamera(scene, -1);
-    const ImageSize size = resolveImageSize(argc > 2 ? argv[2] : "320x240", cd);
+    const ImageSize size = resolveImageSize(argc > 2 ? argv[2] : "", cd);
     const int threads = argc > 3 ? std::stoi(argv[3]) : 0;
     auto camera = Camera::create(cd, size.width, size.height);
     const double pixels = double(size.width) * size.height;
