@@ -1,5 +1,6 @@
 #include <string>
 
+#include "accel/bvh_accelerator.h"
 #include "accel/embree_accelerator.h"
 #include "core/error.h"
 
@@ -14,6 +15,9 @@ struct AcceleratorEntry {
 // The accelerator table: one line per accelerator.
 const AcceleratorEntry kAccelerators[] = {
     {"embree", makeEmbreeAccelerator},
+    {"bvh", makeBvhAccelerator},
+    {"bvh-gs", makeBvhGoldsmithSalmonAccelerator},
+    {"naive", makeNaiveAccelerator},
 };
 
 }  // namespace

@@ -1,0 +1,250 @@
+// Two levels, as Embree's instances: the top tree holds placed primitives by world bounds; a
+// mesh instance transforms the ray into object space (t unchanged, the direction is not
+// normalised) and descends into its mesh's tree. Analytic shapes (spheres, boxes, CSG) are top
+// level leaves tested through Scene::intersectShape; unbounded ones (planes, half-spaces) sit
+// beside the tree and are tested by every ray.
+#include "accel/bvh_accelerator.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+
+#include "accel/bvh_mesh.h"
+#include "accel/bvh_traversal.h"
+#include "core/scene.h"
+
+namespace tray {
+namespace {
+
+std::atomic<uint64_t> gNextAcceleratorId{1};
+
+/// The seed's shadow-ray cache: the primitive (and triangle) that blocked this thread's last
+/// shadow ray is tested first, since neighbouring shading points are usually blocked by the same
+/// occluder. Keyed by accelerator id so a stale entry of another accelerator is never used.
+struct LastOccluder {
+  uint64_t accelerator = 0;
+  uint32_t primitive = kNoPrimitive;
+  uint32_t triangle = 0;
+};
+thread_local LastOccluder tLastOccluder;
+
+/// Every crossing of a shape's boundary inside the ray's range, as the Embree accelerator reports
+/// them for all-hits queries (accel/embree_accelerator.cpp, shapeIntersect).
+void shapeCrossings(const Primitive& p, uint32_t i, const Ray& ray, std::vector<Hit>& hits) {
+  Ray local{p.toWorld.inversePoint(ray.o), p.toWorld.inverseVector(ray.d), ray.tmin, ray.tmax};
+  std::vector<Interval> spans;
+  p.shape->intervals(local, spans);
+  for (const Interval& s : spans)
+    for (const Crossing& c : {s.enter, s.exit})
+      if (c.t > ray.tmin && c.t < ray.tmax && std::isfinite(c.t)) {
+        Hit h;
+        h.t = c.t;
+        h.primitive = i;
+        h.normal = c.normal;
+        h.uv = c.uv;
+        h.material = c.material;
+        hits.push_back(h);
+      }
+}
+
+class TwoLevelAccelerator final : public Accelerator {
+ public:
+  TwoLevelAccelerator(const Scene& scene, const TwoLevelOptions& options)
+      : scene_(scene), options_(options), id_(gNextAcceleratorId++) {
+    const auto& prims = scene.primitives;
+    std::vector<uint32_t> used;
+    std::vector<char> isUsed(scene.meshes.size(), 0);
+    for (const Primitive& p : prims)
+      if (p.kind == Primitive::Kind::kMesh && !isUsed[p.mesh])
+        isUsed[p.mesh] = 1, used.push_back(p.mesh);
+    meshes_.resize(scene.meshes.size());
+    tbb::parallel_for(size_t(0), used.size(), [&](size_t k) {
+      uint32_t m = used[k];
+      meshes_[m] = std::make_unique<MeshBvh>(scene.meshes[m], options.build, options.hierarchy);
+    });
+    std::vector<Bounds3> boxes(prims.size());
+    for (uint32_t i = 0; i < prims.size(); ++i) {
+      const Primitive& p = prims[i];
+      if (p.kind == Primitive::Kind::kMesh) {
+        Bounds3 b = meshes_[p.mesh]->bounds();
+        if (!b.empty()) boxes[i] = p.toWorld.bounds(b);
+      } else {
+        Bounds3 b = p.toWorld.bounds(p.shape->bounds());
+        if (b.empty()) continue;
+        if (!b.finite()) {
+          unbounded_.push_back(i);
+        } else {
+          boxes[i] = b;
+        }
+      }
+      if (!options.hierarchy && !boxes[i].empty()) flat_.push_back(i);
+    }
+    if (options.hierarchy) top_ = buildBvh(boxes, options.build);
+  }
+
+  bool intersect(const Ray& ray, Hit& hit) const override {
+    float tmax = ray.tmax;
+    bool found = false;
+    forEachPrimitive(ray, tmax, [&](uint32_t i) {
+      found |= intersectPrimitive(i, ray, tmax, hit);
+      return false;
+    });
+    return found;
+  }
+
+  bool occluded(const Ray& ray) const override {
+    LastOccluder& cache = tLastOccluder;
+    if (cache.accelerator == id_ && cache.primitive < scene_.primitives.size() &&
+        occludedBy(cache.primitive, cache.triangle, ray))
+      return true;
+    uint32_t triangle = 0;
+    const float tmax = ray.tmax;
+    return forEachPrimitive(ray, tmax, [&](uint32_t i) {
+      if (!occludedPrimitive(i, ray, triangle)) return false;
+      cache = {id_, i, triangle};
+      return true;
+    });
+  }
+
+  void allHits(const Ray& ray, std::vector<Hit>& hits) const override {
+    hits.clear();
+    const float tmax = ray.tmax;
+    forEachPrimitive(ray, tmax, [&](uint32_t i) {
+      const Primitive& p = scene_.primitives[i];
+      if (p.kind == Primitive::Kind::kMesh) {
+        meshes_[p.mesh]->allHits(toObject(p, ray, ray.tmax), i, hits);
+      } else {
+        shapeCrossings(p, i, ray, hits);
+      }
+      return false;
+    });
+    // Sorted as Embree's allHits; material last so that exact duplicates are adjacent.
+    std::sort(hits.begin(), hits.end(), [](const Hit& a, const Hit& b) {
+      if (a.t != b.t) return a.t < b.t;
+      if (a.primitive != b.primitive) return a.primitive < b.primitive;
+      if (a.triangle != b.triangle) return a.triangle < b.triangle;
+      return a.material < b.material;
+    });
+    // A tangent ray reports a shape's enter and exit at one t: keep one, as Embree's filter does.
+    hits.erase(std::unique(hits.begin(), hits.end(),
+                           [](const Hit& a, const Hit& b) {
+                             return a.t == b.t && a.primitive == b.primitive &&
+                                    a.triangle == b.triangle && a.material == b.material;
+                           }),
+               hits.end());
+  }
+
+  size_t memoryBytes() const override {
+    size_t bytes =
+        top_.memoryBytes() + (unbounded_.capacity() + flat_.capacity()) * sizeof(uint32_t);
+    for (const auto& m : meshes_)
+      if (m) bytes += m->memoryBytes();
+    return bytes;
+  }
+
+  BvhQuality quality() const {
+    BvhQuality q;
+    double weight = 0;
+    for (const auto& m : meshes_)
+      if (m) {
+        size_t tris = 0;
+        for (const BvhNode& n : m->tree().nodes) tris += n.count;
+        q.meshSahCost += sahCost(m->tree(), options_.build) * double(tris);
+        weight += double(tris);
+        q.nodes += m->tree().nodes.size();
+      }
+    if (weight > 0) q.meshSahCost /= weight;
+    q.topSahCost = sahCost(top_, options_.build);
+    q.nodes += top_.nodes.size();
+    return q;
+  }
+
+ private:
+  static Ray toObject(const Primitive& p, const Ray& ray, float tmax) {
+    return Ray{p.toWorld.inversePoint(ray.o), p.toWorld.inverseVector(ray.d), ray.tmin, tmax};
+  }
+
+  /// Calls visit(i) for every primitive the ray may hit before tmax; stops when it returns true.
+  template <class Visit>
+  bool forEachPrimitive(const Ray& ray, const float& tmax, Visit&& visit) const {
+    for (uint32_t i : unbounded_)
+      if (visit(i)) return true;
+    if (!options_.hierarchy) {
+      for (uint32_t i : flat_)
+        if (visit(i)) return true;
+      return false;
+    }
+    return traverseBvh(top_, prepareBvhRay(ray.o, ray.d), ray.tmin, tmax,
+                       [&](uint32_t first, uint32_t count) {
+                         for (uint32_t k = first; k < first + count; ++k)
+                           if (visit(top_.primitives[k])) return true;
+                         return false;
+                       });
+  }
+
+  bool intersectPrimitive(uint32_t i, const Ray& ray, float& tmax, Hit& hit) const {
+    const Primitive& p = scene_.primitives[i];
+    if (p.kind == Primitive::Kind::kMesh) {
+      Hit h;
+      if (!meshes_[p.mesh]->intersect(toObject(p, ray, tmax), tmax, h)) return false;
+      h.primitive = i;
+      hit = h;
+      return true;
+    }
+    Hit h;
+    if (!scene_.intersectShape(i, Ray{ray.o, ray.d, ray.tmin, tmax}, h)) return false;
+    tmax = h.t;
+    hit = h;
+    return true;
+  }
+
+  bool occludedPrimitive(uint32_t i, const Ray& ray, uint32_t& triangle) const {
+    const Primitive& p = scene_.primitives[i];
+    triangle = 0;
+    if (p.kind == Primitive::Kind::kMesh)
+      return meshes_[p.mesh]->occluded(toObject(p, ray, ray.tmax), triangle);
+    Hit h;
+    return scene_.intersectShape(i, ray, h);
+  }
+
+  bool occludedBy(uint32_t i, uint32_t triangle, const Ray& ray) const {
+    const Primitive& p = scene_.primitives[i];
+    if (p.kind == Primitive::Kind::kMesh)
+      return meshes_[p.mesh] && meshes_[p.mesh]->occludedBy(toObject(p, ray, ray.tmax), triangle);
+    Hit h;
+    return scene_.intersectShape(i, ray, h);
+  }
+
+  const Scene& scene_;
+  TwoLevelOptions options_;
+  uint64_t id_;
+  std::vector<std::unique_ptr<MeshBvh>> meshes_;  ///< by mesh index; null when not placed
+  Bvh top_;
+  std::vector<uint32_t> unbounded_;  ///< shapes with infinite bounds, tested by every ray
+  std::vector<uint32_t> flat_;       ///< without hierarchy: every bounded primitive
+};
+
+}  // namespace
+
+std::unique_ptr<Accelerator> makeTwoLevelAccelerator(const Scene& scene,
+                                                     const TwoLevelOptions& options) {
+  return std::make_unique<TwoLevelAccelerator>(scene, options);
+}
+
+std::unique_ptr<Accelerator> makeBvhAccelerator(const Scene& scene) {
+  return makeTwoLevelAccelerator(scene, {});
+}
+
+std::unique_ptr<Accelerator> makeBvhGoldsmithSalmonAccelerator(const Scene& scene) {
+  TwoLevelOptions o;
+  o.build.builder = BvhBuilder::kGoldsmithSalmon;
+  return makeTwoLevelAccelerator(scene, o);
+}
+
+BvhQuality bvhQuality(const Accelerator& accel) {
+  auto* a = dynamic_cast<const TwoLevelAccelerator*>(&accel);
+  return a ? a->quality() : BvhQuality{};
+}
+
+}  // namespace tray
