@@ -1,5 +1,6 @@
 #include "io/gltf_container.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <nlohmann/json.hpp>
@@ -16,6 +17,34 @@ uint32_t readU32(const unsigned char* p) {
 }
 
 constexpr uint32_t kChunkJson = 0x4E4F534A, kChunkBin = 0x004E4942;
+
+/// Deepest nesting of JSON arrays and objects, scanning until it passes `limit`. Parsers
+/// (nlohmann's DOM, tinygltf's Value conversion of extras) recurse per level, so a file of a
+/// million '[' would overflow the stack before any check could run.
+size_t nestingDepth(std::string_view text, size_t limit) {
+  size_t depth = 0, deepest = 0;
+  bool inString = false, escaped = false;
+  for (char c : text) {
+    if (inString) {
+      if (escaped)
+        escaped = false;
+      else if (c == '\\')
+        escaped = true;
+      else if (c == '"')
+        inString = false;
+    } else if (c == '"') {
+      inString = true;
+    } else if (c == '[' || c == '{') {
+      deepest = std::max(deepest, ++depth);
+      if (deepest > limit) break;
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;
+    }
+  }
+  return deepest;
+}
+
+constexpr size_t kMaxJsonDepth = 64;  // glTF itself needs about 6
 
 }  // namespace
 
@@ -56,6 +85,8 @@ std::string_view glbJson(const std::string& path, const std::vector<unsigned cha
 
 void checkJsonRoot(const std::string& path, std::string_view text) {
   if (text.empty()) failFile(path, "file is empty");
+  if (nestingDepth(text, kMaxJsonDepth) > kMaxJsonDepth)
+    failFile(path, "JSON nests deeper than " + std::to_string(kMaxJsonDepth) + " levels");
   nlohmann::json root;
   try {
     root = nlohmann::json::parse(text.begin(), text.end());

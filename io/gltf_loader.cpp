@@ -55,10 +55,15 @@ tinygltf::Model parse(const std::string& path, const LoadOptions& options, LoadR
   tinygltf::Model model;
   std::string err, warn;
   // Sizes fit in unsigned int: readRegularFile caps files at 2 GiB.
-  bool ok = binary ? gltf.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(),
-                                               unsigned(bytes.size()), policy.folder())
-                   : gltf.LoadASCIIFromString(&model, &err, &warn, json.data(),
-                                              unsigned(json.size()), policy.folder());
+  bool ok = false;
+  try {
+    ok = binary ? gltf.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(),
+                                            unsigned(bytes.size()), policy.folder())
+                : gltf.LoadASCIIFromString(&model, &err, &warn, json.data(), unsigned(json.size()),
+                                           policy.folder());
+  } catch (const std::exception& e) {  // nlohmann type errors on oddly typed members
+    failFile(path, std::string("tinygltf: ") + e.what());
+  }
   // A refused or missing file is reported by tinygltf as "File not found" (or, for images,
   // only as a warning): TRay's own reason is more precise and is always an error.
   if (!access.firstProblem().empty()) failFile(path, access.firstProblem());
