@@ -7,8 +7,10 @@
 
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 
 #include "core/error.h"
 
@@ -522,6 +524,13 @@ TEST(GltfTiny, GraphErrors) {
   EXPECT_NE(error(R"("cameras":[{"type":"perspective","perspective":{"yfov":0,"znear":1}}])")
                 .find("camera 0 yfov"),
             std::string::npos);
+}
+
+TEST(GltfTiny, DeepJsonRefusedBeforeParsing) {
+  // Recursive JSON parsers would overflow the stack on this; the loader must refuse it first.
+  const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+  std::string e = errorOf([&] { TinyDoc().load("\"extras\":" + deep); });
+  EXPECT_NE(e.find("nests deeper"), std::string::npos) << e;
 }
 
 TEST(GltfTiny, MisalignedAccessorRefused) {
