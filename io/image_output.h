@@ -1,0 +1,36 @@
+#pragma once
+#include <array>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/film.h"
+
+namespace tray {
+
+struct ImageOutputOptions {
+  /// EXR beauty, albedo and N as half (else float); Z, P, ids and counts are always float.
+  bool halfFloat = true;
+  std::string colorspace = "lin_rec709";  ///< EXR output colorspace (an OCIO name)
+  std::string display, view;              ///< PNG/JPEG display/view; empty = config defaults
+  std::vector<std::pair<std::string, std::string>> stringMetadata;
+  std::vector<std::pair<std::string, float>> floatMetadata;
+  /// EXR m44f attributes (e.g. worldToCamera), row-major in Imath's row-vector convention.
+  std::vector<std::pair<std::string, std::array<float, 16>>> matrixMetadata;
+  /// The film is the data window placed at (xOffset, yOffset) in a display window of
+  /// fullWidth x fullHeight (0 = the film's size): region renders of a larger image.
+  int fullWidth = 0, fullHeight = 0, xOffset = 0, yOffset = 0;
+};
+
+/// Writes the film to `path` (colour through ColorPipeline::instance()); the format comes from the
+/// extension: .exr (every layer, scene-linear, colour-managed beauty) or .png/.jpg/.jpeg (beauty
+/// RGB through the display view, 8-bit). The file appears atomically: it is written under a
+/// temporary name in the same folder and renamed when complete, so an existing file is never left
+/// truncated. Throws tray::Error with a one-line "PATH: problem" message.
+void writeImage(const Film& film, const std::string& path, const ImageOutputOptions& options = {});
+
+/// EXR channel name of a layer's channel: bare for the beauty layer ("R") and for a layer with
+/// one channel of its own name ("Z"); otherwise "layer.channel" ("N.X").
+std::string exrChannelName(const FilmLayer& layer, const std::string& channel);
+
+}  // namespace tray
