@@ -21,6 +21,14 @@ constexpr int kMaxBins = 32;
 constexpr uint32_t kParallelBinning = 32 * 1024;  // below this, one thread bins faster
 constexpr uint32_t kParallelChildren = 2 * 1024;
 
+/// A primitive's box and centroid stored together and moved by the partition, so every pass
+/// over a node reads memory in order (no indirection through the id).
+struct PrimRef {
+  Bounds3 bounds;
+  Vec3 centroid;
+  uint32_t id;
+};
+
 struct Bin {
   Bounds3 bounds, centroids;
   uint32_t count = 0;
@@ -47,16 +55,13 @@ struct Binning {
 
 class SahBuilder {
  public:
-  SahBuilder(const std::vector<Bounds3>& bounds, const BvhBuildOptions& options)
-      : bounds_(bounds), opt_(options) {
+  SahBuilder(const std::vector<Bounds3>& bounds, const BvhBuildOptions& options) : opt_(options) {
     opt_.bins = std::clamp(opt_.bins, 2, kMaxBins);
     opt_.maxLeafSize = std::clamp(opt_.maxLeafSize, 1, 255);
-    centroids_.resize(bounds.size());
     for (uint32_t i = 0; i < bounds.size(); ++i) {
       const Bounds3& b = bounds[i];
       if (b.empty() || !b.finite()) continue;
-      centroids_[i] = b.center();
-      refs_.push_back(i);
+      refs_.push_back({b, b.center(), i});
     }
   }
 
@@ -66,12 +71,13 @@ class SahBuilder {
     nodes_.resize(2 * refs_.size());
     nodeCount_ = 1;
     Bounds3 b, cb;
-    for (uint32_t id : refs_) b.extend(bounds_[id]), cb.extend(centroids_[id]);
+    for (const PrimRef& r : refs_) b.extend(r.bounds), cb.extend(r.centroid);
     buildNode(0, 0, uint32_t(refs_.size()), b, cb);
     nodes_.resize(nodeCount_.load());
     nodes_.shrink_to_fit();
     bvh.nodes = std::move(nodes_);
-    bvh.primitives = std::move(refs_);
+    bvh.primitives.resize(refs_.size());
+    for (size_t k = 0; k < refs_.size(); ++k) bvh.primitives[k] = refs_[k].id;
     return bvh;
   }
 
@@ -93,9 +99,9 @@ class SahBuilder {
   Binning binRange(uint32_t begin, uint32_t end, const Bounds3& cb, const Vec3& scale) const {
     auto body = [&](const tbb::blocked_range<uint32_t>& r, Binning acc) {
       for (uint32_t k = r.begin(); k < r.end(); ++k) {
-        uint32_t id = refs_[k];
+        const PrimRef& ref = refs_[k];
         for (int a = 0; a < 3; ++a)
-          acc.add(a, binOf(centroids_[id], a, cb, scale[a]), bounds_[id], centroids_[id]);
+          acc.add(a, binOf(ref.centroid, a, cb, scale[a]), ref.bounds, ref.centroid);
       }
       return acc;
     };
@@ -159,13 +165,13 @@ class SahBuilder {
       uint32_t mid = begin + n / 2;
       std::nth_element(
           refs_.begin() + begin, refs_.begin() + mid, refs_.begin() + end,
-          [&](uint32_t x, uint32_t y) { return centroids_[x][axis] < centroids_[y][axis]; });
+          [&](const PrimRef& x, const PrimRef& y) { return x.centroid[axis] < y.centroid[axis]; });
       return splitAt(node, begin, mid, end, b, axis);
     }
     const Bounds3& cbRef = cb;
     float s = scale[bestAxis];
-    auto it = std::partition(refs_.begin() + begin, refs_.begin() + end, [&](uint32_t id) {
-      return binOf(centroids_[id], bestAxis, cbRef, s) <= bestPlane;
+    auto it = std::partition(refs_.begin() + begin, refs_.begin() + end, [&](const PrimRef& r) {
+      return binOf(r.centroid, bestAxis, cbRef, s) <= bestPlane;
     });
     Bounds3 lb, lcb, rb, rcb;
     for (int i = 0; i < opt_.bins; ++i) {
@@ -182,9 +188,8 @@ class SahBuilder {
                int axis) {
     Bounds3 lb, lcb, rb, rcb;
     for (uint32_t k = begin; k < mid; ++k)
-      lb.extend(bounds_[refs_[k]]), lcb.extend(centroids_[refs_[k]]);
-    for (uint32_t k = mid; k < end; ++k)
-      rb.extend(bounds_[refs_[k]]), rcb.extend(centroids_[refs_[k]]);
+      lb.extend(refs_[k].bounds), lcb.extend(refs_[k].centroid);
+    for (uint32_t k = mid; k < end; ++k) rb.extend(refs_[k].bounds), rcb.extend(refs_[k].centroid);
     children(node, begin, mid, end, b, axis, lb, lcb, rb, rcb);
   }
 
@@ -208,10 +213,8 @@ class SahBuilder {
     }
   }
 
-  const std::vector<Bounds3>& bounds_;
   BvhBuildOptions opt_;
-  std::vector<Vec3> centroids_;
-  std::vector<uint32_t> refs_;
+  std::vector<PrimRef> refs_;
   std::vector<BvhNode> nodes_;
   std::atomic<uint32_t> nodeCount_{0};
 };

@@ -43,7 +43,7 @@ inline bool hitBox(const BvhNode& n, const BvhRay& r, float tmin, float tmax, fl
   return t0 <= t1;
 }
 
-constexpr int kBvhStackSize = 128;  // builders keep trees shallower (Goldsmith–Salmon checks)
+constexpr int kBvhStackSize = 256;  // builders keep trees shallower (Goldsmith–Salmon checks)
 
 /// Calls leaf(first, count) for each leaf whose box the ray enters before `tmax`, nearest box
 /// first. `leaf` may lower tmax (closest hit) and returns true to stop (any hit).

@@ -1,0 +1,226 @@
+// accel_bench: build time, memory and ray throughput of every accelerator (embree, bvh (binned
+// SAH), bvh-gs (Goldsmith–Salmon), naive where it finishes) on the same scenes and the same rays:
+// camera rays, shadow rays towards a light, and diffuse-bounce rays from the camera hits.
+// Prints a table, writes CSV for tools/plot_accel.py, and the teapot speed-up table
+// (naive -> bvh -> embree) measured in this one run. Not a test: figures only.
+//
+//   accel_bench [--csv FILE] [--max-triangles N] [--shared DIR]
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include "accel/bvh_accelerator.h"
+#include "bench/bench_meshes.h"
+#include "core/accelerator.h"
+#include "core/camera.h"
+#include "core/sampling.h"
+#include "core/scene.h"
+#include "io/gltf_loader.h"
+
+using namespace tray;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+double secondsSince(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+struct BenchScene {
+  std::string name;
+  Scene scene;
+  size_t triangles = 0;
+};
+
+size_t countTriangles(const Scene& s) {
+  size_t n = 0;
+  for (const Primitive& p : s.primitives)
+    if (p.kind == Primitive::Kind::kMesh) n += s.meshes[p.mesh].triangleCount();
+  return n;
+}
+
+BenchScene meshScene(const std::string& name, TriangleMesh mesh) {
+  BenchScene b{name, {}, 0};
+  Material diffuse;
+  b.scene.materials.push_back(diffuse);
+  b.scene.meshes.push_back(std::move(mesh));
+  Primitive p;
+  p.mesh = 0;
+  b.scene.primitives.push_back(p);
+  b.scene.finalize();
+  b.triangles = countTriangles(b.scene);
+  return b;
+}
+
+/// The rays every accelerator traces: made once per scene (with Embree) so all trace the same.
+struct RaySet {
+  std::vector<Ray> camera, shadow, bounce;
+};
+
+RaySet makeRays(const Scene& scene, int width, int height) {
+  RaySet rays;
+  CameraDesc desc = Camera::framing(scene.bounds(), float(width) / float(height));
+  auto camera = Camera::create(desc, width, height);
+  auto embree = makeAccelerator("embree", scene);
+  Bounds3 b = scene.bounds();
+  Vec3 light = b.center() + Vec3(0.3f, 1.5f, 0.4f) * length(b.diagonal());
+  std::mt19937 rng(1234);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      Ray r = camera->generateRay(x + 0.5f, y + 0.5f);
+      rays.camera.push_back(r);
+      Hit h;
+      if (!embree->intersect(r, h)) continue;
+      SurfacePoint sp = scene.surface(r, h);
+      Vec3 ng = dot(sp.ng, r.d) < 0 ? sp.ng : -sp.ng;
+      rays.shadow.push_back(spawnRayTo(sp.p, ng, light));
+      Vec3 t, s;
+      orthonormalBasis(ng, t, s);
+      float r1 = u(rng), r2 = u(rng), rad = std::sqrt(r1), phi = 2 * kPi * r2;
+      Vec3 d = rad * std::cos(phi) * t + rad * std::sin(phi) * s + std::sqrt(1 - r1) * ng;
+      rays.bounce.push_back(spawnRay(sp.p, ng, d));
+    }
+  return rays;
+}
+
+enum class Query { kClosest, kOccluded };
+
+/// Mrays/s of one query over a ray set, all cores, repeated to at least `minSeconds`.
+double throughput(const Accelerator& accel, const std::vector<Ray>& rays, Query q,
+                  double minSeconds) {
+  if (rays.empty()) return 0;
+  size_t traced = 0;
+  auto t0 = Clock::now();
+  do {
+    size_t found = tbb::parallel_reduce(
+        tbb::blocked_range<size_t>(0, rays.size(), 256), size_t(0),
+        [&](const tbb::blocked_range<size_t>& r, size_t acc) {
+          Hit h;
+          for (size_t i = r.begin(); i < r.end(); ++i)
+            acc += q == Query::kClosest ? accel.intersect(rays[i], h) : accel.occluded(rays[i]);
+          return acc;
+        },
+        std::plus<size_t>());
+    (void)found;
+    traced += rays.size();
+  } while (secondsSince(t0) < minSeconds);
+  return double(traced) / secondsSince(t0) * 1e-6;
+}
+
+struct Row {
+  std::string scene, accel;
+  size_t triangles = 0;
+  double buildMs = 0, bytesPerTriangle = 0, sah = 0, camera = 0, shadow = 0, bounce = 0;
+};
+
+Row measure(const BenchScene& bs, const std::string& accelName, const RaySet& rays) {
+  Row row{bs.name, accelName, bs.triangles};
+  // Best of three builds for small scenes (first-touch and thread start-up dominate there).
+  int builds = bs.triangles < 200000 ? 3 : 1;
+  std::unique_ptr<Accelerator> accel;
+  row.buildMs = 1e30;
+  for (int i = 0; i < builds; ++i) {
+    accel.reset();
+    auto t0 = Clock::now();
+    accel = makeAccelerator(accelName, bs.scene);
+    row.buildMs = std::min(row.buildMs, secondsSince(t0) * 1e3);
+  }
+  row.bytesPerTriangle = double(accel->memoryBytes()) / double(std::max<size_t>(bs.triangles, 1));
+  row.sah = bvhQuality(*accel).meshSahCost;
+  // The naive accelerator traces a slice of the rays, or it would take minutes.
+  auto slice = [&](const std::vector<Ray>& v) {
+    if (accelName != "naive") return v;
+    size_t keep = std::min(v.size(), std::max<size_t>(256, 4000000 / std::max<size_t>(bs.triangles, 1)));
+    std::vector<Ray> out;
+    for (size_t i = 0; i < keep; ++i) out.push_back(v[i * v.size() / keep]);
+    return out;
+  };
+  row.camera = throughput(*accel, slice(rays.camera), Query::kClosest, 0.3);
+  row.shadow = throughput(*accel, slice(rays.shadow), Query::kOccluded, 0.3);
+  row.bounce = throughput(*accel, slice(rays.bounce), Query::kClosest, 0.3);
+  return row;
+}
+
+void printRow(const Row& r) {
+  std::printf("%-22s %9zu  %-7s %10.1f %9.1f %8.1f %9.3g %9.3g %9.3g\n", r.scene.c_str(),
+              r.triangles, r.accel.c_str(), r.buildMs, r.bytesPerTriangle, r.sah, r.camera,
+              r.shadow, r.bounce);
+  std::fflush(stdout);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string csvPath = "accel_bench.csv";
+  std::string shared = TRAY_SOURCE_DIR "/../shared";
+  size_t maxTriangles = 2100000;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    if (!std::strcmp(argv[i], "--csv")) csvPath = argv[i + 1];
+    if (!std::strcmp(argv[i], "--max-triangles")) maxTriangles = std::stoul(argv[i + 1]);
+    if (!std::strcmp(argv[i], "--shared")) shared = argv[i + 1];
+  }
+  const size_t kNaiveLimit = 60000;  // naive beyond this would take hours
+
+  std::vector<BenchScene> scenes;
+  scenes.push_back(meshScene("teapot", bench::teapot(32)));
+  for (const char* sample : {"Duck.glb", "DamagedHelmet.glb"}) {
+    std::string path = shared + "/gltf-samples/" + sample;
+    if (!std::filesystem::exists(path)) continue;
+    Scene s = loadGltf(path);
+    size_t n = countTriangles(s);
+    scenes.push_back({std::filesystem::path(sample).stem().string(), std::move(s), n});
+  }
+  for (size_t n : {1000, 10000, 100000, 1000000, 2000000})
+    if (n <= maxTriangles) scenes.push_back(meshScene("sphere-" + std::to_string(n / 1000) + "k", bench::bumpySphere(n)));
+
+  std::printf("%-22s %9s  %-7s %10s %9s %8s %9s %9s %9s\n", "scene", "triangles", "accel",
+              "build ms", "bytes/tri", "SAH", "camera", "shadow", "bounce");
+  std::printf("%-22s %9s  %-7s %10s %9s %8s %9s %9s %9s\n", "", "", "", "", "", "", "Mrays/s",
+              "Mrays/s", "Mrays/s");
+  std::vector<Row> rows;
+  for (const BenchScene& bs : scenes) {
+    RaySet rays = makeRays(bs.scene, 320, 240);
+    for (const char* accel : {"embree", "bvh", "bvh-gs", "naive"}) {
+      if (std::string(accel) == "naive" && bs.triangles > kNaiveLimit) continue;
+      rows.push_back(measure(bs, accel, rays));
+      printRow(rows.back());
+    }
+  }
+
+  std::ofstream csv(csvPath);
+  csv << "scene,triangles,accel,build_ms,bytes_per_triangle,sah_cost,camera_mrays,shadow_mrays,"
+         "bounce_mrays\n";
+  for (const Row& r : rows)
+    csv << r.scene << ',' << r.triangles << ',' << r.accel << ',' << r.buildMs << ','
+        << r.bytesPerTriangle << ',' << r.sah << ',' << r.camera << ',' << r.shadow << ','
+        << r.bounce << '\n';
+  std::printf("\nwrote %s\n", csvPath.c_str());
+
+  // The seed's progression on its teapot: each step's speed-up, from the rows above.
+  auto find = [&](const std::string& scene, const std::string& accel) -> const Row* {
+    for (const Row& r : rows)
+      if (r.scene == scene && r.accel == accel) return &r;
+    return nullptr;
+  };
+  const Row *naive = find("teapot", "naive"), *bvh = find("teapot", "bvh"),
+            *embree = find("teapot", "embree");
+  if (naive && bvh && embree) {
+    std::printf("\nteapot (%zu triangles), speed-up of each step (same rays, this run):\n",
+                bvh->triangles);
+    std::printf("%-8s %12s %12s %12s\n", "rays", "naive->bvh", "bvh->embree", "naive->embree");
+    auto line = [](const char* what, double n, double b, double e) {
+      std::printf("%-8s %11.1fx %11.2fx %11.1fx\n", what, b / n, e / b, e / n);
+    };
+    line("camera", naive->camera, bvh->camera, embree->camera);
+    line("shadow", naive->shadow, bvh->shadow, embree->shadow);
+    line("bounce", naive->bounce, bvh->bounce, embree->bounce);
+  }
+  return 0;
+}

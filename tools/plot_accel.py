@@ -1,0 +1,60 @@
+#!/usr/bin/env python3
+"""Charts bench/accel_bench.cpp's CSV: ray throughput against triangle count (log axes), one
+panel per ray kind (camera, shadow, diffuse bounce), one line per accelerator, plus build time.
+Usage: tools/plot_accel.py accel_bench.csv [--out docs/accelerators.png]  (python3-matplotlib)"""
+import argparse, csv
+from collections import defaultdict
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+
+STYLE = {"embree": "k-o", "bvh": "b-s", "bvh-gs": "g-^", "naive": "r-x"}
+LABEL = {"embree": "Embree", "bvh": "bvh (binned SAH)", "bvh-gs": "bvh-gs (Goldsmith-Salmon)",
+         "naive": "naive"}
+
+
+def load(path):
+    with open(path) as f:
+        rows = list(csv.DictReader(f))
+    for r in rows:
+        for k in r:
+            if k not in ("scene", "accel"):
+                r[k] = float(r[k])
+    return rows
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("csv")
+    ap.add_argument("--out", default="docs/accelerators.png")
+    args = ap.parse_args()
+    rows = load(args.csv)
+    by_accel = defaultdict(list)
+    for r in rows:
+        by_accel[r["accel"]].append(r)
+    panels = [("camera_mrays", "camera rays, Mrays/s"), ("shadow_mrays", "shadow rays, Mrays/s"),
+              ("bounce_mrays", "diffuse bounce rays, Mrays/s"), ("build_ms", "build time, ms")]
+    fig, axes = plt.subplots(1, 4, figsize=(18, 4.5))
+    for ax, (key, title) in zip(axes, panels):
+        for accel, rs in by_accel.items():
+            rs = sorted((r for r in rs if r[key] > 0), key=lambda r: r["triangles"])
+            if not rs:
+                continue
+            ax.plot([r["triangles"] for r in rs], [r[key] for r in rs],
+                    STYLE.get(accel, "-"), label=LABEL.get(accel, accel), alpha=0.8)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("triangles")
+        ax.set_title(title)
+        ax.grid(True, which="both", alpha=0.3)
+    axes[0].legend(fontsize=8)
+    fig.suptitle("TRay accelerators on the same scenes and rays (bench/accel_bench.cpp)")
+    fig.tight_layout()
+    fig.savefig(args.out, dpi=110)
+    print("wrote", args.out)
+
+
+if __name__ == "__main__":
+    main()
