@@ -151,6 +151,10 @@ int main(int argc, char** argv) {
   app.add_flag("--allow-any-path", o.allowAnyPath, "let scene URIs leave the scene's folder");
   app.add_option("--aov", o.aovs,
                  "extra EXR layers: comma-separated from " + joined(tray::AovSet::known()) + ", or all");
+  app.add_option("--clamp-indirect", o.settings.clampIndirect,
+                 "path: clamp each indirect contribution to this value (fireflies; biased; 0 = off)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   app.add_flag("--debug-nan", o.settings.debugNan, "print where NaN/Inf samples arise");
   app.add_flag("-q,--quiet", o.quiet, "no progress bar or summary");
 

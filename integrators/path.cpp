@@ -1,8 +1,10 @@
 #include "integrators/path.h"
 
 #include <atomic>
+#include <cmath>
 #include <cstdio>
 
+#include "core/error.h"
 #include "lights/light_set.h"
 #include "materials/bsdf.h"
 #include "materials/medium_stack.h"
@@ -18,7 +20,11 @@ class PathIntegrator final : public Integrator {
   explicit PathIntegrator(const RenderContext& ctx)
       : Integrator(ctx),
         maxDepth_(ctx.settings.maxDepth >= 0 ? ctx.settings.maxDepth : 8),
-        lights_(ctx.scene) {}
+        clampIndirect_(ctx.settings.clampIndirect),
+        lights_(ctx.scene) {
+    if (!(clampIndirect_ >= 0) || !std::isfinite(clampIndirect_))
+      throw Error("--clamp-indirect must be a finite value >= 0 (0 = off)");
+  }
 
   PixelValue renderPixel(int x, int y, RayStats& stats) const override {
     tlsPixelX = x, tlsPixelY = y;
@@ -42,6 +48,7 @@ class PathIntegrator final : public Integrator {
   /// Passes through false interfaces of nested dielectrics before giving up on a path.
   static constexpr int kMaxNullCrossings = 64;
   int maxDepth_;
+  float clampIndirect_;
   LightSet lights_;
   mutable std::atomic<int> nanReports_{0};
 };
@@ -60,8 +67,20 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats
   bool prevTransmits = false;
   float etaFactor = 1;  // undoes the 1/eta^2 radiance scaling for Russian roulette
   MediumStack media;
-  auto add = [&](const Color& c, const char* what) {
+  // Firefly clamping (--clamp-indirect): light that reached the camera path after scattering
+  // off a diffuse or glossy vertex earlier than the one gathering it (caustics, interreflection)
+  // is "indirect". Each such contribution is scaled down, keeping its hue, so that its largest
+  // component is at most clampIndirect_: biased (energy is lost) but bounded per sample, the
+  // "clamp indirect" of Cycles and Arnold. Direct light at the first non-delta vertex, and
+  // emitters seen directly or through mirrors and glass, are never clamped.
+  bool indirectNee = false;       // a non-delta vertex precedes the current one
+  bool indirectEmission = false;  // ... precedes the vertex the traced ray left from
+  auto add = [&](Color c, const char* what, bool indirect) {
     if (!isFinite(c)) reportNan(what, depth);
+    if (indirect && clampIndirect_ > 0) {
+      const float peak = maxComponent(c);
+      if (peak > clampIndirect_) c *= clampIndirect_ / peak;
+    }
     L += c;
   };
 
@@ -74,7 +93,7 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats
         float w = specular ? 1.0f
                            : powerHeuristic(prevPdf, lights_.environmentPdf(prevN, prevTransmits,
                                                                             normalize(ray.d)));
-        add(beta * bg * w, "environment");
+        add(beta * bg * w, "environment", indirectEmission);
       }
       break;
     }
@@ -112,7 +131,7 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats
       float w = 1.0f;
       int light = lights_.lightAt(hit.primitive, hit.triangle);
       if (!specular && light >= 0) w = powerHeuristic(prevPdf, lights_.pdf(light, prevP, s.p));
-      add(beta * m.emissive * w, "emission");
+      add(beta * m.emissive * w, "emission", indirectEmission);
     }
     if (depth + 1 > maxDepth_) break;
 
@@ -131,7 +150,7 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats
           ++stats.shadowRays;
           if (!ctx_.accel.occluded(shadow)) {
             float w = ls.delta ? 1.0f : powerHeuristic(ls.pdf, bsdf.pdf(wo, ls.wi));
-            add(beta * f * ls.L * (w / ls.pdf), "light sample");
+            add(beta * f * ls.L * (w / ls.pdf), "light sample", indirectNee);
           }
         }
       }
@@ -148,6 +167,8 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats
     }
     if (isBlack(beta)) break;
     specular = bs.delta;
+    indirectEmission = indirectNee;
+    indirectNee = indirectNee || !bs.delta;
     prevPdf = bs.pdf;
     prevP = s.p;
     prevN = n;
