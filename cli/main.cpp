@@ -54,6 +54,9 @@ int run(const CliOptions& o) {
   for (const auto& w : report.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
 
   tray::CameraDesc cam = tray::chooseCamera(scene, o.camera);
+  if (tray::addDefaultLightingIfUnlit(scene, cam))
+    std::fprintf(stderr, "warning: %s has no lights: using TRay's default headlight and a 0.1 "
+                 "environment (docs/scene-format.md)\n", o.scenePath.c_str());
   const tray::ImageSize size = tray::resolveImageSize(o.resolution, cam);
   const int width = size.width, height = size.height;
   auto camera = tray::Camera::create(cam, width, height);

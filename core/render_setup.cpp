@@ -18,6 +18,26 @@ CameraDesc chooseCamera(const Scene& scene, int index) {
   return Camera::framing(scene.bounds(), 4.0f / 3.0f);
 }
 
+bool addDefaultLightingIfUnlit(Scene& scene, const CameraDesc& camera) {
+  if (!scene.lights.empty() || !isBlack(scene.environment.ambient) ||
+      !isBlack(scene.environment.background))
+    return false;
+  for (const Material& m : scene.materials)
+    if (!isBlack(m.emissive)) return false;
+  // glTF cameras look down -Z with +Y up; the key light travels forward, down and right.
+  const Vec3 forward = normalize(camera.toWorld.vector(Vec3(0, 0, -1)));
+  const Vec3 up = normalize(camera.toWorld.vector(Vec3(0, 1, 0)));
+  const Vec3 right = normalize(cross(forward, up));
+  Light key;
+  key.type = Light::Type::kDirectional;
+  key.intensity = Color(2.5f);
+  key.direction = normalize(forward - 0.6f * up + 0.4f * right);
+  scene.lights.push_back(key);
+  scene.environment.ambient = Color(0.1f);
+  scene.environment.background = Color(0.1f);
+  return true;
+}
+
 ImageSize resolveImageSize(const std::string& text, const CameraDesc& camera) {
   ImageSize s;
   if (text.empty()) {
