@@ -70,11 +70,11 @@ int main(int argc, char** argv) {
     save(renderFilm(a.scene, a.camera, kW, kH, w), "3-tir-whitted");
     save(renderFilm(a.scene, a.camera, kW, kH, path(64)), "3-tir-path");
   }
-  // 4. Caustics: 16 spp unclamped, clamped, and the unclamped 1024 spp reference.
+  // 4. Caustics: 64 spp unclamped, clamped, and the unclamped 1024 spp reference.
   {
     SceneWithCamera c = causticScene();
-    save(renderFilm(c.scene, c.camera, kW, kH, path(16)), "4-caustic-16spp");
-    save(renderFilm(c.scene, c.camera, kW, kH, path(16, 2.0f)), "4-caustic-16spp-clamp-2");
+    save(renderFilm(c.scene, c.camera, kW, kH, path(64)), "4-caustic-64spp");
+    save(renderFilm(c.scene, c.camera, kW, kH, path(64, 10.0f)), "4-caustic-64spp-clamp-10");
     save(renderFilm(c.scene, c.camera, kW, kH, path(1024)), "4-caustic-1024spp-reference");
   }
   // 7. NaN normals on every 5th vertex: flat facets, no NaN pixels.
