@@ -39,18 +39,29 @@ def main():
     by_method = defaultdict(list)
     for r in rows:
         by_method[r["method"]].append(r)
-    fig, ax = plt.subplots(figsize=(8, 5.5))
+    # Colour by method, line style by accelerator, marker by thread count, so that the variants
+    # tray-bench adds as " [embree]", " [2t]" stay readable.
+    bases = sorted({m.split(" [")[0] for m in by_method})
+    accels = sorted({r["accel"] for r in rows})
+    threads = sorted({r["threads"] for r in rows})
+    colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    styles, markers = ["-", "--", ":", "-."], ["o", "s", "^", "D"]
+    fig, ax = plt.subplots(figsize=(9, 5.5))
     for method, rs in sorted(by_method.items()):
-        rs.sort(key=lambda r: r["seconds"])
-        ax.plot([r["seconds"] for r in rs], [max(r["rmse"], 1e-6) for r in rs], marker="o", label=method)
+        rs.sort(key=lambda r: r["rays"])  # cost order; wall time is noisy at equal cost
+        r0 = rs[0]
+        ax.plot([r["seconds"] for r in rs], [max(r["rmse"], 1e-6) for r in rs],
+                color=colours[bases.index(method.split(" [")[0]) % len(colours)],
+                ls=styles[accels.index(r0["accel"]) % len(styles)],
+                marker=markers[threads.index(r0["threads"]) % len(markers)], ms=4, label=method)
     front = pareto(rows)
-    ax.plot([r["seconds"] for r in front], [max(r["rmse"], 1e-6) for r in front], "k--", lw=1,
-            label="Pareto front")
+    ax.plot([r["seconds"] for r in front], [max(r["rmse"], 1e-6) for r in front], "k-", lw=2.5,
+            alpha=0.25, label="Pareto front")
     ax.set_xscale("log"); ax.set_yscale("log")
     ax.set_xlabel("wall time (s)"); ax.set_ylabel("RMSE against reference")
     ax.set_title(f"{stem}: error against time")
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     fig.tight_layout()
     png = os.path.join(out, f"{stem}-error-vs-time.png")
     fig.savefig(png, dpi=110)
@@ -58,6 +69,9 @@ def main():
     md = os.path.join(out, f"{stem}-report.md")
     with open(md, "w") as f:
         f.write(f"# {stem}: speed against accuracy\n\n![error vs time]({os.path.basename(png)})\n\n")
+        f.write("Wall time and rays per render; RMSE, relMSE and bias against the reference (each "
+                "integrator's own converged render unless tray-bench was given --reference). "
+                "Regenerate with tools/make_bench_charts.sh.\n\n")
         f.write("## Pareto front: the cheapest method for each error level\n\n")
         f.write("| RMSE below | cheapest method | setting | seconds | Mrays |\n|---|---|---|---|---|\n")
         for r in front:

@@ -3,6 +3,7 @@
 // tests/stability/ and by bench/stability_images.cpp, which renders the documentation images,
 // so the pictures show exactly what the tests measure.
 #include <cmath>
+#include <limits>
 #include <map>
 #include <memory>
 #include <utility>
@@ -77,7 +78,8 @@ inline size_t shadowedPixels(const Film& f) {
 /// tiny scenes (light leaks).
 class FixedEpsilonDirect final : public Integrator {
  public:
-  FixedEpsilonDirect(const RenderContext& ctx, float epsilon) : Integrator(ctx), epsilon_(epsilon) {}
+  FixedEpsilonDirect(const RenderContext& ctx, float epsilon)
+      : Integrator(ctx), epsilon_(epsilon) {}
   Color Li(const Ray& ray, Sampler&, RayStats& stats, PrimaryHit* primary) const override {
     const Scene& scene = ctx_.scene;
     Hit hit;
@@ -128,9 +130,9 @@ inline TriangleMesh geodesicSphere(int levels, int material) {
                  Vec3(0, 1, t), Vec3(0, -1, -t), Vec3(0, 1, -t), Vec3(t, 0, -1), Vec3(t, 0, 1),
                  Vec3(-t, 0, -1), Vec3(-t, 0, 1)})
     m.positions.push_back(normalize(v));
-  m.indices = {0, 11, 5, 0, 5,  1,  0,  1,  7,  0,  7,  10, 0, 10, 11, 1, 5, 9, 5, 11,
-               4, 11, 10, 2, 10, 7, 6,  7,  1,  8,  3,  9,  4, 3,  4,  2, 3, 2, 6, 3,
-               6, 8,  3,  8, 9,  4, 9,  5,  2,  4,  11, 6,  2, 10, 8,  6, 7, 9, 8, 1};
+  m.indices = {0, 11, 5,  0, 5,  1, 0, 1, 7, 0, 7,  10, 0, 10, 11, 1, 5, 9, 5, 11,
+               4, 11, 10, 2, 10, 7, 6, 7, 1, 8, 3,  9,  4, 3,  4,  2, 3, 2, 6, 3,
+               6, 8,  3,  8, 9,  4, 9, 5, 2, 4, 11, 6,  2, 10, 8,  6, 7, 9, 8, 1};
   for (int level = 0; level < levels; ++level) {
     std::map<std::pair<uint32_t, uint32_t>, uint32_t> midpoints;
     auto midpoint = [&](uint32_t a, uint32_t b) {
@@ -164,17 +166,21 @@ inline Material glass(float ior = 1.5f) {
   return m;
 }
 
-/// A glass sphere of radius 1 holding an off-centre diffuse ball (radius 0.4 at x = 0.45, so
-/// light it scatters leaves it up to 0.85 off-centre: beyond sin(theta_c) = 1/1.5, trapped by
-/// TIR) in a uniform white environment.
+/// The camera inside a glass sphere of radius 1 (IOR 1.5), 0.8 from its centre, looking along
+/// the sphere's tangent. A ray's distance b from the centre line (its impact parameter) is the
+/// same on every chord of a sphere, so rays with b > 1 / 1.5 meet the surface beyond the
+/// critical angle every time: trapped by total internal reflection forever, a whispering
+/// gallery (the image's dark middle). Wider rays escape to a white sky or see a diffuse ball
+/// outside. A small diffuse ball at the centre is never seen by trapped rays (b > 0.3).
 inline SceneWithCamera trappedLightScene() {
   SceneWithCamera a;
   Scene& s = a.scene;
   addSphere(s, {0, 0, 0}, 1.0f, addMaterial(s, glass()));
-  addSphere(s, {0.45f, 0, 0}, 0.4f, addMaterial(s, diffuse(Color(0.8f, 0.5f, 0.3f))));
+  addSphere(s, {0, 0, 0}, 0.3f, addMaterial(s, diffuse(Color(0.8f, 0.5f, 0.3f))));
+  addSphere(s, {3, 0, 2}, 1.0f, addMaterial(s, diffuse(Color(0.3f, 0.5f, 0.8f))));
   s.environment.background = Color(1.0f);
   s.finalize();
-  a.camera = lookAt({0, 0.5f, 3.5f}, {0, 0, 0}, 0.7f);
+  a.camera = lookAt({0, 0, 0.8f}, {1, 0, 0.8f}, 1.6f);
   return a;
 }
 
@@ -190,6 +196,39 @@ inline SceneWithCamera causticScene() {
   addSphere(s, {0.6f, 4.0f, 0.2f}, 0.08f, addMaterial(s, lamp));
   s.finalize();
   a.camera = lookAt({0, 2.2f, 3.2f}, {0, 0.3f, 0}, 0.75f);
+  return a;
+}
+
+// --- 7. Degenerate meshes: a smooth sphere mesh on a floor -----------------------------------
+
+/// A geodesic sphere (radius 1) with its exact per-vertex normals.
+inline TriangleMesh smoothSphere() {
+  TriangleMesh m = geodesicSphere(2, 0);
+  m.normals = m.positions;
+  return m;
+}
+
+/// Sets every 5th vertex normal to NaN; returns how many.
+inline size_t poisonNormals(TriangleMesh& m) {
+  size_t n = 0;
+  for (size_t i = 0; i < m.normals.size(); i += 5, ++n)
+    m.normals[i] = Vec3(std::numeric_limits<float>::quiet_NaN());
+  return n;
+}
+
+/// The mesh on a diffuse floor, lit by a point light and a dim sky, and the camera on it.
+inline SceneWithCamera meshOnFloor(TriangleMesh sphere) {
+  SceneWithCamera a;
+  Scene& s = a.scene;
+  const int mat = addMaterial(s, diffuse(Color(0.7f, 0.6f, 0.5f)));
+  sphere.material = mat;
+  addMeshInstance(s, addMesh(s, std::move(sphere)), Mat4::identity());
+  addMeshInstance(s, addMesh(s, quadMesh(3.0f, mat)), Mat4::translate({0, -1, 0}));
+  s.lights.push_back(pointLight({2, 4, 3}, Color(40.0f)));
+  s.environment.background = Color(0.2f);
+  s.environment.ambient = Color(0.2f);
+  s.finalize();
+  a.camera = lookAt({0, 0.5f, 4}, {0, 0, 0}, 0.8f);
   return a;
 }
 
