@@ -45,8 +45,12 @@ enum class BvhBuilder {
 
 struct BvhBuildOptions {
   BvhBuilder builder = BvhBuilder::kBinnedSah;
-  int maxLeafSize = 4;
+  int maxLeafSize = 4;  ///< at most 16 (accel/bvh4.h)
   int bins = 16;
+  /// Primitives tested together (accel/bvh_triangle4.h tests four triangles at once): the SAH
+  /// counts a leaf's cost in blocks, ceil(count / blockSize), as Embree's builders do, so
+  /// leaves fill their blocks. 1: every primitive costs one test (Wald 2007).
+  int blockSize = 1;
   /// SAH constants: cost of one node visit and one primitive test (Wald 2007 uses 1 : 1).
   float traversalCost = 1.0f;
   float intersectionCost = 1.0f;

@@ -11,7 +11,7 @@
 #include <atomic>
 
 #include "accel/bvh_mesh.h"
-#include "accel/bvh_traversal.h"
+#include "accel/bvh4_traversal.h"
 #include "core/scene.h"
 
 namespace tray {
@@ -80,7 +80,12 @@ class TwoLevelAccelerator final : public Accelerator {
       }
       if (!options.hierarchy && !boxes[i].empty()) flat_.push_back(i);
     }
-    if (options.hierarchy) top_ = buildBvh(boxes, options.build);
+    if (options.hierarchy) {
+      Bvh top = buildBvh(boxes, options.build);
+      topSahCost_ = sahCost(top, options.build);
+      topBinaryNodes_ = top.nodes.size();
+      top_ = collapseToBvh4(std::move(top));
+    }
   }
 
   bool intersect(const Ray& ray, Hit& hit) const override {
@@ -148,15 +153,15 @@ class TwoLevelAccelerator final : public Accelerator {
     double weight = 0;
     for (const auto& m : meshes_)
       if (m) {
-        size_t tris = 0;
-        for (const BvhNode& n : m->tree().nodes) tris += n.count;
-        q.meshSahCost += sahCost(m->tree(), options_.build) * double(tris);
-        weight += double(tris);
-        q.nodes += m->tree().nodes.size();
+        q.meshSahCost += m->sahCost() * double(m->triangles());
+        weight += double(m->triangles());
+        q.nodes += m->binaryNodes();
+        q.wideNodes += m->tree().nodes.size();
       }
     if (weight > 0) q.meshSahCost /= weight;
-    q.topSahCost = sahCost(top_, options_.build);
-    q.nodes += top_.nodes.size();
+    q.topSahCost = topSahCost_;
+    q.nodes += topBinaryNodes_;
+    q.wideNodes += top_.nodes.size();
     return q;
   }
 
@@ -175,7 +180,7 @@ class TwoLevelAccelerator final : public Accelerator {
         if (visit(i)) return true;
       return false;
     }
-    return traverseBvh(top_, prepareBvhRay(ray.o, ray.d), ray.tmin, tmax,
+    return traverseBvh4(top_, prepareBvh4Ray(ray.o, ray.d), ray.tmin, tmax,
                        [&](uint32_t first, uint32_t count) {
                          for (uint32_t k = first; k < first + count; ++k)
                            if (visit(top_.primitives[k])) return true;
@@ -220,7 +225,9 @@ class TwoLevelAccelerator final : public Accelerator {
   TwoLevelOptions options_;
   uint64_t id_;
   std::vector<std::unique_ptr<MeshBvh>> meshes_;  ///< by mesh index; null when not placed
-  Bvh top_;
+  Bvh4 top_;
+  double topSahCost_ = 0;
+  size_t topBinaryNodes_ = 0;
   std::vector<uint32_t> unbounded_;  ///< shapes with infinite bounds, tested by every ray
   std::vector<uint32_t> flat_;       ///< without hierarchy: every bounded primitive
 };

@@ -28,7 +28,8 @@ std::unique_ptr<Accelerator> makeNaiveAccelerator(const Scene& scene);
 struct BvhQuality {
   double meshSahCost = 0;
   double topSahCost = 0;
-  size_t nodes = 0;
+  size_t nodes = 0;      ///< binary nodes, as built
+  size_t wideNodes = 0;  ///< 4-wide nodes traversed (accel/bvh4.h)
 };
 BvhQuality bvhQuality(const Accelerator& accel);
 

@@ -6,17 +6,13 @@
 #include <vector>
 
 #include "accel/bvh.h"
+#include "accel/bvh4.h"
+#include "accel/bvh_triangle4.h"
 #include "core/hit.h"
 #include "core/ray.h"
 #include "shapes/triangle_mesh.h"
 
 namespace tray {
-
-/// Triangle vertices copied in leaf order, so a leaf's triangles are contiguous in memory.
-struct BvhTriangle {
-  Vec3 p0, p1, p2;
-  uint32_t index;  ///< triangle index within the mesh
-};
 
 class MeshBvh {
  public:
@@ -33,20 +29,24 @@ class MeshBvh {
   bool occludedBy(const Ray& ray, uint32_t triangle) const;
 
   Bounds3 bounds() const { return bounds_; }
-  const Bvh& tree() const { return bvh_; }
-  size_t memoryBytes() const {
-    return bvh_.memoryBytes() + triangles_.capacity() * sizeof(BvhTriangle);
-  }
+  /// The binary tree's SAH cost (before collapsing to 4-wide), its node and triangle counts.
+  double sahCost() const { return sahCost_; }
+  size_t binaryNodes() const { return binaryNodes_; }
+  size_t triangles() const { return triangleCount_; }
+  const Bvh4& tree() const { return bvh_; }
+  size_t memoryBytes() const { return bvh_.memoryBytes() + blocks_.capacity() * sizeof(Triangle4); }
 
  private:
-  template <class OnHit>
-  bool forEachCandidate(const Ray& ray, const float& tmax, OnHit&& onHit) const;
+  template <class OnBlock>
+  bool forEachBlock(const Ray& ray, const float& tmax, OnBlock&& onBlock) const;
 
-  Bvh bvh_;
+  Bvh4 bvh_;  ///< leaves index blocks_
   const TriangleMesh& mesh_;
-  std::vector<BvhTriangle> triangles_;  ///< in leaf order (bvh_.primitives), or mesh order
+  std::vector<Triangle4> blocks_;  ///< leaf by leaf (or every triangle, without hierarchy)
   Bounds3 bounds_;
   bool hierarchy_;
+  double sahCost_ = 0;
+  size_t binaryNodes_ = 0, triangleCount_ = 0;
 };
 
 }  // namespace tray

@@ -4,7 +4,8 @@
 // Prints a table, writes CSV for tools/plot_accel.py, and the teapot speed-up table
 // (naive -> bvh -> embree) measured in this one run. Not a test: figures only.
 //
-//   accel_bench [--csv FILE] [--max-triangles N] [--shared DIR]
+//   accel_bench [--csv FILE] [--max-triangles N] [--shared DIR] [--scene NAME] [--accel NAME]
+// (--scene and --accel keep only the scenes / the accelerator so named, e.g. for profiling).
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
@@ -161,10 +162,13 @@ int main(int argc, char** argv) {
   std::string csvPath = "accel_bench.csv";
   std::string shared = TRAY_SOURCE_DIR "/../shared";
   size_t maxTriangles = 2100000;
+  std::string onlyScene, onlyAccel;
   for (int i = 1; i + 1 < argc; i += 2) {
     if (!std::strcmp(argv[i], "--csv")) csvPath = argv[i + 1];
     if (!std::strcmp(argv[i], "--max-triangles")) maxTriangles = std::stoul(argv[i + 1]);
     if (!std::strcmp(argv[i], "--shared")) shared = argv[i + 1];
+    if (!std::strcmp(argv[i], "--scene")) onlyScene = argv[i + 1];
+    if (!std::strcmp(argv[i], "--accel")) onlyAccel = argv[i + 1];
   }
   const size_t kNaiveLimit = 60000;  // naive beyond this would take hours
 
@@ -186,9 +190,11 @@ int main(int argc, char** argv) {
               "Mrays/s", "Mrays/s");
   std::vector<Row> rows;
   for (const BenchScene& bs : scenes) {
+    if (!onlyScene.empty() && bs.name != onlyScene) continue;
     RaySet rays = makeRays(bs.scene, 320, 240);
     for (const char* accel : {"embree", "bvh", "bvh-gs", "naive"}) {
       if (std::string(accel) == "naive" && bs.triangles > kNaiveLimit) continue;
+      if (!onlyAccel.empty() && accel != onlyAccel) continue;
       rows.push_back(measure(bs, accel, rays));
       printRow(rows.back());
     }
