@@ -59,8 +59,10 @@ inline int hitBoxes4(const Bvh4Node& n, const Bvh4Ray& r, simd::F4 tmin, simd::F
 constexpr int kBvh4StackSize = 3 * 256;
 
 /// Calls leaf(first, count) for each leaf whose box the ray enters before `tmax`, nearest box
-/// first. `leaf` may lower tmax (closest hit) and returns true to stop (any hit).
-template <class LeafFn>
+/// first (kOrdered; else in slot order, cheaper for any-hit queries, where the first hit found
+/// ends the search wherever it lies). `leaf` may lower tmax (closest hit) and returns true to
+/// stop (any hit).
+template <bool kOrdered = true, class LeafFn>
 bool traverseBvh4(const Bvh4& bvh, const Bvh4Ray& r, float tmin, const float& tmax, LeafFn&& leaf) {
   if (bvh.nodes.empty()) return false;
   const Bvh4Node* nodes = bvh.nodes.data();
@@ -84,6 +86,15 @@ bool traverseBvh4(const Bvh4& bvh, const Bvh4Ray& r, float tmin, const float& tm
         simd::store(entry, entry4);
         Item hit[4];
         int k = 0;
+        if constexpr (!kOrdered) {
+          for (; mask; mask &= mask - 1) {
+            int c = __builtin_ctz(unsigned(mask));
+            hit[k++] = {n.child[c], entry[c]};
+          }
+          for (int j = 0; j + 1 < k; ++j) stack[top++] = hit[j];
+          current = hit[k - 1].ref;
+          continue;
+        }
         for (; mask; mask &= mask - 1) {
           int c = __builtin_ctz(unsigned(mask));
           // Insertion sort, farthest first: at most four items.

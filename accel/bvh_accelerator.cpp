@@ -10,8 +10,8 @@
 #include <algorithm>
 #include <atomic>
 
-#include "accel/bvh_mesh.h"
 #include "accel/bvh4_traversal.h"
+#include "accel/bvh_mesh.h"
 #include "core/scene.h"
 
 namespace tray {
@@ -19,13 +19,14 @@ namespace {
 
 std::atomic<uint64_t> gNextAcceleratorId{1};
 
-/// The seed's shadow-ray cache: the primitive (and triangle) that blocked this thread's last
+/// The seed's shadow-ray cache: the primitive (and block of four triangles) that blocked this
+/// thread's last
 /// shadow ray is tested first, since neighbouring shading points are usually blocked by the same
 /// occluder. Keyed by accelerator id so a stale entry of another accelerator is never used.
 struct LastOccluder {
   uint64_t accelerator = 0;
   uint32_t primitive = kNoPrimitive;
-  uint32_t triangle = 0;
+  uint32_t block = 0;  ///< MeshBvh block index (meshes only)
 };
 thread_local LastOccluder tLastOccluder;
 
@@ -100,14 +101,14 @@ class TwoLevelAccelerator final : public Accelerator {
 
   bool occluded(const Ray& ray) const override {
     LastOccluder& cache = tLastOccluder;
-    if (cache.accelerator == id_ && cache.primitive < scene_.primitives.size() &&
-        occludedBy(cache.primitive, cache.triangle, ray))
+    if (options_.occluderCache && cache.accelerator == id_ &&
+        cache.primitive < scene_.primitives.size() && occludedBy(cache.primitive, cache.block, ray))
       return true;
-    uint32_t triangle = 0;
+    uint32_t block = 0;
     const float tmax = ray.tmax;
-    return forEachPrimitive(ray, tmax, [&](uint32_t i) {
-      if (!occludedPrimitive(i, ray, triangle)) return false;
-      cache = {id_, i, triangle};
+    return forEachPrimitive<false>(ray, tmax, [&](uint32_t i) {
+      if (!occludedPrimitive(i, ray, block)) return false;
+      if (options_.occluderCache) cache = {id_, i, block};
       return true;
     });
   }
@@ -171,7 +172,7 @@ class TwoLevelAccelerator final : public Accelerator {
   }
 
   /// Calls visit(i) for every primitive the ray may hit before tmax; stops when it returns true.
-  template <class Visit>
+  template <bool kOrdered = true, class Visit>
   bool forEachPrimitive(const Ray& ray, const float& tmax, Visit&& visit) const {
     for (uint32_t i : unbounded_)
       if (visit(i)) return true;
@@ -180,12 +181,12 @@ class TwoLevelAccelerator final : public Accelerator {
         if (visit(i)) return true;
       return false;
     }
-    return traverseBvh4(top_, prepareBvh4Ray(ray.o, ray.d), ray.tmin, tmax,
-                       [&](uint32_t first, uint32_t count) {
-                         for (uint32_t k = first; k < first + count; ++k)
-                           if (visit(top_.primitives[k])) return true;
-                         return false;
-                       });
+    return traverseBvh4<kOrdered>(top_, prepareBvh4Ray(ray.o, ray.d), ray.tmin, tmax,
+                                  [&](uint32_t first, uint32_t count) {
+                                    for (uint32_t k = first; k < first + count; ++k)
+                                      if (visit(top_.primitives[k])) return true;
+                                    return false;
+                                  });
   }
 
   bool intersectPrimitive(uint32_t i, const Ray& ray, float& tmax, Hit& hit) const {
@@ -204,19 +205,19 @@ class TwoLevelAccelerator final : public Accelerator {
     return true;
   }
 
-  bool occludedPrimitive(uint32_t i, const Ray& ray, uint32_t& triangle) const {
+  bool occludedPrimitive(uint32_t i, const Ray& ray, uint32_t& block) const {
     const Primitive& p = scene_.primitives[i];
-    triangle = 0;
+    block = 0;
     if (p.kind == Primitive::Kind::kMesh)
-      return meshes_[p.mesh]->occluded(toObject(p, ray, ray.tmax), triangle);
+      return meshes_[p.mesh]->occluded(toObject(p, ray, ray.tmax), block);
     Hit h;
     return scene_.intersectShape(i, ray, h);
   }
 
-  bool occludedBy(uint32_t i, uint32_t triangle, const Ray& ray) const {
+  bool occludedBy(uint32_t i, uint32_t block, const Ray& ray) const {
     const Primitive& p = scene_.primitives[i];
     if (p.kind == Primitive::Kind::kMesh)
-      return meshes_[p.mesh] && meshes_[p.mesh]->occludedBy(toObject(p, ray, ray.tmax), triangle);
+      return meshes_[p.mesh] && meshes_[p.mesh]->occludedBy(toObject(p, ray, ray.tmax), block);
     Hit h;
     return scene_.intersectShape(i, ray, h);
   }

@@ -10,6 +10,8 @@ struct TwoLevelOptions {
   BvhBuildOptions build;
   /// false: no trees at either level, every query tests every primitive and triangle.
   bool hierarchy = true;
+  /// Test the primitive that blocked this thread's last shadow ray first (the seed's cache).
+  bool occluderCache = true;
 };
 
 /// TRay's own two-level accelerator: a tree over the placed primitives (mesh instances and

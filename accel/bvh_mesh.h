@@ -21,12 +21,14 @@ class MeshBvh {
 
   /// Closest triangle with t in (ray.tmin, tmax); lowers tmax and fills hit's mesh fields.
   bool intersect(const Ray& ray, float& tmax, Hit& hit) const;
-  /// Any triangle with t in (ray.tmin, ray.tmax); its index goes to `triangle`.
-  bool occluded(const Ray& ray, uint32_t& triangle) const;
+  /// Any triangle with t in (ray.tmin, ray.tmax); the index of its block goes to `block`.
+  bool occluded(const Ray& ray, uint32_t& block) const;
   /// Appends every triangle hit in (ray.tmin, ray.tmax), tagged with `primitive`.
   void allHits(const Ray& ray, uint32_t primitive, std::vector<Hit>& hits) const;
-  /// Tests one triangle by its mesh index (the last-occluder cache).
-  bool occludedBy(const Ray& ray, uint32_t triangle) const;
+  /// Tests one block of four triangles (the last-occluder cache). The block, not the mesh's own
+  /// triangle, since the block was just read by the previous ray and is likely still cached:
+  /// reading the mesh's index and vertex arrays instead costs more than the cache saves.
+  bool occludedBy(const Ray& ray, uint32_t block) const;
 
   Bounds3 bounds() const { return bounds_; }
   /// The binary tree's SAH cost (before collapsing to 4-wide), its node and triangle counts.
@@ -37,7 +39,7 @@ class MeshBvh {
   size_t memoryBytes() const { return bvh_.memoryBytes() + blocks_.capacity() * sizeof(Triangle4); }
 
  private:
-  template <class OnBlock>
+  template <bool kOrdered, class OnBlock>
   bool forEachBlock(const Ray& ray, const float& tmax, OnBlock&& onBlock) const;
 
   Bvh4 bvh_;  ///< leaves index blocks_
