@@ -86,6 +86,8 @@ class TwoLevelAccelerator final : public Accelerator {
       topSahCost_ = sahCost(top, options.build);
       topBinaryNodes_ = top.nodes.size();
       top_ = collapseToBvh4(std::move(top));
+      // One placed primitive (a single mesh, say): its own tree culls, the top tree adds nothing.
+      if (top_.primitives.size() == 1) single_ = top_.primitives[0];
     }
   }
 
@@ -181,6 +183,7 @@ class TwoLevelAccelerator final : public Accelerator {
         if (visit(i)) return true;
       return false;
     }
+    if (single_ != kNoPrimitive) return visit(single_);
     return traverseBvh4<kOrdered>(top_, prepareBvh4Ray(ray.o, ray.d), ray.tmin, tmax,
                                   [&](uint32_t first, uint32_t count) {
                                     for (uint32_t k = first; k < first + count; ++k)
@@ -227,6 +230,7 @@ class TwoLevelAccelerator final : public Accelerator {
   uint64_t id_;
   std::vector<std::unique_ptr<MeshBvh>> meshes_;  ///< by mesh index; null when not placed
   Bvh4 top_;
+  uint32_t single_ = kNoPrimitive;  ///< the only primitive in top_, which is then skipped
   double topSahCost_ = 0;
   size_t topBinaryNodes_ = 0;
   std::vector<uint32_t> unbounded_;  ///< shapes with infinite bounds, tested by every ray

@@ -58,15 +58,16 @@ struct alignas(16) PrimRef {
     return i;
   }
   float centroid(int a) const { return lo[a] + hi[a]; }
-  F4 centroid4() const {
-    alignas(16) float c[4] = {lo[0] + hi[0], lo[1] + hi[1], lo[2] + hi[2], 0.0f};
-    return simd::load(c);
-  }
+  /// The id lane is cleared first (hi's fourth lane is 0), so no arithmetic sees its bits.
+  F4 centroid4() const { return simd::xyz(l()) + h(); }
 };
 
+/// Plain data (no initialisers): a node initialises only the bins it uses.
 struct Bin {
-  Box box;
+  F4 lo, hi;
   uint32_t count;
+  Box box() const { return {lo, hi}; }
+  void extend(F4 l, F4 h) { lo = simd::min(lo, l), hi = simd::max(hi, h); }
 };
 
 /// Bins of all three axes for one node. Only the first `used` bins of each axis are initialised
@@ -76,12 +77,12 @@ struct Binning {
   int used;
   explicit Binning(int n) : used(n) {
     for (auto& axis : bins)
-      for (int i = 0; i < used; ++i) axis[i].box = Box(), axis[i].count = 0;
+      for (int i = 0; i < used; ++i) axis[i] = {simd::set1(kInfinity), simd::set1(-kInfinity), 0};
   }
   void merge(const Binning& o) {
     for (int a = 0; a < 3; ++a)
       for (int i = 0; i < used; ++i) {
-        bins[a][i].box.extend(o.bins[a][i].box);
+        bins[a][i].extend(o.bins[a][i].lo, o.bins[a][i].hi);
         bins[a][i].count += o.bins[a][i].count;
       }
   }
@@ -168,7 +169,7 @@ class SahBuilder {
       const F4 l = ref.l(), h = ref.h();
       for (int a = 0; a < 3; ++a) {
         Bin& bin = acc.bins[a][map.of(ref, a)];
-        bin.box.extend(l, h);
+        bin.extend(l, h);
         ++bin.count;
       }
     }
@@ -216,12 +217,12 @@ class SahBuilder {
     for (int a = 0; a < 3; ++a) {
       if (extent[a] <= 0) continue;
       const auto& bins = binning.bins[a];
-      std::array<float, kMaxBins> rightArea{};
-      std::array<uint32_t, kMaxBins> rightCount{};
+      std::array<float, kMaxBins> rightArea;  // [1, nb) written before read
+      std::array<uint32_t, kMaxBins> rightCount;
       Box acc;
       uint32_t count = 0;
       for (int i = nb - 1; i > 0; --i) {
-        acc.extend(bins[i].box);
+        acc.extend(bins[i].box());
         count += bins[i].count;
         rightArea[i] = acc.area();
         rightCount[i] = count;
@@ -229,7 +230,7 @@ class SahBuilder {
       acc = Box();
       count = 0;
       for (int i = 0; i < nb - 1; ++i) {
-        acc.extend(bins[i].box);
+        acc.extend(bins[i].box());
         count += bins[i].count;
         if (count == 0 || rightCount[i + 1] == 0) continue;
         float cost = acc.area() * blocks(count) + rightArea[i + 1] * blocks(rightCount[i + 1]);
@@ -254,7 +255,7 @@ class SahBuilder {
     Box lcb, rcb;
     uint32_t mid = partition(begin, end, map, bestAxis, bestPlane, lcb, rcb);
     Box lb, rb;
-    for (int i = 0; i < nb; ++i) (i <= bestPlane ? lb : rb).extend(binning.bins[bestAxis][i].box);
+    for (int i = 0; i < nb; ++i) (i <= bestPlane ? lb : rb).extend(binning.bins[bestAxis][i].box());
     children(node, begin, mid, end, b, bestAxis, lb, lcb, rb, rcb);
   }
 

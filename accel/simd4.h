@@ -74,6 +74,10 @@ inline F4 select(M4 m, F4 a, F4 b) {
 inline void store(float* p, F4 a) {
   _mm_storeu_ps(p, a.v);
 }
+/// Lanes 0-2 of a, lane 3 cleared to +0 (a bit mask: no arithmetic on lane 3).
+inline F4 xyz(F4 a) {
+  return {_mm_and_ps(a.v, _mm_castsi128_ps(_mm_set_epi32(0, -1, -1, -1)))};
+}
 
 #else  // portable fallback: same semantics, one lane at a time
 
@@ -149,6 +153,9 @@ inline F4 select(M4 m, F4 a, F4 b) {
 }
 inline void store(float* p, F4 a) {
   for (int i = 0; i < 4; ++i) p[i] = a.v[i];
+}
+inline F4 xyz(F4 a) {
+  return {{a.v[0], a.v[1], a.v[2], 0.0f}};
 }
 
 #endif
