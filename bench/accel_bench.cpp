@@ -38,6 +38,14 @@ double cpuSeconds() {
   return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
 }
 
+/// The 1, 5 and 15 minute load averages (Linux), to show how busy a shared machine was.
+std::string loadAverage() {
+  std::ifstream f("/proc/loadavg");
+  std::string a, b, c;
+  f >> a >> b >> c;
+  return f ? a + " " + b + " " + c : "unknown";
+}
+
 double secondsSince(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
@@ -223,7 +231,7 @@ int main(int argc, char** argv) {
 
   std::vector<BenchScene> scenes;
   scenes.push_back(meshScene("teapot", bench::teapot(32)));
-  for (const char* sample : {"Duck.glb", "DamagedHelmet.glb"}) {
+  for (const char* sample : {"Duck.glb", "DamagedHelmet.glb", "MetalRoughSpheresNoTextures.glb"}) {
     std::string path = shared + "/gltf-samples/" + sample;
     if (!std::filesystem::exists(path)) continue;
     Scene s = loadGltf(path);
@@ -239,6 +247,8 @@ int main(int argc, char** argv) {
               "build ms", "cpu ms", "bytes/tri", "SAH", "camera", "shadow", "bounce");
   std::printf("%-14s %9s  %-11s %8s %8s %9s %8s %9s %9s %9s\n", "", "", "", "", "", "", "",
               "Mrays/s", "Mrays/s", "Mrays/s");
+  std::printf("(%d threads; load average %s)\n", tbb::this_task_arena::max_concurrency(),
+              loadAverage().c_str());
   std::vector<Row> rows;
   for (const BenchScene& bs : scenes) {
     if (!onlyScene.empty() && bs.name != onlyScene) continue;
@@ -267,7 +277,7 @@ int main(int argc, char** argv) {
     csv << r.scene << ',' << r.triangles << ',' << r.accel << ',' << r.buildMs << ','
         << r.buildCpuMs << ',' << r.bytesPerTriangle << ',' << r.sah << ',' << r.camera << ','
         << r.shadow << ',' << r.bounce << '\n';
-  std::printf("\nwrote %s\n", csvPath.c_str());
+  std::printf("\nwrote %s (load average at the end: %s)\n", csvPath.c_str(), loadAverage().c_str());
 
   // The seed's progression on its teapot: each step's speed-up, from the rows above.
   auto find = [&](const std::string& scene, const std::string& accel) -> const Row* {

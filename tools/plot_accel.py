@@ -10,9 +10,10 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 
-STYLE = {"embree": "k-o", "bvh": "b-s", "bvh-gs": "g-^", "naive": "r-x"}
-LABEL = {"embree": "Embree", "bvh": "bvh (binned SAH)", "bvh-gs": "bvh-gs (Goldsmith-Salmon)",
-         "naive": "naive"}
+STYLE = {"embree": "k-o", "bvh": "b-s", "bvh-nocache": "c--", "bvh-gs": "g-^", "naive": "r-x"}
+LABEL = {"embree": "Embree", "bvh": "bvh (binned SAH, 4-wide)",
+         "bvh-nocache": "bvh without last-occluder cache",
+         "bvh-gs": "bvh-gs (Goldsmith-Salmon)", "naive": "naive"}
 
 
 def load(path):
@@ -39,6 +40,8 @@ def main():
     fig, axes = plt.subplots(1, 4, figsize=(18, 4.5))
     for ax, (key, title) in zip(axes, panels):
         for accel, rs in by_accel.items():
+            if accel == "bvh-nocache" and key != "shadow_mrays":
+                continue  # the same tree as bvh: only its shadow rays differ
             rs = sorted((r for r in rs if r[key] > 0), key=lambda r: r["triangles"])
             if not rs:
                 continue
