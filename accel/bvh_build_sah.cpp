@@ -104,6 +104,7 @@ class SahBuilder {
     opt_.bins = std::clamp(opt_.bins, 2, kMaxBins);
     opt_.maxLeafSize = std::clamp(opt_.maxLeafSize, 1, 16);  // the 4-wide leaf limit (bvh4.h)
     opt_.blockSize = std::clamp(opt_.blockSize, 1, opt_.maxLeafSize);
+    opt_.sahDepth = std::clamp(opt_.sahDepth, 0, 200);
     refs_.reserve(bounds.size());
     for (uint32_t i = 0; i < bounds.size(); ++i) {
       const Bounds3& b = bounds[i];
@@ -140,7 +141,7 @@ class SahBuilder {
           x.cb.extend(y.cb);
           return x;
         });
-    buildNode(0, 0, uint32_t(refs_.size()), all.b, all.cb);
+    buildNode(0, 0, uint32_t(refs_.size()), all.b, all.cb, 0);
     bvh.nodes.assign(nodes_.get(), nodes_.get() + nodeCount_.load());
     bvh.primitives.resize(refs_.size());
     tbb::parallel_for(size_t(0), refs_.size(), size_t(16384), [&](size_t k0) {
@@ -190,7 +191,8 @@ class SahBuilder {
         });
   }
 
-  void buildNode(uint32_t node, uint32_t begin, uint32_t end, const Box& b, const Box& cb) {
+  void buildNode(uint32_t node, uint32_t begin, uint32_t end, const Box& b, const Box& cb,
+                 int depth) {
     const uint32_t n = end - begin;
     if (n == 1) return makeLeaf(node, begin, end, b);
     const Bounds3 cbb = cb.bounds();
@@ -198,7 +200,11 @@ class SahBuilder {
     if (maxComponent(extent) <= 0.0f) {
       // All centroids coincide: no plane separates them. Split the range in half.
       if (n <= uint32_t(opt_.maxLeafSize)) return makeLeaf(node, begin, end, b);
-      return splitAt(node, begin, begin + n / 2, end, b, 0);
+      return splitAt(node, begin, begin + n / 2, end, b, 0, depth);
+    }
+    if (depth >= opt_.sahDepth) {
+      if (n <= uint32_t(opt_.maxLeafSize)) return makeLeaf(node, begin, end, b);
+      return medianSplit(node, begin, end, b, extent, depth);
     }
     // Small nodes get fewer bins (no fewer than 4): as good a split, for less fixed cost.
     const int nb = std::min(opt_.bins, std::max(4, int(n)));
@@ -243,20 +249,24 @@ class SahBuilder {
     float leafCost = opt_.intersectionCost * blocks(n);
     if (n <= uint32_t(opt_.maxLeafSize) && leafCost <= splitCost)
       return makeLeaf(node, begin, end, b);
-    if (bestAxis < 0) {
-      // Every centroid fell into one bin on every axis: fall back to an object median.
-      int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
-      uint32_t mid = begin + n / 2;
-      std::nth_element(
-          refs_.begin() + begin, refs_.begin() + mid, refs_.begin() + end,
-          [&](const PrimRef& x, const PrimRef& y) { return x.centroid(axis) < y.centroid(axis); });
-      return splitAt(node, begin, mid, end, b, axis);
-    }
+    // Every centroid fell into one bin on every axis: fall back to an object median.
+    if (bestAxis < 0) return medianSplit(node, begin, end, b, extent, depth);
     Box lcb, rcb;
     uint32_t mid = partition(begin, end, map, bestAxis, bestPlane, lcb, rcb);
     Box lb, rb;
     for (int i = 0; i < nb; ++i) (i <= bestPlane ? lb : rb).extend(binning.bins[bestAxis][i].box());
-    children(node, begin, mid, end, b, bestAxis, lb, lcb, rb, rcb);
+    children(node, begin, mid, end, b, bestAxis, lb, lcb, rb, rcb, depth);
+  }
+
+  /// Splits at the median centroid along the axis of largest centroid extent.
+  void medianSplit(uint32_t node, uint32_t begin, uint32_t end, const Box& b, const Vec3& extent,
+                   int depth) {
+    int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+    uint32_t mid = begin + (end - begin) / 2;
+    std::nth_element(
+        refs_.begin() + begin, refs_.begin() + mid, refs_.begin() + end,
+        [&](const PrimRef& x, const PrimRef& y) { return x.centroid(axis) < y.centroid(axis); });
+    splitAt(node, begin, mid, end, b, axis, depth);
   }
 
   /// In-place two-sided partition (Hoare): refs left of the plane first. Gathers both sides'
@@ -280,18 +290,19 @@ class SahBuilder {
   }
 
   /// Splits [begin, end) at mid without bin information: recomputes the children's bounds.
-  void splitAt(uint32_t node, uint32_t begin, uint32_t mid, uint32_t end, const Box& b, int axis) {
+  void splitAt(uint32_t node, uint32_t begin, uint32_t mid, uint32_t end, const Box& b, int axis,
+               int depth) {
     Box lb, lcb, rb, rcb;
     for (uint32_t k = begin; k < end; ++k) {
       F4 c = refs_[k].centroid4();
       (k < mid ? lb : rb).extend(refs_[k].l(), refs_[k].h());
       (k < mid ? lcb : rcb).extend(c, c);
     }
-    children(node, begin, mid, end, b, axis, lb, lcb, rb, rcb);
+    children(node, begin, mid, end, b, axis, lb, lcb, rb, rcb, depth);
   }
 
   void children(uint32_t node, uint32_t begin, uint32_t mid, uint32_t end, const Box& b, int axis,
-                const Box& lb, const Box& lcb, const Box& rb, const Box& rcb) {
+                const Box& lb, const Box& lcb, const Box& rb, const Box& rcb, int depth) {
     uint32_t first = nodeCount_.fetch_add(2);
     BvhNode& n = nodes_[node];
     n.setBounds(b.bounds());
@@ -299,8 +310,8 @@ class SahBuilder {
     n.count = 0;
     n.axis = uint8_t(axis);
     n.pad = 0;
-    auto leftChild = [&] { buildNode(first, begin, mid, lb, lcb); };
-    auto rightChild = [&] { buildNode(first + 1, mid, end, rb, rcb); };
+    auto leftChild = [&] { buildNode(first, begin, mid, lb, lcb, depth + 1); };
+    auto rightChild = [&] { buildNode(first + 1, mid, end, rb, rcb, depth + 1); };
     if (end - begin >= kParallelChildren) {
       tbb::parallel_invoke(leftChild, rightChild);
     } else {
