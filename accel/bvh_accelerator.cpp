@@ -82,7 +82,11 @@ class TwoLevelAccelerator final : public Accelerator {
       if (!options.hierarchy && !boxes[i].empty()) flat_.push_back(i);
     }
     if (options.hierarchy) {
-      Bvh top = buildBvh(boxes, options.build);
+      // One primitive per top leaf: entering an instance costs a transform and a ray set-up,
+      // so each is culled by its own box first.
+      BvhBuildOptions topOptions = options.build;
+      topOptions.maxLeafSize = 1;
+      Bvh top = buildBvh(boxes, topOptions);
       topSahCost_ = sahCost(top, options.build);
       topBinaryNodes_ = top.nodes.size();
       top_ = collapseToBvh4(std::move(top));
