@@ -17,6 +17,8 @@ namespace tray {
 class MeshBvh {
  public:
   /// hierarchy = false: no tree, every query tests every triangle (the naive accelerator).
+  /// The tree is built with options' builder, bins and costs; block size 4 and leaves of up to
+  /// 8 triangles are fixed by the leaf layout (accel/bvh_mesh.cpp).
   MeshBvh(const TriangleMesh& mesh, const BvhBuildOptions& options, bool hierarchy = true);
 
   /// Closest triangle with t in (ray.tmin, tmax); lowers tmax and fills hit's mesh fields.

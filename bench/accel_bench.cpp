@@ -2,7 +2,9 @@
 // SAH), bvh-gs (Goldsmith–Salmon), naive where it finishes) on the same scenes and the same rays:
 // camera rays, shadow rays towards a light, and diffuse-bounce rays from the camera hits.
 // Prints a table, writes CSV for tools/plot_accel.py, and the teapot speed-up table
-// (naive -> bvh -> embree) measured in this one run. Not a test: figures only.
+// (naive -> bvh -> embree) measured in this one run. Not a test: figures only. bvh-nocache is
+// bvh without the last-occluder cache (its shadow rays only). Throughput is per CPU second
+// times the cores (see throughput()), so a busy shared machine does not distort the ratios.
 //
 //   accel_bench [--csv FILE] [--max-triangles N] [--shared DIR] [--scene NAME] [--accel NAME]
 // (--scene and --accel keep only the scene / the accelerators so named, e.g. --accel embree,bvh).
