@@ -45,8 +45,16 @@ enum class BvhBuilder {
 
 struct BvhBuildOptions {
   BvhBuilder builder = BvhBuilder::kBinnedSah;
-  int maxLeafSize = 4;
+  int maxLeafSize = 4;  ///< at most 16 (accel/bvh4.h)
   int bins = 16;
+  /// Primitives tested together (accel/bvh_triangle4.h tests four triangles at once): the SAH
+  /// counts a leaf's cost in blocks, ceil(count / blockSize), as Embree's builders do, so
+  /// leaves fill their blocks. 1: every primitive costs one test (Wald 2007).
+  int blockSize = 1;
+  /// Binned SAH: from this depth down, splits are object medians, which halve the range, so a
+  /// tree stays under sahDepth + 32 levels whatever the input (the traversal stacks assume under
+  /// 256: accel/bvh4_traversal.h). At most 200.
+  int sahDepth = 200;
   /// SAH constants: cost of one node visit and one primitive test (Wald 2007 uses 1 : 1).
   float traversalCost = 1.0f;
   float intersectionCost = 1.0f;

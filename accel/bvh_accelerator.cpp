@@ -10,8 +10,8 @@
 #include <algorithm>
 #include <atomic>
 
+#include "accel/bvh4_traversal.h"
 #include "accel/bvh_mesh.h"
-#include "accel/bvh_traversal.h"
 #include "core/scene.h"
 
 namespace tray {
@@ -19,13 +19,14 @@ namespace {
 
 std::atomic<uint64_t> gNextAcceleratorId{1};
 
-/// The seed's shadow-ray cache: the primitive (and triangle) that blocked this thread's last
+/// The seed's shadow-ray cache: the primitive (and block of four triangles) that blocked this
+/// thread's last
 /// shadow ray is tested first, since neighbouring shading points are usually blocked by the same
 /// occluder. Keyed by accelerator id so a stale entry of another accelerator is never used.
 struct LastOccluder {
   uint64_t accelerator = 0;
   uint32_t primitive = kNoPrimitive;
-  uint32_t triangle = 0;
+  uint32_t block = 0;  ///< MeshBvh block index (meshes only)
 };
 thread_local LastOccluder tLastOccluder;
 
@@ -80,7 +81,18 @@ class TwoLevelAccelerator final : public Accelerator {
       }
       if (!options.hierarchy && !boxes[i].empty()) flat_.push_back(i);
     }
-    if (options.hierarchy) top_ = buildBvh(boxes, options.build);
+    if (options.hierarchy) {
+      // One primitive per top leaf: entering an instance costs a transform and a ray set-up,
+      // so each is culled by its own box first.
+      BvhBuildOptions topOptions = options.build;
+      topOptions.maxLeafSize = 1;
+      Bvh top = buildBvh(boxes, topOptions);
+      topSahCost_ = sahCost(top, options.build);
+      topBinaryNodes_ = top.nodes.size();
+      top_ = collapseToBvh4(std::move(top));
+      // One placed primitive (a single mesh, say): its own tree culls, the top tree adds nothing.
+      if (top_.primitives.size() == 1) single_ = top_.primitives[0];
+    }
   }
 
   bool intersect(const Ray& ray, Hit& hit) const override {
@@ -95,14 +107,14 @@ class TwoLevelAccelerator final : public Accelerator {
 
   bool occluded(const Ray& ray) const override {
     LastOccluder& cache = tLastOccluder;
-    if (cache.accelerator == id_ && cache.primitive < scene_.primitives.size() &&
-        occludedBy(cache.primitive, cache.triangle, ray))
+    if (options_.occluderCache && cache.accelerator == id_ &&
+        cache.primitive < scene_.primitives.size() && occludedBy(cache.primitive, cache.block, ray))
       return true;
-    uint32_t triangle = 0;
+    uint32_t block = 0;
     const float tmax = ray.tmax;
-    return forEachPrimitive(ray, tmax, [&](uint32_t i) {
-      if (!occludedPrimitive(i, ray, triangle)) return false;
-      cache = {id_, i, triangle};
+    return forEachPrimitive<false>(ray, tmax, [&](uint32_t i) {
+      if (!occludedPrimitive(i, ray, block)) return false;
+      if (options_.occluderCache) cache = {id_, i, block};
       return true;
     });
   }
@@ -148,15 +160,15 @@ class TwoLevelAccelerator final : public Accelerator {
     double weight = 0;
     for (const auto& m : meshes_)
       if (m) {
-        size_t tris = 0;
-        for (const BvhNode& n : m->tree().nodes) tris += n.count;
-        q.meshSahCost += sahCost(m->tree(), options_.build) * double(tris);
-        weight += double(tris);
-        q.nodes += m->tree().nodes.size();
+        q.meshSahCost += m->sahCost() * double(m->triangles());
+        weight += double(m->triangles());
+        q.nodes += m->binaryNodes();
+        q.wideNodes += m->tree().nodes.size();
       }
     if (weight > 0) q.meshSahCost /= weight;
-    q.topSahCost = sahCost(top_, options_.build);
-    q.nodes += top_.nodes.size();
+    q.topSahCost = topSahCost_;
+    q.nodes += topBinaryNodes_;
+    q.wideNodes += top_.nodes.size();
     return q;
   }
 
@@ -166,7 +178,7 @@ class TwoLevelAccelerator final : public Accelerator {
   }
 
   /// Calls visit(i) for every primitive the ray may hit before tmax; stops when it returns true.
-  template <class Visit>
+  template <bool kOrdered = true, class Visit>
   bool forEachPrimitive(const Ray& ray, const float& tmax, Visit&& visit) const {
     for (uint32_t i : unbounded_)
       if (visit(i)) return true;
@@ -175,12 +187,13 @@ class TwoLevelAccelerator final : public Accelerator {
         if (visit(i)) return true;
       return false;
     }
-    return traverseBvh(top_, prepareBvhRay(ray.o, ray.d), ray.tmin, tmax,
-                       [&](uint32_t first, uint32_t count) {
-                         for (uint32_t k = first; k < first + count; ++k)
-                           if (visit(top_.primitives[k])) return true;
-                         return false;
-                       });
+    if (single_ != kNoPrimitive) return visit(single_);
+    return traverseBvh4<kOrdered>(top_, prepareBvh4Ray(ray.o, ray.d), ray.tmin, tmax,
+                                  [&](uint32_t first, uint32_t count) {
+                                    for (uint32_t k = first; k < first + count; ++k)
+                                      if (visit(top_.primitives[k])) return true;
+                                    return false;
+                                  });
   }
 
   bool intersectPrimitive(uint32_t i, const Ray& ray, float& tmax, Hit& hit) const {
@@ -199,19 +212,19 @@ class TwoLevelAccelerator final : public Accelerator {
     return true;
   }
 
-  bool occludedPrimitive(uint32_t i, const Ray& ray, uint32_t& triangle) const {
+  bool occludedPrimitive(uint32_t i, const Ray& ray, uint32_t& block) const {
     const Primitive& p = scene_.primitives[i];
-    triangle = 0;
+    block = 0;
     if (p.kind == Primitive::Kind::kMesh)
-      return meshes_[p.mesh]->occluded(toObject(p, ray, ray.tmax), triangle);
+      return meshes_[p.mesh]->occluded(toObject(p, ray, ray.tmax), block);
     Hit h;
     return scene_.intersectShape(i, ray, h);
   }
 
-  bool occludedBy(uint32_t i, uint32_t triangle, const Ray& ray) const {
+  bool occludedBy(uint32_t i, uint32_t block, const Ray& ray) const {
     const Primitive& p = scene_.primitives[i];
     if (p.kind == Primitive::Kind::kMesh)
-      return meshes_[p.mesh] && meshes_[p.mesh]->occludedBy(toObject(p, ray, ray.tmax), triangle);
+      return meshes_[p.mesh] && meshes_[p.mesh]->occludedBy(toObject(p, ray, ray.tmax), block);
     Hit h;
     return scene_.intersectShape(i, ray, h);
   }
@@ -220,7 +233,10 @@ class TwoLevelAccelerator final : public Accelerator {
   TwoLevelOptions options_;
   uint64_t id_;
   std::vector<std::unique_ptr<MeshBvh>> meshes_;  ///< by mesh index; null when not placed
-  Bvh top_;
+  Bvh4 top_;
+  uint32_t single_ = kNoPrimitive;  ///< the only primitive in top_, which is then skipped
+  double topSahCost_ = 0;
+  size_t topBinaryNodes_ = 0;
   std::vector<uint32_t> unbounded_;  ///< shapes with infinite bounds, tested by every ray
   std::vector<uint32_t> flat_;       ///< without hierarchy: every bounded primitive
 };

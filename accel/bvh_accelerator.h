@@ -10,6 +10,8 @@ struct TwoLevelOptions {
   BvhBuildOptions build;
   /// false: no trees at either level, every query tests every primitive and triangle.
   bool hierarchy = true;
+  /// Test the primitive that blocked this thread's last shadow ray first (the seed's cache).
+  bool occluderCache = true;
 };
 
 /// TRay's own two-level accelerator: a tree over the placed primitives (mesh instances and
@@ -28,7 +30,8 @@ std::unique_ptr<Accelerator> makeNaiveAccelerator(const Scene& scene);
 struct BvhQuality {
   double meshSahCost = 0;
   double topSahCost = 0;
-  size_t nodes = 0;
+  size_t nodes = 0;      ///< binary nodes, as built
+  size_t wideNodes = 0;  ///< 4-wide nodes traversed (accel/bvh4.h)
 };
 BvhQuality bvhQuality(const Accelerator& accel);
 

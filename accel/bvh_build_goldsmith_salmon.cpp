@@ -14,7 +14,7 @@ namespace tray {
 namespace {
 
 constexpr int kNone = -1;
-constexpr int kMaxDepth = 250;  // traversal stacks hold 256 entries (accel/bvh_traversal.h)
+constexpr int kMaxDepth = 250;  // traversal stacks assume under 256 levels (accel/bvh4_traversal.h)
 
 struct GsNode {
   Bounds3 bounds;

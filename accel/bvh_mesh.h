@@ -6,47 +6,51 @@
 #include <vector>
 
 #include "accel/bvh.h"
+#include "accel/bvh4.h"
+#include "accel/bvh_triangle4.h"
 #include "core/hit.h"
 #include "core/ray.h"
 #include "shapes/triangle_mesh.h"
 
 namespace tray {
 
-/// Triangle vertices copied in leaf order, so a leaf's triangles are contiguous in memory.
-struct BvhTriangle {
-  Vec3 p0, p1, p2;
-  uint32_t index;  ///< triangle index within the mesh
-};
-
 class MeshBvh {
  public:
   /// hierarchy = false: no tree, every query tests every triangle (the naive accelerator).
+  /// The tree is built with options' builder, bins and costs; block size 4 and leaves of up to
+  /// 8 triangles are fixed by the leaf layout (accel/bvh_mesh.cpp).
   MeshBvh(const TriangleMesh& mesh, const BvhBuildOptions& options, bool hierarchy = true);
 
   /// Closest triangle with t in (ray.tmin, tmax); lowers tmax and fills hit's mesh fields.
   bool intersect(const Ray& ray, float& tmax, Hit& hit) const;
-  /// Any triangle with t in (ray.tmin, ray.tmax); its index goes to `triangle`.
-  bool occluded(const Ray& ray, uint32_t& triangle) const;
+  /// Any triangle with t in (ray.tmin, ray.tmax); the index of its block goes to `block`.
+  bool occluded(const Ray& ray, uint32_t& block) const;
   /// Appends every triangle hit in (ray.tmin, ray.tmax), tagged with `primitive`.
   void allHits(const Ray& ray, uint32_t primitive, std::vector<Hit>& hits) const;
-  /// Tests one triangle by its mesh index (the last-occluder cache).
-  bool occludedBy(const Ray& ray, uint32_t triangle) const;
+  /// Tests one block of four triangles (the last-occluder cache). The block, not the mesh's own
+  /// triangle, since the block was just read by the previous ray and is likely still cached:
+  /// reading the mesh's index and vertex arrays instead costs more than the cache saves.
+  bool occludedBy(const Ray& ray, uint32_t block) const;
 
   Bounds3 bounds() const { return bounds_; }
-  const Bvh& tree() const { return bvh_; }
-  size_t memoryBytes() const {
-    return bvh_.memoryBytes() + triangles_.capacity() * sizeof(BvhTriangle);
-  }
+  /// The binary tree's SAH cost (before collapsing to 4-wide), its node and triangle counts.
+  double sahCost() const { return sahCost_; }
+  size_t binaryNodes() const { return binaryNodes_; }
+  size_t triangles() const { return triangleCount_; }
+  const Bvh4& tree() const { return bvh_; }
+  size_t memoryBytes() const { return bvh_.memoryBytes() + blocks_.capacity() * sizeof(Triangle4); }
 
  private:
-  template <class OnHit>
-  bool forEachCandidate(const Ray& ray, const float& tmax, OnHit&& onHit) const;
+  template <bool kOrdered, class OnBlock>
+  bool forEachBlock(const Ray& ray, const float& tmax, OnBlock&& onBlock) const;
 
-  Bvh bvh_;
+  Bvh4 bvh_;  ///< leaves index blocks_
   const TriangleMesh& mesh_;
-  std::vector<BvhTriangle> triangles_;  ///< in leaf order (bvh_.primitives), or mesh order
+  std::vector<Triangle4> blocks_;  ///< leaf by leaf (or every triangle, without hierarchy)
   Bounds3 bounds_;
   bool hierarchy_;
+  double sahCost_ = 0;
+  size_t binaryNodes_ = 0, triangleCount_ = 0;
 };
 
 }  // namespace tray

@@ -83,6 +83,21 @@ TEST_P(BvhBuild, UnusableBoundsAreLeftOutAndCoincidentCentroidsStillSplit) {
   EXPECT_TRUE(buildBvh({}, opt).nodes.empty());
 }
 
+TEST(BvhBuildDepth, BelowTheSahDepthSplitsAreMediansThatBoundTheDepth) {
+  // The guard that keeps any input under the traversal stacks' 256 levels, tried at depth 2:
+  // below it every split halves its range, so depth <= 2 + ceil(log2(n)).
+  auto boxes = randomBoxes(5, 50000);
+  BvhBuildOptions opt;
+  opt.sahDepth = 2;
+  Bvh bvh = buildBvh(boxes, opt);
+  int depth = 0;
+  auto seen = checkTree(bvh, boxes, depth);
+  for (int c : seen) ASSERT_EQ(c, 1);
+  EXPECT_LE(depth, 2 + 16);  // 2^16 > 50000
+  // Medians, not SAH: a worse tree than the default's.
+  EXPECT_GT(sahCost(bvh, opt), sahCost(buildBvh(boxes, BvhBuildOptions{}), opt));
+}
+
 INSTANTIATE_TEST_SUITE_P(Builders, BvhBuild,
                          ::testing::Values(BvhBuilder::kBinnedSah, BvhBuilder::kGoldsmithSalmon),
                          [](const auto& info) {
