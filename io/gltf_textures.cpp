@@ -1,8 +1,12 @@
 #include "io/gltf_textures.h"
 
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
 #include <map>
 #include <utility>
 
+#include "core/error.h"
 #include "shapes/mesh_tangents.h"
 
 namespace tray {
@@ -52,10 +56,11 @@ TextureFilter filterOf(const GltfContext& ctx, int value, bool minification,
            std::to_string(value));
 }
 
+/// Binds references in a first pass (cheap), then decodes each image used: headers in order
+/// (so the caps fail deterministically and before memory is spent), pixels in parallel.
 class Binder {
  public:
-  Binder(const GltfContext& ctx, const ImageBytes& bytes, Scene& scene)
-      : ctx_(ctx), bytes_(bytes), scene_(scene) {}
+  Binder(const GltfContext& ctx, Scene& scene) : ctx_(ctx), scene_(scene) {}
 
   void bind(TextureRef& ref, bool srgb) {
     if (ref.image < 0) return;
@@ -72,33 +77,62 @@ class Binder {
       ref.magFilter = filterOf(ctx_, s.magFilter, false, sw);
       ref.minFilter = filterOf(ctx_, s.minFilter, true, sw);
     }
-    auto key = std::make_pair(t.source, srgb);
-    auto it = decoded_.find(key);
-    if (it == decoded_.end()) {
-      scene_.textures.push_back(decodeImage(ctx_, bytes_, t.source, srgb, budget_));
-      it = decoded_.emplace(key, int(scene_.textures.size()) - 1).first;
+    auto [it, added] = slots_.emplace(std::make_pair(t.source, srgb), int(slots_.size()));
+    if (added) {
+      if (std::find(sources_.begin(), sources_.end(), t.source) == sources_.end())
+        sources_.push_back(t.source);
     }
     ref.image = it->second;
   }
 
+  void decode(const ImageBytes& bytes) {
+    std::vector<ImageInfo> infos;
+    uint64_t total = 0;
+    for (int source : sources_) {
+      infos.push_back(inspectImage(ctx_, bytes, source));
+      total += infos.back().pixels() *
+               uint64_t(slots_.count({source, true}) + slots_.count({source, false}));
+      if (total > kMaxSceneTexturePixels)
+        ctx_.fail(infos.back().where + ": the scene's textures exceed the limit of " +
+                  std::to_string(kMaxSceneTexturePixels) + " pixels in all");
+    }
+    scene_.textures.resize(slots_.size());
+    std::vector<std::string> problems(infos.size());
+    tbb::parallel_for(size_t(0), infos.size(), [&](size_t i) {
+      const int source = infos[i].index;
+      auto srgb = slots_.find({source, true}), linear = slots_.find({source, false});
+      TextureImage out[2];
+      try {
+        decodeImage(ctx_, infos[i], srgb != slots_.end(), linear != slots_.end(), out);
+      } catch (const std::exception& e) {
+        problems[i] = e.what();
+        return;
+      }
+      if (srgb != slots_.end()) scene_.textures[size_t(srgb->second)] = std::move(out[0]);
+      if (linear != slots_.end()) scene_.textures[size_t(linear->second)] = std::move(out[1]);
+    });
+    for (const std::string& p : problems)
+      if (!p.empty()) throw Error(p);  // already "PATH: image N: problem"
+  }
+
  private:
   const GltfContext& ctx_;
-  const ImageBytes& bytes_;
   Scene& scene_;
-  std::map<std::pair<int, bool>, int> decoded_;
-  uint64_t budget_ = kMaxSceneTexturePixels;
+  std::map<std::pair<int, bool>, int> slots_;  ///< (image, sRGB) -> Scene::textures index
+  std::vector<int> sources_;                   ///< images in order of first use
 };
 
 }  // namespace
 
 void bindTextures(const GltfContext& ctx, const ImageBytes& bytes, Scene& scene) {
-  Binder binder(ctx, bytes, scene);
+  Binder binder(ctx, scene);
   for (Material& m : scene.materials) {
     binder.bind(m.baseColorTexture, true);
     binder.bind(m.metallicRoughnessTexture, false);
     binder.bind(m.emissiveTexture, true);
     binder.bind(m.normalTexture, false);
   }
+  binder.decode(bytes);
   for (TriangleMesh& mesh : scene.meshes) {
     const Material& m = scene.materials[size_t(mesh.material)];
     if (m.normalTexture.valid() && mesh.tangents.empty())
