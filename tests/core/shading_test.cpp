@@ -4,6 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include "core/accelerator.h"
+#include "core/renderer.h"
+#include "lights/light_set.h"
 #include "shapes/mesh_tangents.h"
 #include "tests/scene_builder.h"
 
@@ -105,6 +108,27 @@ void expectVec(const Vec3& got, const Vec3& want, float tol = 2e-3f) {
   EXPECT_NEAR(got.x, want.x, tol);
   EXPECT_NEAR(got.y, want.y, tol);
   EXPECT_NEAR(got.z, want.z, tol);
+}
+
+TEST(MaterialEvaluator, PathTracerSeesEmissiveTexturesAndDoesNotLightSampleThem) {
+  Material m;
+  m.baseColor = Color(0.0f);
+  m.emissive = Color(2.0f);
+  m.emissiveTexture.image = 0;
+  Scene scene = quadScene(m, {constantImage({0.25f, 0.5f, 1.0f})});
+  EXPECT_EQ(LightSet(scene).triangleCount(), 0u);  // left to BSDF sampling
+  auto camera = Camera::create(lookAt({0, 0, 5}, {0, 0, 0}, 0.3f), 16, 16);
+  auto accel = makeAccelerator("embree", scene);
+  RenderSettings settings;
+  settings.integrator = "path";
+  RenderContext ctx{scene, *accel, *camera, settings, 16, 16};
+  auto integrator = makeIntegrator(ctx);
+  Film film(16, 16);
+  renderImage(*integrator, film);
+  const float* p = film.pixel(Film::kBeauty, 8, 8);
+  EXPECT_FLOAT_EQ(p[0], 0.5f);
+  EXPECT_FLOAT_EQ(p[1], 1.0f);
+  EXPECT_FLOAT_EQ(p[2], 2.0f);
 }
 
 TEST(MaterialEvaluator, NormalMapTiltsTheShadingNormal) {
