@@ -85,7 +85,9 @@ void filterOf(TextureFilter f, TextureOpt& opt) {
 Vec2 transformUv(const TextureRef& ref, Vec2 uv, bool vector) {
   // Rows of R: (cos, sin), (-sin, cos) -- the README's example (offset [0, 1], rotation pi/2,
   // scale 0.5 selects the lower-left quadrant) fixes this sign.
-  const float c = std::cos(ref.rotation), s = std::sin(ref.rotation);
+  const bool turned = ref.rotation != 0;
+  const float c = turned ? std::cos(ref.rotation) : 1.0f,
+              s = turned ? std::sin(ref.rotation) : 0.0f;
   const float su = ref.scaleUV.x * uv.x, sv = ref.scaleUV.y * uv.y;
   Vec2 out{c * su + s * sv, -s * su + c * sv};
   if (!vector) out.x += ref.offset.x, out.y += ref.offset.y;
