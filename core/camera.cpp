@@ -23,6 +23,16 @@ class PerspectiveCamera final : public Camera {
     r.tmin = znear_ * length(toWorld_.vector(dirCam));
     return r;
   }
+  void pixelSpread(const Vec3& p, Vec3& dx, Vec3& dy, Vec3& dir) const override {
+    // In camera space a raster step moves a ray's point at view depth z by 2 tan(fov/2) z / size.
+    Vec3 pc = toWorld_.inversePoint(p);
+    float depth = std::max(std::fabs(pc.z), 1e-6f);
+    dx = toWorld_.vector({2.0f * tanHalfX_ * depth / w_, 0.0f, 0.0f});
+    dy = toWorld_.vector({0.0f, -2.0f * tanHalfY_ * depth / h_, 0.0f});
+    Vec3 d = p - toWorld_.point(Vec3(0.0f));
+    float len = length(d);
+    dir = len > 0 ? d / len : normalize(toWorld_.vector({0, 0, -1}));
+  }
 
  private:
   Transform toWorld_;
@@ -42,6 +52,11 @@ class OrthographicCamera final : public Camera {
     r.d = normalize(toWorld_.vector({0, 0, -1}));
     r.tmin = znear_ * length(toWorld_.vector({0, 0, -1}));
     return r;
+  }
+  void pixelSpread(const Vec3&, Vec3& dx, Vec3& dy, Vec3& dir) const override {
+    dx = toWorld_.vector({2.0f * xmag_ / w_, 0.0f, 0.0f});
+    dy = toWorld_.vector({0.0f, -2.0f * ymag_ / h_, 0.0f});
+    dir = normalize(toWorld_.vector({0, 0, -1}));
   }
 
  private:

@@ -25,6 +25,16 @@ class Camera {
  public:
   virtual ~Camera() = default;
   virtual Ray generateRay(float rasterX, float rasterY) const = 0;
+  /// A pixel's footprint at world point p, for texture filtering: the world offsets `dx`, `dy`
+  /// between the points that rays through neighbouring pixels (one raster step in x, in y)
+  /// reach in the plane through p perpendicular to the view axis, and the unit direction `dir`
+  /// in which camera rays travel near p. Exact for points the camera sees directly; used as an
+  /// estimate everywhere else (pbrt-v4's Camera::Approximate_dp_dxy, 4th ed. §10.1.1).
+  /// The default (a camera without a pixel grid) reports no spread: textures are point-sampled.
+  virtual void pixelSpread(const Vec3&, Vec3& dx, Vec3& dy, Vec3& dir) const {
+    dx = dy = Vec3(0.0f);
+    dir = {0.0f, 0.0f, -1.0f};
+  }
   /// Builds the camera for an image of width x height pixels.
   static std::unique_ptr<Camera> create(const CameraDesc& desc, int width, int height);
   /// A perspective camera framing the given bounds (used when a scene has no camera).

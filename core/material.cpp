@@ -2,20 +2,38 @@
 
 namespace tray {
 
+ShadingMaterial ShadingMaterial::of(const Material& m, const Vec3& n) {
+  ShadingMaterial s;
+  s.baseColor = m.baseColor;
+  s.metallic = m.metallic;
+  s.roughness = m.roughness;
+  s.emissive = m.emissive;
+  s.transmission = m.transmission;
+  s.ior = m.ior;
+  s.phong = m.phong;
+  s.n = n;
+  return s;
+}
+
 PhongParams phongFromPbr(const Material& m) {
+  return phongFromPbr(m.baseColor, m.metallic, m.roughness, m.transmission);
+}
+
+PhongParams phongFromPbr(const Color& baseColor, float metallic, float roughness,
+                         float transmission) {
   // Dielectrics keep their base color as diffuse and a white 4% specular; metals put the base
   // color into the specular and the mirror term. Smoothness maps to the Phong exponent through
   // the usual Blinn-Phong/Beckmann correspondence shininess = 2 / alpha^2 - 2 with alpha =
   // roughness^2 (Walter et al. 2007, eq. 30).
   PhongParams p;
-  float alpha = std::max(m.roughness * m.roughness, 1e-3f);
+  float alpha = std::max(roughness * roughness, 1e-3f);
   p.shininess = std::min(2.0f / (alpha * alpha) - 2.0f, 1e4f);
-  float dielectric = 1.0f - m.metallic;
-  p.diffuse = m.baseColor * (dielectric * (1.0f - m.transmission));
-  p.specular = Color(0.04f) * dielectric + m.baseColor * m.metallic;
-  float smooth = 1.0f - m.roughness;
-  p.reflectance = m.metallic * smooth * smooth;
-  p.transmittance = m.transmission * dielectric;
+  float dielectric = 1.0f - metallic;
+  p.diffuse = baseColor * (dielectric * (1.0f - transmission));
+  p.specular = Color(0.04f) * dielectric + baseColor * metallic;
+  float smooth = 1.0f - roughness;
+  p.reflectance = metallic * smooth * smooth;
+  p.transmittance = transmission * dielectric;
   p.ambient = p.diffuse;  // ambient light is reflected like diffuse light
   return p;
 }

@@ -5,15 +5,34 @@
 
 namespace tray {
 
-/// A texture reference (filled by the texture work; -1 = none).
+/// How a texture repeats outside [0, 1] (glTF 2.0 §3.8.4.3, sampler wrapS / wrapT).
+enum class TextureWrap { kRepeat, kClampToEdge, kMirroredRepeat };
+
+/// glTF sampler filters (§3.8.4.2). Magnification uses only kNearest / kLinear; a minification
+/// filter names the texel filter, then the MIP-level choice (kLinearMipmapLinear = trilinear).
+enum class TextureFilter {
+  kNearest,
+  kLinear,
+  kNearestMipmapNearest,
+  kLinearMipmapNearest,
+  kNearestMipmapLinear,
+  kLinearMipmapLinear
+};
+
+/// A texture reference of a material: which image, which uv set, how it is sampled, and its
+/// KHR_texture_transform. image = -1: no texture.
 struct TextureRef {
   int image = -1;  ///< index into Scene::textures
   int texCoord = 0;
   float scale = 1.0f;  ///< normal scale / occlusion strength
+  TextureWrap wrapS = TextureWrap::kRepeat, wrapT = TextureWrap::kRepeat;
+  TextureFilter magFilter = TextureFilter::kLinear;
+  TextureFilter minFilter = TextureFilter::kLinearMipmapLinear;  ///< glTF leaves it open
   // KHR_texture_transform
   Vec2 offset{0, 0};
   Vec2 scaleUV{1, 1};
   float rotation = 0;
+  bool valid() const { return image >= 0; }
 };
 
 /// The seed's Phong model, stated by TRAY_materials_phong or derived from the PBR factors
@@ -42,9 +61,29 @@ struct Material {
   PhongParams phong;
   bool hasPhong = false;  ///< phong came from TRAY_materials_phong rather than the mapping
   TextureRef baseColorTexture, metallicRoughnessTexture, emissiveTexture, normalTexture;
+  bool hasTextures() const {
+    return baseColorTexture.valid() || metallicRoughnessTexture.valid() ||
+           emissiveTexture.valid() || normalTexture.valid();
+  }
+};
+
+/// A material's parameters at one surface point: factors times texture values.
+struct ShadingMaterial {
+  Color baseColor{1.0f};
+  float metallic = 1.0f, roughness = 1.0f;
+  Color emissive{0.0f};
+  float transmission = 0.0f, ior = 1.5f;
+  PhongParams phong;
+  Vec3 n;  ///< shading normal, normal map applied; on the same side as SurfacePoint::n
+
+  /// The untextured material at a point with shading normal n.
+  static ShadingMaterial of(const Material& m, const Vec3& n);
 };
 
 /// Phong parameters derived from a PBR material (documented in docs/scene-format.md).
 PhongParams phongFromPbr(const Material& m);
+/// The same from the factors alone (for textured values at a surface point).
+PhongParams phongFromPbr(const Color& baseColor, float metallic, float roughness,
+                         float transmission);
 
 }  // namespace tray

@@ -25,12 +25,14 @@ struct Primitive {
   std::string name;
 };
 
-/// A decoded texture image (linear float RGBA unless noted), filled by the texture loader.
+/// A decoded texture image: linear float RGB, row 0 at the top (glTF's uv origin), filled by
+/// the texture loader (io/gltf_images) or by tests. Colour textures are linearised from sRGB
+/// when decoded, so that filtering happens on linear values.
 struct TextureImage {
-  std::string path;  ///< file path, or empty for embedded images
-  int width = 0, height = 0, channels = 0;
-  std::vector<float> pixels;
-  bool srgb = false;
+  std::string name;  ///< for messages: the file's path, or "image N" for embedded images
+  int width = 0, height = 0;
+  std::vector<float> pixels;  ///< width * height * 3
+  bool srgb = false;          ///< the file's values were sRGB-decoded
 };
 
 /// Everything a render needs, as plain data. Filled by io/ (glTF) or by tests in code; the

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "core/error.h"
+#include "core/shading.h"
 #include "lights/light_set.h"
 #include "materials/bsdf.h"
 #include "materials/medium_stack.h"
@@ -21,7 +22,8 @@ class PathIntegrator final : public Integrator {
       : Integrator(ctx),
         maxDepth_(ctx.settings.maxDepth >= 0 ? ctx.settings.maxDepth : 8),
         clampIndirect_(ctx.settings.clampIndirect),
-        lights_(ctx.scene) {
+        lights_(ctx.scene),
+        materials_(ctx.scene, ctx.camera, ctx.settings.spp) {
     if (!(clampIndirect_ >= 0) || !std::isfinite(clampIndirect_))
       throw Error("--clamp-indirect must be a finite value >= 0 (0 = off)");
   }
@@ -50,6 +52,7 @@ class PathIntegrator final : public Integrator {
   int maxDepth_;
   float clampIndirect_;
   LightSet lights_;
+  MaterialEvaluator materials_;
   mutable std::atomic<int> nanReports_{0};
 };
 
@@ -115,29 +118,31 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats
       }
       eta = iface.etaT / iface.etaI;
     }
+    // Textures are evaluated only at surfaces that scatter or emit (not at null interfaces).
+    const ShadingMaterial sm = materials_.evaluate(hit, s);
     if (primary && !primary->hit) {
       primary->hit = true;
       primary->depth = length(s.p - cameraRay.o);
       primary->position = s.p;
-      primary->normal = s.n;
-      primary->albedo = m.baseColor;
+      primary->normal = sm.n;
+      primary->albedo = sm.baseColor;
       primary->objectId = scene.primitives[s.primitive].objectId;
       primary->materialId = s.material;
     }
 
     // Emission found by BSDF sampling (or seen directly), MIS-weighted against the chance
     // that light sampling would have picked the same point.
-    if (!isBlack(m.emissive) && (s.frontFace || m.doubleSided)) {
+    if (!isBlack(sm.emissive) && (s.frontFace || m.doubleSided)) {
       float w = 1.0f;
       int light = lights_.lightAt(hit.primitive, hit.triangle);
       if (!specular && light >= 0) w = powerHeuristic(prevPdf, lights_.pdf(light, prevP, s.p));
-      add(beta * m.emissive * w, "emission", indirectEmission);
+      add(beta * sm.emissive * w, "emission", indirectEmission);
     }
     if (depth + 1 > maxDepth_) break;
 
     // Shade on the side the ray arrived from.
-    const Vec3 n = s.frontFace ? s.n : -s.n;
-    const Bsdf bsdf(m, Frame::fromNormal(n), eta);
+    const Vec3 n = s.frontFace ? sm.n : -sm.n;
+    const Bsdf bsdf(sm, Frame::fromNormal(n), eta);
 
     // Next-event estimation: one light sample, MIS-weighted against BSDF sampling.
     if (bsdf.hasNonDelta() && !lights_.empty()) {

@@ -1,5 +1,7 @@
 #include "integrators/whitted.h"
 
+#include "core/shading.h"
+
 namespace tray {
 
 Color phongDirect(const PhongParams& p, const Vec3& n, const Vec3& wo, const Vec3& wi,
@@ -20,7 +22,9 @@ namespace {
 class WhittedIntegrator final : public Integrator {
  public:
   explicit WhittedIntegrator(const RenderContext& ctx)
-      : Integrator(ctx), maxDepth_(ctx.settings.maxDepth >= 0 ? ctx.settings.maxDepth : 5) {}
+      : Integrator(ctx),
+        maxDepth_(ctx.settings.maxDepth >= 0 ? ctx.settings.maxDepth : 5),
+        materials_(ctx.scene, ctx.camera, ctx.settings.spp) {}
 
   Color Li(const Ray& ray, Sampler&, RayStats& stats, PrimaryHit* primary) const override {
     return trace(ray, 0, stats, primary);
@@ -33,22 +37,23 @@ class WhittedIntegrator final : public Integrator {
     if (!ctx_.accel.intersect(ray, hit)) return scene.environment.background;
     SurfacePoint s = scene.surface(ray, hit);
     const Material& mat = scene.material(s.material);
-    const PhongParams& ph = mat.phong;
+    const ShadingMaterial sm = materials_.evaluate(hit, s);  // textures applied
+    const PhongParams& ph = sm.phong;
     // Shade on the side the ray arrived from.
-    Vec3 n = s.frontFace ? s.n : -s.n;
+    Vec3 n = s.frontFace ? sm.n : -sm.n;
     Vec3 ng = s.frontFace ? s.ng : -s.ng;
     Vec3 wo = -normalize(ray.d);
     if (primary) {
       primary->hit = true;
       primary->depth = hit.t * length(ray.d);
       primary->position = s.p;
-      primary->normal = s.n;
+      primary->normal = sm.n;
       primary->albedo = ph.diffuse;
       primary->objectId = scene.primitives[s.primitive].objectId;
       primary->materialId = s.material;
     }
 
-    Color L = ph.ambient * scene.environment.ambient + mat.emissive;
+    Color L = ph.ambient * scene.environment.ambient + sm.emissive;
     for (const Light& light : scene.lights) L += directLight(light, s.p, ng, n, wo, ph, stats);
 
     if (depth >= maxDepth_) return L;
@@ -92,6 +97,7 @@ class WhittedIntegrator final : public Integrator {
   }
 
   int maxDepth_;
+  MaterialEvaluator materials_;
 };
 
 }  // namespace

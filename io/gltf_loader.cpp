@@ -6,9 +6,11 @@
 #include "io/gltf_container.h"
 #include "io/gltf_context.h"
 #include "io/gltf_file_access.h"
+#include "io/gltf_images.h"
 #include "io/gltf_materials.h"
 #include "io/gltf_meshes.h"
 #include "io/gltf_scene_graph.h"
+#include "io/gltf_textures.h"
 #include "io/gltf_validate.h"
 
 // The loader in stages, each in its own file:
@@ -16,18 +18,12 @@
 //   2. let tinygltf parse it, with file access routed through TRay's URI policy and images
 //      left undecoded;
 //   3. validate the whole document (gltf_validate, gltf_accessors, checkAllNodes);
-//   4. convert materials and meshes, then walk the chosen scene's nodes (gltf_scene_graph).
+//   4. convert materials and meshes, then walk the chosen scene's nodes (gltf_scene_graph);
+//   5. decode the images the materials use (gltf_images) and bind them (gltf_textures).
 
 namespace tray {
 
 namespace {
-
-/// Images are decoded later by the texture loader (OIIO, after validation): tinygltf must
-/// neither decode them nor keep their bytes.
-bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int,
-               const unsigned char*, int, void*) {
-  return true;
-}
 
 std::string firstLine(const std::string& text) {
   size_t start = text.find_first_not_of("\r\n ");
@@ -35,7 +31,9 @@ std::string firstLine(const std::string& text) {
   return text.substr(start, text.find_first_of("\r\n", start) - start);
 }
 
-tinygltf::Model parse(const std::string& path, const LoadOptions& options, LoadReport* report) {
+/// Images are decoded later (OIIO, after validation): tinygltf only hands over their bytes.
+tinygltf::Model parse(const std::string& path, const LoadOptions& options, LoadReport* report,
+                      ImageBytes& images) {
   std::vector<unsigned char> bytes;
   std::string problem;
   if (!readRegularFile(path, bytes, problem)) failFile(path, problem);
@@ -51,7 +49,7 @@ tinygltf::Model parse(const std::string& path, const LoadOptions& options, LoadR
   FileAccess access(policy);
   tinygltf::TinyGLTF gltf;
   gltf.SetFsCallbacks(access.callbacks());
-  gltf.SetImageLoader(&skipImage, nullptr);
+  gltf.SetImageLoader(&ImageBytes::record, &images);
   tinygltf::Model model;
   std::string err, warn;
   // Sizes fit in unsigned int: readRegularFile caps files at 2 GiB.
@@ -108,7 +106,8 @@ void reportMeshStats(const GltfContext& ctx, const MeshStats& s) {
 }  // namespace
 
 Scene loadGltf(const std::string& path, const LoadOptions& options, LoadReport* report) {
-  tinygltf::Model model = parse(path, options, report);
+  ImageBytes images;
+  tinygltf::Model model = parse(path, options, report, images);
   GltfContext ctx{model, path, report};
   validateDocument(ctx);
   checkAllNodes(ctx);
@@ -139,6 +138,7 @@ Scene loadGltf(const std::string& path, const LoadOptions& options, LoadReport* 
   for (const auto& m : scene.meshes) defaultUsed = defaultUsed || m.material == defaultMaterial;
   for (const auto& p : scene.primitives) defaultUsed = defaultUsed || p.material == defaultMaterial;
   if (defaultUsed) scene.materials.push_back(defaultGltfMaterial());
+  bindTextures(ctx, images, scene);
   scene.finalize();
   return scene;
 }

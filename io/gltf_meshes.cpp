@@ -72,6 +72,10 @@ void readOtherAttributes(const GltfContext& ctx, const tinygltf::Primitive& p, T
     std::vector<float> f = repaired(readFloats(ctx, a), 2, stats.repairedAttributes);
     for (size_t i = 0; i + 2 <= f.size(); i += 2) mesh.uvs.push_back({f[i], f[i + 1]});
   }
+  if (int a = attribute(p, "TEXCOORD_1"); a >= 0) {
+    std::vector<float> f = repaired(readFloats(ctx, a), 2, stats.repairedAttributes);
+    for (size_t i = 0; i + 2 <= f.size(); i += 2) mesh.uvs1.push_back({f[i], f[i + 1]});
+  }
   if (int a = attribute(p, "TANGENT"); a >= 0) {
     std::vector<float> f = repaired(readFloats(ctx, a), 4, stats.repairedAttributes);
     for (size_t i = 0; i + 4 <= f.size(); i += 4) {

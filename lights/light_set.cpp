@@ -16,7 +16,9 @@ LightSet::LightSet(const Scene& scene) {
     if (prim.kind == Primitive::Kind::kMesh) {
       const TriangleMesh& mesh = scene.meshes[prim.mesh];
       const Material& m = scene.material(mesh.material);
-      if (isBlack(m.emissive) || !isFinite(m.emissive)) continue;
+      // Emitters with an emissive texture are left to BSDF sampling (unbiased, with MIS weight
+      // 1): a light sample would see only the factor, not the texture (docs/textures.md).
+      if (isBlack(m.emissive) || !isFinite(m.emissive) || m.emissiveTexture.valid()) continue;
       firstLight_[i] = int(refs_.size());
       isTriangles_[i] = true;
       for (size_t t = 0; t < mesh.triangleCount(); ++t) {
@@ -43,7 +45,8 @@ LightSet::LightSet(const Scene& scene) {
     } else {
       const Material& m = scene.material(prim.material);
       auto sphere = std::dynamic_pointer_cast<const Sphere>(prim.shape);
-      if (!sphere || isBlack(m.emissive) || !isFinite(m.emissive)) continue;
+      if (!sphere || isBlack(m.emissive) || !isFinite(m.emissive) || m.emissiveTexture.valid())
+        continue;
       SphereLight sl;
       sl.center = prim.toWorld.point(Vec3(0.0f));
       // Analytic spheres are placed by similarity transforms; take the mean axis scale.

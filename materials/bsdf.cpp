@@ -4,7 +4,7 @@
 
 namespace tray {
 
-Bsdf::Bsdf(const Material& m, const Frame& frame, float eta)
+Bsdf::Bsdf(const ShadingMaterial& m, const Frame& frame, float eta)
     : frame_(frame),
       wMetal_(std::clamp(m.metallic, 0.0f, 1.0f)),
       wGlass_((1.0f - wMetal_) * std::clamp(m.transmission, 0.0f, 1.0f)),

@@ -21,7 +21,10 @@ class Bsdf {
  public:
   /// eta = n_t / n_i across this interface for light arriving from frame.n's side (from the
   /// MediumStack; for opaque materials simply ior / n_outside).
-  Bsdf(const Material& m, const Frame& frame, float eta);
+  Bsdf(const ShadingMaterial& m, const Frame& frame, float eta);
+  /// The untextured material (tests).
+  Bsdf(const Material& m, const Frame& frame, float eta)
+      : Bsdf(ShadingMaterial::of(m, frame.n), frame, eta) {}
   Color eval(const Vec3& wo, const Vec3& wi) const;
   float pdf(const Vec3& wo, const Vec3& wi) const;
   /// uc picks the lobe (and reflection vs refraction), u the direction. wi comes back in world

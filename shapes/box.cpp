@@ -29,11 +29,33 @@ Crossing Box::crossing(const Ray& ray, float t, int axis, bool entering) const {
   c.t = t;
   float s = ray.d[axis] > 0 ? 1.0f : -1.0f;
   c.normal[axis] = entering ? -s : s;
-  Vec3 p = ray.o + t * ray.d;
-  int u = (axis + 1) % 3, v = (axis + 2) % 3;
-  Vec3 size = hi_ - lo_;
-  c.uv = {(p[u] - lo_[u]) / size[u], (p[v] - lo_[v]) / size[v]};
+  c.uv = faceUv(ray.o + t * ray.d, axis, c.normal[axis]);
   return c;
+}
+
+Box::FaceAxes Box::faceAxes(int axis, float sign) {
+  // right = up x n for a viewer outside looking along -n; up = +Y on side faces.
+  if (axis == 0) return {2, 1, -sign, 1.0f};
+  if (axis == 2) return {0, 1, sign, 1.0f};
+  return {0, 2, 1.0f, -sign};  // top face: up is -Z, bottom face: +Z
+}
+
+Vec2 Box::faceUv(const Vec3& p, int axis, float sign) const {
+  FaceAxes f = faceAxes(axis, sign);
+  Vec3 size = hi_ - lo_;
+  float u = f.rightSign > 0 ? p[f.right] - lo_[f.right] : hi_[f.right] - p[f.right];
+  float v = f.upSign > 0 ? hi_[f.up] - p[f.up] : p[f.up] - lo_[f.up];
+  return {u / size[f.right], v / size[f.up]};
+}
+
+void Box::uvDerivatives(const Vec3&, const Vec3& n, Vec3& dpdu, Vec3& dpdv) const {
+  Vec3 an = abs(n);
+  int axis = an.x >= an.y && an.x >= an.z ? 0 : (an.y >= an.z ? 1 : 2);
+  FaceAxes f = faceAxes(axis, n[axis] >= 0 ? 1.0f : -1.0f);
+  Vec3 size = hi_ - lo_;
+  dpdu = dpdv = Vec3(0.0f);
+  dpdu[f.right] = f.rightSign * size[f.right];
+  dpdv[f.up] = -f.upSign * size[f.up];
 }
 
 bool Box::intersect(const Ray& ray, Hit& hit) const {

@@ -15,6 +15,11 @@ bool Plane::intersect(const Ray& ray, Hit& hit) const {
   return true;
 }
 
+void Plane::uvDerivatives(const Vec3&, const Vec3&, Vec3& dpdu, Vec3& dpdv) const {
+  dpdu = {1.0f, 0.0f, 0.0f};
+  dpdv = {0.0f, 0.0f, 1.0f};
+}
+
 void Plane::intervals(const Ray& ray, std::vector<Interval>& out) const {
   const Vec3 up{0.0f, 1.0f, 0.0f};
   if (ray.d.y == 0.0f) {

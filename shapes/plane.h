@@ -10,6 +10,7 @@ class Plane final : public Shape {
   Bounds3 bounds() const override;
   bool intersect(const Ray& ray, Hit& hit) const override;
   void intervals(const Ray& ray, std::vector<Interval>& out) const override;
+  void uvDerivatives(const Vec3& p, const Vec3& n, Vec3& dpdu, Vec3& dpdv) const override;
   Vec3 refine(const Vec3& p) const override { return {p.x, 0.0f, p.z}; }
 };
 

@@ -35,6 +35,14 @@ class Shape {
   virtual void intervals(const Ray& ray, std::vector<Interval>& out) const = 0;
   /// Projects a computed hit point back onto the surface, to tighten the ray-offset error.
   virtual Vec3 refine(const Vec3& p) const { return p; }
+  /// Object-space derivatives of the surface point with respect to its uv at surface point p
+  /// with outward normal n, for texture filtering and normal-map tangent frames. The default
+  /// (shapes without a parameterisation, e.g. CSG results) is zero: textures are then
+  /// point-sampled and tangent frames arbitrary.
+  virtual void uvDerivatives(const Vec3& p, const Vec3& n, Vec3& dpdu, Vec3& dpdv) const {
+    (void)p, (void)n;
+    dpdu = dpdv = Vec3(0.0f);
+  }
 };
 
 }  // namespace tray

@@ -34,6 +34,16 @@ Vec2 Sphere::uvAt(const Vec3& p) const {
   return {phi / (2.0f * kPi), std::acos(cosTheta) / kPi};
 }
 
+void Sphere::uvDerivatives(const Vec3& p, const Vec3&, Vec3& dpdu, Vec3& dpdv) const {
+  // p = r (sin(theta) sin(phi), cos(theta), sin(theta) cos(phi)) with phi = 2 pi u,
+  // theta = pi v; dp/du vanishes at the poles.
+  float phi = std::atan2(p.x, p.z);
+  float theta = std::acos(std::clamp(p.y / radius_, -1.0f, 1.0f));
+  dpdu = 2.0f * kPi * Vec3(p.z, 0.0f, -p.x);
+  float c = std::cos(theta), sn = std::sin(theta);
+  dpdv = kPi * radius_ * Vec3(c * std::sin(phi), -sn, c * std::cos(phi));
+}
+
 bool Sphere::intersect(const Ray& ray, Hit& hit) const {
   float t0, t1;
   if (!roots(ray, t0, t1)) return false;

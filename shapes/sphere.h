@@ -11,6 +11,7 @@ class Sphere final : public Shape {
   Bounds3 bounds() const override;
   bool intersect(const Ray& ray, Hit& hit) const override;
   void intervals(const Ray& ray, std::vector<Interval>& out) const override;
+  void uvDerivatives(const Vec3& p, const Vec3& n, Vec3& dpdu, Vec3& dpdv) const override;
   Vec3 refine(const Vec3& p) const override;
   float radius() const { return radius_; }
   /// Texture coordinates of an object-space surface point.

@@ -13,11 +13,12 @@ namespace tray {
 struct TriangleMesh {
   std::string name;
   std::vector<Vec3> positions;
-  std::vector<Vec3> normals;   ///< per vertex; empty = flat shading
-  std::vector<Vec2> uvs;       ///< per vertex; may be empty
-  std::vector<Vec3> tangents;  ///< per vertex, xyz; empty = derive from uvs when needed
-  std::vector<float> tangentSigns;
-  std::vector<uint32_t> indices;  ///< 3 per triangle
+  std::vector<Vec3> normals;        ///< per vertex; empty = flat shading
+  std::vector<Vec2> uvs;            ///< per vertex (TEXCOORD_0); may be empty
+  std::vector<Vec2> uvs1;           ///< per vertex (TEXCOORD_1); may be empty
+  std::vector<Vec3> tangents;       ///< per vertex, xyz (glTF TANGENT or computeTangents())
+  std::vector<float> tangentSigns;  ///< per vertex: bitangent = sign * cross(normal, tangent)
+  std::vector<uint32_t> indices;    ///< 3 per triangle
   int material = 0;
   size_t triangleCount() const { return indices.size() / 3; }
   Bounds3 bounds() const {

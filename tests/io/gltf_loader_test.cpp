@@ -367,7 +367,8 @@ TEST(GltfTiny, TrayPhongAndPriority) {
 }
 
 TEST(GltfTiny, KhrMaterialExtensionsAndTextures) {
-  Scene s = TinyDoc().load(R"("images":[{"uri":"data:image/png;base64,AAAA"}],
+  // The image is a real 1x1 PNG: images that materials use are decoded at load.
+  Scene s = TinyDoc().load(R"("images":[{"uri":"data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAIAAACQd1PeAAAADElEQVR4nGNoaGgAAAMEAYFL09IQAAAAAElFTkSuQmCC"}],
       "textures":[{"source":0},{"source":0}],"materials":[{
       "emissiveFactor":[1,0.5,0],"doubleSided":true,
       "normalTexture":{"index":1,"texCoord":1,"scale":0.5},

@@ -5,7 +5,9 @@
 namespace tray {
 namespace {
 
-Ray ray(Vec3 o, Vec3 d) { return Ray{o, d, 0.0f, kInfinity}; }
+Ray ray(Vec3 o, Vec3 d) {
+  return Ray{o, d, 0.0f, kInfinity};
+}
 
 TEST(Box, HitFromOutsideWithFaceNormal) {
   Box b;
@@ -51,9 +53,42 @@ TEST(Box, GrazingEdgeHit) {
 TEST(Box, FaceUvSpansUnitSquare) {
   Box b({0, 0, 0}, {2, 4, 8});
   Hit h;
-  ASSERT_TRUE(b.intersect(ray({1, 3, -1}, {0, 0, 1}), h));  // z face: u from x, v from y
-  EXPECT_FLOAT_EQ(h.uv.x, 0.5f);
-  EXPECT_FLOAT_EQ(h.uv.y, 0.75f);
+  // The -Z face seen from -Z: right is -X, up is +Y, v = 0 at the top edge.
+  ASSERT_TRUE(b.intersect(ray({1.5f, 3, -1}, {0, 0, 1}), h));
+  EXPECT_FLOAT_EQ(h.uv.x, 0.25f);
+  EXPECT_FLOAT_EQ(h.uv.y, 0.25f);
+}
+
+/// Each face's uv at the corner the viewer outside sees at its top left is (0, 0), at its top
+/// right (1, 0), at its bottom left (0, 1): images appear upright and unmirrored.
+TEST(Box, EveryFaceIsUprightSeenFromOutside) {
+  Box b;  // [-1, 1]^3
+  struct Face {
+    Vec3 n, right, up;
+  };
+  const Face faces[] = {
+      {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}},  {{0, 0, -1}, {-1, 0, 0}, {0, 1, 0}},
+      {{1, 0, 0}, {0, 0, -1}, {0, 1, 0}}, {{-1, 0, 0}, {0, 0, 1}, {0, 1, 0}},
+      {{0, 1, 0}, {1, 0, 0}, {0, 0, -1}}, {{0, -1, 0}, {1, 0, 0}, {0, 0, 1}},
+  };
+  for (const Face& f : faces) {
+    auto uvAt = [&](float r, float u) {  // point at (r right, u up) on the face, from outside
+      Vec3 p = f.n + r * f.right + u * f.up;
+      Hit h;
+      EXPECT_TRUE(b.intersect(ray(p + 3.0f * f.n, -f.n), h));
+      return h.uv;
+    };
+    Vec2 topLeft = uvAt(-0.5f, 0.5f), topRight = uvAt(0.5f, 0.5f), bottomLeft = uvAt(-0.5f, -0.5f);
+    EXPECT_NEAR(topLeft.x, 0.25f, 1e-6f) << f.n.x << f.n.y << f.n.z;
+    EXPECT_NEAR(topLeft.y, 0.25f, 1e-6f) << f.n.x << f.n.y << f.n.z;
+    EXPECT_NEAR(topRight.x, 0.75f, 1e-6f) << f.n.x << f.n.y << f.n.z;
+    EXPECT_NEAR(bottomLeft.y, 0.75f, 1e-6f) << f.n.x << f.n.y << f.n.z;
+    // dp/du points right and dp/dv down, each spanning the face's edge length 2.
+    Vec3 dpdu, dpdv;
+    b.uvDerivatives(f.n, f.n, dpdu, dpdv);
+    EXPECT_EQ(dpdu, 2.0f * f.right);
+    EXPECT_EQ(dpdv, -2.0f * f.up);
+  }
 }
 
 TEST(Box, IntervalAndRefine) {

@@ -5,7 +5,9 @@
 namespace tray {
 namespace {
 
-Ray ray(Vec3 o, Vec3 d) { return Ray{o, d, 0.0f, kInfinity}; }
+Ray ray(Vec3 o, Vec3 d) {
+  return Ray{o, d, 0.0f, kInfinity};
+}
 
 TEST(Plane, HitFromAboveAndBelow) {
   Plane p;
@@ -17,6 +19,19 @@ TEST(Plane, HitFromAboveAndBelow) {
   EXPECT_FLOAT_EQ(h.uv.y, 3.0f);
   ASSERT_TRUE(p.intersect(ray({0, -1, 0}, {0, 1, 0}), h));
   EXPECT_FLOAT_EQ(h.t, 1.0f);
+}
+
+TEST(Plane, UvTilesWithPeriodOne) {
+  // uv = (x, z): a texture with REPEAT wrapping tiles once per unit square, both ways.
+  Plane p;
+  Hit h;
+  ASSERT_TRUE(p.intersect(ray({-2.25f, 1, 7.5f}, {0, -1, 0}), h));
+  EXPECT_FLOAT_EQ(h.uv.x, -2.25f);
+  EXPECT_FLOAT_EQ(h.uv.y, 7.5f);
+  Vec3 dpdu, dpdv;
+  p.uvDerivatives({0, 0, 0}, {0, 1, 0}, dpdu, dpdv);
+  EXPECT_EQ(dpdu, Vec3(1, 0, 0));
+  EXPECT_EQ(dpdv, Vec3(0, 0, 1));
 }
 
 TEST(Plane, ParallelRayMisses) {

@@ -5,7 +5,9 @@
 namespace tray {
 namespace {
 
-Ray ray(Vec3 o, Vec3 d) { return Ray{o, d, 0.0f, kInfinity}; }
+Ray ray(Vec3 o, Vec3 d) {
+  return Ray{o, d, 0.0f, kInfinity};
+}
 
 TEST(Sphere, HitFromOutside) {
   Sphere s(2.0f);
@@ -71,6 +73,37 @@ TEST(Sphere, UvAtKnownPoints) {
   EXPECT_NEAR(front.x, 0.0f, 1e-6f);
   EXPECT_NEAR(front.y, 0.5f, 1e-6f);
   EXPECT_NEAR(side.x, 0.25f, 1e-6f);
+}
+
+TEST(Sphere, UvAtMoreKnownPointsAndThroughIntersect) {
+  Sphere s(2.0f);
+  Vec2 back = s.uvAt({0, 0, -2}), left = s.uvAt({-2, 0, 0}), bottom = s.uvAt({0, -2, 0});
+  EXPECT_NEAR(back.x, 0.5f, 1e-6f);
+  EXPECT_NEAR(left.x, 0.75f, 1e-6f);
+  EXPECT_NEAR(bottom.y, 1.0f, 1e-6f);
+  // 45 degrees above the equator on the +X meridian: v = 1/4.
+  Vec2 up45 = s.uvAt({std::sqrt(2.0f), std::sqrt(2.0f), 0});
+  EXPECT_NEAR(up45.x, 0.25f, 1e-6f);
+  EXPECT_NEAR(up45.y, 0.25f, 1e-6f);
+  Hit h;
+  ASSERT_TRUE(s.intersect(Ray{{5, 0, 0}, {-1, 0, 0}, 0, kInfinity}, h));
+  EXPECT_NEAR(h.uv.x, 0.25f, 1e-6f);
+  EXPECT_NEAR(h.uv.y, 0.5f, 1e-6f);
+}
+
+TEST(Sphere, UvDerivativesMatchFiniteDifferences) {
+  Sphere s(1.5f);
+  for (Vec3 dir : {Vec3(0.3f, 0.5f, 0.8f), Vec3(-0.7f, -0.2f, 0.4f), Vec3(0.1f, 0.9f, -0.5f)}) {
+    Vec3 p = s.refine(dir);
+    Vec3 dpdu, dpdv;
+    s.uvDerivatives(p, p, dpdu, dpdv);
+    const float h = 1e-3f;
+    Vec2 uv = s.uvAt(p), uvU = s.uvAt(s.refine(p + h * dpdu)), uvV = s.uvAt(s.refine(p + h * dpdv));
+    EXPECT_NEAR((uvU.x - uv.x) / h, 1.0f, 2e-2f);
+    EXPECT_NEAR((uvU.y - uv.y) / h, 0.0f, 2e-2f);
+    EXPECT_NEAR((uvV.x - uv.x) / h, 0.0f, 2e-2f);
+    EXPECT_NEAR((uvV.y - uv.y) / h, 1.0f, 2e-2f);
+  }
 }
 
 TEST(Sphere, RefineProjectsOntoSurface) {

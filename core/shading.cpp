@@ -1,0 +1,107 @@
+#include "core/shading.h"
+
+#include <cmath>
+
+namespace tray {
+
+UvFootprint pixelFootprint(const UvFrame& f, const Vec3& p, const Vec3& ng, const Camera& camera,
+                           float scale) {
+  UvFootprint out;
+  out.uv = f.uv;
+  Vec3 dx, dy, dir;
+  camera.pixelSpread(p, dx, dy, dir);
+  // Move the offsets along the viewing direction onto the tangent plane; at grazing angles the
+  // footprint stretches, capped at 100x.
+  float cosine = dot(ng, dir);
+  if (std::fabs(cosine) < 1e-2f) cosine = cosine < 0 ? -1e-2f : 1e-2f;
+  const Vec3 dpdx = scale * (dx - dir * (dot(ng, dx) / cosine));
+  const Vec3 dpdy = scale * (dy - dir * (dot(ng, dy) / cosine));
+  const float a00 = dot(f.dpdu, f.dpdu), a01 = dot(f.dpdu, f.dpdv), a11 = dot(f.dpdv, f.dpdv);
+  const float det = a00 * a11 - a01 * a01;
+  if (!(det > 0) || !std::isfinite(det)) return out;  // no parameterisation: point sample
+  auto solve = [&](const Vec3& d) {
+    const float bu = dot(f.dpdu, d), bv = dot(f.dpdv, d);
+    Vec2 r{(a11 * bu - a01 * bv) / det, (a00 * bv - a01 * bu) / det};
+    auto clamp = [](float v) { return std::isfinite(v) ? std::clamp(v, -1e8f, 1e8f) : 0.0f; };
+    return Vec2{clamp(r.x), clamp(r.y)};
+  };
+  out.dx = solve(dpdx);
+  out.dy = solve(dpdy);
+  return out;
+}
+
+MaterialEvaluator::MaterialEvaluator(const Scene& scene, const Camera& camera, int spp)
+    : scene_(scene),
+      camera_(camera),
+      footprintScale_(std::max(0.125f, 1.0f / std::sqrt(float(std::max(spp, 1))))) {
+  if (!scene.textures.empty()) sampler_ = std::make_unique<TextureSampler>(scene.textures);
+}
+
+MaterialEvaluator::~MaterialEvaluator() = default;
+
+Vec3 MaterialEvaluator::normalMapped(const ShadingMaterial& out, const UvFrame& f,
+                                     const Color& texel, float scale, const SurfacePoint& s) const {
+  // glTF 2.0 §3.9.3: tangent-space normal = (2 rgb - 1) with x, y scaled by normalTexture.scale;
+  // frame (t, b, n) with b = sign * cross(n, t), t the vertex tangent or dp/du.
+  const Vec3& n = out.n;
+  Vec3 t = isBlack(f.tangent) ? f.dpdu : f.tangent;
+  float sign = f.bitangentSign;
+  if (isBlack(f.tangent)) sign = dot(cross(n, f.dpdu), f.dpdv) < 0 ? 1.0f : -1.0f;
+  t = t - n * dot(n, t);
+  float len = length(t);
+  Vec3 b;
+  if (len > 0 && std::isfinite(len)) {
+    t = t / len;
+    b = sign * cross(n, t);
+  } else {
+    orthonormalBasis(n, t, b);
+  }
+  Vec3 m{(2.0f * texel.x - 1.0f) * scale, (2.0f * texel.y - 1.0f) * scale, 2.0f * texel.z - 1.0f};
+  Vec3 mapped = m.x * t + m.y * b + m.z * n;
+  float ml = length(mapped);
+  // A tilt past the geometric surface would shade the back side: keep the interpolated normal.
+  if (!(ml > 0) || !std::isfinite(ml) || dot(mapped, s.ng) * dot(n, s.ng) <= 0) return n;
+  return mapped / ml;
+}
+
+ShadingMaterial MaterialEvaluator::evaluate(const Hit& hit, const SurfacePoint& s) const {
+  const Material& m = scene_.material(s.material);
+  ShadingMaterial out = ShadingMaterial::of(m, s.n);
+  if (!sampler_ || !m.hasTextures()) return out;
+
+  // One uv frame per uv set in use (glTF allows TEXCOORD_0 and _1 to differ per texture).
+  UvFrame frames[2];
+  bool have[2] = {false, false};
+  auto frameOf = [&](int set) -> const UvFrame& {
+    const int k = set == 1 ? 1 : 0;
+    if (!have[k]) frames[k] = surfaceUvFrame(scene_, hit, s, k), have[k] = true;
+    return frames[k];
+  };
+  auto lookup = [&](const TextureRef& ref) {
+    const UvFrame& f = frameOf(ref.texCoord);
+    return sampler_->sample(ref, pixelFootprint(f, s.p, s.ng, camera_, footprintScale_));
+  };
+  Color base(1.0f);
+  if (m.baseColorTexture.valid()) out.baseColor *= (base = lookup(m.baseColorTexture));
+  if (m.metallicRoughnessTexture.valid()) {
+    // glTF 2.0 §3.9.2: roughness in G, metalness in B.
+    Color mr = lookup(m.metallicRoughnessTexture);
+    out.roughness *= mr.y;
+    out.metallic *= mr.z;
+  }
+  if (m.emissiveTexture.valid()) out.emissive *= lookup(m.emissiveTexture);
+  if (m.normalTexture.valid()) {
+    out.n = normalMapped(out, frameOf(m.normalTexture.texCoord), lookup(m.normalTexture),
+                         m.normalTexture.scale, s);
+  }
+  if (m.hasPhong) {
+    // Stated Phong colours are modulated by the base colour texture (OpenGL's MODULATE).
+    out.phong.diffuse *= base;
+    out.phong.ambient *= base;
+  } else {
+    out.phong = phongFromPbr(out.baseColor, out.metallic, out.roughness, out.transmission);
+  }
+  return out;
+}
+
+}  // namespace tray

@@ -1,0 +1,40 @@
+#pragma once
+// "Evaluate the material at a surface point": the one place where textures meet shading.
+// Integrators (Whitted's Phong, the path tracer's BSDF) and the albedo AOV read the result.
+#include <memory>
+
+#include "core/camera.h"
+#include "core/hit.h"
+#include "core/material.h"
+#include "core/scene.h"
+#include "core/surface_uv.h"
+#include "core/texture_sampler.h"
+
+namespace tray {
+
+/// uv footprint of one pixel at a surface point: the camera's pixel spread (Camera::
+/// pixelSpread) projected along the viewing direction onto the tangent plane (normal ng), then
+/// expressed in uv through dp/du, dp/dv by least squares (pbrt-v4 §10.1.1), times `scale`.
+UvFootprint pixelFootprint(const UvFrame& frame, const Vec3& p, const Vec3& ng,
+                           const Camera& camera, float scale);
+
+/// Evaluates materials at surface points, sampling their textures. Creates a TextureSampler only
+/// when the scene has textures, and touches it only for materials that use them.
+class MaterialEvaluator {
+ public:
+  /// samplesPerPixel narrows the footprint (pbrt-v4: max(1/8, 1/sqrt(spp)) of a pixel), since
+  /// the pixel's samples already average over its area.
+  MaterialEvaluator(const Scene& scene, const Camera& camera, int samplesPerPixel);
+  ~MaterialEvaluator();
+  ShadingMaterial evaluate(const Hit& hit, const SurfacePoint& s) const;
+
+ private:
+  Vec3 normalMapped(const ShadingMaterial& out, const UvFrame& f, const Color& texel, float scale,
+                    const SurfacePoint& s) const;
+  const Scene& scene_;
+  const Camera& camera_;
+  float footprintScale_;
+  std::unique_ptr<TextureSampler> sampler_;
+};
+
+}  // namespace tray

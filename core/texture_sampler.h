@@ -1,0 +1,43 @@
+#pragma once
+// Filtered texture lookups through OpenImageIO's TextureSystem: TRay does no image filtering
+// of its own (docs/textures.md).
+#include <memory>
+#include <vector>
+
+#include "core/material.h"
+#include "core/math.h"
+#include "core/scene.h"
+
+namespace tray {
+
+/// A point in a texture's uv space with its footprint: how uv changes per pixel step in x
+/// and in y (zero = a point sample, bilinear in the finest level).
+struct UvFootprint {
+  Vec2 uv, dx, dy;
+};
+
+/// KHR_texture_transform: uv' = T R S uv (the extension's README; rotation turns uvs
+/// counter-clockwise). `vector` applies only the linear part, for footprint derivatives.
+Vec2 transformUv(const TextureRef& ref, Vec2 uv, bool vector = false);
+
+/// Owns a TextureSystem whose images are the scene's decoded TextureImages, served from memory
+/// by a custom ImageInput; OIIO builds the MIP pyramid (automip) and filters. Thread-safe.
+class TextureSampler {
+ public:
+  /// `images` must outlive the sampler (they are read in place, never copied by TRay).
+  explicit TextureSampler(const std::vector<TextureImage>& images);
+  ~TextureSampler();
+  TextureSampler(const TextureSampler&) = delete;
+  TextureSampler& operator=(const TextureSampler&) = delete;
+
+  /// RGB of ref's image at footprint f (in the reference's uv set, before its transform), with
+  /// its sampler's wrap modes. A footprint under one texel magnifies (magFilter); a larger one
+  /// minifies with minFilter: nearest/linear texels in the finest level, or one/two MIP levels.
+  Color sample(const TextureRef& ref, const UvFootprint& f) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace tray

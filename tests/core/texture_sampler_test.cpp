@@ -1,0 +1,159 @@
+// TextureSampler: OIIO's filtering at known uvs of tiny images, the glTF wrap modes and
+// filters, and KHR_texture_transform.
+#include "core/texture_sampler.h"
+
+#include <gtest/gtest.h>
+
+namespace tray {
+namespace {
+
+/// 2x2 RGB image, texel (x, y) at pixels[3 (2y + x)]: red, green / blue, white.
+TextureImage twoByTwo() {
+  TextureImage im;
+  im.name = "2x2";
+  im.width = im.height = 2;
+  im.pixels = {1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1};
+  return im;
+}
+
+Color texel(const TextureImage& im, int x, int y) {
+  const float* p = &im.pixels[3 * (size_t(y) * im.width + x)];
+  return {p[0], p[1], p[2]};
+}
+
+/// Bilinear interpolation written from its definition (texel centres at (i + 0.5) / size),
+/// with clamped texel indices: the reference OIIO must reproduce for CLAMP_TO_EDGE.
+Color bilinearClamped(const TextureImage& im, float u, float v) {
+  float x = u * im.width - 0.5f, y = v * im.height - 0.5f;
+  int x0 = int(std::floor(x)), y0 = int(std::floor(y));
+  float fx = x - x0, fy = y - y0;
+  auto at = [&](int i, int j) {
+    return texel(im, std::clamp(i, 0, im.width - 1), std::clamp(j, 0, im.height - 1));
+  };
+  return (1 - fx) * (1 - fy) * at(x0, y0) + fx * (1 - fy) * at(x0 + 1, y0) +
+         (1 - fx) * fy * at(x0, y0 + 1) + fx * fy * at(x0 + 1, y0 + 1);
+}
+
+void expectColor(const Color& got, const Color& want, float tol = 1e-5f) {
+  EXPECT_NEAR(got.x, want.x, tol);
+  EXPECT_NEAR(got.y, want.y, tol);
+  EXPECT_NEAR(got.z, want.z, tol);
+}
+
+TextureRef ref(TextureWrap wrap, TextureFilter mag = TextureFilter::kLinear) {
+  TextureRef r;
+  r.image = 0;
+  r.wrapS = r.wrapT = wrap;
+  r.magFilter = mag;
+  return r;
+}
+
+Color at(const TextureSampler& s, const TextureRef& r, float u, float v) {
+  return s.sample(r, UvFootprint{{u, v}, {0, 0}, {0, 0}});
+}
+
+TEST(TextureSampler, TwoByTwoBilinearAtKnownUvs) {
+  std::vector<TextureImage> images{twoByTwo()};
+  TextureSampler sampler(images);
+  const TextureRef clamp = ref(TextureWrap::kClampToEdge);
+  // Texel centres give the texels themselves; the centre of the image their mean.
+  expectColor(at(sampler, clamp, 0.25f, 0.25f), {1, 0, 0});
+  expectColor(at(sampler, clamp, 0.75f, 0.25f), {0, 1, 0});
+  expectColor(at(sampler, clamp, 0.25f, 0.75f), {0, 0, 1});
+  expectColor(at(sampler, clamp, 0.5f, 0.5f), {0.5f, 0.5f, 0.5f});
+  for (float u : {0.3f, 0.375f, 0.6f, 0.9f})
+    for (float v : {0.1f, 0.4f, 0.55f})
+      expectColor(at(sampler, clamp, u, v), bilinearClamped(images[0], u, v));
+}
+
+TEST(TextureSampler, WrapModes) {
+  std::vector<TextureImage> images{twoByTwo()};
+  TextureSampler sampler(images);
+  const TextureRef repeat = ref(TextureWrap::kRepeat), clamp = ref(TextureWrap::kClampToEdge),
+                   mirror = ref(TextureWrap::kMirroredRepeat);
+  // The corner (0, 0): clamp sees only texel (0, 0); repeat blends all four (the neighbours
+  // across the edges are the far texels).
+  expectColor(at(sampler, clamp, 0.0f, 0.0f), {1, 0, 0});
+  expectColor(at(sampler, repeat, 0.0f, 0.0f), {0.5f, 0.5f, 0.5f});
+  // Repeat has period 1; mirror reflects at 1, so 1.25 reads like 0.75; clamp holds the edge.
+  expectColor(at(sampler, repeat, 1.25f, 0.25f), {1, 0, 0});
+  expectColor(at(sampler, repeat, -0.75f, 0.25f), {1, 0, 0});
+  expectColor(at(sampler, mirror, 1.25f, 0.25f), {0, 1, 0});
+  expectColor(at(sampler, mirror, 0.25f, 1.25f), {0, 0, 1});
+  expectColor(at(sampler, clamp, 3.0f, 0.25f), {0, 1, 0});
+  // Per axis: S repeats, T clamps.
+  TextureRef mixed = repeat;
+  mixed.wrapT = TextureWrap::kClampToEdge;
+  expectColor(at(sampler, mixed, 1.25f, 1.75f), {0, 0, 1});
+}
+
+TEST(TextureSampler, NearestMagnificationPicksTheTexel) {
+  std::vector<TextureImage> images{twoByTwo()};
+  TextureSampler sampler(images);
+  const TextureRef nearest = ref(TextureWrap::kClampToEdge, TextureFilter::kNearest);
+  expectColor(at(sampler, nearest, 0.45f, 0.05f), {1, 0, 0});
+  expectColor(at(sampler, nearest, 0.55f, 0.45f), {0, 1, 0});
+  expectColor(at(sampler, nearest, 0.95f, 0.95f), {1, 1, 1});
+}
+
+/// 64 x 64 one-texel checker of 0 and 1: any filter wider than a few texels averages to 0.5.
+TextureImage checker64() {
+  TextureImage im;
+  im.name = "checker";
+  im.width = im.height = 64;
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) {
+      float c = (x + y) % 2 ? 1.0f : 0.0f;
+      im.pixels.insert(im.pixels.end(), {c, c, c});
+    }
+  return im;
+}
+
+TEST(TextureSampler, MipMappedMinificationAveragesAndLinearDoesNot) {
+  std::vector<TextureImage> images{checker64()};
+  TextureSampler sampler(images);
+  TextureRef r = ref(TextureWrap::kRepeat);
+  const float u = (10 + 0.5f) / 64, v = (20 + 0.5f) / 64;  // texel (10, 20): value 0
+  // No footprint: the finest level, the texel itself.
+  EXPECT_NEAR(at(sampler, r, u, v).x, 0.0f, 1e-6f);
+  // A footprint of 16 texels: a coarse MIP level where the checker has averaged out.
+  const float d = 16.0f / 64;
+  EXPECT_NEAR(sampler.sample(r, {{u, v}, {d, 0}, {0, d}}).x, 0.5f, 0.02f);
+  // minFilter LINEAR: no MIP mapping, the finest level however large the footprint (aliasing).
+  r.minFilter = TextureFilter::kLinear;
+  EXPECT_NEAR(sampler.sample(r, {{u, v}, {d, 0}, {0, d}}).x, 0.0f, 1e-6f);
+}
+
+TEST(TextureTransform, FollowsTheExtensionsExample) {
+  // KHR_texture_transform README: offset [0, 1], rotation pi/2, scale 0.5 maps the unit square
+  // onto the lower-left quadrant [0, 0.5] x [0.5, 1] of the image (v grows downwards).
+  TextureRef r;
+  r.offset = {0, 1};
+  r.rotation = kPi / 2;
+  r.scaleUV = {0.5f, 0.5f};
+  auto expectUv = [&](Vec2 in, Vec2 want) {
+    Vec2 got = transformUv(r, in);
+    EXPECT_NEAR(got.x, want.x, 1e-6f);
+    EXPECT_NEAR(got.y, want.y, 1e-6f);
+  };
+  expectUv({0, 0}, {0, 1});
+  expectUv({1, 0}, {0, 0.5f});
+  expectUv({0, 1}, {0.5f, 1});
+  expectUv({1, 1}, {0.5f, 0.5f});
+  // Derivatives see only the linear part.
+  Vec2 d = transformUv(r, {1, 0}, true);
+  EXPECT_NEAR(d.x, 0.0f, 1e-6f);
+  EXPECT_NEAR(d.y, -0.5f, 1e-6f);
+}
+
+TEST(TextureSampler, TransformAppliesBeforeLookup) {
+  std::vector<TextureImage> images{twoByTwo()};
+  TextureSampler sampler(images);
+  TextureRef r = ref(TextureWrap::kClampToEdge);
+  r.offset = {0.5f, 0.5f};
+  // (0.25, 0.25) + offset = (0.75, 0.75): the white texel.
+  expectColor(at(sampler, r, 0.25f, 0.25f), {1, 1, 1});
+}
+
+}  // namespace
+}  // namespace tray
