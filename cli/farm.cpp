@@ -1,5 +1,6 @@
 #include "cli/farm.h"
 
+#include <algorithm>
 #include <csignal>
 #include <cstdio>
 #include <sstream>
@@ -105,7 +106,14 @@ void loadCheckpoint(const std::string& path, const std::string& job, const Pixel
     throw Error(path + ": " + e.what() + ": not a checkpoint (a finished render?)");
   }
   previousSeconds = metadataFloat(o, "tray:renderSeconds", 0);
-  film = std::move(image.film);
+  // The film without the state layer: it is written again only if the render stays partial.
+  film = Film(image.film.width(), image.film.height());
+  for (size_t l = 1; l < image.film.layers().size(); ++l) {
+    const FilmLayer& from = image.film.layers()[l];
+    if (from.name == kStateLayer) continue;
+    const int to = film.addLayer(from.name, from.channels);
+    std::copy(from.data.begin(), from.data.end(), film.pixel(to, 0, 0));
+  }
 }
 
 }  // namespace tray
