@@ -190,11 +190,11 @@ int run(const CliOptions& o) {
   }
 
   if (!o.quiet) {
-    std::printf("%s: %dx%d, %d spp, %s on %s: %.3f s, %.2f M rays, %.2f Mrays/s",
-                o.scenePath.c_str(), width, height, o.settings.spp, o.settings.integrator.c_str(),
-                o.accel.c_str(), stats.seconds, stats.rays.total() * 1e-6, stats.mraysPerSecond());
-    if (stats.rays.nanSamples)
-      std::printf(", %llu NaN/Inf samples discarded", (unsigned long long)stats.rays.nanSamples);
+    std::printf("%s: %dx%d, %d spp, %s on %s: %.3f s, %.2f M rays, %.2f Mrays/s", o.scenePath.c_str(),
+                width, height, o.settings.spp, o.settings.integrator.c_str(), o.accel.c_str(),
+                stats.seconds, stats.rays.total() * 1e-6, stats.mraysPerSecond());
+    if (stats.rays.nanSamples) std::printf(", %llu NaN/Inf samples discarded",
+                                           (unsigned long long)stats.rays.nanSamples);
     std::printf("\n");
   }
   return 0;
@@ -217,8 +217,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--inner", o.settings.inner, "integrator wrapped by a wrapping integrator")
       ->capture_default_str();
-  app.add_option("--spp", o.settings.spp, "samples per pixel")
-      ->check(CLI::Range(1, 1 << 20))
+  app.add_option("--spp", o.settings.spp, "samples per pixel")->check(CLI::Range(1, 1 << 20))
       ->capture_default_str();
   app.add_option("--max-depth", o.settings.maxDepth,
                  "maximum recursion depth (default: the integrator's, 5 for whitted)")
@@ -228,8 +227,7 @@ int main(int argc, char** argv) {
                  "where samples go in a pixel: auto, center, corners, grid, jitter")
       ->check(CLI::IsMember(tray::PixelSampler::names()))
       ->capture_default_str();
-  app.add_option("--filter", o.settings.filter,
-                 "reconstruction filter: box, tent, gaussian, mitchell")
+  app.add_option("--filter", o.settings.filter, "reconstruction filter: box, tent, gaussian, mitchell")
       ->check(CLI::IsMember(tray::Filter::names()))
       ->capture_default_str();
   app.add_option("--aa-threshold", o.settings.aaThreshold,
@@ -239,15 +237,12 @@ int main(int argc, char** argv) {
   app.add_option("--aa-depth", o.settings.aaDepth, "adaptive: maximum subdivision depth")
       ->check(CLI::Range(0, 12))
       ->capture_default_str();
-  app.add_flag(
-      "--aa-robust", o.settings.aaRobust,
-      "adaptive: jittered corners + minimum subdivision near object boundaries (thin features)");
+  app.add_flag("--aa-robust", o.settings.aaRobust,
+               "adaptive: jittered corners + minimum subdivision near object boundaries (thin features)");
   app.add_option("--aa-heatmap", o.aaHeatmap, "write an image of camera rays per pixel (PNG/EXR)");
-  app.add_option("--threads", o.threads, "worker threads (0: all cores)")
-      ->check(CLI::Range(0, 4096))
+  app.add_option("--threads", o.threads, "worker threads (0: all cores)")->check(CLI::Range(0, 4096))
       ->capture_default_str();
-  app.add_option("--resolution", o.resolution,
-                 "image size WxH (default 640 wide, height from the camera)");
+  app.add_option("--resolution", o.resolution, "image size WxH (default 640 wide, height from the camera)");
   app.add_option("--camera", o.camera, "index of the scene camera to render (default: the first)");
   app.add_option("--scene", o.scene, "index of the glTF scene (default: the file's default scene)");
   app.add_option("--accel", o.accel, "accelerator: " + joined(tray::acceleratorNames()))
@@ -258,12 +253,10 @@ int main(int argc, char** argv) {
   app.add_option("--display", o.display, "OCIO display for PNG/JPG output (default: sRGB)");
   app.add_option("--view", o.view, "OCIO view for PNG/JPG output (default: the display's first)");
   app.add_flag("--allow-any-path", o.allowAnyPath, "let scene URIs leave the scene's folder");
-  app.add_option(
-      "--aov", o.aovs,
-      "extra EXR layers: comma-separated from " + joined(tray::AovSet::known()) + ", or all");
-  app.add_option(
-         "--clamp-indirect", o.settings.clampIndirect,
-         "path: clamp each indirect contribution to this value (fireflies; biased; 0 = off)")
+  app.add_option("--aov", o.aovs,
+                 "extra EXR layers: comma-separated from " + joined(tray::AovSet::known()) + ", or all");
+  app.add_option("--clamp-indirect", o.settings.clampIndirect,
+                 "path: clamp each indirect contribution to this value (fireflies; biased; 0 = off)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   app.add_flag("--debug-nan", o.settings.debugNan, "print where NaN/Inf samples arise");

@@ -145,7 +145,7 @@ TEST(Farm, BadRegionsAndRangesAreUsageErrors) {
   const fs::path dir = tempFolder("farm");
   const std::string job = "'" + kWhitted + "' --resolution 32x24 ";
   const std::string exr = out(dir, "x.exr");
-  for (const std::string bad :
+  for (const std::string& bad :
        {"--region 0,0,33,24 " + exr, "--region 5,5,5,9 " + exr, "--region -1,0,4,4 " + exr,
         "--region 1,2,3 " + exr, "--region a,b,c,d " + exr, "--sample-range 0,2 " + exr,
         "--spp 4 --sample-range 3,2 " + exr, "--integrator adaptive --sample-range 0,1 " + exr,
