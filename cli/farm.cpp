@@ -1,8 +1,10 @@
 #include "cli/farm.h"
 
 #include <algorithm>
+#include <cctype>
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <sstream>
 #include <vector>
 
@@ -44,6 +46,31 @@ extern "C" void onInterrupt(int sig) {
 }
 
 }  // namespace
+
+std::string jobSignature(const RenderSettings& s, const JobFrame& f) {
+  char aa[64];
+  std::snprintf(aa, sizeof aa, "%.9g/%d/%d", s.aaThreshold, s.aaDepth, int(s.aaRobust));
+  char clamp[32];
+  std::snprintf(clamp, sizeof clamp, "%.9g", s.clampIndirect);
+  std::string job = "scene=" + std::filesystem::path(f.scenePath).filename().string();
+  job += " scene#=" + std::to_string(f.scene) + " camera=" + std::to_string(f.camera);
+  job += " size=" + std::to_string(f.width) + "x" + std::to_string(f.height);
+  job += " integrator=" + s.integrator + " inner=" + s.inner;
+  job += " spp=" + std::to_string(s.spp) + " seed=" + std::to_string(s.seed);
+  job += " depth=" + std::to_string(s.maxDepth) + " sampler=" + s.pixelSampler;
+  job += " filter=" + s.filter + " aa=" + aa + " clamp=" + clamp;
+  job += " accel=" + f.accelerator + " aov=" + f.aovs;
+  return job;
+}
+
+std::string firstExr(const std::vector<std::string>& outputs) {
+  for (const auto& p : outputs) {
+    std::string ext = std::filesystem::path(p).extension().string();
+    for (auto& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (ext == ".exr") return p;
+  }
+  return "";
+}
 
 PixelRegion parseRegion(const std::string& text, int width, int height) {
   if (text.empty()) return {0, 0, width, height};

@@ -3,8 +3,10 @@
 // resuming (docs/farm.md).
 #include <atomic>
 #include <string>
+#include <vector>
 
 #include "core/film.h"
+#include "integrators/integrator.h"
 #include "core/render_state.h"
 #include "io/image_output.h"
 
@@ -31,6 +33,21 @@ struct SampleRange {
 /// own samples (samplesPerPixel 0: adaptive).
 SampleRange parseSampleRange(const std::string& text, int samplesPerPixel,
                              const std::string& integrator);
+
+/// What a job renders besides its RenderSettings.
+struct JobFrame {
+  std::string scenePath;
+  int scene = -1, camera = -1, width = 0, height = 0;
+  std::string accelerator, aovs;
+};
+
+/// Everything that decides the pixels of a render but its region and sample range (written as
+/// "tray:job"): checkpoints resume and parts merge only with their own job. The scene is named
+/// by its file name, so that machines may mount it at different paths.
+std::string jobSignature(const RenderSettings& settings, const JobFrame& frame);
+
+/// The first .exr of `outputs` (empty if none): where checkpoints go and --resume reads.
+std::string firstExr(const std::vector<std::string>& outputs);
 
 /// Installs SIGINT and SIGTERM handlers that set the returned flag and remember the signal;
 /// each restores the default action, so a second signal ends the process at once.

@@ -53,32 +53,6 @@ std::string joined(const std::vector<std::string>& names) {
   return s;
 }
 
-/// Everything that decides the pixels of a render but its region and sample range: checkpoints
-/// resume and parts merge only with their own job.
-std::string jobSignature(const CliOptions& o, int width, int height) {
-  const tray::RenderSettings& s = o.settings;
-  char aa[64];
-  std::snprintf(aa, sizeof aa, "%.9g/%d/%d", s.aaThreshold, s.aaDepth, int(s.aaRobust));
-  return "scene=" + std::filesystem::path(o.scenePath).filename().string() +
-         " scene#=" + std::to_string(o.scene) + " camera=" + std::to_string(o.camera) +
-         " size=" + std::to_string(width) + "x" + std::to_string(height) +
-         " integrator=" + s.integrator + " inner=" + s.inner + " spp=" + std::to_string(s.spp) +
-         " seed=" + std::to_string(s.seed) + " depth=" + std::to_string(s.maxDepth) +
-         " sampler=" + s.pixelSampler + " filter=" + s.filter + " aa=" + aa +
-         " clamp=" + std::to_string(s.clampIndirect) + " accel=" + o.accel + " aov=" + o.aovs +
-         (o.aaHeatmap.empty() ? "" : "+samples");
-}
-
-/// The first .exr output: where checkpoints go and where --resume reads.
-std::string firstExr(const std::vector<std::string>& outputs) {
-  for (const auto& p : outputs) {
-    std::string ext = std::filesystem::path(p).extension().string();
-    for (auto& c : ext) c = char(std::tolower((unsigned char)c));
-    if (ext == ".exr") return p;
-  }
-  return "";
-}
-
 int run(const CliOptions& o) {
   // First: a signal while the scene loads also stops the render (at its first pixel).
   const std::atomic<bool>& stop = tray::installInterruptHandlers();
@@ -102,10 +76,12 @@ int run(const CliOptions& o) {
   const tray::SampleRange range =
       tray::parseSampleRange(o.sampleRange, integrator->samplesPerPixel(), o.settings.integrator);
   const bool part = o.region.size() || o.sampleRange.size();
-  const std::string checkpointPath = firstExr(o.outputs);
+  const std::string checkpointPath = tray::firstExr(o.outputs);
   if ((o.checkpointSeconds > 0 || o.resume) && checkpointPath.empty())
     throw tray::Error("--checkpoint and --resume need an .exr output (-o NAME.exr)");
-  const std::string job = jobSignature(o, width, height);
+  const std::string job =
+      tray::jobSignature(o.settings, {o.scenePath, o.scene, o.camera, width, height, o.accel,
+                                      o.aovs + (o.aaHeatmap.empty() ? "" : "+samples")});
 
   tray::Film film(region.width(), region.height());
   tray::RenderState state;

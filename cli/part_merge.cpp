@@ -102,13 +102,15 @@ ExrImage mergeParts(const std::vector<std::string>& paths) {
   for (const Part& p : parts) {
     const Film& f = p.image.film;
     seconds.push_back(metadataFloat(p.image.options, "tray:renderSeconds", 0));
+    std::vector<int> from;  // the part's layer for each output layer
+    for (const FilmLayer& layer : out.film.layers()) from.push_back(f.findLayer(layer.name));
     for (int y = p.y0; y < p.y1; ++y)
       for (int x = p.x0; x < p.x1; ++x) {
         const int px = x - p.x0, py = y - p.y0;
         total[size_t(y) * width + x] += p.state.sums[size_t(py) * f.width() + px];
         for (size_t l = 1; l < out.film.layers().size(); ++l) {
           const FilmLayer& layer = out.film.layers()[l];
-          const float* src = f.pixel(f.findLayer(layer.name), px, py);
+          const float* src = f.pixel(from[l], px, py);
           float* dst = out.film.pixel(int(l), x, y);
           for (size_t c = 0; c < layer.channels.size(); ++c)
             if (layer.name == "samples")

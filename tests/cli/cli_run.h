@@ -33,21 +33,26 @@ struct CliResult {
 };
 
 /// Runs `binary args` through the shell (args already quoted), stderr captured.
-inline CliResult runCli(const std::string& binary, const std::string& args, const fs::path& dir) {
+inline CliResult runTool(const std::string& binary, const std::string& args, const fs::path& dir) {
   const fs::path errFile = dir / "stderr.txt";
-  const std::string cmd = "'" + binary + "' " + args + " -q 2> '" + errFile.string() + "'";
+  std::string cmd = "'";  // appended piecewise: GCC 12 warns falsely on "lit" + std::string&&
+  cmd += binary;
+  cmd += "' ";
+  cmd += args;
+  cmd += " 2> '";
+  cmd += errFile.string();
+  cmd += "'";
   const int status = std::system(cmd.c_str());
   std::ifstream f(errFile);
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, {std::istreambuf_iterator<char>(f), {}}};
 }
 
+/// tray-render (quiet) or another tool with `args`.
+inline CliResult runCli(const std::string& binary, const std::string& args, const fs::path& dir) {
+  return runTool(binary, args + " -q", dir);
+}
 inline CliResult runMerge(const std::string& args, const fs::path& dir) {
-  const fs::path errFile = dir / "stderr.txt";
-  const std::string cmd =
-      "'" + std::string(TRAY_MERGE_BIN) + "' " + args + " 2> '" + errFile.string() + "'";
-  const int status = std::system(cmd.c_str());
-  std::ifstream f(errFile);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, {std::istreambuf_iterator<char>(f), {}}};
+  return runTool(TRAY_MERGE_BIN, args, dir);
 }
 
 /// Starts tray-render with `args` (one argv entry each) as a child process, output silenced.
