@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "core/film.h"
-#include "integrators/integrator.h"
 #include "core/render_state.h"
+#include "integrators/integrator.h"
 #include "io/image_output.h"
 
 namespace tray {

@@ -138,6 +138,8 @@ int run(const CliOptions& o) {
                        {"tray:sampleBegin", float(range.begin)},
                        {"tray:sampleEnd", float(range.end)},
                        {"tray:samplesPerPixel", float(integrator->samplesPerPixel())}};
+    if (integrator->samplesPerPixel() > 0)  // adaptive: the samples AOV counts them per pixel
+      w.floatMetadata.emplace_back("tray:samplesDone", float(done) * float(range.end - range.begin));
     if (part || done < all) tray::storeState(now, image);
     for (const auto& path : paths) tray::writeImage(image, path, w);
   };

@@ -174,6 +174,11 @@ void interruptAndResume(const std::string& job, int tiles) {
   const int pixels = partial.spec.width * partial.spec.height;
   EXPECT_GE(done, 1.0f);
   EXPECT_LT(done, float(pixels));
+  const float perPixel = partial.spec.get_float_attribute("tray:sampleEnd") -
+                         partial.spec.get_float_attribute("tray:sampleBegin");
+  if (partial.spec.get_float_attribute("tray:samplesPerPixel") > 0) {
+    EXPECT_EQ(partial.spec.get_float_attribute("tray:samplesDone"), done * perPixel);
+  }
   size_t marked = 0, alphaZero = 0;
   for (int y = 0; y < partial.spec.height; ++y)
     for (int x = 0; x < partial.spec.width; ++x)
