@@ -111,7 +111,7 @@ int interruptSignal() {
   return gSignal.load();
 }
 
-void loadCheckpoint(const std::string& path, const std::string& job, const PixelRegion& region,
+bool loadCheckpoint(const std::string& path, const std::string& job, const PixelRegion& region,
                     int width, int height, const SampleRange& range, Film& film, RenderState& state,
                     double& previousSeconds) {
   ExrImage image = readExr(path);
@@ -127,10 +127,13 @@ void loadCheckpoint(const std::string& path, const std::string& job, const Pixel
   if (metadataFloat(o, "tray:sampleBegin", -1) != float(range.begin) ||
       metadataFloat(o, "tray:sampleEnd", -1) != float(range.end))
     throw Error(path + ": the checkpoint renders another sample range");
+  // A finished full render keeps no state: a requeued job that already ended has nothing to do.
+  if (image.film.findLayer(kStateLayer) < 0 && metadataString(o, "tray:status") == "complete")
+    return false;
   try {
     state = loadState(image.film);
   } catch (const Error& e) {
-    throw Error(path + ": " + e.what() + ": not a checkpoint (a finished render?)");
+    throw Error(path + ": " + e.what() + ": not a checkpoint");
   }
   previousSeconds = metadataFloat(o, "tray:renderSeconds", 0);
   // The film without the state layer: it is written again only if the render stays partial.
@@ -141,6 +144,7 @@ void loadCheckpoint(const std::string& path, const std::string& job, const Pixel
     const int to = film.addLayer(from.name, from.channels);
     std::copy(from.data.begin(), from.data.end(), film.pixel(to, 0, 0));
   }
+  return true;
 }
 
 }  // namespace tray

@@ -56,9 +56,10 @@ const std::atomic<bool>& installInterruptHandlers();
 int interruptSignal();
 
 /// Loads the checkpoint at `path` for resuming: its film (AOVs of the pixels done) and state.
-/// Throws tray::Error naming the file unless its "tray:job" is `job`, its data window is
-/// `region` of a width x height image and its sample range is `range`.
-void loadCheckpoint(const std::string& path, const std::string& job, const PixelRegion& region,
+/// Returns false, loading nothing, when `path` is this render finished already. Throws
+/// tray::Error naming the file unless its "tray:job" is `job`, its data window is `region` of a
+/// width x height image and its sample range is `range`.
+bool loadCheckpoint(const std::string& path, const std::string& job, const PixelRegion& region,
                     int width, int height, const SampleRange& range, Film& film, RenderState& state,
                     double& previousSeconds);
 

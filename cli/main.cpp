@@ -87,12 +87,15 @@ int run(const CliOptions& o) {
   tray::RenderState state;
   double previousSeconds = 0;
   if (o.resume) {
-    if (std::filesystem::exists(checkpointPath))
-      tray::loadCheckpoint(checkpointPath, job, region, width, height, range, film, state,
-                           previousSeconds);
-    else
+    if (!std::filesystem::exists(checkpointPath)) {
       std::fprintf(stderr, "warning: %s: no checkpoint to resume: rendering from the start\n",
                    checkpointPath.c_str());
+    } else if (!tray::loadCheckpoint(checkpointPath, job, region, width, height, range, film,
+                                     state, previousSeconds)) {
+      if (!o.quiet)
+        std::printf("%s: already finished: nothing to resume\n", checkpointPath.c_str());
+      return 0;
+    }
   }
   tray::ProgressBar progress;
   tray::RenderOptions renderOptions;
@@ -139,7 +142,8 @@ int run(const CliOptions& o) {
                        {"tray:sampleEnd", float(range.end)},
                        {"tray:samplesPerPixel", float(integrator->samplesPerPixel())}};
     if (integrator->samplesPerPixel() > 0)  // adaptive: the samples AOV counts them per pixel
-      w.floatMetadata.emplace_back("tray:samplesDone", float(done) * float(range.end - range.begin));
+      w.floatMetadata.emplace_back("tray:samplesDone",
+                                   float(done) * float(range.end - range.begin));
     if (part || done < all) tray::storeState(now, image);
     for (const auto& path : paths) tray::writeImage(image, path, w);
   };

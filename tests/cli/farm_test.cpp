@@ -191,6 +191,14 @@ void interruptAndResume(const std::string& job, int tiles) {
   const Exr resumed = readExrFile(dir / "part.exr");
   EXPECT_EQ(resumed.spec.get_string_attribute("tray:status"), "complete");
   expectSamePixels(readExrFile(dir / "full.exr"), resumed, "resumed");
+  // Resuming what is finished changes nothing; resuming with no file renders from the start.
+  r = runCli(TRAY_RENDER_BIN, job + " --resume " + out(dir, "part.exr"), dir);
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  expectSamePixels(readExrFile(dir / "full.exr"), readExrFile(dir / "part.exr"), "resumed twice");
+  r = runCli(TRAY_RENDER_BIN, job + " --resume " + out(dir, "fresh.exr"), dir);
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.err.find("no checkpoint"), std::string::npos) << r.err;
+  expectSamePixels(readExrFile(dir / "full.exr"), readExrFile(dir / "fresh.exr"), "fresh");
   // A checkpoint of another render is refused.
   r = runCli(TRAY_RENDER_BIN, job + " --seed 99 --resume " + out(dir, "part.exr"), dir);
   EXPECT_EQ(r.exitCode, 2);
