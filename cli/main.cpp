@@ -154,7 +154,11 @@ int run(const CliOptions& o) {
       tray::Film copy = f;
       const double elapsed =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-      write(copy, s, previousSeconds + elapsed, {checkpointPath});
+      try {  // a failed checkpoint (full disk) costs the safety net, not the render
+        write(copy, s, previousSeconds + elapsed, {checkpointPath});
+      } catch (const tray::Error& e) {
+        std::fprintf(stderr, "warning: checkpoint not written: %s\n", e.what());
+      }
     };
   }
   tray::RenderStats stats = tray::renderImage(*integrator, film, state, renderOptions);
