@@ -54,6 +54,24 @@ TEST(Farm, FourRegionsMergeBitForBit) {
   expectSamePixels(full, readExrFile(dir / "merged.exr"), "4 regions merged");
 }
 
+TEST(Farm, AdaptiveRegionsMergeBitForBit) {
+  // Robust adaptive sampling looks at the 8 tiles around each pixel's: across region borders too.
+  const fs::path dir = tempFolder("farm");
+  const std::string job =
+      "'" + kWhitted + "' --integrator adaptive --aa-robust --resolution 40x30 --aov samples";
+  ASSERT_EQ(runCli(TRAY_RENDER_BIN, job + " " + out(dir, "full.exr"), dir).exitCode, 0);
+  std::string parts;
+  for (const char* region : {"0,0,40,13", "0,13,40,30"}) {
+    const std::string name = std::string(region) + ".exr";
+    CliResult r = runCli(TRAY_RENDER_BIN, job + " --region " + region + " " + out(dir, name), dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    parts += " '" + (dir / name).string() + "'";
+  }
+  CliResult m = runMerge(parts + " " + out(dir, "merged.exr"), dir);
+  ASSERT_EQ(m.exitCode, 0) << m.err;
+  expectSamePixels(readExrFile(dir / "full.exr"), readExrFile(dir / "merged.exr"), "adaptive");
+}
+
 /// Largest difference in units in the last place between two floats of the same sign.
 int ulps(float a, float b) {
   int32_t ia, ib;
