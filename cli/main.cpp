@@ -1,14 +1,19 @@
 // tray-render: the command line. Parses options, loads the scene, renders, writes images.
-// Exit codes: 0 ok, 1 render error, 2 bad input or usage, 130 interrupted.
+// Exit codes: 0 ok, 1 render error, 2 bad input or usage, 130 / 143 interrupted (SIGINT /
+// SIGTERM; the image so far is written).
 #include <CLI/CLI.hpp>
+#include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include "cli/farm.h"
 #include "cli/progress_bar.h"
 #include "core/accelerator.h"
 #include "core/aov.h"
+#include "core/camera_matrices.h"
 #include "core/error.h"
 #include "core/filter.h"
 #include "core/pixel_sampler.h"
@@ -35,6 +40,10 @@ struct CliOptions {
   bool quiet = false;
   std::string aovs;
   std::string aaHeatmap;
+  std::string region, sampleRange;
+  double checkpointSeconds = 0;
+  bool resume = false;
+  int testInterruptAfterTiles = 0;
   tray::RenderSettings settings;
 };
 
@@ -45,6 +54,8 @@ std::string joined(const std::vector<std::string>& names) {
 }
 
 int run(const CliOptions& o) {
+  // First: a signal while the scene loads also stops the render (at its first pixel).
+  const std::atomic<bool>& stop = tray::installInterruptHandlers();
   tray::LoadOptions loadOptions;
   loadOptions.scene = o.scene;
   loadOptions.allowAnyPath = o.allowAnyPath;
@@ -64,29 +75,108 @@ int run(const CliOptions& o) {
   tray::RenderContext ctx{scene, *accel, *camera, o.settings, width, height};
   auto integrator = tray::makeIntegrator(ctx);
 
-  tray::Film film(width, height);
+  const tray::PixelRegion region = tray::parseRegion(o.region, width, height);
+  const tray::SampleRange range =
+      tray::parseSampleRange(o.sampleRange, integrator->samplesPerPixel(), o.settings.integrator);
+  const bool part = o.region.size() || o.sampleRange.size();
+  const std::string checkpointPath = tray::firstExr(o.outputs);
+  if ((o.checkpointSeconds > 0 || o.resume) && checkpointPath.empty())
+    throw tray::Error("--checkpoint and --resume need an .exr output (-o NAME.exr)");
+  const std::string job =
+      tray::jobSignature(o.settings, {o.scenePath, o.scene, o.camera, width, height, o.accel,
+                                      o.aovs + (o.aaHeatmap.empty() ? "" : "+samples")});
+
+  tray::Film film(region.width(), region.height());
+  tray::RenderState state;
+  double previousSeconds = 0;
+  if (o.resume) {
+    if (!std::filesystem::exists(checkpointPath)) {
+      std::fprintf(stderr, "warning: %s: no checkpoint to resume: rendering from the start\n",
+                   checkpointPath.c_str());
+    } else if (!tray::loadCheckpoint(checkpointPath, job, region, width, height, range, film,
+                                     state, previousSeconds)) {
+      if (!o.quiet)
+        std::printf("%s: already finished: nothing to resume\n", checkpointPath.c_str());
+      return 0;
+    }
+  }
   tray::ProgressBar progress;
   tray::RenderOptions renderOptions;
   renderOptions.threads = o.threads;
   renderOptions.aovs = tray::AovSet::parse(o.aovs);
   if (!o.aaHeatmap.empty()) renderOptions.aovs.push_back("samples");  // the heatmap's source
-  if (!o.quiet) renderOptions.onProgress = [&](double f) { progress.update(f); };
-  tray::RenderStats stats = tray::renderImage(*integrator, film, renderOptions);
-  progress.finish();
+  renderOptions.x0 = region.x0, renderOptions.y0 = region.y0;
+  renderOptions.sampleBegin = range.begin, renderOptions.sampleEnd = range.end;
+  renderOptions.stop = &stop;
+  int tiles = 0;  // --test-interrupt-after-tiles: a real SIGINT at a chosen point
+  renderOptions.onProgress = [&](double f) {
+    if (!o.quiet) progress.update(f);
+    if (++tiles == o.testInterruptAfterTiles) std::raise(SIGINT);
+  };
 
   tray::ImageOutputOptions out;
   out.halfFloat = !o.floatOutput;
   out.colorspace = o.outputColorspace;
   out.display = o.display;
   out.view = o.view;
-  out.stringMetadata = {{"tray:version", TRAY_VERSION},
+  out.fullWidth = width, out.fullHeight = height;
+  out.xOffset = region.x0, out.yOffset = region.y0;
+  out.matrixMetadata = {{"worldToCamera", tray::exrWorldToCamera(cam)},
+                        {"worldToNDC", tray::exrWorldToNdc(cam, width, height)}};
+  // Writes `film` with the metadata of this render; partial renders and parts carry their state.
+  auto write = [&](tray::Film& image, const tray::RenderState& now, double seconds,
+                   const std::vector<std::string>& paths) {
+    const size_t done = now.pixelsDone(), all = now.done.size();
+    tray::ImageOutputOptions w = out;
+    w.stringMetadata = {{"tray:version", TRAY_VERSION},
                         {"tray:integrator", o.settings.integrator},
                         {"tray:accelerator", o.accel},
                         {"tray:scene", o.scenePath},
-                        {"tray:seed", std::to_string(o.settings.seed)}};
-  out.floatMetadata = {{"tray:spp", float(o.settings.spp)}, {"tray:renderSeconds", float(stats.seconds)}};
-  for (const auto& path : o.outputs) tray::writeImage(film, path, out);
-  if (!o.aaHeatmap.empty()) tray::writeImage(tray::samplesHeatmap(film), o.aaHeatmap);
+                        {"tray:seed", std::to_string(o.settings.seed)},
+                        {"tray:filter", o.settings.filter},
+                        {"tray:pixelSampler", o.settings.pixelSampler},
+                        {"tray:status", done == all ? "complete" : "partial"},
+                        {"tray:job", job}};
+    w.floatMetadata = {{"tray:spp", float(o.settings.spp)},
+                       {"tray:renderSeconds", float(seconds)},
+                       {"tray:pixelsDone", float(done)},
+                       {"tray:pixelsTotal", float(all)},
+                       {"tray:sampleBegin", float(range.begin)},
+                       {"tray:sampleEnd", float(range.end)},
+                       {"tray:samplesPerPixel", float(integrator->samplesPerPixel())}};
+    if (integrator->samplesPerPixel() > 0)  // adaptive: the samples AOV counts them per pixel
+      w.floatMetadata.emplace_back("tray:samplesDone",
+                                   float(done) * float(range.end - range.begin));
+    if (part || done < all) tray::storeState(now, image);
+    for (const auto& path : paths) tray::writeImage(image, path, w);
+  };
+  const auto started = std::chrono::steady_clock::now();
+  if (o.checkpointSeconds > 0) {
+    renderOptions.checkpointSeconds = o.checkpointSeconds;
+    renderOptions.onCheckpoint = [&](const tray::Film& f, const tray::RenderState& s) {
+      tray::Film copy = f;
+      const double elapsed =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+      try {  // a failed checkpoint (full disk) costs the safety net, not the render
+        write(copy, s, previousSeconds + elapsed, {checkpointPath});
+      } catch (const tray::Error& e) {
+        std::fprintf(stderr, "warning: checkpoint not written: %s\n", e.what());
+      }
+    };
+  }
+  tray::RenderStats stats = tray::renderImage(*integrator, film, state, renderOptions);
+  progress.finish();
+
+  write(film, state, previousSeconds + stats.seconds, o.outputs);
+  if (!o.aaHeatmap.empty() && !stats.interrupted)
+    tray::writeImage(tray::samplesHeatmap(film), o.aaHeatmap);
+  if (stats.interrupted) {
+    const int sig = tray::interruptSignal();
+    std::fprintf(stderr, "tray-render: interrupted (%s): %zu of %zu pixels done, written to %s\n",
+                 sig == SIGTERM ? "SIGTERM" : "SIGINT", stats.pixelsDone, state.done.size(),
+                 o.outputs.front().c_str());
+    return 128 + (sig ? sig : SIGINT);
+  }
 
   if (!o.quiet) {
     std::printf("%s: %dx%d, %d spp, %s on %s: %.3f s, %.2f M rays, %.2f Mrays/s", o.scenePath.c_str(),
@@ -159,6 +249,15 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   app.add_flag("--debug-nan", o.settings.debugNan, "print where NaN/Inf samples arise");
+  app.add_option("--region", o.region,
+                 "render pixels x0..x1-1, y0..y1-1 only: an EXR data window of the full image");
+  app.add_option("--sample-range", o.sampleRange,
+                 "render samples a..b-1 of each pixel only: a part for tray-merge");
+  app.add_option("--checkpoint", o.checkpointSeconds,
+                 "every SECONDS, write the progress so far to the first .exr output")
+      ->check(CLI::NonNegativeNumber);
+  app.add_flag("--resume", o.resume, "continue the render saved in the first .exr output");
+  app.add_option("--test-interrupt-after-tiles", o.testInterruptAfterTiles)->group("");
   app.add_flag("-q,--quiet", o.quiet, "no progress bar or summary");
 
   try {

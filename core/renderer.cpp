@@ -5,46 +5,151 @@
 #include <tbb/task_arena.h>
 
 #include <chrono>
+#include <memory>
 #include <mutex>
 
 #include "core/aov.h"
+#include "core/error.h"
 
 namespace tray {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+void writeBeauty(Film& film, int x, int y, const PixelSums& s) {
+  const Color c = s.radiance();
+  float* px = film.pixel(Film::kBeauty, x, y);
+  px[0] = c.x, px[1] = c.y, px[2] = c.z, px[3] = s.coverage();
+}
+
+/// A copy of the pixels published as done (acquire: their film and sums writes are visible);
+/// the others read as zero, so the copy never races with workers writing them.
+void snapshot(const Film& film, const RenderState& state, const std::atomic<uint8_t>* done,
+              Film& outFilm, RenderState& outState) {
+  outFilm = Film(film.width(), film.height());
+  for (const FilmLayer& l : film.layers()) outFilm.addLayer(l.name, l.channels);
+  outState = RenderState::empty(state.sums.size());
+  for (size_t p = 0; p < state.sums.size(); ++p) {
+    const int x = int(p % film.width()), y = int(p / film.width());
+    const bool finished = done[p].load(std::memory_order_acquire);
+    for (size_t l = 0; l < film.layers().size(); ++l) {
+      float* out = outFilm.pixel(int(l), x, y);
+      const size_t nc = film.layers()[l].channels.size();
+      if (finished)
+        for (size_t c = 0; c < nc; ++c) out[c] = film.pixel(int(l), x, y)[c];
+    }
+    if (finished) outState.sums[p] = state.sums[p], outState.done[p] = 1;
+  }
+}
+
+}  // namespace
 
 RenderStats renderImage(const Integrator& integrator, Film& film, const RenderOptions& options) {
+  RenderState state;
+  return renderImage(integrator, film, state, options);
+}
+
+RenderStats renderImage(const Integrator& integrator, Film& film, RenderState& state,
+                        const RenderOptions& options) {
+  const RenderContext& ctx = integrator.context();
+  if (options.x0 < 0 || options.y0 < 0 || options.x0 + film.width() > ctx.width ||
+      options.y0 + film.height() > ctx.height)
+    throw Error("the region lies outside the image", Error::Kind::kRender);
+  const int spp = integrator.samplesPerPixel();
+  const int sampleEnd = options.sampleEnd > 0 ? options.sampleEnd : spp;
+  const bool ranged = options.sampleBegin != 0 || sampleEnd != spp;
+  if (ranged &&
+      (spp == 0 || options.sampleBegin < 0 || options.sampleBegin >= sampleEnd || sampleEnd > spp))
+    throw Error("sample range outside the integrator's samples", Error::Kind::kRender);
+
+  const size_t pixels = size_t(film.width()) * film.height();
+  if (state.done.empty()) state = RenderState::empty(pixels);
+  if (state.sums.size() != pixels || state.done.size() != pixels)
+    throw Error("the render state does not match the film", Error::Kind::kRender);
+  const AovSet aovs(film, options.aovs);
+  std::unique_ptr<std::atomic<uint8_t>[]> done(new std::atomic<uint8_t>[pixels]);
+  for (size_t p = 0; p < pixels; ++p) {
+    done[p].store(state.done[p], std::memory_order_relaxed);
+    if (state.done[p])
+      writeBeauty(film, int(p % film.width()), int(p / film.width()), state.sums[p]);
+  }
+
   const int ts = std::max(1, options.tileSize);
   const int tilesX = (film.width() + ts - 1) / ts, tilesY = (film.height() + ts - 1) / ts;
   const int tileCount = tilesX * tilesY;
   RenderStats result;
-  const AovSet aovs(film, options.aovs);
   std::mutex mutex;
   int tilesDone = 0;
-  auto start = std::chrono::steady_clock::now();
+  bool checkpointing = false;
+  const auto start = Clock::now();
+  auto lastCheckpoint = start;
+
+  auto stopped = [&] { return options.stop && options.stop->load(std::memory_order_relaxed); };
+  auto renderPixel = [&](int x, int y, RayStats& stats) {
+    const size_t p = size_t(y) * film.width() + x;
+    const int ix = x + options.x0, iy = y + options.y0;  // image coordinates
+    PixelSums sums;
+    PixelValue v;
+    if (spp > 0) {
+      v.samples =
+          integrator.accumulate(ix, iy, options.sampleBegin, sampleEnd, sums, v.primary, stats);
+    } else {  // the integrator places its own samples: its mean, weight 1 (exact in double)
+      v = integrator.renderPixel(ix, iy, stats);
+      sums.rgb[0] = v.radiance.x, sums.rgb[1] = v.radiance.y, sums.rgb[2] = v.radiance.z;
+      sums.alpha = v.alpha, sums.weight = 1;
+    }
+    state.sums[p] = sums;
+    writeBeauty(film, x, y, sums);
+    aovs.write(film, x, y, v);
+    done[p].store(1, std::memory_order_release);
+  };
 
   auto renderTile = [&](int tile) {
     RayStats local;
-    int x0 = (tile % tilesX) * ts, y0 = (tile / tilesX) * ts;
-    int x1 = std::min(x0 + ts, film.width()), y1 = std::min(y0 + ts, film.height());
+    const int x0 = (tile % tilesX) * ts, y0 = (tile / tilesX) * ts;
+    const int x1 = std::min(x0 + ts, film.width()), y1 = std::min(y0 + ts, film.height());
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x) {
-        PixelValue v = integrator.renderPixel(x, y, local);
-        float* px = film.pixel(Film::kBeauty, x, y);
-        px[0] = v.radiance.x, px[1] = v.radiance.y, px[2] = v.radiance.z, px[3] = v.alpha;
-        aovs.write(film, x, y, v);
+        if (stopped()) break;
+        if (!done[size_t(y) * film.width() + x].load(std::memory_order_relaxed))
+          renderPixel(x, y, local);
       }
-    std::lock_guard<std::mutex> lock(mutex);
-    result.rays += local;
-    ++tilesDone;
-    if (options.onProgress) options.onProgress(double(tilesDone) / tileCount);
+    bool checkpointNow = false;
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      result.rays += local;
+      ++tilesDone;
+      if (options.onProgress) options.onProgress(double(tilesDone) / tileCount);
+      const auto now = Clock::now();
+      if (options.onCheckpoint && options.checkpointSeconds > 0 && !checkpointing &&
+          std::chrono::duration<double>(now - lastCheckpoint).count() >=
+              options.checkpointSeconds &&
+          tilesDone < tileCount && !stopped()) {
+        checkpointing = checkpointNow = true;
+        lastCheckpoint = now;
+      }
+    }
+    if (checkpointNow) {  // outside the lock: other tiles go on while the file is written
+      Film copy(1, 1);
+      RenderState copyState;
+      snapshot(film, state, done.get(), copy, copyState);
+      options.onCheckpoint(copy, copyState);
+      std::lock_guard<std::mutex> lock(mutex);
+      checkpointing = false;
+    }
   };
 
   tbb::task_arena arena(options.threads > 0 ? options.threads : tbb::task_arena::automatic);
   arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<int>(0, tileCount, 1), [&](const tbb::blocked_range<int>& r) {
-      for (int t = r.begin(); t != r.end(); ++t) renderTile(t);
-    });
+    tbb::parallel_for(tbb::blocked_range<int>(0, tileCount, 1),
+                      [&](const tbb::blocked_range<int>& r) {
+                        for (int t = r.begin(); t != r.end(); ++t) renderTile(t);
+                      });
   });
-  result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  for (size_t p = 0; p < pixels; ++p) state.done[p] = done[p].load(std::memory_order_relaxed);
+  result.pixelsDone = state.pixelsDone();
+  result.interrupted = result.pixelsDone < pixels;
+  result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
   return result;
 }
 

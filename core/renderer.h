@@ -1,31 +1,54 @@
 #pragma once
+#include <atomic>
 #include <functional>
 #include <string>
 #include <vector>
 
 #include "core/film.h"
+#include "core/render_state.h"
 #include "integrators/integrator.h"
 
 namespace tray {
 
 struct RenderOptions {
-  int threads = 0;     ///< 0: all cores
+  int threads = 0;  ///< 0: all cores
   int tileSize = 16;
   /// AOV layers to fill beside the beauty (names from AovSet::known()).
   std::vector<std::string> aovs;
   /// Called (serialised) after each tile with the fraction done; for progress bars.
   std::function<void(double fraction)> onProgress;
+  /// Where the film lies in the integrator's image: film pixel (0, 0) is image pixel
+  /// (x0, y0) (region renders). Pixels keep their image coordinates, hence their samples.
+  int x0 = 0, y0 = 0;
+  /// Renders samples [sampleBegin, sampleEnd) of each pixel; sampleEnd 0: to the last. Other
+  /// than the whole range needs an integrator with samplesPerPixel() > 0.
+  int sampleBegin = 0, sampleEnd = 0;
+  /// When it becomes true (a signal handler), workers stop after their current pixel.
+  const std::atomic<bool>* stop = nullptr;
+  /// Every checkpointSeconds (> 0), onCheckpoint gets a copy of the film and state with the
+  /// pixels finished so far (called from a worker thread, one call at a time).
+  double checkpointSeconds = 0;
+  std::function<void(const Film&, const RenderState&)> onCheckpoint;
 };
 
 struct RenderStats {
   double seconds = 0;
   RayStats rays;
+  bool interrupted = false;  ///< stopped before every pixel was done
+  size_t pixelsDone = 0;
   double mraysPerSecond() const { return seconds > 0 ? rays.total() / seconds * 1e-6 : 0; }
 };
 
 /// Renders every pixel of the film with the integrator, tiles in parallel (TBB). Each pixel is
 /// computed from its own counter-based random numbers, so the image does not depend on the
 /// thread count or the order tiles finish in.
-RenderStats renderImage(const Integrator& integrator, Film& film, const RenderOptions& options = {});
+RenderStats renderImage(const Integrator& integrator, Film& film,
+                        const RenderOptions& options = {});
+
+/// The resumable form. `state` on entry: pixels already done (a checkpoint; empty: none),
+/// whose AOVs are in `film` and whose beauty is recomputed from their sums; on return: what
+/// is done now. Pixels are rendered whole, so a resumed render equals an uninterrupted one.
+RenderStats renderImage(const Integrator& integrator, Film& film, RenderState& state,
+                        const RenderOptions& options);
 
 }  // namespace tray

@@ -42,6 +42,9 @@ class Adaptive final : public Integrator {
     return inner_->Li(ray, sampler, stats, primary);
   }
 
+  /// Adaptive places its own samples: they cannot be split into sample ranges.
+  int samplesPerPixel() const override { return 0; }
+
   PixelValue renderPixel(int x, int y, RayStats& stats) const override {
     Accum acc;
     int minLevel = 0;

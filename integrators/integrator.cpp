@@ -9,40 +9,49 @@
 
 namespace tray {
 
-PixelValue Integrator::renderPixel(int x, int y, RayStats& stats) const {
+int Integrator::samplesPerPixel() const {
+  const RenderSettings& s = ctx_.settings;
+  const PixelSampler sampler(PixelSampler::parse(s.pixelSampler, s.spp), s.spp, 0.5f);
+  return sampler.count();
+}
+
+uint32_t Integrator::accumulate(int x, int y, int begin, int end, PixelSums& sums,
+                                PrimaryHit& first, RayStats& stats) const {
   const RenderSettings& s = ctx_.settings;
   const Filter filter = Filter::make(s.filter);
   const PixelSampler pixelSampler(PixelSampler::parse(s.pixelSampler, s.spp), s.spp, filter.radius());
   const uint32_t pixelIndex = uint32_t(y) * uint32_t(ctx_.width) + uint32_t(x);
   const float cx = x + 0.5f, cy = y + 0.5f;
-  // Filter-weighted average, normalised by the weight sum (pbrt-v4 8.8's weighted estimator):
-  // each pixel owns its samples, so tiles never share film writes. Doubles keep the mean
-  // accurate at very high sample counts.
-  double sum[3] = {0, 0, 0}, alpha = 0, weights = 0;
-  PixelValue out;
-  const int n = pixelSampler.count();
-  for (int i = 0; i < n; ++i) {
+  // Filter-weighted sums, normalised by the weight sum at the end (pbrt-v4 8.8's weighted
+  // estimator): each pixel owns its samples, so tiles never share film writes. Doubles keep the
+  // mean accurate at very high sample counts and let sums of sample ranges be combined.
+  end = std::min(end, pixelSampler.count());
+  for (int i = begin; i < end; ++i) {
     Sampler sampler(pixelIndex, uint32_t(i), s.seed);
     const Vec2 d = pixelSampler.offset(i, sampler.next2D());
     Ray ray = ctx_.camera.generateRay(cx + d.x, cy + d.y);
     ++stats.cameraRays;
     PrimaryHit primary;
-    PrimaryHit& seen = i == 0 ? out.primary : primary;
+    PrimaryHit& seen = i == begin ? first : primary;
     Color L = Li(ray, sampler, stats, &seen);
     if (!isFinite(L)) {
       ++stats.nanSamples;
       L = Color(0.0f);
     }
     const double w = filter.evaluate(d);
-    sum[0] += w * L.x, sum[1] += w * L.y, sum[2] += w * L.z;
-    alpha += seen.hit ? w : 0.0;
-    weights += w;
+    sums.rgb[0] += w * L.x, sums.rgb[1] += w * L.y, sums.rgb[2] += w * L.z;
+    sums.alpha += seen.hit ? w : 0.0;
+    sums.weight += w;
   }
-  if (weights != 0) {
-    out.radiance = Color(float(sum[0] / weights), float(sum[1] / weights), float(sum[2] / weights));
-    out.alpha = std::clamp(float(alpha / weights), 0.0f, 1.0f);  // Mitchell's lobes can overshoot
-  }
-  out.samples = uint32_t(n);
+  return uint32_t(std::max(0, end - begin));
+}
+
+PixelValue Integrator::renderPixel(int x, int y, RayStats& stats) const {
+  PixelSums sums;
+  PixelValue out;
+  out.samples = accumulate(x, y, 0, samplesPerPixel(), sums, out.primary, stats);
+  out.radiance = sums.radiance();
+  out.alpha = sums.coverage();
   return out;
 }
 

@@ -8,6 +8,7 @@
 #include "core/accelerator.h"
 #include "core/camera.h"
 #include "core/math.h"
+#include "core/pixel_sums.h"
 #include "core/sampler.h"
 #include "core/scene.h"
 
@@ -70,7 +71,8 @@ struct RenderContext {
 
 /// A light transport algorithm. Ray-based integrators implement Li; renderPixel's default
 /// averages settings.spp samples placed by the pixel sampler. Wrapping integrators (adaptive
-/// anti-aliasing) override renderPixel and call an inner integrator's Li.
+/// anti-aliasing) override renderPixel and call an inner integrator's Li (and report
+/// samplesPerPixel() == 0: their samples cannot be split into ranges).
 class Integrator {
  public:
   explicit Integrator(const RenderContext& ctx) : ctx_(ctx) {}
@@ -80,6 +82,14 @@ class Integrator {
   virtual Color Li(const Ray& ray, Sampler& sampler, RayStats& stats,
                    PrimaryHit* primary) const = 0;
   virtual PixelValue renderPixel(int x, int y, RayStats& stats) const;
+  /// Samples per pixel of renderPixel's estimator (the pixel sampler's count); 0 when the
+  /// integrator places its own samples (adaptive) and accumulate() does not apply.
+  virtual int samplesPerPixel() const;
+  /// Adds samples [begin, end) of pixel (x, y) to `sums`, each from its own counter-based
+  /// Sampler(pixel, sample, seed): sums over consecutive ranges add up to renderPixel's. Fills
+  /// `first` with what sample `begin` hit; returns the camera rays traced.
+  virtual uint32_t accumulate(int x, int y, int begin, int end, PixelSums& sums,
+                              PrimaryHit& first, RayStats& stats) const;
   const RenderContext& context() const { return ctx_; }
 
  protected:

@@ -28,9 +28,10 @@ class PathIntegrator final : public Integrator {
       throw Error("--clamp-indirect must be a finite value >= 0 (0 = off)");
   }
 
-  PixelValue renderPixel(int x, int y, RayStats& stats) const override {
+  uint32_t accumulate(int x, int y, int begin, int end, PixelSums& sums, PrimaryHit& first,
+                      RayStats& stats) const override {
     tlsPixelX = x, tlsPixelY = y;
-    return Integrator::renderPixel(x, y, stats);
+    return Integrator::accumulate(x, y, begin, end, sums, first, stats);
   }
 
   Color Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats,

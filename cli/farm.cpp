@@ -1,0 +1,150 @@
+#include "cli/farm.h"
+
+#include <algorithm>
+#include <cctype>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+#include <vector>
+
+#include "core/error.h"
+#include "io/image_input.h"
+
+namespace tray {
+namespace {
+
+/// "a,b,..." as exactly `count` integers, or empty.
+std::vector<int> parseInts(const std::string& text, size_t count) {
+  std::vector<int> v;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    size_t used = 0;
+    int value = 0;
+    try {
+      value = std::stoi(item, &used);
+    } catch (const std::exception&) {
+      return {};
+    }
+    if (used != item.size()) return {};
+    v.push_back(value);
+  }
+  return v.size() == count && text.back() != ',' ? v : std::vector<int>{};
+}
+
+std::atomic<bool> gStop{false};
+std::atomic<int> gSignal{0};
+static_assert(std::atomic<bool>::is_always_lock_free && std::atomic<int>::is_always_lock_free,
+              "signal handlers may only touch lock-free atomics");
+
+extern "C" void onInterrupt(int sig) {
+  int none = 0;
+  gSignal.compare_exchange_strong(none, sig);
+  gStop.store(true);
+  std::signal(sig, SIG_DFL);  // async-signal-safe; a second signal stops at once
+}
+
+}  // namespace
+
+std::string jobSignature(const RenderSettings& s, const JobFrame& f) {
+  char aa[64];
+  std::snprintf(aa, sizeof aa, "%.9g/%d/%d", s.aaThreshold, s.aaDepth, int(s.aaRobust));
+  char clamp[32];
+  std::snprintf(clamp, sizeof clamp, "%.9g", s.clampIndirect);
+  std::string job = "scene=" + std::filesystem::path(f.scenePath).filename().string();
+  job += " scene#=" + std::to_string(f.scene) + " camera=" + std::to_string(f.camera);
+  job += " size=" + std::to_string(f.width) + "x" + std::to_string(f.height);
+  job += " integrator=" + s.integrator + " inner=" + s.inner;
+  job += " spp=" + std::to_string(s.spp) + " seed=" + std::to_string(s.seed);
+  job += " depth=" + std::to_string(s.maxDepth) + " sampler=" + s.pixelSampler;
+  job += " filter=" + s.filter + " aa=" + aa + " clamp=" + clamp;
+  job += " accel=" + f.accelerator + " aov=" + f.aovs;
+  return job;
+}
+
+std::string firstExr(const std::vector<std::string>& outputs) {
+  for (const auto& p : outputs) {
+    std::string ext = std::filesystem::path(p).extension().string();
+    for (auto& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (ext == ".exr") return p;
+  }
+  return "";
+}
+
+PixelRegion parseRegion(const std::string& text, int width, int height) {
+  if (text.empty()) return {0, 0, width, height};
+  const std::vector<int> v = parseInts(text, 4);
+  const std::string size = std::to_string(width) + "x" + std::to_string(height);
+  if (v.empty())
+    throw Error("--region " + text + ": expected x0,y0,x1,y1 (pixels, x1 and y1 exclusive)");
+  PixelRegion r{v[0], v[1], v[2], v[3]};
+  if (r.x0 < 0 || r.y0 < 0 || r.x1 > width || r.y1 > height || r.x0 >= r.x1 || r.y0 >= r.y1)
+    throw Error("--region " + text + ": not a non-empty region of the " + size +
+                " image (0 <= x0 < x1 <= " + std::to_string(width) +
+                ", 0 <= y0 < y1 <= " + std::to_string(height) + ")");
+  return r;
+}
+
+SampleRange parseSampleRange(const std::string& text, int samplesPerPixel,
+                             const std::string& integrator) {
+  if (text.empty()) return {0, samplesPerPixel};
+  if (samplesPerPixel == 0)
+    throw Error("--sample-range: the " + integrator +
+                " integrator places its own samples in each pixel, so its renders cannot be split "
+                "by samples (split them with --region)");
+  const std::vector<int> v = parseInts(text, 2);
+  if (v.empty()) throw Error("--sample-range " + text + ": expected a,b (samples a..b-1)");
+  if (v[0] < 0 || v[0] >= v[1] || v[1] > samplesPerPixel)
+    throw Error("--sample-range " + text + ": expected 0 <= a < b <= " +
+                std::to_string(samplesPerPixel) + " (the samples per pixel)");
+  return {v[0], v[1]};
+}
+
+const std::atomic<bool>& installInterruptHandlers() {
+  std::signal(SIGINT, onInterrupt);
+  std::signal(SIGTERM, onInterrupt);
+  return gStop;
+}
+
+int interruptSignal() {
+  return gSignal.load();
+}
+
+bool loadCheckpoint(const std::string& path, const std::string& job, const PixelRegion& region,
+                    int width, int height, const SampleRange& range, Film& film, RenderState& state,
+                    double& previousSeconds) {
+  ExrImage image = readExr(path);
+  const ImageOutputOptions& o = image.options;
+  const std::string theirs = metadataString(o, "tray:job");
+  if (theirs != job)
+    throw Error(path + ": the checkpoint is of another render (its job: '" + theirs +
+                "'; this one: '" + job + "')");
+  if (o.fullWidth != width || o.fullHeight != height || o.xOffset != region.x0 ||
+      o.yOffset != region.y0 || image.film.width() != region.width() ||
+      image.film.height() != region.height())
+    throw Error(path + ": the checkpoint covers another region or image size");
+  if (metadataFloat(o, "tray:sampleBegin", -1) != float(range.begin) ||
+      metadataFloat(o, "tray:sampleEnd", -1) != float(range.end))
+    throw Error(path + ": the checkpoint renders another sample range");
+  // A finished full render keeps no state: a requeued job that already ended has nothing to do.
+  if (image.film.findLayer(kStateLayer) < 0 && metadataString(o, "tray:status") == "complete")
+    return false;
+  try {
+    state = loadState(image.film);
+  } catch (const Error& e) {
+    throw Error(path + ": " + e.what() + ": not a checkpoint");
+  }
+  previousSeconds = metadataFloat(o, "tray:renderSeconds", 0);
+  // The film without the state layer: it is written again only if the render stays partial.
+  film = Film(image.film.width(), image.film.height());
+  for (size_t l = 1; l < image.film.layers().size(); ++l) {
+    const FilmLayer& from = image.film.layers()[l];
+    if (from.name == kStateLayer) continue;
+    const int to = film.addLayer(from.name, from.channels);
+    std::copy(from.data.begin(), from.data.end(), film.pixel(to, 0, 0));
+  }
+  return true;
+}
+
+}  // namespace tray

@@ -1,0 +1,66 @@
+#pragma once
+// Farm rendering on the command line: regions, sample ranges, interruption, checkpoints and
+// resuming (docs/farm.md).
+#include <atomic>
+#include <string>
+#include <vector>
+
+#include "core/film.h"
+#include "core/render_state.h"
+#include "integrators/integrator.h"
+#include "io/image_output.h"
+
+namespace tray {
+
+/// Pixels x0 <= x < x1, y0 <= y < y1 of the full image.
+struct PixelRegion {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  int width() const { return x1 - x0; }
+  int height() const { return y1 - y0; }
+};
+
+/// Parses --region "x0,y0,x1,y1" (x1, y1 exclusive); empty: the whole width x height image.
+/// Throws tray::Error (usage) unless the region is non-empty and inside the image.
+PixelRegion parseRegion(const std::string& text, int width, int height);
+
+/// Samples begin <= i < end of every pixel.
+struct SampleRange {
+  int begin = 0, end = 0;
+};
+
+/// Parses --sample-range "a,b" (samples a..b-1); empty: all samplesPerPixel samples. Throws
+/// tray::Error (usage) for a range outside [0, samplesPerPixel) or an integrator that places its
+/// own samples (samplesPerPixel 0: adaptive).
+SampleRange parseSampleRange(const std::string& text, int samplesPerPixel,
+                             const std::string& integrator);
+
+/// What a job renders besides its RenderSettings.
+struct JobFrame {
+  std::string scenePath;
+  int scene = -1, camera = -1, width = 0, height = 0;
+  std::string accelerator, aovs;
+};
+
+/// Everything that decides the pixels of a render but its region and sample range (written as
+/// "tray:job"): checkpoints resume and parts merge only with their own job. The scene is named
+/// by its file name, so that machines may mount it at different paths.
+std::string jobSignature(const RenderSettings& settings, const JobFrame& frame);
+
+/// The first .exr of `outputs` (empty if none): where checkpoints go and --resume reads.
+std::string firstExr(const std::vector<std::string>& outputs);
+
+/// Installs SIGINT and SIGTERM handlers that set the returned flag and remember the signal;
+/// each restores the default action, so a second signal ends the process at once.
+const std::atomic<bool>& installInterruptHandlers();
+/// The first signal received (0: none); the exit code is 128 + it (130 SIGINT, 143 SIGTERM).
+int interruptSignal();
+
+/// Loads the checkpoint at `path` for resuming: its film (AOVs of the pixels done) and state.
+/// Returns false, loading nothing, when `path` is this render finished already. Throws
+/// tray::Error naming the file unless its "tray:job" is `job`, its data window is `region` of a
+/// width x height image and its sample range is `range`.
+bool loadCheckpoint(const std::string& path, const std::string& job, const PixelRegion& region,
+                    int width, int height, const SampleRange& range, Film& film, RenderState& state,
+                    double& previousSeconds);
+
+}  // namespace tray

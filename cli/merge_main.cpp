@@ -1,0 +1,36 @@
+// tray-merge: combines the parts of a farm render (tray-render --region / --sample-range) into
+// the image one machine would have rendered. Exit codes: 0 ok, 1 error writing, 2 bad parts.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "cli/part_merge.h"
+#include "core/error.h"
+#include "io/image_output.h"
+
+int main(int argc, char** argv) {
+  std::vector<std::string> parts;
+  std::string output;
+  CLI::App app{"tray-merge: combine region and sample-range parts of a TRay render"};
+  app.set_version_flag("--version", std::string("tray-merge ") + TRAY_VERSION);
+  app.add_option("parts", parts, "part EXRs written by tray-render --region / --sample-range")
+      ->required();
+  app.add_option("-o,--output", output, "the merged .exr")->required();
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  try {
+    tray::ExrImage merged = tray::mergeParts(parts);
+    tray::writeImage(merged.film, output, merged.options);
+    return 0;
+  } catch (const tray::Error& e) {
+    std::fprintf(stderr, "tray-merge: error: %s\n", e.what());
+    return e.kind() == tray::Error::Kind::kInput ? 2 : 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "tray-merge: error: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,18 @@
+#pragma once
+// tray-merge's work: parts of one render (regions, sample ranges, or both) into the image one
+// machine would have rendered (docs/farm.md).
+#include <string>
+#include <vector>
+
+#include "io/image_input.h"
+
+namespace tray {
+
+/// Combines the parts at `paths`: each pixel's filter-weighted sums are added over the parts
+/// covering it (in sample order), then divided as the renderer does, so region parts paste bit
+/// for bit and sample-range parts give the single-machine mean within float rounding. AOVs come
+/// from the part holding sample 0, except `samples`, which is summed. Throws tray::Error naming
+/// the part and the problem: another job, an unfinished part, overlapping or missing samples.
+ExrImage mergeParts(const std::vector<std::string>& paths);
+
+}  // namespace tray

@@ -1,0 +1,120 @@
+#pragma once
+// Running the real command-line tools from tests: exit status, stderr, child processes for
+// signals, and EXR files read back with OIIO (independently of TRay's own reader).
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+namespace tray::test {
+
+namespace fs = std::filesystem;
+
+/// A fresh, empty folder per test.
+inline fs::path tempFolder(const std::string& prefix) {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  fs::path dir = fs::path(::testing::TempDir()) / (prefix + "_" + info->name());
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+struct CliResult {
+  int exitCode = -1;
+  std::string err;
+};
+
+/// Runs `binary args` through the shell (args already quoted), stderr captured.
+inline CliResult runTool(const std::string& binary, const std::string& args, const fs::path& dir) {
+  const fs::path errFile = dir / "stderr.txt";
+  std::string cmd = "'";  // appended piecewise: GCC 12 warns falsely on "lit" + std::string&&
+  cmd += binary;
+  cmd += "' ";
+  cmd += args;
+  cmd += " 2> '";
+  cmd += errFile.string();
+  cmd += "'";
+  const int status = std::system(cmd.c_str());
+  std::ifstream f(errFile);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, {std::istreambuf_iterator<char>(f), {}}};
+}
+
+/// tray-render (quiet) or another tool with `args`.
+inline CliResult runCli(const std::string& binary, const std::string& args, const fs::path& dir) {
+  return runTool(binary, args + " -q", dir);
+}
+inline CliResult runMerge(const std::string& args, const fs::path& dir) {
+  return runTool(TRAY_MERGE_BIN, args, dir);
+}
+
+/// Starts tray-render with `args` (one argv entry each) as a child process, output silenced.
+inline pid_t spawnRender(const std::vector<std::string>& args) {
+  const pid_t pid = fork();
+  if (pid == 0) {
+    std::vector<char*> argv{const_cast<char*>(TRAY_RENDER_BIN)};
+    for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    freopen("/dev/null", "w", stdout);
+    freopen("/dev/null", "w", stderr);
+    execv(TRAY_RENDER_BIN, argv.data());
+    _exit(127);
+  }
+  return pid;
+}
+
+/// The exit code of a child (waits for it); -signal if a signal ended it.
+inline int waitExit(pid_t pid) {
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
+}
+
+/// An EXR read back whole: spec and every channel as float (half converts exactly).
+struct Exr {
+  OIIO::ImageSpec spec;
+  std::vector<float> pixels;  ///< interleaved, spec.nchannels per pixel
+  int channel(const std::string& name) const {
+    for (int c = 0; c < spec.nchannels; ++c)
+      if (spec.channelnames[c] == name) return c;
+    return -1;
+  }
+  float at(int x, int y, const std::string& name) const {
+    return pixels[(size_t(y) * spec.width + x) * spec.nchannels + channel(name)];
+  }
+};
+
+inline Exr readExrFile(const fs::path& path) {
+  Exr e;
+  auto in = OIIO::ImageInput::open(path.string());
+  EXPECT_TRUE(in) << path << ": " << OIIO::geterror();
+  if (!in) return e;
+  e.spec = in->spec();
+  e.pixels.resize(size_t(e.spec.width) * e.spec.height * e.spec.nchannels);
+  EXPECT_TRUE(in->read_image(0, 0, 0, e.spec.nchannels, OIIO::TypeDesc::FLOAT, e.pixels.data()));
+  return e;
+}
+
+/// Same channels, windows and pixel bits (memcmp: NaN-safe, -0 differs from +0).
+inline void expectSamePixels(const Exr& a, const Exr& b, const std::string& what) {
+  ASSERT_EQ(a.spec.channelnames, b.spec.channelnames) << what;
+  ASSERT_EQ(a.spec.width, b.spec.width) << what;
+  ASSERT_EQ(a.spec.height, b.spec.height) << what;
+  EXPECT_EQ(a.spec.x, b.spec.x) << what;
+  EXPECT_EQ(a.spec.full_width, b.spec.full_width) << what;
+  for (int c = 0; c < a.spec.nchannels; ++c)
+    EXPECT_EQ(a.spec.channelformat(c), b.spec.channelformat(c));
+  size_t differ = 0;
+  for (size_t i = 0; i < a.pixels.size(); ++i)
+    differ += std::memcmp(&a.pixels[i], &b.pixels[i], sizeof(float)) != 0;
+  EXPECT_EQ(differ, 0u) << what << ": " << differ << " of " << a.pixels.size() << " values differ";
+}
+
+}  // namespace tray::test

@@ -1,0 +1,307 @@
+// Farm rendering end to end through the real binaries: region and sample-range parts merged by
+// tray-merge against one full render, usage errors, interruption by a real SIGINT / SIGTERM,
+// checkpoints and --resume (docs/farm.md).
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <thread>
+
+#include "tests/cli/cli_run.h"
+
+namespace tray::test {
+namespace {
+
+const std::string kCornell = std::string(TRAY_SHARED_DIR) + "/reference/cornell-box.gltf";
+const std::string kWhitted = std::string(TRAY_SOURCE_DIR) + "/scenes/whitted.gltf";
+// Path tracing with every AOV, 8 jittered samples through a tent filter (overlapping support:
+// samples land outside their pixel, which regions must not change).
+const std::string kSmallJob =
+    "'" + kCornell + "' --integrator path --spp 8 --filter tent --aov all";
+const std::string kJob = kSmallJob + " --seed 7 --resolution 37x29";
+
+std::string out(const fs::path& dir, const std::string& name) {
+  return "-o '" + (dir / name).string() + "'";
+}
+
+TEST(Farm, FourRegionsMergeBitForBit) {
+  const fs::path dir = tempFolder("farm");
+  ASSERT_EQ(runCli(TRAY_RENDER_BIN, kJob + " " + out(dir, "full.exr"), dir).exitCode, 0);
+  // Uneven quadrants that cut through 16-pixel tiles.
+  const char* regions[] = {"0,0,13,11", "13,0,37,11", "0,11,13,29", "13,11,37,29"};
+  std::string parts;
+  for (int i = 0; i < 4; ++i) {
+    const std::string name = std::string("r") + char('0' + i) + ".exr";
+    CliResult r =
+        runCli(TRAY_RENDER_BIN, kJob + " --region " + regions[i] + " " + out(dir, name), dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    parts += " '" + (dir / name).string() + "'";
+  }
+  // A region part is the crop as a data window of the full display window.
+  const Exr r3 = readExrFile(dir / "r3.exr");
+  EXPECT_EQ(r3.spec.x, 13);
+  EXPECT_EQ(r3.spec.y, 11);
+  EXPECT_EQ(r3.spec.width, 24);
+  EXPECT_EQ(r3.spec.height, 18);
+  EXPECT_EQ(r3.spec.full_width, 37);
+  EXPECT_EQ(r3.spec.full_height, 29);
+  const Exr full = readExrFile(dir / "full.exr");
+  EXPECT_EQ(r3.at(0, 0, "R"), full.at(13, 11, "R"));
+
+  CliResult m = runMerge(parts + " " + out(dir, "merged.exr"), dir);
+  ASSERT_EQ(m.exitCode, 0) << m.err;
+  expectSamePixels(full, readExrFile(dir / "merged.exr"), "4 regions merged");
+}
+
+TEST(Farm, AdaptiveRegionsMergeBitForBit) {
+  // Robust adaptive sampling looks at the 8 tiles around each pixel's: across region borders too.
+  const fs::path dir = tempFolder("farm");
+  const std::string job =
+      "'" + kWhitted + "' --integrator adaptive --aa-robust --resolution 40x30 --aov samples";
+  ASSERT_EQ(runCli(TRAY_RENDER_BIN, job + " " + out(dir, "full.exr"), dir).exitCode, 0);
+  std::string parts;
+  for (const char* region : {"0,0,40,13", "0,13,40,30"}) {
+    const std::string name = std::string(region) + ".exr";
+    CliResult r = runCli(TRAY_RENDER_BIN, job + " --region " + region + " " + out(dir, name), dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    parts += " '" + (dir / name).string() + "'";
+  }
+  CliResult m = runMerge(parts + " " + out(dir, "merged.exr"), dir);
+  ASSERT_EQ(m.exitCode, 0) << m.err;
+  expectSamePixels(readExrFile(dir / "full.exr"), readExrFile(dir / "merged.exr"), "adaptive");
+}
+
+/// Largest difference in units in the last place between two floats of the same sign.
+int ulps(float a, float b) {
+  int32_t ia, ib;
+  std::memcpy(&ia, &a, 4);
+  std::memcpy(&ib, &b, 4);
+  return std::abs(ia - ib);
+}
+
+TEST(Farm, FourSampleRangesMergeWithinFloatRounding) {
+  const fs::path dir = tempFolder("farm");
+  const std::string job = kJob + " --float";
+  ASSERT_EQ(runCli(TRAY_RENDER_BIN, job + " " + out(dir, "full.exr"), dir).exitCode, 0);
+  const char* ranges[] = {"0,2", "2,3", "3,7", "7,8"};
+  std::string parts, reversed;
+  for (int i = 0; i < 4; ++i) {
+    const std::string name = std::string("s") + char('0' + i) + ".exr";
+    CliResult r =
+        runCli(TRAY_RENDER_BIN, job + " --sample-range " + ranges[i] + " " + out(dir, name), dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    parts += " '" + (dir / name).string() + "'";
+    reversed = " '" + (dir / name).string() + "'" + reversed;
+  }
+  ASSERT_EQ(runMerge(parts + " " + out(dir, "merged.exr"), dir).exitCode, 0);
+  ASSERT_EQ(runMerge(reversed + " " + out(dir, "reversed.exr"), dir).exitCode, 0);
+  const Exr full = readExrFile(dir / "full.exr"), merged = readExrFile(dir / "merged.exr");
+  // The argument order does not matter: parts are added in sample order.
+  expectSamePixels(merged, readExrFile(dir / "reversed.exr"), "merge order");
+  ASSERT_EQ(full.spec.channelnames, merged.spec.channelnames);
+  int worst = 0;
+  size_t exact = 0, values = 0;
+  for (int y = 0; y < full.spec.height; ++y)
+    for (int x = 0; x < full.spec.width; ++x)
+      for (const std::string& c : full.spec.channelnames) {
+        const float a = full.at(x, y, c), b = merged.at(x, y, c);
+        if (c == "R" || c == "G" || c == "B" || c == "A") {  // sums of parts: rounding differs
+          worst = std::max(worst, ulps(a, b));
+          exact += a == b, ++values;
+        } else {  // AOVs of sample 0, and the summed sample count
+          EXPECT_EQ(std::memcmp(&a, &b, 4), 0) << c << " at " << x << "," << y;
+        }
+      }
+  EXPECT_LE(worst, 1) << "beauty differs by more than float rounding";
+  EXPECT_GT(double(exact) / values, 0.99);
+  std::printf("sample-range merge: %zu of %zu beauty values bit-identical, worst %d ulp\n", exact,
+              values, worst);
+}
+
+TEST(Farm, MergeRefusesIncompleteOrForeignParts) {
+  const fs::path dir = tempFolder("farm");
+  const std::string job = kSmallJob + " --resolution 40x8";  // 3 tiles
+  for (const char* range : {"0,4", "4,8"})
+    ASSERT_EQ(
+        runCli(TRAY_RENDER_BIN,
+               job + " --sample-range " + range + " " + out(dir, std::string(range) + ".exr"), dir)
+            .exitCode,
+        0);
+  ASSERT_EQ(
+      runCli(TRAY_RENDER_BIN, job + " --seed 8 --sample-range 4,8 " + out(dir, "seed8.exr"), dir)
+          .exitCode,
+      0);
+  ASSERT_EQ(runCli(TRAY_RENDER_BIN, job + " " + out(dir, "full.exr"), dir).exitCode, 0);
+  ASSERT_EQ(runCli(TRAY_RENDER_BIN,
+                   job + " --threads 1 --test-interrupt-after-tiles 1 --sample-range 4,8 " +
+                       out(dir, "unfinished.exr"),
+                   dir)
+                .exitCode,
+            130);
+  const std::string a = "'" + (dir / "0,4.exr").string() + "'",
+                    b = "'" + (dir / "4,8.exr").string() + "'";
+  struct Case {
+    std::string parts, says;
+  } cases[] = {
+      {a, "a part is missing"},
+      {a + " " + b + " " + b, "renders too"},
+      {a + " '" + (dir / "seed8.exr").string() + "'", "another render"},
+      {"'" + (dir / "full.exr").string() + "'", "not a part"},
+      {a + " '" + (dir / "unfinished.exr").string() + "'", "unfinished part"},
+  };
+  for (const Case& c : cases) {
+    CliResult r = runMerge(c.parts + " " + out(dir, "m.exr"), dir);
+    EXPECT_EQ(r.exitCode, 2) << c.parts;
+    EXPECT_NE(r.err.find(c.says), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+  EXPECT_FALSE(fs::exists(dir / "m.exr"));
+}
+
+TEST(Farm, BadRegionsAndRangesAreUsageErrors) {
+  const fs::path dir = tempFolder("farm");
+  const std::string job = "'" + kWhitted + "' --resolution 32x24 ";
+  const std::string exr = out(dir, "x.exr");
+  for (const std::string& bad :
+       {"--region 0,0,33,24 " + exr, "--region 5,5,5,9 " + exr, "--region -1,0,4,4 " + exr,
+        "--region 1,2,3 " + exr, "--region a,b,c,d " + exr, "--sample-range 0,2 " + exr,
+        "--spp 4 --sample-range 3,2 " + exr, "--integrator adaptive --sample-range 0,1 " + exr,
+        "--checkpoint 5 " + out(dir, "x.png")}) {
+    CliResult r = runCli(TRAY_RENDER_BIN, job + bad, dir);
+    EXPECT_EQ(r.exitCode, 2) << bad;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << bad << ": " << r.err;
+  }
+  EXPECT_FALSE(fs::exists(dir / "x.exr"));
+  EXPECT_FALSE(fs::exists(dir / "x.png"));
+}
+
+/// An interrupted render (a real SIGINT raised after `tiles` tiles), resumed, equals the
+/// uninterrupted one bit for bit; the partial file marks its unfinished pixels.
+void interruptAndResume(const std::string& job, int tiles) {
+  const fs::path dir = tempFolder("farm");
+  ASSERT_EQ(runCli(TRAY_RENDER_BIN, job + " " + out(dir, "full.exr"), dir).exitCode, 0);
+  CliResult r = runCli(
+      TRAY_RENDER_BIN,
+      job + " --test-interrupt-after-tiles " + std::to_string(tiles) + " " + out(dir, "part.exr"),
+      dir);
+  ASSERT_EQ(r.exitCode, 130) << r.err;
+  const Exr partial = readExrFile(dir / "part.exr");
+  EXPECT_EQ(partial.spec.get_string_attribute("tray:status"), "partial");
+  const float done = partial.spec.get_float_attribute("tray:pixelsDone");
+  const int pixels = partial.spec.width * partial.spec.height;
+  EXPECT_GE(done, 1.0f);
+  EXPECT_LT(done, float(pixels));
+  const float perPixel = partial.spec.get_float_attribute("tray:sampleEnd") -
+                         partial.spec.get_float_attribute("tray:sampleBegin");
+  if (partial.spec.get_float_attribute("tray:samplesPerPixel") > 0) {
+    EXPECT_EQ(partial.spec.get_float_attribute("tray:samplesDone"), done * perPixel);
+  }
+  size_t marked = 0, alphaZero = 0;
+  for (int y = 0; y < partial.spec.height; ++y)
+    for (int x = 0; x < partial.spec.width; ++x)
+      if (partial.at(x, y, "tray.done") == 0) ++marked, alphaZero += partial.at(x, y, "A") == 0;
+  EXPECT_EQ(marked, size_t(pixels - done));
+  EXPECT_EQ(alphaZero, marked);
+
+  r = runCli(TRAY_RENDER_BIN, job + " --resume " + out(dir, "part.exr"), dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const Exr resumed = readExrFile(dir / "part.exr");
+  EXPECT_EQ(resumed.spec.get_string_attribute("tray:status"), "complete");
+  expectSamePixels(readExrFile(dir / "full.exr"), resumed, "resumed");
+  // Resuming what is finished changes nothing; resuming with no file renders from the start.
+  r = runCli(TRAY_RENDER_BIN, job + " --resume " + out(dir, "part.exr"), dir);
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  expectSamePixels(readExrFile(dir / "full.exr"), readExrFile(dir / "part.exr"), "resumed twice");
+  r = runCli(TRAY_RENDER_BIN, job + " --resume " + out(dir, "fresh.exr"), dir);
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.err.find("no checkpoint"), std::string::npos) << r.err;
+  expectSamePixels(readExrFile(dir / "full.exr"), readExrFile(dir / "fresh.exr"), "fresh");
+  // A checkpoint of another render is refused.
+  r = runCli(TRAY_RENDER_BIN, job + " --seed 99 --resume " + out(dir, "part.exr"), dir);
+  EXPECT_EQ(r.exitCode, 2);
+}
+
+TEST(Farm, InterruptedPathRenderResumesBitForBit) {
+  interruptAndResume(kJob, 2);
+}
+
+TEST(Farm, InterruptedRegionSampleRangeResumesBitForBit) {
+  interruptAndResume(kJob + " --region 3,4,35,27 --sample-range 2,6", 1);
+}
+
+TEST(Farm, InterruptedAdaptiveRenderResumesBitForBit) {
+  interruptAndResume("'" + kWhitted + "' --integrator adaptive --resolution 40x30 --aov samples",
+                     1);
+}
+
+/// Waits until `path` exists (a checkpoint was written) or the child exits.
+bool waitForFile(const fs::path& path, pid_t child) {
+  for (int i = 0; i < 30000; ++i) {
+    if (fs::exists(path)) return true;
+    int status;
+    if (waitpid(child, &status, WNOHANG) == child) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  return false;
+}
+
+/// Waits until the child catches SIGINT and SIGTERM (/proc/PID/status SigCgt), i.e. a signal
+/// now reaches tray-render's handler instead of killing it; false if it exits first.
+bool waitForHandlers(pid_t child) {
+  const uint64_t wanted = 1ull << (SIGINT - 1) | 1ull << (SIGTERM - 1);
+  for (int i = 0; i < 60000; ++i) {
+    std::ifstream status("/proc/" + std::to_string(child) + "/status");
+    std::string line;
+    while (std::getline(status, line))
+      if (line.rfind("SigCgt:", 0) == 0 &&
+          (std::stoull(line.substr(7), nullptr, 16) & wanted) == wanted)
+        return true;
+    int st;
+    if (waitpid(child, &st, WNOHANG) == child) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  return false;
+}
+
+TEST(Farm, RealSignalsExit130And143WithThePartialImage) {
+  for (int sig : {SIGINT, SIGTERM}) {
+    const fs::path dir = tempFolder("farm");
+    const fs::path image = dir / "long.exr";
+    // Far too long to finish (hours): it stops only because of the signal.
+    const pid_t child = spawnRender({kCornell, "--integrator", "path", "--resolution", "32x32",
+                                     "--spp", "1000000", "-q", "-o", image.string()});
+    ASSERT_TRUE(waitForHandlers(child)) << "tray-render exited before installing its handlers";
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));  // let it start rendering
+    kill(child, sig);
+    EXPECT_EQ(waitExit(child), 128 + sig);
+    const Exr partial = readExrFile(image);
+    EXPECT_EQ(partial.spec.get_string_attribute("tray:status"), "partial");
+    EXPECT_LT(partial.spec.get_float_attribute("tray:pixelsDone"), 32.0f * 32.0f);
+  }
+}
+
+TEST(Farm, CheckpointSurvivesSigkillAndResumesBitForBit) {
+  const fs::path dir = tempFolder("farm");
+  const std::string args[] = {kCornell, "--integrator", "path",  "--resolution", "48x48",
+                              "--spp",  "96",           "--aov", "depth,normal"};
+  std::string job;
+  for (const auto& a : args) job += "'" + a + "' ";
+  ASSERT_EQ(runCli(TRAY_RENDER_BIN, job + out(dir, "full.exr"), dir).exitCode, 0);
+  const fs::path image = dir / "crash.exr";
+  std::vector<std::string> argv(std::begin(args), std::end(args));
+  for (const char* a : {"--checkpoint", "0.01", "-q", "-o"}) argv.push_back(a);
+  argv.push_back(image.string());
+  const pid_t child = spawnRender(argv);
+  ASSERT_TRUE(waitForFile(image, child)) << "the render ended before its first checkpoint";
+  kill(child, SIGKILL);  // a machine that dies: only the last checkpoint is left
+  EXPECT_EQ(waitExit(child), -SIGKILL);
+  const Exr checkpoint = readExrFile(image);
+  EXPECT_EQ(checkpoint.spec.get_string_attribute("tray:status"), "partial");
+  CliResult r = runCli(TRAY_RENDER_BIN, job + "--resume -o '" + image.string() + "'", dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  expectSamePixels(readExrFile(dir / "full.exr"), readExrFile(image), "resumed after SIGKILL");
+}
+
+}  // namespace
+}  // namespace tray::test
