@@ -1,6 +1,7 @@
 // Path tracing throughput on the Cornell box (512x512, 64 spp, max depth 8), against raw
 // Embree traversal of incoherent rays measured in the same run on the same threads.
-// Usage: path_bench [scene.gltf] [threads]   (default: the shared Cornell box, 2 threads)
+// Usage: path_bench [scene.gltf] [threads] [size] [spp]
+//   (default: the shared Cornell box, 2 threads, 512, 64; smaller runs serve for profiling)
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -43,7 +44,7 @@ int main(int argc, char** argv) {
   std::string path =
       argc > 1 ? argv[1] : std::string(TRAY_SOURCE_DIR) + "/../shared/reference/cornell-box.gltf";
   int threads = argc > 2 ? std::atoi(argv[2]) : 2;
-  const int size = 512, spp = 64;
+  const int size = argc > 3 ? std::atoi(argv[3]) : 512, spp = argc > 4 ? std::atoi(argv[4]) : 64;
   Scene scene = loadGltf(path);
   auto camera = Camera::create(scene.cameras.at(0), size, size);
   auto accel = makeAccelerator("embree", scene);
