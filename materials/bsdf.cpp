@@ -149,6 +149,12 @@ float Bsdf::pdf(const Vec3& wo, const Vec3& wi) const {
   return pdfLocal(frame_.toLocal(wo), frame_.toLocal(wi));
 }
 
+Color Bsdf::eval(const Vec3& wo, const Vec3& wi, float& pdf) const {
+  const Vec3 woLocal = frame_.toLocal(wo), wiLocal = frame_.toLocal(wi);
+  pdf = pdfLocal(woLocal, wiLocal);
+  return evalLocal(woLocal, wiLocal);
+}
+
 BsdfSample Bsdf::sample(const Vec3& wo, float uc, Vec2 u) const {
   BsdfSample s = sampleLocal(frame_.toLocal(wo), uc, u);
   s.wi = frame_.toWorld(s.wi);

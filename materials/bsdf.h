@@ -26,6 +26,8 @@ class Bsdf {
   Bsdf(const Material& m, const Frame& frame, float eta);
   Color eval(const Vec3& wo, const Vec3& wi) const;
   float pdf(const Vec3& wo, const Vec3& wi) const;
+  /// eval and pdf together (next-event estimation needs both), with one change of frame.
+  Color eval(const Vec3& wo, const Vec3& wi, float& pdf) const;
   /// uc picks the lobe (and reflection vs refraction), u the direction. wi comes back in world
   /// space; an invalid sample has pdf 0.
   BsdfSample sample(const Vec3& wo, float uc, Vec2 u) const;
