@@ -77,7 +77,7 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats
   bool indirectEmission = false;  // ... precedes the vertex the traced ray left from
   auto add = [&](Color c, const char* what, bool indirect) {
     if (!isFinite(c)) reportNan(what, depth);
-    if (indirect && clampIndirect_ > 0) {
+    if (clampIndirect_ > 0 && indirect) {  // the constant first: a predictable branch
       const float peak = maxComponent(c);
       if (peak > clampIndirect_) c *= clampIndirect_ / peak;
     }
