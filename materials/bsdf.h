@@ -48,7 +48,7 @@ class Bsdf {
   };
   /// The one lobe with any weight, when there is only one (matte, pure metal, pure glass):
   /// sample, eval and pdf then skip the mixture's bookkeeping. Same values, fewer
-  /// instructions (about a third of the Cornell box's shading cost, bench/path_bench).
+  /// instructions (7% of the Cornell box render's, callgrind on bench/path_bench).
   enum class Only : uint8_t { kMixture, kMetal, kGlass, kDiffuse, kNothing };
   Probabilities probabilities(const Vec3& wo) const;
   float coatFresnel(const Vec3& wo) const;
