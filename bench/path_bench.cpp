@@ -1,6 +1,8 @@
 // Path tracing throughput on the Cornell box (512x512, 64 spp, max depth 8), against raw
 // Embree traversal of incoherent rays measured in the same run on the same threads.
-// Usage: path_bench [scene.gltf] [threads]   (default: the shared Cornell box, 2 threads)
+// Usage: path_bench [scene.gltf] [threads] [size] [spp]
+//   (default: the shared Cornell box, 2 threads, 512, 64; smaller runs serve for profiling)
+#include <sys/resource.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -15,6 +17,15 @@
 #include "io/gltf_loader.h"
 
 using namespace tray;
+
+/// CPU seconds used by this process so far, all threads: on a machine shared with other work
+/// the wall-clock time depends on the load, the CPU time much less.
+double cpuSeconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+         1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
 
 /// Closest-hit queries per second for rays with random origins inside the scene bounds and
 /// uniformly random directions: the incoherent workload a path tracer's bounces produce.
@@ -43,7 +54,7 @@ int main(int argc, char** argv) {
   std::string path =
       argc > 1 ? argv[1] : std::string(TRAY_SOURCE_DIR) + "/../shared/reference/cornell-box.gltf";
   int threads = argc > 2 ? std::atoi(argv[2]) : 2;
-  const int size = 512, spp = 64;
+  const int size = argc > 3 ? std::atoi(argv[3]) : 512, spp = argc > 4 ? std::atoi(argv[4]) : 64;
   Scene scene = loadGltf(path);
   auto camera = Camera::create(scene.cameras.at(0), size, size);
   auto accel = makeAccelerator("embree", scene);
@@ -56,13 +67,19 @@ int main(int argc, char** argv) {
   Film film(size, size);
   RenderOptions options;
   options.threads = threads;
+  const double cpuStart = cpuSeconds();
   RenderStats stats = renderImage(*integrator, film, options);
+  const double cpu = cpuSeconds() - cpuStart;
   double samples = double(size) * size * spp;
   double raw = rawTraversalMrays(*accel, scene.bounds(), threads);
   std::printf("path tracing %s: %dx%d, %d spp, max depth 8, %d threads\n", path.c_str(), size, size,
               spp, threads);
   std::printf("  time            %.2f s\n", stats.seconds);
   std::printf("  Msamples/s      %.3f\n", samples / stats.seconds * 1e-6);
+  std::printf(
+      "  CPU time        %.2f s: %.3f Msamples per CPU-second (x %d threads = %.3f "
+      "Msamples/s on idle cores)\n",
+      cpu, samples / cpu * 1e-6, threads, samples / cpu * 1e-6 * threads);
   std::printf("  Mrays/s         %.2f (camera %.1fM, bounce %.1fM, shadow %.1fM)\n",
               stats.mraysPerSecond(), stats.rays.cameraRays * 1e-6, stats.rays.secondaryRays * 1e-6,
               stats.rays.shadowRays * 1e-6);

@@ -81,7 +81,7 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats
   bool indirectEmission = false;  // ... precedes the vertex the traced ray left from
   auto add = [&](Color c, const char* what, bool indirect) {
     if (!isFinite(c)) reportNan(what, depth);
-    if (indirect && clampIndirect_ > 0) {
+    if (clampIndirect_ > 0 && indirect) {  // the constant first: a predictable branch
       const float peak = maxComponent(c);
       if (peak > clampIndirect_) c *= clampIndirect_ / peak;
     }
@@ -150,12 +150,13 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats
       float uLight = sampler.next1D();
       LightSample ls = lights_.sample(s.p, n, bsdf.transmits(), uLight, sampler.next2D());
       if (ls.valid() && !isBlack(ls.L)) {
-        Color f = bsdf.eval(wo, ls.wi) * std::fabs(dot(ls.wi, n));
+        float bsdfPdf;
+        Color f = bsdf.eval(wo, ls.wi, bsdfPdf) * std::fabs(dot(ls.wi, n));
         if (!isBlack(f)) {
           Ray shadow = ls.infinite ? spawnRay(s.p, s.ng, ls.wi) : spawnRayTo(s.p, s.ng, ls.p);
           ++stats.shadowRays;
           if (!ctx_.accel.occluded(shadow)) {
-            float w = ls.delta ? 1.0f : powerHeuristic(ls.pdf, bsdf.pdf(wo, ls.wi));
+            float w = ls.delta ? 1.0f : powerHeuristic(ls.pdf, bsdfPdf);
             add(beta * f * ls.L * (w / ls.pdf), "light sample", indirectNee);
           }
         }

@@ -68,6 +68,8 @@ TEST(PathCornell, MatchesMitsubaReferenceAndConvergesAsMonteCarlo) {
   for (int c = 0; c < 3; ++c) {
     double m = 0, r = 0;
     for (size_t i = c; i < ref.rgb.size(); i += 3) m += at256.rgb[i], r += ref.rgb[i];
+    std::printf("Cornell channel %d mean at 256 spp %.5f, reference %.5f\n", c, m / (kSize * kSize),
+                r / (kSize * kSize));
     EXPECT_NEAR(m / r, 1.0, 0.005)
         << "channel " << c << ": " << m / (kSize * kSize) << " vs " << r / (kSize * kSize);
   }

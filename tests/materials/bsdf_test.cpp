@@ -84,6 +84,29 @@ TEST_P(BsdfLobes, SampleAgreesWithEvalAndPdf) {
   }
 }
 
+TEST_P(BsdfLobes, WorldSpaceQueriesMatchTheLocalFrame) {
+  // The world-space entry points (and next-event estimation's eval-with-pdf) change frame
+  // correctly: a tilted shading frame gives the local answers of the rotated directions.
+  const Case c = GetParam();
+  const Frame frame = Frame::fromNormal(normalize(Vec3(0.3f, -0.5f, 0.8f)));
+  const Bsdf bsdf(materialOf(c, Color(0.8f, 0.5f, 0.3f)), frame, c.eta);
+  for (float angle : kAngles) {
+    const Vec3 wo = direction(angle), woWorld = frame.toWorld(wo);
+    for (int i = 0; i < 200; ++i) {
+      const Vec3 wi = direction(2.0f + i * 0.88f, i * 2.39996f), wiWorld = frame.toWorld(wi);
+      float pdf = -1;
+      const Color f = bsdf.eval(woWorld, wiWorld, pdf), fLocal = bsdf.evalLocal(wo, wi);
+      const float pdfLocal = bsdf.pdfLocal(wo, wi);
+      EXPECT_NEAR(pdf, pdfLocal, 1e-3f * pdfLocal + 1e-5f) << c.name;
+      EXPECT_NEAR(bsdf.pdf(woWorld, wiWorld), pdfLocal, 1e-3f * pdfLocal + 1e-5f) << c.name;
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_NEAR(f[k], fLocal[k], 1e-3f * fLocal[k] + 1e-5f) << c.name;
+        EXPECT_NEAR(bsdf.eval(woWorld, wiWorld)[k], fLocal[k], 1e-3f * fLocal[k] + 1e-5f);
+      }
+    }
+  }
+}
+
 TEST_P(BsdfLobes, ReflectsAtMostTheEnergyItReceives) {
   // White furnace for one scattering: E[f |cos| / pdf] <= 1 for a white material. Refraction
   // into a denser medium carries 1/eta^2 radiance scaling, so it is measured without it.

@@ -1,0 +1,99 @@
+// Light sampling against closed forms: the irradiance that light samples estimate from
+// emissive triangles equals Lambert's polygon formula, the sampled pdf is the one pdf() gives
+// for MIS, lights are chosen in proportion to power, and emitters are one-sided.
+#include "lights/light_set.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/sampler.h"
+#include "tests/scene_builder.h"
+
+namespace tray {
+namespace {
+
+using namespace tray::test;
+
+/// One emissive triangle (counter-clockwise seen from below: it faces -y) at height 2.
+uint32_t addTriangleLight(Scene& s, const Vec3& a, const Vec3& b, const Vec3& c, Color Le,
+                          bool twoSided = false) {
+  Material m = diffuse(Color(0.0f));
+  m.emissive = Le;
+  m.doubleSided = twoSided;
+  TriangleMesh mesh;
+  mesh.positions = {a, b, c};
+  mesh.indices = {0, 1, 2};
+  mesh.material = addMaterial(s, m);
+  return addMeshInstance(s, addMesh(s, mesh), Mat4::identity());
+}
+
+/// Irradiance at x (normal n) from a polygon of unit radiance, all of it above x's horizon:
+/// Lambert's formula E = 1/2 sum_i angle(u_i, u_i+1) n . unit(u_i x u_i+1), in double.
+double polygonIrradiance(const Vec3& x, const Vec3& n, const std::vector<Vec3>& poly) {
+  double sum = 0;
+  for (size_t i = 0; i < poly.size(); ++i) {
+    double u[3], v[3];
+    const Vec3 &a = poly[i], &b = poly[(i + 1) % poly.size()];
+    for (int k = 0; k < 3; ++k) u[k] = a[k] - x[k], v[k] = b[k] - x[k];
+    double lu = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
+    double lv = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    double c[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    double lc = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+    double angle = std::acos((u[0] * v[0] + u[1] * v[1] + u[2] * v[2]) / (lu * lv));
+    sum += 0.5 * angle * (n.x * c[0] + n.y * c[1] + n.z * c[2]) / lc;
+  }
+  return std::fabs(sum);
+}
+
+TEST(LightSet, TriangleSamplesEstimateLambertsIrradianceWithTheirOwnPdf) {
+  // Two triangles of radiance 1 and 3 facing down onto a receiver at the origin. The light
+  // sample estimator sum L cos / pdf must give the sum of both closed forms: that checks the
+  // solid-angle pdf, the choice by power (its pmf is part of pdf) and pdf() for MIS.
+  Scene s;
+  const std::vector<Vec3> left = {{-2, 2, -1}, {-1, 2, -1}, {-0.5f, 2, 1}};
+  const std::vector<Vec3> right = {{0.5f, 2, -0.5f}, {1, 2, -1}, {1.5f, 2, 0.5f}};
+  addTriangleLight(s, left[0], left[1], left[2], Color(1.0f));
+  addTriangleLight(s, right[0], right[1], right[2], Color(3.0f));
+  s.finalize();
+  const LightSet lights(s);
+  ASSERT_EQ(lights.size(), 2u);
+  ASSERT_EQ(lights.triangleCount(), 2u);
+
+  const Vec3 x(0.1f, 0, 0.2f), n(0, 1, 0);
+  const double expected = polygonIrradiance(x, n, left) + 3 * polygonIrradiance(x, n, right);
+  double sum = 0;
+  int counts[2] = {0, 0};
+  const int samples = 200000;
+  for (int i = 0; i < samples; ++i) {
+    Sampler u(0, uint32_t(i), 5);
+    const float uLight = u.next1D();
+    LightSample ls = lights.sample(x, n, false, uLight, u.next2D());
+    ASSERT_TRUE(ls.valid());
+    const int light = ls.p.x < 0 ? 0 : 1;
+    ++counts[light];
+    EXPECT_NEAR(lights.pdf(light, x, ls.p), ls.pdf, 1e-4f * ls.pdf);
+    sum += ls.L.x * std::max(0.0f, dot(n, ls.wi)) / ls.pdf;
+  }
+  EXPECT_NEAR(sum / samples, expected, 0.01 * expected);
+  // Power = radiance x area x pi: the pick frequencies follow it.
+  const double areaL = 0.5 * length(cross(left[1] - left[0], left[2] - left[0]));
+  const double areaR = 0.5 * length(cross(right[1] - right[0], right[2] - right[0]));
+  EXPECT_NEAR(counts[1] / double(samples), 3 * areaR / (areaL + 3 * areaR), 0.01);
+}
+
+TEST(LightSet, EmittersAreOneSidedUnlessDoubleSided) {
+  for (bool twoSided : {false, true}) {
+    Scene s;
+    addTriangleLight(s, {-1, 2, -1}, {1, 2, -1}, {0, 2, 1}, Color(1.0f), twoSided);
+    s.finalize();
+    const LightSet lights(s);
+    const Vec3 below(0, 0, 0), above(0, 4, 0);
+    EXPECT_TRUE(lights.sample(below, {0, 1, 0}, false, 0.3f, {0.4f, 0.6f}).valid());
+    EXPECT_EQ(lights.sample(above, {0, -1, 0}, false, 0.3f, {0.4f, 0.6f}).valid(), twoSided)
+        << "doubleSided " << twoSided;
+  }
+}
+
+}  // namespace
+}  // namespace tray
