@@ -9,7 +9,7 @@
 
 namespace tray {
 
-PixelValue Integrator::renderPixel(int x, int y, RayStats& stats) const {
+PixelValue Integrator::renderPixel(int x, int y, RayStats& stats, IdCoverage* coverage) const {
   const RenderSettings& s = ctx_.settings;
   const Filter filter = Filter::make(s.filter);
   const PixelSampler pixelSampler(PixelSampler::parse(s.pixelSampler, s.spp), s.spp, filter.radius());
@@ -37,6 +37,7 @@ PixelValue Integrator::renderPixel(int x, int y, RayStats& stats) const {
     sum[0] += w * L.x, sum[1] += w * L.y, sum[2] += w * L.z;
     alpha += seen.hit ? w : 0.0;
     weights += w;
+    if (coverage) coverage->add(seen.hit ? seen.objectId : -1, seen.hit ? seen.materialId : -1, w);
   }
   if (weights != 0) {
     out.radiance = Color(float(sum[0] / weights), float(sum[1] / weights), float(sum[2] / weights));

@@ -7,6 +7,7 @@
 
 #include "core/accelerator.h"
 #include "core/camera.h"
+#include "core/id_coverage.h"
 #include "core/math.h"
 #include "core/sampler.h"
 #include "core/scene.h"
@@ -79,7 +80,10 @@ class Integrator {
   /// first surface hit.
   virtual Color Li(const Ray& ray, Sampler& sampler, RayStats& stats,
                    PrimaryHit* primary) const = 0;
-  virtual PixelValue renderPixel(int x, int y, RayStats& stats) const;
+  /// One pixel's value. `coverage`, when not null (Cryptomatte), receives every camera sample's
+  /// object and material ids with the weight the sample has in the pixel.
+  virtual PixelValue renderPixel(int x, int y, RayStats& stats,
+                                 IdCoverage* coverage = nullptr) const;
   const RenderContext& context() const { return ctx_; }
 
  protected:

@@ -26,9 +26,9 @@ class PathIntegrator final : public Integrator {
       throw Error("--clamp-indirect must be a finite value >= 0 (0 = off)");
   }
 
-  PixelValue renderPixel(int x, int y, RayStats& stats) const override {
+  PixelValue renderPixel(int x, int y, RayStats& stats, IdCoverage* coverage) const override {
     tlsPixelX = x, tlsPixelY = y;
-    return Integrator::renderPixel(x, y, stats);
+    return Integrator::renderPixel(x, y, stats, coverage);
   }
 
   Color Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats,
