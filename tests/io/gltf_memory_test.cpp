@@ -61,6 +61,38 @@ TEST(GltfMemory, EmptyInputIsRefused) {
   EXPECT_THROW(loadGltfFromMemory(nullptr, 0, "empty"), Error);
 }
 
+/// One triangle mesh of `primitives` primitives, placed by `nodes` nodes.
+std::string instancedScene(int primitives, int nodes) {
+  std::string prims, nodeList, roots;
+  for (int i = 0; i < primitives; ++i)
+    prims += std::string(i ? "," : "") + "{\"attributes\":{\"POSITION\":0}}";
+  for (int i = 0; i < nodes; ++i) {
+    nodeList += std::string(i ? "," : "") + "{\"mesh\":0}";
+    roots += std::string(i ? "," : "") + std::to_string(i);
+  }
+  return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[)" + roots +
+         R"(]}],"nodes":[)" + nodeList + R"(],"meshes":[{"primitives":[)" + prims +
+         R"(]}],"accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3",)"
+         R"("min":[0,0,0],"max":[1,1,0]}],"bufferViews":[{"buffer":0,"byteLength":36}],)"
+         R"("buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,)"
+         R"(AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}]})";
+}
+
+TEST(GltfMemory, PlacedObjectsAreCapped) {
+  // 1000 x 1000 = 1e6 instances load; one node more passes the cap of 1e6 placed objects.
+  const std::string ok = instancedScene(1000, 1000), tooMany = instancedScene(1000, 1001);
+  const auto* okBytes = reinterpret_cast<const unsigned char*>(ok.data());
+  EXPECT_EQ(loadGltfFromMemory(okBytes, ok.size(), "ok.gltf").primitives.size(), 1000000u);
+  try {
+    loadGltfFromMemory(reinterpret_cast<const unsigned char*>(tooMany.data()), tooMany.size(),
+                       "many.gltf");
+    FAIL() << "1001000 placed objects loaded";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("more than 1000000 objects"), std::string::npos)
+        << e.what();
+  }
+}
+
 /// Every input the fuzzer ever crashed on (docs/fuzzing.md): refused or loaded, nothing else.
 TEST(GltfMemory, FuzzerReproducersAreHandled) {
   const fs::path dir = fs::path(TRAY_SOURCE_DIR) / "fuzz" / "regressions";
