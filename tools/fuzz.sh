@@ -7,7 +7,8 @@ set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 seconds=${1:-60}
 shift $(($# < 1 ? $# : 1))
-TRAY_EXTRA_PACKAGES="clang libclang-rt-14-dev ${TRAY_EXTRA_PACKAGES:-}" BUILD_DIR=build-fuzz \
-  TRAY_CMAKE_ARGS="-DCMAKE_CXX_COMPILER=clang++ -DTRAY_BUILD_FUZZ=ON \
+# CXX picks clang when build-fuzz/ is first configured (later runs keep the cached compiler).
+CXX=clang++ TRAY_EXTRA_PACKAGES="clang libclang-rt-14-dev ${TRAY_EXTRA_PACKAGES:-}" BUILD_DIR=build-fuzz \
+  TRAY_CMAKE_ARGS="-DTRAY_BUILD_FUZZ=ON \
     -DTRAY_BUILD_TESTS=OFF -DTRAY_BUILD_BENCH=OFF ${TRAY_CMAKE_ARGS:-}" tools/setup.sh
 exec fuzz/run.sh build-fuzz/gltf_loader_fuzz build-fuzz/fuzz-work "$seconds" "$@"
