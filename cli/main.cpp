@@ -39,6 +39,7 @@ struct CliOptions {
   bool allowAnyPath = false;
   bool quiet = false;
   std::string aovs;
+  int cryptomatteRanks = 6;
   std::string aaHeatmap;
   std::string region, sampleRange;
   double checkpointSeconds = 0;
@@ -104,6 +105,7 @@ int run(const CliOptions& o) {
   tray::RenderOptions renderOptions;
   renderOptions.threads = o.threads;
   renderOptions.aovs = tray::AovSet::parse(o.aovs);
+  renderOptions.cryptomatteRanks = o.cryptomatteRanks;
   if (!o.aaHeatmap.empty()) renderOptions.aovs.push_back("samples");  // the heatmap's source
   renderOptions.x0 = region.x0, renderOptions.y0 = region.y0;
   renderOptions.sampleBegin = range.begin, renderOptions.sampleEnd = range.end;
@@ -243,7 +245,12 @@ int main(int argc, char** argv) {
   app.add_option("--view", o.view, "OCIO view for PNG/JPG output (default: the display's first)");
   app.add_flag("--allow-any-path", o.allowAnyPath, "let scene URIs leave the scene's folder");
   app.add_option("--aov", o.aovs,
-                 "extra EXR layers: comma-separated from " + joined(tray::AovSet::known()) + ", or all");
+                 "extra EXR layers: comma-separated from " + joined(tray::AovSet::known()) +
+                     ", cryptomatte (= crypto_object,crypto_material), or all");
+  app.add_option("--cryptomatte-ranks", o.cryptomatteRanks,
+                 "Cryptomatte: ids kept per pixel and type (2 per EXR layer)")
+      ->check(CLI::Range(1, 32))
+      ->capture_default_str();
   app.add_option("--clamp-indirect", o.settings.clampIndirect,
                  "path: clamp each indirect contribution to this value (fireflies; biased; 0 = off)")
       ->check(CLI::NonNegativeNumber)

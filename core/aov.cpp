@@ -33,6 +33,8 @@ const std::vector<std::string>& AovSet::known() {
   static const std::vector<std::string> names = [] {
     std::vector<std::string> n;
     for (const auto& s : specs()) n.push_back(s.name);
+    n.push_back("crypto_object");  // core/cryptomatte.h
+    n.push_back("crypto_material");
     return n;
   }();
   return names;
@@ -45,12 +47,17 @@ std::vector<std::string> AovSet::parse(const std::string& list) {
   std::string item;
   while (std::getline(ss, item, ',')) {
     if (item.empty()) continue;
+    if (item == "cryptomatte") {
+      out.push_back("crypto_object");
+      out.push_back("crypto_material");
+      continue;
+    }
     bool ok = false;
     for (const auto& k : known()) ok = ok || k == item;
     if (!ok) {
       std::string names;
       for (const auto& k : known()) names += (names.empty() ? "" : ", ") + k;
-      throw Error("--aov: unknown AOV '" + item + "' (known: " + names + ", all)");
+      throw Error("--aov: unknown AOV '" + item + "' (known: " + names + ", cryptomatte, all)");
     }
     out.push_back(item);
   }

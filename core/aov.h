@@ -11,9 +11,12 @@ namespace tray {
 /// first camera hit. Channel names follow compositing conventions (docs/aovs.md):
 /// depth -> Z, normal -> N.X/Y/Z, position -> P.X/Y/Z, albedo -> albedo.R/G/B,
 /// objectid -> objectid.id, materialid -> materialid.id, samples -> samples.count.
+/// crypto_object and crypto_material (both: "cryptomatte") are parsed here and filled by
+/// core/cryptomatte.h from all of a pixel's samples.
 class AovSet {
  public:
-  /// Parses "depth,normal,..." or "all"; throws tray::Error naming an unknown AOV.
+  /// Parses "depth,normal,..." or "all"; "cryptomatte" stands for crypto_object,crypto_material.
+  /// Throws tray::Error naming an unknown AOV.
   static std::vector<std::string> parse(const std::string& list);
   static const std::vector<std::string>& known();
   /// Adds the layers for `names` to the film.

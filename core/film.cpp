@@ -17,6 +17,15 @@ int Film::addLayer(const std::string& name, const std::vector<std::string>& chan
   return int(layers_.size()) - 1;
 }
 
+void Film::setMetadata(const std::string& key, const std::string& value) {
+  for (auto& [k, v] : metadata_)
+    if (k == key) {
+      v = value;
+      return;
+    }
+  metadata_.emplace_back(key, value);
+}
+
 int Film::findLayer(const std::string& name) const {
   for (size_t i = 0; i < layers_.size(); ++i)
     if (layers_[i].name == name) return int(i);

@@ -1,5 +1,6 @@
 #pragma once
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/error.h"
@@ -34,11 +35,16 @@ class Film {
     return &l.data[(size_t(y) * width_ + x) * l.channels.size()];
   }
   const std::vector<FilmLayer>& layers() const { return layers_; }
+  /// Header attributes that describe layers (Cryptomatte's manifest); written with EXR output.
+  /// Setting a key again replaces its value.
+  void setMetadata(const std::string& key, const std::string& value);
+  const std::vector<std::pair<std::string, std::string>>& metadata() const { return metadata_; }
   static constexpr int kBeauty = 0;
 
  private:
   int width_, height_;
   std::vector<FilmLayer> layers_;
+  std::vector<std::pair<std::string, std::string>> metadata_;
 };
 
 }  // namespace tray

@@ -9,6 +9,7 @@
 #include <mutex>
 
 #include "core/aov.h"
+#include "core/cryptomatte.h"
 #include "core/error.h"
 
 namespace tray {
@@ -28,6 +29,7 @@ void snapshot(const Film& film, const RenderState& state, const std::atomic<uint
               Film& outFilm, RenderState& outState) {
   outFilm = Film(film.width(), film.height());
   for (const FilmLayer& l : film.layers()) outFilm.addLayer(l.name, l.channels);
+  for (const auto& [key, value] : film.metadata()) outFilm.setMetadata(key, value);
   outState = RenderState::empty(state.sums.size());
   for (size_t p = 0; p < state.sums.size(); ++p) {
     const int x = int(p % film.width()), y = int(p / film.width());
@@ -78,6 +80,7 @@ RenderStats renderImage(const Integrator& integrator, Film& film, RenderState& s
   const int tilesX = (film.width() + ts - 1) / ts, tilesY = (film.height() + ts - 1) / ts;
   const int tileCount = tilesX * tilesY;
   RenderStats result;
+  const Cryptomatte crypto(film, ctx.scene, options.aovs, options.cryptomatteRanks);
   std::mutex mutex;
   int tilesDone = 0;
   bool checkpointing = false;
@@ -85,34 +88,39 @@ RenderStats renderImage(const Integrator& integrator, Film& film, RenderState& s
   auto lastCheckpoint = start;
 
   auto stopped = [&] { return options.stop && options.stop->load(std::memory_order_relaxed); };
-  auto renderPixel = [&](int x, int y, RayStats& stats) {
+  auto renderPixel = [&](int x, int y, RayStats& stats, IdCoverage& coverage) {
+    coverage.clear();
+    IdCoverage* ids = crypto.active() ? &coverage : nullptr;
     const size_t p = size_t(y) * film.width() + x;
     const int ix = x + options.x0, iy = y + options.y0;  // image coordinates
     PixelSums sums;
     PixelValue v;
     if (spp > 0) {
       v.samples =
-          integrator.accumulate(ix, iy, options.sampleBegin, sampleEnd, sums, v.primary, stats);
+          integrator.accumulate(ix, iy, options.sampleBegin, sampleEnd, sums, v.primary, stats,
+                             ids);
     } else {  // the integrator places its own samples: its mean, weight 1 (exact in double)
-      v = integrator.renderPixel(ix, iy, stats);
+      v = integrator.renderPixel(ix, iy, stats, ids);
       sums.rgb[0] = v.radiance.x, sums.rgb[1] = v.radiance.y, sums.rgb[2] = v.radiance.z;
       sums.alpha = v.alpha, sums.weight = 1;
     }
     state.sums[p] = sums;
     writeBeauty(film, x, y, sums);
     aovs.write(film, x, y, v);
+    if (ids) crypto.write(film, x, y, coverage);
     done[p].store(1, std::memory_order_release);
   };
 
   auto renderTile = [&](int tile) {
     RayStats local;
+    IdCoverage coverage;  // reused across the tile's pixels; only filled for Cryptomatte
     const int x0 = (tile % tilesX) * ts, y0 = (tile / tilesX) * ts;
     const int x1 = std::min(x0 + ts, film.width()), y1 = std::min(y0 + ts, film.height());
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x) {
         if (stopped()) break;
         if (!done[size_t(y) * film.width() + x].load(std::memory_order_relaxed))
-          renderPixel(x, y, local);
+          renderPixel(x, y, local, coverage);
       }
     bool checkpointNow = false;
     {

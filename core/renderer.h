@@ -15,6 +15,8 @@ struct RenderOptions {
   int tileSize = 16;
   /// AOV layers to fill beside the beauty (names from AovSet::known()).
   std::vector<std::string> aovs;
+  /// Ranks per Cryptomatte type (crypto_object, crypto_material in aovs): 2 per EXR layer.
+  int cryptomatteRanks = 6;
   /// Called (serialised) after each tile with the fraction done; for progress bars.
   std::function<void(double fraction)> onProgress;
   /// Where the film lies in the integrator's image: film pixel (0, 0) is image pixel

@@ -45,8 +45,9 @@ class Adaptive final : public Integrator {
   /// Adaptive places its own samples: they cannot be split into sample ranges.
   int samplesPerPixel() const override { return 0; }
 
-  PixelValue renderPixel(int x, int y, RayStats& stats) const override {
+  PixelValue renderPixel(int x, int y, RayStats& stats, IdCoverage* coverage) const override {
     Accum acc;
+    acc.coverage = coverage;
     int minLevel = 0;
     if (ctx_.settings.aaRobust && nearObjectBoundary(x / kTile, y / kTile, stats))
       minLevel = std::min(kRobustMinDepth, depth_);
@@ -71,6 +72,7 @@ class Adaptive final : public Integrator {
   struct Accum {
     double sum[3] = {0, 0, 0}, alpha = 0;
     std::vector<uint64_t> keys;
+    IdCoverage* coverage = nullptr;  ///< Cryptomatte: each leaf corner's ids, weighted as above
   };
 
   /// The square with top-left lattice corner (i, j) and side `size` (lattice units), at
@@ -101,6 +103,10 @@ class Adaptive final : public Integrator {
     for (int k = 0; k < 4; ++k) {
       acc.sum[0] += a * c[k].x, acc.sum[1] += a * c[k].y, acc.sum[2] += a * c[k].z;
       acc.alpha += s[k].primary.hit ? a : 0.0;
+      if (acc.coverage) {
+        const PrimaryHit& h = s[k].primary;
+        acc.coverage->add(h.hit ? h.objectId : -1, h.hit ? h.materialId : -1, a);
+      }
     }
   }
 

@@ -16,7 +16,7 @@ int Integrator::samplesPerPixel() const {
 }
 
 uint32_t Integrator::accumulate(int x, int y, int begin, int end, PixelSums& sums,
-                                PrimaryHit& first, RayStats& stats) const {
+                                PrimaryHit& first, RayStats& stats, IdCoverage* coverage) const {
   const RenderSettings& s = ctx_.settings;
   const Filter filter = Filter::make(s.filter);
   const PixelSampler pixelSampler(PixelSampler::parse(s.pixelSampler, s.spp), s.spp, filter.radius());
@@ -42,14 +42,15 @@ uint32_t Integrator::accumulate(int x, int y, int begin, int end, PixelSums& sum
     sums.rgb[0] += w * L.x, sums.rgb[1] += w * L.y, sums.rgb[2] += w * L.z;
     sums.alpha += seen.hit ? w : 0.0;
     sums.weight += w;
+    if (coverage) coverage->add(seen.hit ? seen.objectId : -1, seen.hit ? seen.materialId : -1, w);
   }
   return uint32_t(std::max(0, end - begin));
 }
 
-PixelValue Integrator::renderPixel(int x, int y, RayStats& stats) const {
+PixelValue Integrator::renderPixel(int x, int y, RayStats& stats, IdCoverage* coverage) const {
   PixelSums sums;
   PixelValue out;
-  out.samples = accumulate(x, y, 0, samplesPerPixel(), sums, out.primary, stats);
+  out.samples = accumulate(x, y, 0, samplesPerPixel(), sums, out.primary, stats, coverage);
   out.radiance = sums.radiance();
   out.alpha = sums.coverage();
   return out;

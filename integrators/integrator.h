@@ -7,6 +7,7 @@
 
 #include "core/accelerator.h"
 #include "core/camera.h"
+#include "core/id_coverage.h"
 #include "core/math.h"
 #include "core/pixel_sums.h"
 #include "core/sampler.h"
@@ -81,15 +82,20 @@ class Integrator {
   /// first surface hit.
   virtual Color Li(const Ray& ray, Sampler& sampler, RayStats& stats,
                    PrimaryHit* primary) const = 0;
-  virtual PixelValue renderPixel(int x, int y, RayStats& stats) const;
+  /// One pixel's value. `coverage`, when not null (Cryptomatte), receives every camera sample's
+  /// object and material ids with the weight the sample has in the pixel.
+  virtual PixelValue renderPixel(int x, int y, RayStats& stats,
+                                 IdCoverage* coverage = nullptr) const;
   /// Samples per pixel of renderPixel's estimator (the pixel sampler's count); 0 when the
   /// integrator places its own samples (adaptive) and accumulate() does not apply.
   virtual int samplesPerPixel() const;
   /// Adds samples [begin, end) of pixel (x, y) to `sums`, each from its own counter-based
   /// Sampler(pixel, sample, seed): sums over consecutive ranges add up to renderPixel's. Fills
-  /// `first` with what sample `begin` hit; returns the camera rays traced.
+  /// `first` with what sample `begin` hit, and `coverage` (when not null) as renderPixel does;
+  /// returns the camera rays traced.
   virtual uint32_t accumulate(int x, int y, int begin, int end, PixelSums& sums,
-                              PrimaryHit& first, RayStats& stats) const;
+                              PrimaryHit& first, RayStats& stats,
+                              IdCoverage* coverage = nullptr) const;
   const RenderContext& context() const { return ctx_; }
 
  protected:

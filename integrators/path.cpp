@@ -29,9 +29,9 @@ class PathIntegrator final : public Integrator {
   }
 
   uint32_t accumulate(int x, int y, int begin, int end, PixelSums& sums, PrimaryHit& first,
-                      RayStats& stats) const override {
+                      RayStats& stats, IdCoverage* coverage) const override {
     tlsPixelX = x, tlsPixelY = y;
-    return Integrator::accumulate(x, y, begin, end, sums, first, stats);
+    return Integrator::accumulate(x, y, begin, end, sums, first, stats, coverage);
   }
 
   Color Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats,

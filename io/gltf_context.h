@@ -12,6 +12,10 @@ namespace tray {
 /// Caps checked before allocating, so a hostile file cannot make the loader exhaust memory.
 constexpr size_t kMaxTriangles = 50'000'000;  ///< over all meshes
 constexpr size_t kMaxVertices = 50'000'000;   ///< over all meshes
+/// Placed objects (node x mesh primitive instances, shapes): each costs ~200 bytes and an Embree
+/// instance, and one mesh of many primitives placed by many nodes would otherwise multiply
+/// without bound (1000 primitives x 1000 nodes take a 60 KB file).
+constexpr size_t kMaxPrimitives = 1'000'000;
 /// Per accessor: a triangle list of kMaxTriangles needs three indices each.
 constexpr size_t kMaxAccessorCount = 3 * kMaxTriangles;
 

@@ -7,12 +7,13 @@
 #include <cerrno>
 #include <climits>
 #include <cstdlib>
+#include <algorithm>
 #include <cstring>
 
 namespace tray {
 
 bool readRegularFile(const std::string& path, std::vector<unsigned char>& out,
-                     std::string& problem) {
+                     std::string& problem, uint64_t limit) {
   // O_NONBLOCK: opening a FIFO must not wait for a writer; fstat then refuses it.
   int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
   if (fd < 0) {
@@ -25,8 +26,10 @@ bool readRegularFile(const std::string& path, std::vector<unsigned char>& out,
     problem = std::string("cannot stat: ") + strerror(errno);
   } else if (!S_ISREG(st.st_mode)) {
     problem = "not a regular file";
-  } else if (uint64_t(st.st_size) > kMaxFileBytes) {
-    problem = "file is larger than the 2 GiB limit";
+  } else if (uint64_t(st.st_size) > limit) {
+    problem = limit == kMaxFileBytes ? "file is larger than the 2 GiB limit"
+                                     : "file would exceed the " + std::to_string(kMaxUriBytes >> 30) +
+                                           " GiB limit on all bytes a scene's URIs read";
   } else {
     out.resize(size_t(st.st_size));
     size_t done = 0;
@@ -69,8 +72,19 @@ bool hasDotDotSegment(const std::string& uri) {
 UriPolicy::UriPolicy(const std::string& folder, bool allowAnyPath)
     : folder_(canonical(folder.empty() ? "." : folder)), allowAnyPath_(allowAnyPath) {}
 
+UriPolicy UriPolicy::noFiles() {
+  UriPolicy p("/", false);
+  p.folder_.clear();
+  p.allowsFiles_ = false;
+  return p;
+}
+
 std::string UriPolicy::resolve(const std::string& uri, std::string& problem) const {
   const std::string quoted = "URI '" + uri + "'";
+  if (!allowsFiles_) {
+    problem = quoted + " refused: a scene loaded from memory may only use data: URIs";
+    return "";
+  }
   if (uri.empty()) {
     problem =
         "a buffer or image has an empty or missing 'uri' (only a .glb's BIN chunk may "
@@ -140,6 +154,11 @@ void FileAccess::record(const std::string& problem) {
 
 std::string FileAccess::resolve(const std::string& path) {
   std::string uri, problem;
+  if (!policy_.allowsFiles()) {  // no folder: tinygltf passes the bare URI
+    policy_.resolve(path, problem);
+    record(problem);
+    return "";
+  }
   if (!uriOf(path, uri)) return "";  // tinygltf's working-directory guess: refused silently
   std::string real = policy_.resolve(uri, problem);
   if (real.empty()) record(problem);
@@ -160,13 +179,15 @@ bool FileAccess::readWholeFile(std::vector<unsigned char>* out, std::string* err
   auto* access = static_cast<FileAccess*>(self);
   std::string real = access->resolve(path), problem;
   if (real.empty()) return false;
-  if (!readRegularFile(real, *out, problem)) {
+  const uint64_t left = kMaxUriBytes - access->bytesRead_;
+  if (!readRegularFile(real, *out, problem, std::min(kMaxFileBytes, left))) {
     std::string uri;
     access->uriOf(path, uri);
     access->record("URI '" + uri + "': " + problem);
     if (err) *err += problem;
     return false;
   }
+  access->bytesRead_ += out->size();
   return true;
 }
 

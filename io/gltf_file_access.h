@@ -11,11 +11,13 @@ namespace tray {
 
 /// Largest file the loader reads (the scene, a buffer or an image). tinygltf 2.7.0 has no cap.
 constexpr uint64_t kMaxFileBytes = uint64_t(2) << 30;
+/// Largest total a scene's URIs may read: many buffers may name the same big file.
+constexpr uint64_t kMaxUriBytes = uint64_t(4) << 30;
 
-/// Reads a whole regular file of at most kMaxFileBytes. Devices, FIFOs and directories are
+/// Reads a whole regular file of at most `limit` bytes. Devices, FIFOs and directories are
 /// refused, since reading them may block forever or never end. Returns false with `problem`.
 bool readRegularFile(const std::string& path, std::vector<unsigned char>& out,
-                     std::string& problem);
+                     std::string& problem, uint64_t limit = kMaxFileBytes);
 
 /// Decides which URIs a scene may read (docs/scene-format.md, "Validation"): relative paths
 /// inside the scene's folder only, unless allowAnyPath; never a scheme other than data:.
@@ -23,6 +25,9 @@ class UriPolicy {
  public:
   /// `folder`: the scene file's folder (made canonical here).
   UriPolicy(const std::string& folder, bool allowAnyPath);
+  /// Refuses every URI: for documents loaded from memory, which have no folder.
+  static UriPolicy noFiles();
+  bool allowsFiles() const { return allowsFiles_; }
   const std::string& folder() const { return folder_; }
   /// Canonical path of the regular file a percent-decoded URI names, or "" with `problem`.
   std::string resolve(const std::string& uri, std::string& problem) const;
@@ -30,6 +35,7 @@ class UriPolicy {
  private:
   std::string folder_;
   bool allowAnyPath_;
+  bool allowsFiles_ = true;
 };
 
 /// tinygltf file callbacks enforcing a UriPolicy. tinygltf reports a refused file only as "File
@@ -59,6 +65,7 @@ class FileAccess {
 
   const UriPolicy& policy_;
   std::string firstProblem_;
+  uint64_t bytesRead_ = 0;
 };
 
 }  // namespace tray

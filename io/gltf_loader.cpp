@@ -31,28 +31,25 @@ std::string firstLine(const std::string& text) {
   return text.substr(start, text.find_first_of("\r\n", start) - start);
 }
 
-/// Images are decoded later (OIIO, after validation): tinygltf only hands over their bytes.
-tinygltf::Model parse(const std::string& path, const LoadOptions& options, LoadReport* report,
-                      ImageBytes& images) {
-  std::vector<unsigned char> bytes;
-  std::string problem;
-  if (!readRegularFile(path, bytes, problem)) failFile(path, problem);
+/// Parses a document's bytes; `policy` decides which URIs may be read. Images are decoded later
+/// (OIIO, after validation): tinygltf only hands over their bytes.
+tinygltf::Model parse(const std::vector<unsigned char>& bytes, const std::string& path,
+                      const UriPolicy& policy, LoadReport* report, ImageBytes& images) {
   if (bytes.empty()) failFile(path, "file is empty");
+  if (bytes.size() > kMaxFileBytes) failFile(path, "file is larger than the 2 GiB limit");
   const bool binary = isGlb(bytes);
   std::string_view json =
       binary ? glbJson(path, bytes)
              : std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
   checkJsonRoot(path, json);
 
-  std::string folder = std::filesystem::path(path).parent_path().string();
-  UriPolicy policy(folder.empty() ? "." : folder, options.allowAnyPath);
   FileAccess access(policy);
   tinygltf::TinyGLTF gltf;
   gltf.SetFsCallbacks(access.callbacks());
   gltf.SetImageLoader(&ImageBytes::record, &images);
   tinygltf::Model model;
   std::string err, warn;
-  // Sizes fit in unsigned int: readRegularFile caps files at 2 GiB.
+  // Sizes fit in unsigned int: files are capped at 2 GiB.
   bool ok = false;
   try {
     ok = binary ? gltf.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(),
@@ -103,11 +100,8 @@ void reportMeshStats(const GltfContext& ctx, const MeshStats& s) {
              " non-finite normal(s), tangent(s) or texture coordinate(s) with zero");
 }
 
-}  // namespace
-
-Scene loadGltf(const std::string& path, const LoadOptions& options, LoadReport* report) {
-  ImageBytes images;
-  tinygltf::Model model = parse(path, options, report, images);
+Scene convert(const tinygltf::Model& model, const std::string& path, const LoadOptions& options,
+              LoadReport* report, const ImageBytes& images) {
   GltfContext ctx{model, path, report};
   validateDocument(ctx);
   checkAllNodes(ctx);
@@ -141,6 +135,27 @@ Scene loadGltf(const std::string& path, const LoadOptions& options, LoadReport* 
   bindTextures(ctx, images, scene);
   scene.finalize();
   return scene;
+}
+
+}  // namespace
+
+Scene loadGltf(const std::string& path, const LoadOptions& options, LoadReport* report) {
+  std::vector<unsigned char> bytes;
+  std::string problem;
+  if (!readRegularFile(path, bytes, problem)) failFile(path, problem);
+  const std::string folder = std::filesystem::path(path).parent_path().string();
+  const UriPolicy policy(folder.empty() ? "." : folder, options.allowAnyPath);
+  ImageBytes images;
+  tinygltf::Model model = parse(bytes, path, policy, report, images);
+  return convert(model, path, options, report, images);
+}
+
+Scene loadGltfFromMemory(const unsigned char* data, size_t size, const std::string& name,
+                         const LoadOptions& options, LoadReport* report) {
+  const std::vector<unsigned char> bytes(data, data + size);
+  ImageBytes images;
+  tinygltf::Model model = parse(bytes, name, UriPolicy::noFiles(), report, images);
+  return convert(model, name, options, report, images);
 }
 
 }  // namespace tray

@@ -26,4 +26,11 @@ struct LoadReport {
 Scene loadGltf(const std::string& path, const LoadOptions& options = {},
                LoadReport* report = nullptr);
 
+/// The same for a document already in memory (.gltf JSON or .glb, told apart by the GLB magic),
+/// e.g. for the fuzzer (fuzz/gltf_loader_fuzz.cpp). Only data: URIs and a GLB's BIN chunk can
+/// supply buffers and images: any external URI is refused, whatever options.allowAnyPath says.
+/// `name` stands for the file in messages.
+Scene loadGltfFromMemory(const unsigned char* data, size_t size, const std::string& name,
+                         const LoadOptions& options = {}, LoadReport* report = nullptr);
+
 }  // namespace tray

@@ -79,6 +79,9 @@ struct Walker {
   }
 
   void addPrimitive(int node, const Transform& toWorld, Primitive& p) {
+    if (scene.primitives.size() >= kMaxPrimitives)
+      ctx.fail("the scene places more than " + std::to_string(kMaxPrimitives) +
+               " objects (node and mesh primitive instances)");
     p.toWorld = toWorld;
     p.objectId = node;
     p.name = ctx.model.nodes[size_t(node)].name;

@@ -90,6 +90,7 @@ void writeExr(const Film& film, const std::string& path, const std::string& tmp,
   if (auto xy = color.chromaticities(cs))
     spec.attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8), xy->data());
   for (const auto& [k, v] : o.stringMetadata) spec.attribute(k, v);
+  for (const auto& [k, v] : film.metadata()) spec.attribute(k, v);  // e.g. Cryptomatte manifests
   for (const auto& [k, v] : o.floatMetadata) spec.attribute(k, v);
   for (const auto& [k, m] : o.matrixMetadata) spec.attribute(k, OIIO::TypeMatrix44, m.data());
   writeFile(path, tmp, spec, OIIO::TypeDesc::FLOAT, pixels.data());

@@ -1,0 +1,114 @@
+// loadGltfFromMemory, the fuzzer's entry point: the same scene as from the file, external URIs
+// refused, and every fuzzer reproducer in fuzz/regressions/ handled without a crash.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include "core/error.h"
+#include "io/gltf_loader.h"
+
+namespace fs = std::filesystem;
+
+namespace tray {
+namespace {
+
+const fs::path kSamples = fs::path(TRAY_SHARED_DIR) / "gltf-samples";
+
+std::vector<unsigned char> bytesOf(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+Scene fromMemory(const fs::path& p) {
+  const auto bytes = bytesOf(p);
+  return loadGltfFromMemory(bytes.data(), bytes.size(), p.filename().string());
+}
+
+size_t triangles(const Scene& s) {
+  size_t n = 0;
+  for (const auto& m : s.meshes) n += m.triangleCount();
+  return n;
+}
+
+TEST(GltfMemory, GlbAndDataUriScenesLoadAsFromTheirFiles) {
+  for (const char* name : {"Box.glb", "Duck.glb", "SimpleSparseAccessor.gltf", "Cameras.gltf"}) {
+    const Scene a = loadGltf((kSamples / name).string()), b = fromMemory(kSamples / name);
+    EXPECT_GT(triangles(a), 0u) << name;
+    EXPECT_EQ(triangles(a), triangles(b)) << name;
+    EXPECT_EQ(a.primitives.size(), b.primitives.size()) << name;
+    EXPECT_EQ(a.cameras.size(), b.cameras.size()) << name;
+  }
+}
+
+TEST(GltfMemory, ExternalUrisAreRefusedEvenWithAllowAnyPath) {
+  LoadOptions any;
+  any.allowAnyPath = true;
+  const auto bytes = bytesOf(kSamples / "Avocado" / "Avocado.gltf");
+  try {
+    loadGltfFromMemory(bytes.data(), bytes.size(), "avocado-in-memory", any);
+    FAIL() << "an external buffer URI was read";
+  } catch (const Error& e) {
+    const std::string m = e.what();
+    EXPECT_EQ(m.rfind("avocado-in-memory: ", 0), 0u) << m;
+    EXPECT_NE(m.find("Avocado.bin"), std::string::npos) << m;
+    EXPECT_NE(m.find("only use data: URIs"), std::string::npos) << m;
+  }
+}
+
+TEST(GltfMemory, EmptyInputIsRefused) {
+  EXPECT_THROW(loadGltfFromMemory(nullptr, 0, "empty"), Error);
+}
+
+/// One triangle mesh of `primitives` primitives, placed by `nodes` nodes.
+std::string instancedScene(int primitives, int nodes) {
+  std::string prims, nodeList, roots;
+  for (int i = 0; i < primitives; ++i)
+    prims += std::string(i ? "," : "") + "{\"attributes\":{\"POSITION\":0}}";
+  for (int i = 0; i < nodes; ++i) {
+    nodeList += std::string(i ? "," : "") + "{\"mesh\":0}";
+    roots += std::string(i ? "," : "") + std::to_string(i);
+  }
+  return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[)" + roots +
+         R"(]}],"nodes":[)" + nodeList + R"(],"meshes":[{"primitives":[)" + prims +
+         R"(]}],"accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3",)"
+         R"("min":[0,0,0],"max":[1,1,0]}],"bufferViews":[{"buffer":0,"byteLength":36}],)"
+         R"("buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,)"
+         R"(AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}]})";
+}
+
+TEST(GltfMemory, PlacedObjectsAreCapped) {
+  // 1000 x 1000 = 1e6 instances load; one node more passes the cap of 1e6 placed objects.
+  const std::string ok = instancedScene(1000, 1000), tooMany = instancedScene(1000, 1001);
+  const auto* okBytes = reinterpret_cast<const unsigned char*>(ok.data());
+  EXPECT_EQ(loadGltfFromMemory(okBytes, ok.size(), "ok.gltf").primitives.size(), 1000000u);
+  try {
+    loadGltfFromMemory(reinterpret_cast<const unsigned char*>(tooMany.data()), tooMany.size(),
+                       "many.gltf");
+    FAIL() << "1001000 placed objects loaded";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("more than 1000000 objects"), std::string::npos)
+        << e.what();
+  }
+}
+
+/// Every input the fuzzer ever crashed on (docs/fuzzing.md): refused or loaded, nothing else.
+TEST(GltfMemory, FuzzerReproducersAreHandled) {
+  const fs::path dir = fs::path(TRAY_SOURCE_DIR) / "fuzz" / "regressions";
+  size_t count = 0;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    if (!e.is_regular_file()) continue;
+    ++count;
+    try {
+      fromMemory(e.path());
+    } catch (const Error& err) {
+      EXPECT_EQ(std::string(err.what()).find('\n'), std::string::npos) << e.path();
+    }
+  }
+  RecordProperty("reproducers", int(count));
+}
+
+}  // namespace
+}  // namespace tray

@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer target with Debian's clang into build-fuzz/ and runs it (docs/fuzzing.md):
+#   tools/fuzz.sh [SECONDS] [extra libFuzzer flags, e.g. -jobs=2 -workers=2]
+# Installs clang and libclang-rt through setup.sh's TRAY_EXTRA_PACKAGES; the normal build and
+# CI need neither.
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+seconds=${1:-60}
+shift $(($# < 1 ? $# : 1))
+# CXX picks clang when build-fuzz/ is first configured (later runs keep the cached compiler).
+CXX=clang++ TRAY_EXTRA_PACKAGES="clang libclang-rt-14-dev ${TRAY_EXTRA_PACKAGES:-}" BUILD_DIR=build-fuzz \
+  TRAY_CMAKE_ARGS="-DTRAY_BUILD_FUZZ=ON \
+    -DTRAY_BUILD_TESTS=OFF -DTRAY_BUILD_BENCH=OFF ${TRAY_CMAKE_ARGS:-}" tools/setup.sh
+exec fuzz/run.sh build-fuzz/gltf_loader_fuzz build-fuzz/fuzz-work "$seconds" "$@"
