@@ -2,6 +2,7 @@
 // Exit codes: 0 ok, 1 render error, 2 bad input or usage, 130 / 143 interrupted (SIGINT /
 // SIGTERM; the image so far is written).
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -79,6 +80,12 @@ int run(const CliOptions& o) {
   const tray::PixelRegion region = tray::parseRegion(o.region, width, height);
   const tray::SampleRange range =
       tray::parseSampleRange(o.sampleRange, integrator->samplesPerPixel(), o.settings.integrator);
+  const std::vector<std::string> aovNames = tray::AovSet::parse(o.aovs);
+  if (!o.sampleRange.empty() &&
+      std::count_if(aovNames.begin(), aovNames.end(),
+                    [](const std::string& n) { return n.rfind("crypto_", 0) == 0; }))
+    throw tray::Error("--sample-range with Cryptomatte AOVs: each part would keep only its own "
+                      "top-ranked ids, which cannot be merged exactly (split by --region instead)");
   const bool part = o.region.size() || o.sampleRange.size();
   const std::string checkpointPath = tray::firstExr(o.outputs);
   if ((o.checkpointSeconds > 0 || o.resume) && checkpointPath.empty())
@@ -104,7 +111,7 @@ int run(const CliOptions& o) {
   tray::ProgressBar progress;
   tray::RenderOptions renderOptions;
   renderOptions.threads = o.threads;
-  renderOptions.aovs = tray::AovSet::parse(o.aovs);
+  renderOptions.aovs = aovNames;
   renderOptions.cryptomatteRanks = o.cryptomatteRanks;
   if (!o.aaHeatmap.empty()) renderOptions.aovs.push_back("samples");  // the heatmap's source
   renderOptions.x0 = region.x0, renderOptions.y0 = region.y0;
