@@ -19,7 +19,9 @@ TextureImage constantImage(const Color& c, int size = 1) {
   TextureImage im;
   im.name = "constant";
   im.width = im.height = size;
-  for (int i = 0; i < size * size; ++i) im.pixels.insert(im.pixels.end(), {c.x, c.y, c.z});
+  im.pixels.resize(size_t(size) * size * 3);
+  for (size_t i = 0; i < im.pixels.size(); i += 3)
+    im.pixels[i] = c.x, im.pixels[i + 1] = c.y, im.pixels[i + 2] = c.z;
   return im;
 }
 

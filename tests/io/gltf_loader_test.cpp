@@ -13,6 +13,7 @@
 #include <functional>
 
 #include "core/error.h"
+#include "tests/base64.h"
 
 namespace tray {
 namespace {
@@ -147,20 +148,7 @@ TEST(GltfSamples, EmissiveStrengthMultipliesEmission) {
 // Tiny documents. TinyDoc packs data into one base64 buffer and writes the file into a fresh
 // temporary folder (never the source tree).
 
-std::string base64(const std::string& bytes) {
-  static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  for (size_t i = 0; i < bytes.size(); i += 3) {
-    uint32_t v = uint8_t(bytes[i]) << 16;
-    if (i + 1 < bytes.size()) v |= uint8_t(bytes[i + 1]) << 8;
-    if (i + 2 < bytes.size()) v |= uint8_t(bytes[i + 2]);
-    out += k[v >> 18 & 63];
-    out += k[v >> 12 & 63];
-    out += i + 1 < bytes.size() ? k[v >> 6 & 63] : '=';
-    out += i + 2 < bytes.size() ? k[v & 63] : '=';
-  }
-  return out;
-}
+using tray::test::base64;
 
 fs::path freshFolder() {
   static std::atomic<int> counter{0};

@@ -18,6 +18,7 @@
 #include "core/renderer.h"
 #include "io/gltf_images.h"
 #include "io/gltf_loader.h"
+#include "tests/base64.h"
 
 namespace tray {
 namespace {
@@ -54,20 +55,7 @@ void writeImage(const fs::path& path, int w, int h, const std::vector<unsigned c
   out->close();
 }
 
-std::string base64(const std::string& bytes) {
-  static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  for (size_t i = 0; i < bytes.size(); i += 3) {
-    uint32_t v = uint8_t(bytes[i]) << 16;
-    if (i + 1 < bytes.size()) v |= uint8_t(bytes[i + 1]) << 8;
-    if (i + 2 < bytes.size()) v |= uint8_t(bytes[i + 2]);
-    out += k[v >> 18 & 63];
-    out += k[v >> 12 & 63];
-    out += i + 1 < bytes.size() ? k[v >> 6 & 63] : '=';
-    out += i + 2 < bytes.size() ? k[v & 63] : '=';
-  }
-  return out;
-}
+using tray::test::base64;
 
 /// A document with one material using image `uri` as base colour and metallic-roughness
 /// texture: no meshes are needed, every material's textures are decoded.
