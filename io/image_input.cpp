@@ -48,10 +48,12 @@ ExrImage readExr(const std::string& path) {
   std::vector<std::pair<int, int>> target(nc);
   std::vector<std::pair<std::string, std::vector<std::string>>> layers;
   for (int c = 0; c < nc; ++c) {
-    auto [layer, channel] = splitChannel(spec.channelnames[c]);
+    // Not a structured binding: clang 14 (the fuzz build) cannot capture one in a lambda.
+    const auto split = splitChannel(spec.channelnames[c]);
+    const std::string& layer = split.first;
     auto it = std::find_if(layers.begin(), layers.end(), [&](auto& l) { return l.first == layer; });
     if (it == layers.end()) it = layers.insert(layers.end(), {layer, {}});
-    it->second.push_back(channel);
+    it->second.push_back(split.second);
   }
   const auto& beauty =
       std::find_if(layers.begin(), layers.end(), [](auto& l) { return l.first.empty(); });

@@ -1,6 +1,13 @@
 #!/usr/bin/env bash
-# README command 2: set up, build, run the whole test suite through ctest.
+# README command 2: set up, build, run the whole test suite through ctest, then a bounded
+# 60-second run of the glTF loader's fuzzer (clang + ASan/UBSan build in build-fuzz/; see
+# docs/fuzzing.md). TRAY_SKIP_FUZZ=1 skips the fuzz run.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 source tools/setup.sh
 ctest --test-dir "$BUILD_DIR" --output-on-failure -j"$(nproc)" "$@"
+if [ "${TRAY_SKIP_FUZZ:-0}" != 1 ]; then
+  (unset BUILD_DIR TRAY_CMAKE_ARGS; tools/fuzz.sh "${TRAY_FUZZ_SECONDS:-60}" >build-fuzz.log 2>&1) ||
+    { tail -40 build-fuzz.log; echo "fuzz run failed (log: build-fuzz.log)"; exit 1; }
+  grep -E "stat::number_of_executed_units|stat::average_exec_per_sec" build-fuzz.log || true
+fi
