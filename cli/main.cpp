@@ -68,8 +68,10 @@ int run(const CliOptions& o) {
 
   tray::CameraDesc cam = tray::chooseCamera(scene, o.camera);
   if (tray::addDefaultLightingIfUnlit(scene, cam))
-    std::fprintf(stderr, "warning: %s has no lights: using TRay's default headlight and a 0.1 "
-                 "environment (docs/scene-format.md)\n", o.scenePath.c_str());
+    std::fprintf(stderr,
+                 "warning: %s has no lights: using TRay's default headlight and a 0.1 "
+                 "environment (docs/scene-format.md)\n",
+                 o.scenePath.c_str());
   const tray::ImageSize size = tray::resolveImageSize(o.resolution, cam);
   const int width = size.width, height = size.height;
   auto camera = tray::Camera::create(cam, width, height);
@@ -84,8 +86,9 @@ int run(const CliOptions& o) {
   if (!o.sampleRange.empty() &&
       std::count_if(aovNames.begin(), aovNames.end(),
                     [](const std::string& n) { return n.rfind("crypto_", 0) == 0; }))
-    throw tray::Error("--sample-range with Cryptomatte AOVs: each part would keep only its own "
-                      "top-ranked ids, which cannot be merged exactly (split by --region instead)");
+    throw tray::Error(
+        "--sample-range with Cryptomatte AOVs: each part would keep only its own "
+        "top-ranked ids, which cannot be merged exactly (split by --region instead)");
   const bool part = o.region.size() || o.sampleRange.size();
   const std::string checkpointPath = tray::firstExr(o.outputs);
   if ((o.checkpointSeconds > 0 || o.resume) && checkpointPath.empty())
@@ -101,8 +104,8 @@ int run(const CliOptions& o) {
     if (!std::filesystem::exists(checkpointPath)) {
       std::fprintf(stderr, "warning: %s: no checkpoint to resume: rendering from the start\n",
                    checkpointPath.c_str());
-    } else if (!tray::loadCheckpoint(checkpointPath, job, region, width, height, range, film,
-                                     state, previousSeconds)) {
+    } else if (!tray::loadCheckpoint(checkpointPath, job, region, width, height, range, film, state,
+                                     previousSeconds)) {
       if (!o.quiet)
         std::printf("%s: already finished: nothing to resume\n", checkpointPath.c_str());
       return 0;
@@ -188,11 +191,11 @@ int run(const CliOptions& o) {
   }
 
   if (!o.quiet) {
-    std::printf("%s: %dx%d, %d spp, %s on %s: %.3f s, %.2f M rays, %.2f Mrays/s", o.scenePath.c_str(),
-                width, height, o.settings.spp, o.settings.integrator.c_str(), o.accel.c_str(),
-                stats.seconds, stats.rays.total() * 1e-6, stats.mraysPerSecond());
-    if (stats.rays.nanSamples) std::printf(", %llu NaN/Inf samples discarded",
-                                           (unsigned long long)stats.rays.nanSamples);
+    std::printf("%s: %dx%d, %d spp, %s on %s: %.3f s, %.2f M rays, %.2f Mrays/s",
+                o.scenePath.c_str(), width, height, o.settings.spp, o.settings.integrator.c_str(),
+                o.accel.c_str(), stats.seconds, stats.rays.total() * 1e-6, stats.mraysPerSecond());
+    if (stats.rays.nanSamples)
+      std::printf(", %llu NaN/Inf samples discarded", (unsigned long long)stats.rays.nanSamples);
     std::printf("\n");
   }
   return 0;
@@ -215,7 +218,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--inner", o.settings.inner, "integrator wrapped by a wrapping integrator")
       ->capture_default_str();
-  app.add_option("--spp", o.settings.spp, "samples per pixel")->check(CLI::Range(1, 1 << 20))
+  app.add_option("--spp", o.settings.spp, "samples per pixel")
+      ->check(CLI::Range(1, 1 << 20))
       ->capture_default_str();
   app.add_option("--max-depth", o.settings.maxDepth,
                  "maximum recursion depth (default: the integrator's, 5 for whitted)")
@@ -225,7 +229,8 @@ int main(int argc, char** argv) {
                  "where samples go in a pixel: auto, center, corners, grid, jitter")
       ->check(CLI::IsMember(tray::PixelSampler::names()))
       ->capture_default_str();
-  app.add_option("--filter", o.settings.filter, "reconstruction filter: box, tent, gaussian, mitchell")
+  app.add_option("--filter", o.settings.filter,
+                 "reconstruction filter: box, tent, gaussian, mitchell")
       ->check(CLI::IsMember(tray::Filter::names()))
       ->capture_default_str();
   app.add_option("--aa-threshold", o.settings.aaThreshold,
@@ -235,12 +240,15 @@ int main(int argc, char** argv) {
   app.add_option("--aa-depth", o.settings.aaDepth, "adaptive: maximum subdivision depth")
       ->check(CLI::Range(0, 12))
       ->capture_default_str();
-  app.add_flag("--aa-robust", o.settings.aaRobust,
-               "adaptive: jittered corners + minimum subdivision near object boundaries (thin features)");
+  app.add_flag(
+      "--aa-robust", o.settings.aaRobust,
+      "adaptive: jittered corners + minimum subdivision near object boundaries (thin features)");
   app.add_option("--aa-heatmap", o.aaHeatmap, "write an image of camera rays per pixel (PNG/EXR)");
-  app.add_option("--threads", o.threads, "worker threads (0: all cores)")->check(CLI::Range(0, 4096))
+  app.add_option("--threads", o.threads, "worker threads (0: all cores)")
+      ->check(CLI::Range(0, 4096))
       ->capture_default_str();
-  app.add_option("--resolution", o.resolution, "image size WxH (default 640 wide, height from the camera)");
+  app.add_option("--resolution", o.resolution,
+                 "image size WxH (default 640 wide, height from the camera)");
   app.add_option("--camera", o.camera, "index of the scene camera to render (default: the first)");
   app.add_option("--scene", o.scene, "index of the glTF scene (default: the file's default scene)");
   app.add_option("--accel", o.accel, "accelerator: " + joined(tray::acceleratorNames()))
@@ -258,8 +266,9 @@ int main(int argc, char** argv) {
                  "Cryptomatte: ids kept per pixel and type (2 per EXR layer)")
       ->check(CLI::Range(1, 32))
       ->capture_default_str();
-  app.add_option("--clamp-indirect", o.settings.clampIndirect,
-                 "path: clamp each indirect contribution to this value (fireflies; biased; 0 = off)")
+  app.add_option(
+         "--clamp-indirect", o.settings.clampIndirect,
+         "path: clamp each indirect contribution to this value (fireflies; biased; 0 = off)")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   app.add_flag("--debug-nan", o.settings.debugNan, "print where NaN/Inf samples arise");

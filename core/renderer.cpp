@@ -96,9 +96,8 @@ RenderStats renderImage(const Integrator& integrator, Film& film, RenderState& s
     PixelSums sums;
     PixelValue v;
     if (spp > 0) {
-      v.samples =
-          integrator.accumulate(ix, iy, options.sampleBegin, sampleEnd, sums, v.primary, stats,
-                             ids);
+      v.samples = integrator.accumulate(ix, iy, options.sampleBegin, sampleEnd, sums, v.primary,
+                                        stats, ids);
     } else {  // the integrator places its own samples: its mean, weight 1 (exact in double)
       v = integrator.renderPixel(ix, iy, stats, ids);
       sums.rgb[0] = v.radiance.x, sums.rgb[1] = v.radiance.y, sums.rgb[2] = v.radiance.z;

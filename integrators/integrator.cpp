@@ -19,7 +19,8 @@ uint32_t Integrator::accumulate(int x, int y, int begin, int end, PixelSums& sum
                                 PrimaryHit& first, RayStats& stats, IdCoverage* coverage) const {
   const RenderSettings& s = ctx_.settings;
   const Filter filter = Filter::make(s.filter);
-  const PixelSampler pixelSampler(PixelSampler::parse(s.pixelSampler, s.spp), s.spp, filter.radius());
+  const PixelSampler pixelSampler(PixelSampler::parse(s.pixelSampler, s.spp), s.spp,
+                                  filter.radius());
   const uint32_t pixelIndex = uint32_t(y) * uint32_t(ctx_.width) + uint32_t(x);
   const float cx = x + 0.5f, cy = y + 0.5f;
   // Filter-weighted sums, normalised by the weight sum at the end (pbrt-v4 8.8's weighted
@@ -61,7 +62,8 @@ std::unique_ptr<Integrator> makeIntegrator(const RenderContext& ctx, const std::
   for (const auto& e : integratorRegistry())
     if (wanted == e.name) return e.create(ctx);
   std::string known;
-  for (const auto& e : integratorRegistry()) known += std::string(known.empty() ? "" : ", ") + e.name;
+  for (const auto& e : integratorRegistry())
+    known += std::string(known.empty() ? "" : ", ") + e.name;
   throw Error("unknown integrator '" + wanted + "' (known: " + known + ")");
 }
 

@@ -57,7 +57,7 @@ struct PrimaryHit {
 struct PixelValue {
   Color radiance;
   float alpha = 0;
-  PrimaryHit primary;  ///< of the pixel's first sample
+  PrimaryHit primary;    ///< of the pixel's first sample
   uint32_t samples = 0;  ///< camera rays traced for this pixel
 };
 
@@ -93,9 +93,8 @@ class Integrator {
   /// Sampler(pixel, sample, seed): sums over consecutive ranges add up to renderPixel's. Fills
   /// `first` with what sample `begin` hit, and `coverage` (when not null) as renderPixel does;
   /// returns the camera rays traced.
-  virtual uint32_t accumulate(int x, int y, int begin, int end, PixelSums& sums,
-                              PrimaryHit& first, RayStats& stats,
-                              IdCoverage* coverage = nullptr) const;
+  virtual uint32_t accumulate(int x, int y, int begin, int end, PixelSums& sums, PrimaryHit& first,
+                              RayStats& stats, IdCoverage* coverage = nullptr) const;
   const RenderContext& context() const { return ctx_; }
 
  protected:

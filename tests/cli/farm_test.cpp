@@ -37,8 +37,8 @@ TEST(Farm, FourRegionsMergeBitForBit) {
   std::string parts;
   for (int i = 0; i < 4; ++i) {
     const std::string name = std::string("r") + char('0' + i) + ".exr";
-    CliResult r =
-        runCli(TRAY_RENDER_BIN, kJobAllAovs + " --region " + regions[i] + " " + out(dir, name), dir);
+    CliResult r = runCli(TRAY_RENDER_BIN,
+                         kJobAllAovs + " --region " + regions[i] + " " + out(dir, name), dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
     parts += " '" + (dir / name).string() + "'";
   }

@@ -1,8 +1,9 @@
 // Default lighting: an unlit glTF asset (most Khronos samples) must not render black, and a
 // scene with any light of its own must be left alone.
+#include "core/render_setup.h"
+
 #include <gtest/gtest.h>
 
-#include "core/render_setup.h"
 #include "tests/scene_builder.h"
 
 namespace tray {

@@ -22,13 +22,21 @@ struct D3 {
   D3 operator-(const D3& o) const { return {x - o.x, y - o.y, z - o.z}; }
   D3 operator*(double s) const { return {x * s, y * s, z * s}; }
 };
-double dot(const D3& a, const D3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+double dot(const D3& a, const D3& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 D3 cross(const D3& a, const D3& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-D3 unit(const D3& a) { return a * (1.0 / std::sqrt(dot(a, a))); }
-D3 toD3(const Vec3& v) { return {v.x, v.y, v.z}; }
-Vec3 toVec3(const D3& v) { return {float(v.x), float(v.y), float(v.z)}; }
+D3 unit(const D3& a) {
+  return a * (1.0 / std::sqrt(dot(a, a)));
+}
+D3 toD3(const Vec3& v) {
+  return {v.x, v.y, v.z};
+}
+Vec3 toVec3(const D3& v) {
+  return {float(v.x), float(v.y), float(v.z)};
+}
 
 /// A ray that crosses the surface at `target` into the solid. `depth` is how far past the
 /// target along the ray the line is still strictly inside the solid: a first hit later than
@@ -37,7 +45,7 @@ struct AimedRay {
   Ray ray;
   double targetT, depth;
   std::vector<uint32_t> triangles;  ///< the triangles around the target (edge: 2, vertex: fan)
-  bool atVertex = false;  ///< aimed exactly at a vertex (else at an edge)
+  bool atVertex = false;            ///< aimed exactly at a vertex (else at an edge)
 };
 
 constexpr double kDeg = 3.14159265358979323846 / 180.0;
@@ -99,13 +107,13 @@ std::vector<AimedRay> aimedRays(const TriangleMesh& m) {
     rays.push_back(aim(p, n * -1.0, 0.5, fans[v]));
     for (uint32_t t : fans[v])  // grazing along one edge of each incident triangle
       for (double angle : kGrazingAngles) {
-        const uint32_t w = m.indices[3 * t] == v ? m.indices[3 * t + 1]
+        const uint32_t w = m.indices[3 * t] == v       ? m.indices[3 * t + 1]
                            : m.indices[3 * t + 1] == v ? m.indices[3 * t + 2]
                                                        : m.indices[3 * t];
         const D3 toW = toD3(m.positions[w]) - p;
         const double room = 0.25 * std::sqrt(dot(toW, toW));
-        rays.push_back(aim(p, unit(unit(toW) * std::cos(angle) - n * std::sin(angle)),
-                           room, fans[v]));
+        rays.push_back(
+            aim(p, unit(unit(toW) * std::cos(angle) - n * std::sin(angle)), room, fans[v]));
       }
   }
   for (size_t i = edgeRays; i < rays.size(); ++i) rays[i].atVertex = true;
@@ -124,8 +132,8 @@ TEST(Watertight, RaysAtSharedEdgesAndVerticesNeverFallThrough) {
   s.finalize();
   const std::vector<AimedRay> rays = aimedRays(sphere);
   ASSERT_GT(rays.size(), 100000u);
-  const size_t vertexRays = size_t(std::count_if(rays.begin(), rays.end(),
-                                                 [](const AimedRay& r) { return r.atVertex; }));
+  const size_t vertexRays =
+      size_t(std::count_if(rays.begin(), rays.end(), [](const AimedRay& r) { return r.atVertex; }));
   for (const std::string& name : acceleratorNames()) {
     if (name == "naive") continue;  // the same triangle test as bvh, without the 30 s
     auto accel = makeAccelerator(name, s);
@@ -136,10 +144,11 @@ TEST(Watertight, RaysAtSharedEdgesAndVerticesNeverFallThrough) {
       if (isHole(r, found, hit.t)) ++(r.atVertex ? vertexHoles : edgeHoles);
       occlusionMismatches += found != accel->occluded(r.ray);
     }
-    std::printf("%s: %zu rays at the %zu edges and %zu vertices of a %zu-triangle sphere: %zu "
-                "holes at edges, %zu at vertices (of %zu vertex rays)\n",
-                name.c_str(), rays.size(), sphere.triangleCount() * 3 / 2, sphere.positions.size(),
-                sphere.triangleCount(), edgeHoles, vertexHoles, vertexRays);
+    std::printf(
+        "%s: %zu rays at the %zu edges and %zu vertices of a %zu-triangle sphere: %zu "
+        "holes at edges, %zu at vertices (of %zu vertex rays)\n",
+        name.c_str(), rays.size(), sphere.triangleCount() * 3 / 2, sphere.positions.size(),
+        sphere.triangleCount(), edgeHoles, vertexHoles, vertexRays);
     EXPECT_EQ(edgeHoles, 0u) << name;
     EXPECT_EQ(occlusionMismatches, 0u) << name;
     if (name == "embree") {
@@ -147,7 +156,8 @@ TEST(Watertight, RaysAtSharedEdgesAndVerticesNeverFallThrough) {
       // vertices" (its authors, RenderKit/embree#174, #181, #188): a ray aimed exactly at a
       // vertex can pass between the fan's triangles. Measured: 528 of 104k vertex rays. TRay's
       // own BVH (Woop et al. 2013 with a double-precision fallback) is the watertight reference.
-      EXPECT_LT(vertexHoles, vertexRays / 50) << name << ": more vertex cracks than Embree 3.13 has";
+      EXPECT_LT(vertexHoles, vertexRays / 50)
+          << name << ": more vertex cracks than Embree 3.13 has";
     } else {
       EXPECT_EQ(vertexHoles, 0u) << name;
     }
@@ -183,7 +193,8 @@ TEST(Watertight, TheTextbookTriangleTestLeaksOnSharedEdges) {
       const uint32_t* v = &sphere.indices[3 * tri];
       float t;
       if (mollerTrumbore(r.ray, sphere.positions[v[0]], sphere.positions[v[1]],
-                         sphere.positions[v[2]], t) && t < best)
+                         sphere.positions[v[2]], t) &&
+          t < best)
         found = true, best = t;
     }
     holes += isHole(r, found, best);
@@ -240,9 +251,10 @@ TEST(Watertight, TangentRaysAtASphereHitInsideAndMissOutsideTheSilhouette) {
           EXPECT_NEAR(std::sqrt(dot(p, p)), kRadius, 1e-3) << name;
         }
       }
-    std::printf("%s: %zu tangent rays (impact parameter radius x (1 +- 1e-3 .. 1e-2), from %g "
-                "radii): %zu wrong\n",
-                name.c_str(), total, kDistance / kRadius, wrong);
+    std::printf(
+        "%s: %zu tangent rays (impact parameter radius x (1 +- 1e-3 .. 1e-2), from %g "
+        "radii): %zu wrong\n",
+        name.c_str(), total, kDistance / kRadius, wrong);
     EXPECT_EQ(wrong, 0u) << name;
   }
 }
