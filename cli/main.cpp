@@ -2,7 +2,6 @@
 // Exit codes: 0 ok, 1 render error, 2 bad input or usage, 130 / 143 interrupted (SIGINT /
 // SIGTERM; the image so far is written).
 #include <CLI/CLI.hpp>
-#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -15,6 +14,7 @@
 #include "core/accelerator.h"
 #include "core/aov.h"
 #include "core/camera_matrices.h"
+#include "core/cryptomatte.h"
 #include "core/error.h"
 #include "core/filter.h"
 #include "core/pixel_sampler.h"
@@ -83,9 +83,7 @@ int run(const CliOptions& o) {
   const tray::SampleRange range =
       tray::parseSampleRange(o.sampleRange, integrator->samplesPerPixel(), o.settings.integrator);
   const std::vector<std::string> aovNames = tray::AovSet::parse(o.aovs);
-  if (!o.sampleRange.empty() &&
-      std::count_if(aovNames.begin(), aovNames.end(),
-                    [](const std::string& n) { return n.rfind("crypto_", 0) == 0; }))
+  if (!o.sampleRange.empty() && tray::Cryptomatte::requested(aovNames))
     throw tray::Error(
         "--sample-range with Cryptomatte AOVs: each part would keep only its own "
         "top-ranked ids, which cannot be merged exactly (split by --region instead)");

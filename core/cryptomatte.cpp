@@ -77,6 +77,11 @@ std::string Cryptomatte::metadataKey(std::string_view typeName) {
   return hex8(murmurHash3_32(typeName)).substr(0, 7);
 }
 
+bool Cryptomatte::requested(const std::vector<std::string>& aovs) {
+  return std::find(aovs.begin(), aovs.end(), "crypto_object") != aovs.end() ||
+         std::find(aovs.begin(), aovs.end(), "crypto_material") != aovs.end();
+}
+
 Cryptomatte::Cryptomatte(Film& film, const Scene& scene, const std::vector<std::string>& aovs,
                          int ranks)
     : ranks_(ranks) {

@@ -42,6 +42,8 @@ class Cryptomatte {
   Cryptomatte(Film& film, const Scene& scene, const std::vector<std::string>& aovs,
               int ranks = kDefaultRanks);
   bool active() const { return !types_.empty(); }
+  /// Whether `aovs` asks for any Cryptomatte layer (what active() will say), before a film exists.
+  static bool requested(const std::vector<std::string>& aovs);
   /// Ranks one pixel's coverage and writes its layers. Samples that hit nothing count as id 0
   /// (the specification: "If there is no object in the sample, the recorded hash value should
   /// be zero"), so a pixel's coverages sum to 1 over all ranks when it has few enough ids.
