@@ -10,21 +10,12 @@
 
 #include "accel/bvh4_traversal.h"
 #include "accel/bvh_triangle4.h"
+#include "tests/accel/random_boxes.h"
 
 namespace tray {
 namespace {
 
-std::vector<Bounds3> randomBoxes(uint32_t seed, int n) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  std::vector<Bounds3> boxes(n);
-  for (auto& b : boxes) {
-    Vec3 c{10 * u(rng), 10 * u(rng), u(rng)};
-    Vec3 h = 0.05f * Vec3(u(rng), u(rng), u(rng));
-    b = {c - h, c + h};
-  }
-  return boxes;
-}
+using tray::test::randomBoxes;
 
 Bounds3 slot(const Bvh4Node& n, int c) {
   return {{n.lo[0][c], n.lo[1][c], n.lo[2][c]}, {n.hi[0][c], n.hi[1][c], n.hi[2][c]}};

@@ -5,21 +5,12 @@
 #include <random>
 
 #include "accel/bvh.h"
+#include "tests/accel/random_boxes.h"
 
 namespace tray {
 namespace {
 
-std::vector<Bounds3> randomBoxes(uint32_t seed, int n) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  std::vector<Bounds3> boxes(n);
-  for (auto& b : boxes) {
-    Vec3 c{10 * u(rng), 10 * u(rng), u(rng)};
-    Vec3 h = 0.05f * Vec3(u(rng), u(rng), u(rng));
-    b = {c - h, c + h};
-  }
-  return boxes;
-}
+using tray::test::randomBoxes;
 
 bool contains(const Bounds3& outer, const Bounds3& inner) {
   for (int a = 0; a < 3; ++a)

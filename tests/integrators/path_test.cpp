@@ -5,6 +5,7 @@
 #include "core/renderer.h"
 #include "materials/bsdf.h"
 #include "materials/medium_stack.h"
+#include "tests/render_film.h"
 #include "tests/scene_builder.h"
 
 namespace tray {
@@ -14,17 +15,8 @@ using namespace tray::test;
 
 Film render(const Scene& scene, const CameraDesc& cam, int w, int h, RenderSettings settings,
             int threads = 0, RenderStats* stats = nullptr) {
-  auto camera = Camera::create(cam, w, h);
-  auto accel = makeAccelerator("embree", scene);
   settings.integrator = "path";
-  RenderContext ctx{scene, *accel, *camera, settings, w, h};
-  auto integrator = makeIntegrator(ctx);
-  Film film(w, h);
-  RenderOptions opt;
-  opt.threads = threads;
-  RenderStats st = renderImage(*integrator, film, opt);
-  if (stats) *stats = st;
-  return film;
+  return renderFilm(scene, cam, w, h, settings, stats, {}, "embree", threads);
 }
 
 // --- White furnace: a convex diffuse object under a uniform environment --------------------

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "core/renderer.h"
+#include "tests/render_film.h"
 #include "tests/scene_builder.h"
 
 namespace tray {
@@ -15,16 +16,10 @@ struct Rendered {
   RenderStats stats;
 };
 
-Rendered render(const Scene& scene, const CameraDesc& cam, int w, int h, RenderSettings settings = {},
-                int threads = 0) {
-  auto camera = Camera::create(cam, w, h);
-  auto accel = makeAccelerator("embree", scene);
-  RenderContext ctx{scene, *accel, *camera, settings, w, h};
-  auto integrator = makeIntegrator(ctx);
-  Film film(w, h);
-  RenderOptions opt;
-  opt.threads = threads;
-  RenderStats st = renderImage(*integrator, film, opt);
+Rendered render(const Scene& scene, const CameraDesc& cam, int w, int h,
+                RenderSettings settings = {}, int threads = 0) {
+  RenderStats st;
+  Film film = renderFilm(scene, cam, w, h, settings, &st, {}, "embree", threads);
   return {std::move(film), st};
 }
 
@@ -198,8 +193,8 @@ size_t shadowedPixels(float scale, Vec3 offset, bool meshFloor) {
   } else {
     addShape(s, std::make_shared<Plane>(), Mat4::translate(offset) * Mat4::scale(Vec3(scale)), mat);
   }
-  addShape(s, std::make_shared<Sphere>(1.0f), Mat4::translate(offset + scale * Vec3(0, 1, 0)) *
-                                                  Mat4::scale(Vec3(scale)), mat);
+  addShape(s, std::make_shared<Sphere>(1.0f),
+           Mat4::translate(offset + scale * Vec3(0, 1, 0)) * Mat4::scale(Vec3(scale)), mat);
   s.lights.push_back(pointLight(offset + scale * Vec3(2, 5, 1), Color(30.0f * scale * scale)));
   s.finalize();
   CameraDesc cam = lookAt(offset + scale * Vec3(0, 4, 6), offset, 0.9f);
@@ -228,7 +223,9 @@ TEST_P(WhittedScale, NoShadowAcneFromMillimetresToKilometres) {
 }
 
 INSTANTIATE_TEST_SUITE_P(FloorKinds, WhittedScale, ::testing::Values(false, true),
-                         [](const auto& info) { return info.param ? "MeshFloor" : "AnalyticPlane"; });
+                         [](const auto& info) {
+                           return info.param ? "MeshFloor" : "AnalyticPlane";
+                         });
 
 // --- Determinism ---------------------------------------------------------------------------
 

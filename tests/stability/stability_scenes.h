@@ -10,28 +10,12 @@
 
 #include "core/renderer.h"
 #include "integrators/integrator.h"
+#include "tests/render_film.h"
 #include "tests/scene_builder.h"
 
 namespace tray::stability {
 
 using namespace tray::test;
-
-/// Renders `scene` through `cam` with settings.integrator, on all cores.
-inline Film renderFilm(const Scene& scene, const CameraDesc& cam, int w, int h,
-                       const RenderSettings& settings, RenderStats* stats = nullptr,
-                       const std::vector<std::string>& aovs = {},
-                       const std::string& accelerator = "embree") {
-  auto camera = Camera::create(cam, w, h);
-  auto accel = makeAccelerator(accelerator, scene);
-  RenderContext ctx{scene, *accel, *camera, settings, w, h};
-  auto integrator = makeIntegrator(ctx);
-  Film film(w, h);
-  RenderOptions options;
-  options.aovs = aovs;
-  RenderStats st = renderImage(*integrator, film, options);
-  if (stats) *stats = st;
-  return film;
-}
 
 // --- 1. Self-intersection at every scale ---------------------------------------------------
 
