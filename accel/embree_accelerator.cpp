@@ -79,9 +79,12 @@ void reportShapeHit(const RTCIntersectFunctionNArguments* args, const Hit& hit, 
   int valid = -1;
   if (args->context->filter) {
     // Filters are not invoked for user geometry automatically (RenderKit/embree#478).
-    RTCFilterFunctionNArguments fargs{&valid, args->geometryUserPtr, args->context,
+    RTCFilterFunctionNArguments fargs{&valid,
+                                      args->geometryUserPtr,
+                                      args->context,
                                       reinterpret_cast<RTCRayN*>(&rh->ray),
-                                      reinterpret_cast<RTCHitN*>(&candidate), 1};
+                                      reinterpret_cast<RTCHitN*>(&candidate),
+                                      1};
     rtcFilterIntersection(args, &fargs);
   }
   if (valid != 0) {
@@ -129,7 +132,8 @@ void shapeIntersect(const RTCIntersectFunctionNArguments* args) {
     return;
   }
   Hit hit;
-  if (data->scene->intersectShape(data->primitive, ray, hit)) reportShapeHit(args, hit, args->geomID);
+  if (data->scene->intersectShape(data->primitive, ray, hit))
+    reportShapeHit(args, hit, args->geomID);
 }
 
 void shapeOccluded(const RTCOccludedFunctionNArguments* args) {
@@ -169,7 +173,8 @@ class EmbreeAccelerator final : public Accelerator {
   bool occluded(const Ray& ray) const override {
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
-    RTCRay r = toEmbree(ray).ray;
+    RTCRay r;
+    toEmbree(ray, r);
     rtcOccluded1(top_, &ctx, &r);
     return r.tfar < 0;
   }
@@ -206,17 +211,25 @@ class EmbreeAccelerator final : public Accelerator {
     if (!error_.empty()) throw Error("Embree: " + error_, Error::Kind::kRender);
   }
 
+  /// Only the fields Embree reads (rtcIntersect1 docs): zero-filling the whole 80-byte RTCRayHit
+  /// for each of a path's rays costs more than it seems.
+  static void toEmbree(const Ray& r, RTCRay& ray) {
+    ray.org_x = r.o.x;
+    ray.org_y = r.o.y;
+    ray.org_z = r.o.z;
+    ray.tnear = r.tmin;
+    ray.dir_x = r.d.x;
+    ray.dir_y = r.d.y;
+    ray.dir_z = r.d.z;
+    ray.time = 0.0f;
+    ray.tfar = r.tmax;
+    ray.mask = 0xffffffffu;
+    ray.id = 0;
+    ray.flags = 0;
+  }
   static RTCRayHit toEmbree(const Ray& r) {
-    RTCRayHit rh{};
-    rh.ray.org_x = r.o.x;
-    rh.ray.org_y = r.o.y;
-    rh.ray.org_z = r.o.z;
-    rh.ray.dir_x = r.d.x;
-    rh.ray.dir_y = r.d.y;
-    rh.ray.dir_z = r.d.z;
-    rh.ray.tnear = r.tmin;
-    rh.ray.tfar = r.tmax;
-    rh.ray.mask = 0xffffffffu;
+    RTCRayHit rh;
+    toEmbree(r, rh.ray);
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     return rh;
@@ -231,8 +244,8 @@ class EmbreeAccelerator final : public Accelerator {
     rtcSetSceneFlags(s, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
     rtcSetSceneBuildQuality(s, RTC_BUILD_QUALITY_HIGH);
     RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, m.positions.data(), 0,
-                               sizeof(Vec3), m.positions.size());
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, m.positions.data(),
+                               0, sizeof(Vec3), m.positions.size());
     rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m.indices.data(), 0,
                                3 * sizeof(uint32_t), m.triangleCount());
     rtcCommitGeometry(g);

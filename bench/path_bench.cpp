@@ -1,14 +1,16 @@
 // Path tracing throughput on the Cornell box (512x512, 64 spp, max depth 8), against raw
 // Embree traversal of incoherent rays measured in the same run on the same threads.
-// Usage: path_bench [scene.gltf] [threads] [size] [spp]
+// Usage: path_bench [scene.gltf] [threads] [size] [spp] [--accel NAME] [--no-replay]
 //   (default: the shared Cornell box, 2 threads, 512, 64; smaller runs serve for profiling)
 #include <sys/resource.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <CLI/CLI.hpp>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
+#include <mutex>
 
 #include "core/renderer.h"
 #include "core/sampler.h"
@@ -50,14 +52,53 @@ double rawTraversalMrays(const Accelerator& accel, const Bounds3& b, int threads
   return kRays / seconds * 1e-6;
 }
 
-int main(int argc, char** argv) {
-  std::string path =
-      argc > 1 ? argv[1] : std::string(TRAY_SOURCE_DIR) + "/../shared/reference/cornell-box.gltf";
-  int threads = argc > 2 ? std::atoi(argv[2]) : 2;
-  const int size = argc > 3 ? std::atoi(argv[3]) : 512, spp = argc > 4 ? std::atoi(argv[4]) : 64;
+/// Forwards to an accelerator and keeps a copy of every query, so that the path tracer's own
+/// rays can be replayed through bare traversal afterwards.
+class RecordingAccelerator final : public Accelerator {
+ public:
+  explicit RecordingAccelerator(const Accelerator& inner) : inner_(inner) {}
+  bool intersect(const Ray& ray, Hit& hit) const override {
+    std::lock_guard<std::mutex> lock(mutex_);
+    closest.push_back(ray);
+    return inner_.intersect(ray, hit);
+  }
+  bool occluded(const Ray& ray) const override {
+    std::lock_guard<std::mutex> lock(mutex_);
+    shadow.push_back(ray);
+    return inner_.occluded(ray);
+  }
+  void allHits(const Ray& ray, std::vector<Hit>& hits) const override { inner_.allHits(ray, hits); }
+  mutable std::vector<Ray> closest, shadow;
+
+ private:
+  const Accelerator& inner_;
+  mutable std::mutex mutex_;
+};
+
+/// Seconds to trace the rays (closest hits or occlusion) on `threads` threads.
+double replaySeconds(const Accelerator& accel, const std::vector<Ray>& rays, bool shadow,
+                     int threads) {
+  std::atomic<int> hits{0};
+  auto start = std::chrono::steady_clock::now();
+  tbb::task_arena arena(threads);
+  arena.execute([&] {
+    tbb::parallel_for(size_t(0), (rays.size() + 4095) / 4096, [&](size_t chunk) {
+      int local = 0;
+      for (size_t i = chunk * 4096; i < std::min(rays.size(), chunk * 4096 + 4096); ++i) {
+        Hit hit;
+        local += shadow ? accel.occluded(rays[i]) : accel.intersect(rays[i], hit);
+      }
+      hits += local;
+    });
+  });
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+int run(const std::string& path, const std::string& accelName, int threads, int size, int spp,
+        bool replay) {
   Scene scene = loadGltf(path);
   auto camera = Camera::create(scene.cameras.at(0), size, size);
-  auto accel = makeAccelerator("embree", scene);
+  auto accel = makeAccelerator(accelName, scene);
   RenderSettings settings;
   settings.integrator = "path";
   settings.spp = spp;
@@ -83,8 +124,54 @@ int main(int argc, char** argv) {
   std::printf("  Mrays/s         %.2f (camera %.1fM, bounce %.1fM, shadow %.1fM)\n",
               stats.mraysPerSecond(), stats.rays.cameraRays * 1e-6, stats.rays.secondaryRays * 1e-6,
               stats.rays.shadowRays * 1e-6);
-  std::printf("  raw Embree      %.2f Mrays/s (incoherent closest hits)\n", raw);
+  std::printf("  raw %-11s %.2f Mrays/s (random incoherent closest hits)\n", accelName.c_str(),
+              raw);
   std::printf("  path / raw      %.2f\n", stats.mraysPerSecond() / raw);
+  if (replay) {
+    // The same path tracer on a quarter of the pixels, its rays recorded, then those exact
+    // rays traced again with nothing else: the share of the render that is traversal.
+    RecordingAccelerator recorder(*accel);
+    const int small = std::max(16, size / 4);
+    auto smallCamera = Camera::create(scene.cameras.at(0), small, small);
+    RenderContext smallCtx{scene, recorder, *smallCamera, settings, small, small};
+    auto smallIntegrator = makeIntegrator(smallCtx);
+    Film smallFilm(small, small);
+    RenderOptions one;
+    one.threads = 1;
+    renderImage(*smallIntegrator, smallFilm, one);
+    // Timed again without the recorder's lock, for the share.
+    RenderContext plainCtx{scene, *accel, *smallCamera, settings, small, small};
+    RenderStats smallStats = renderImage(*makeIntegrator(plainCtx), smallFilm, one);
+    double closest = replaySeconds(*accel, recorder.closest, false, 1);
+    double shadowSeconds = replaySeconds(*accel, recorder.shadow, true, 1);
+    std::printf(
+        "  replay          %.2f s render (1 thread, %dx%d): %.2f s closest hits "
+        "(%.1f Mrays/s), %.2f s shadow rays (%.1f Mrays/s): traversal %.0f%%\n",
+        smallStats.seconds, small, small, closest, recorder.closest.size() / closest * 1e-6,
+        shadowSeconds, recorder.shadow.size() / shadowSeconds * 1e-6,
+        100 * (closest + shadowSeconds) / smallStats.seconds);
+  }
   std::printf("  NaN samples     %llu\n", (unsigned long long)stats.rays.nanSamples);
   return 0;
+}
+
+int main(int argc, char** argv) {
+  std::string path = std::string(TRAY_SOURCE_DIR) + "/../shared/reference/cornell-box.gltf";
+  std::string accelName = "embree";
+  int threads = 2, size = 512, spp = 64;
+  bool replay = true;
+  CLI::App app{"Path tracing throughput (Msamples/s, Mrays/s) against bare traversal"};
+  app.add_option("scene", path, "glTF scene (default: the shared Cornell box)");
+  app.add_option("threads", threads, "worker threads")->check(CLI::Range(1, 4096));
+  app.add_option("size", size, "image width and height")->check(CLI::Range(1, 16384));
+  app.add_option("spp", spp, "samples per pixel")->check(CLI::Range(1, 1 << 20));
+  app.add_option("--accel", accelName, "accelerator: embree, bvh, bvh-gs, naive");
+  app.add_flag("!--no-replay", replay, "skip the replay of the path's rays (profiling runs)");
+  CLI11_PARSE(app, argc, argv);
+  try {
+    return run(path, accelName, threads, size, spp, replay);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "path_bench: %s\n", e.what());
+    return 2;
+  }
 }

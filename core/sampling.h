@@ -12,12 +12,12 @@ namespace tray {
 inline Vec2 sampleUniformDiskConcentric(Vec2 u) {
   float ox = 2.0f * u.x - 1.0f, oy = 2.0f * u.y - 1.0f;
   if (ox == 0 && oy == 0) return {0, 0};
-  float r, theta;
-  if (std::fabs(ox) > std::fabs(oy)) {
-    r = ox, theta = (kPi / 4.0f) * (oy / ox);
-  } else {
-    r = oy, theta = kPi / 2.0f - (kPi / 4.0f) * (ox / oy);
-  }
+  // Both wedges computed and one selected: which one applies is a coin flip per sample, a
+  // branch on it is mispredicted half the time. The other quotient may divide by zero; unused.
+  const bool xWedge = std::fabs(ox) > std::fabs(oy);
+  const float r = xWedge ? ox : oy;
+  const float thetaX = (kPi / 4.0f) * (oy / ox), thetaY = kPi / 2.0f - (kPi / 4.0f) * (ox / oy);
+  const float theta = xWedge ? thetaX : thetaY;
   return {r * std::cos(theta), r * std::sin(theta)};
 }
 
@@ -62,12 +62,10 @@ inline float uniformConePdf(float oneMinusCosMax) {
 /// Uniform barycentrics (b0, b1, b2) on a triangle (Heitz 2019, "A Low-Distortion Map Between
 /// Triangle and Square"); pdf = 1 / area.
 inline Vec3 sampleUniformTriangle(Vec2 u) {
-  float b0, b1;
-  if (u.x < u.y) {
-    b0 = u.x / 2, b1 = u.y - b0;
-  } else {
-    b1 = u.y / 2, b0 = u.x - b1;
-  }
+  // Selects rather than a branch on the coin flip u.x < u.y (same values).
+  const bool lower = u.x < u.y;
+  const float half = (lower ? u.x : u.y) / 2;
+  const float b0 = lower ? half : u.x - half, b1 = lower ? u.y - half : half;
   return {b0, b1, 1.0f - b0 - b1};
 }
 

@@ -79,26 +79,27 @@ LightSet::LightSet(const Scene& scene) {
   table_ = AliasTable(power);
 }
 
-LightSample LightSet::sample(const Vec3& ref, const Vec3& n, bool transmits, float u1,
-                             Vec2 u2) const {
-  LightSample s;
-  if (table_.empty()) return s;
-  float pmf;
-  const Ref& r = refs_[table_.sample(u1, pmf)];
+LightSample LightSet::sampleLight(const Ref& r, const Vec3& ref, const Vec3& n, bool transmits,
+                                  Vec2 u2) const {
+  // One return per kind, so each sample is built in place (no copy through a local).
   switch (r.kind) {
     case Kind::kTriangle:
-      s = triangles_[r.index].sample(ref, u2);
-      break;
+      return triangles_[r.index].sample(ref, u2);
     case Kind::kSphere:
-      s = spheres_[r.index].sample(ref, u2);
-      break;
+      return spheres_[r.index].sample(ref, u2);
     case Kind::kPunctual:
-      s = punctual_[r.index].sample(ref);
-      break;
+      return punctual_[r.index].sample(ref);
     case Kind::kEnvironment:
-      s = environment_[r.index].sample(n, transmits, u2);
-      break;
+      return environment_[r.index].sample(n, transmits, u2);
   }
+  return {};
+}
+
+LightSample LightSet::sample(const Vec3& ref, const Vec3& n, bool transmits, float u1,
+                             Vec2 u2) const {
+  if (table_.empty()) return {};
+  float pmf;
+  LightSample s = sampleLight(refs_[table_.sample(u1, pmf)], ref, n, transmits, u2);
   s.pdf *= pmf;
   return s;
 }

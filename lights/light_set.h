@@ -46,6 +46,8 @@ class LightSet {
     Kind kind;
     uint32_t index;
   };
+  LightSample sampleLight(const Ref& r, const Vec3& ref, const Vec3& n, bool transmits,
+                          Vec2 u2) const;
   std::vector<Ref> refs_;
   std::vector<TriangleLight> triangles_;
   std::vector<SphereLight> spheres_;

@@ -154,13 +154,22 @@ float Bsdf::pdf(const Vec3& wo, const Vec3& wi) const {
 }
 
 Color Bsdf::eval(const Vec3& wo, const Vec3& wi, float& pdf) const {
+  if (only_ == Only::kDiffuse) {  // Lambert needs only the cosines: skip the tangent axes
+    const float cosO = dot(wo, frame_.n), cosI = dot(wi, frame_.n);
+    const bool same = cosO * cosI > 0;
+    pdf = same ? cosineHemispherePdf(std::fabs(cosI)) : 0.0f;
+    return same ? diffuse_.albedo * (1.0f / kPi) : Color(0.0f);
+  }
   const Vec3 woLocal = frame_.toLocal(wo), wiLocal = frame_.toLocal(wi);
   pdf = pdfLocal(woLocal, wiLocal);
   return evalLocal(woLocal, wiLocal);
 }
 
 BsdfSample Bsdf::sample(const Vec3& wo, float uc, Vec2 u) const {
-  BsdfSample s = sampleLocal(frame_.toLocal(wo), uc, u);
+  // Lambert reads only the side of wo (its local z): skip the tangent axes.
+  const Vec3 woLocal =
+      only_ == Only::kDiffuse ? Vec3(0.0f, 0.0f, dot(wo, frame_.n)) : frame_.toLocal(wo);
+  BsdfSample s = sampleLocal(woLocal, uc, u);
   s.wi = frame_.toWorld(s.wi);
   return s;
 }

@@ -16,7 +16,7 @@ struct LambertLobe {
   BsdfSample sample(const Vec3& wo, Vec2 u) const {
     BsdfSample s;
     s.wi = sampleCosineHemisphere(u);
-    if (wo.z < 0) s.wi.z = -s.wi.z;
+    s.wi.z = wo.z < 0 ? -s.wi.z : s.wi.z;  // a select: the side is random per bounce
     s.pdf = cosineHemispherePdf(absCosTheta(s.wi));
     s.f = albedo * (1.0f / kPi);
     return s;
