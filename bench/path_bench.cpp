@@ -2,6 +2,7 @@
 // Embree traversal of incoherent rays measured in the same run on the same threads.
 // Usage: path_bench [scene.gltf] [threads] [size] [spp] [--accel NAME] [--no-replay]
 //   (default: the shared Cornell box, 2 threads, 512, 64; smaller runs serve for profiling)
+#include <OpenImageIO/imageio.h>
 #include <sys/resource.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -12,6 +13,7 @@
 #include <cstdio>
 #include <mutex>
 
+#include "core/error.h"
 #include "core/renderer.h"
 #include "core/sampler.h"
 #include "core/sampling.h"
@@ -94,8 +96,58 @@ double replaySeconds(const Accelerator& accel, const std::vector<Ray>& rays, boo
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+/// Reads the RGB of an EXR reference (any channels after the first three are ignored).
+bool readReference(const std::string& path, int& width, int& height, std::vector<float>& rgb) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) return false;
+  width = in->spec().width, height = in->spec().height;
+  rgb.resize(size_t(width) * height * 3);
+  if (!in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, rgb.data()))
+    throw Error(path + ": " + in->geterror());
+  return true;
+}
+
+/// Error at equal samples, and so equal-error speed: both random sequences render the scene at
+/// the reference's size and `spp`; the RMSE of each against the reference gives how many
+/// independent samples a Sobol' sample is worth (the MSE ratio).
+void equalError(const Scene& scene, const Accelerator& accel, const std::string& refPath, int spp,
+                int threads) {
+  int w, h;
+  std::vector<float> ref;
+  if (!readReference(refPath, w, h, ref)) return;
+  auto camera = Camera::create(scene.cameras.at(0), w, h);
+  std::printf("equal error: %dx%d, %d spp, against %s\n", w, h, spp, refPath.c_str());
+  double mse[2], rate[2];
+  const char* names[2] = {"independent", "sobol"};
+  for (int k = 0; k < 2; ++k) {
+    RenderSettings settings;
+    settings.integrator = "path";
+    settings.spp = spp;
+    settings.maxDepth = 8;
+    settings.sampler = names[k];
+    RenderContext ctx{scene, accel, *camera, settings, w, h};
+    Film film(w, h);
+    RenderOptions options;
+    options.threads = threads;
+    RenderStats stats = renderImage(*makeIntegrator(ctx), film, options);
+    double se = 0;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        for (int c = 0; c < 3; ++c) {
+          const double d = film.pixel(Film::kBeauty, x, y)[c] - ref[(size_t(y) * w + x) * 3 + c];
+          se += d * d;
+        }
+    mse[k] = se / (3.0 * w * h);
+    rate[k] = double(w) * h * spp / stats.seconds * 1e-6;
+    std::printf("  %-11s RMSE %.5f, %.3f Msamples/s\n", names[k], std::sqrt(mse[k]), rate[k]);
+  }
+  // A Sobol' sample is worth mse[0] / mse[1] independent ones at this error level.
+  std::printf("  sobol: MSE ratio %.2f, so %.2f independent-equivalent Msamples/s\n",
+              mse[0] / mse[1], rate[1] * mse[0] / mse[1]);
+}
+
 int run(const std::string& path, const std::string& accelName, int threads, int size, int spp,
-        bool replay) {
+        bool replay, const std::string& sampler, bool error) {
   Scene scene = loadGltf(path);
   auto camera = Camera::create(scene.cameras.at(0), size, size);
   auto accel = makeAccelerator(accelName, scene);
@@ -103,6 +155,7 @@ int run(const std::string& path, const std::string& accelName, int threads, int 
   settings.integrator = "path";
   settings.spp = spp;
   settings.maxDepth = 8;
+  settings.sampler = sampler;
   RenderContext ctx{scene, *accel, *camera, settings, size, size};
   auto integrator = makeIntegrator(ctx);
   Film film(size, size);
@@ -113,8 +166,8 @@ int run(const std::string& path, const std::string& accelName, int threads, int 
   const double cpu = cpuSeconds() - cpuStart;
   double samples = double(size) * size * spp;
   double raw = rawTraversalMrays(*accel, scene.bounds(), threads);
-  std::printf("path tracing %s: %dx%d, %d spp, max depth 8, %d threads\n", path.c_str(), size, size,
-              spp, threads);
+  std::printf("path tracing %s: %dx%d, %d spp, max depth 8, %d threads, %s sampler\n", path.c_str(),
+              size, size, spp, threads, sampler.c_str());
   std::printf("  time            %.2f s\n", stats.seconds);
   std::printf("  Msamples/s      %.3f\n", samples / stats.seconds * 1e-6);
   std::printf(
@@ -152,6 +205,8 @@ int run(const std::string& path, const std::string& accelName, int threads, int 
         100 * (closest + shadowSeconds) / smallStats.seconds);
   }
   std::printf("  NaN samples     %llu\n", (unsigned long long)stats.rays.nanSamples);
+  const std::string refPath = path.substr(0, path.rfind('.')) + ".ref.exr";
+  if (error) equalError(scene, *accel, refPath, 64, threads);
   return 0;
 }
 
@@ -159,17 +214,22 @@ int main(int argc, char** argv) {
   std::string path = std::string(TRAY_SOURCE_DIR) + "/../shared/reference/cornell-box.gltf";
   std::string accelName = "embree";
   int threads = 2, size = 512, spp = 64;
-  bool replay = true;
+  bool replay = true, error = true;
+  std::string sampler = "independent";
   CLI::App app{"Path tracing throughput (Msamples/s, Mrays/s) against bare traversal"};
   app.add_option("scene", path, "glTF scene (default: the shared Cornell box)");
   app.add_option("threads", threads, "worker threads")->check(CLI::Range(1, 4096));
   app.add_option("size", size, "image width and height")->check(CLI::Range(1, 16384));
   app.add_option("spp", spp, "samples per pixel")->check(CLI::Range(1, 1 << 20));
   app.add_option("--accel", accelName, "accelerator: embree, bvh, bvh-gs, naive");
+  app.add_option("--sampler", sampler, "random sequence of the throughput run: independent, sobol")
+      ->check(CLI::IsMember(Sampler::names()));
   app.add_flag("!--no-replay", replay, "skip the replay of the path's rays (profiling runs)");
+  app.add_flag("!--no-error", error,
+               "skip the equal-error comparison (needs SCENE.ref.exr beside the scene)");
   CLI11_PARSE(app, argc, argv);
   try {
-    return run(path, accelName, threads, size, spp, replay);
+    return run(path, accelName, threads, size, spp, replay, sampler, error);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "path_bench: %s\n", e.what());
     return 2;

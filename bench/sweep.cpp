@@ -47,6 +47,12 @@ std::vector<SweepConfig> standardSweep(const std::vector<std::string>& accels,
       p.spp = spp;
       add("path", "spp=" + std::to_string(spp), p);
     }
+    // The same estimator on Owen-scrambled Sobol' numbers: equal error at fewer samples.
+    p.sampler = "sobol";
+    for (int spp = 1; spp <= maxSpp; spp *= 4) {
+      p.spp = spp;
+      add("path sobol", "spp=" + std::to_string(spp), p);
+    }
   }
   // Every method on every accelerator and thread count: separate lines.
   std::vector<SweepConfig> out;

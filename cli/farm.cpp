@@ -59,6 +59,8 @@ std::string jobSignature(const RenderSettings& s, const JobFrame& f) {
   job += " spp=" + std::to_string(s.spp) + " seed=" + std::to_string(s.seed);
   job += " depth=" + std::to_string(s.maxDepth) + " sampler=" + s.pixelSampler;
   job += " filter=" + s.filter + " aa=" + aa + " clamp=" + clamp;
+  // Only when not the default, so parts and checkpoints written before --sampler still match.
+  if (s.sampler != "independent") job += " sequence=" + s.sampler;
   job += " accel=" + f.accelerator + " aov=" + f.aovs;
   return job;
 }

@@ -20,6 +20,7 @@
 #include "core/pixel_sampler.h"
 #include "core/render_setup.h"
 #include "core/renderer.h"
+#include "core/sampler.h"
 #include "integrators/adaptive.h"
 #include "io/gltf_loader.h"
 #include "io/image_output.h"
@@ -145,6 +146,7 @@ int run(const CliOptions& o) {
                         {"tray:seed", std::to_string(o.settings.seed)},
                         {"tray:filter", o.settings.filter},
                         {"tray:pixelSampler", o.settings.pixelSampler},
+                        {"tray:sampler", o.settings.sampler},
                         {"tray:status", done == all ? "complete" : "partial"},
                         {"tray:job", job}};
     w.floatMetadata = {{"tray:spp", float(o.settings.spp)},
@@ -226,6 +228,11 @@ int main(int argc, char** argv) {
   app.add_option("--pixel-sampler", o.settings.pixelSampler,
                  "where samples go in a pixel: auto, center, corners, grid, jitter")
       ->check(CLI::IsMember(tray::PixelSampler::names()))
+      ->capture_default_str();
+  app.add_option("--sampler", o.settings.sampler,
+                 "random sequence: independent, or sobol (Owen-scrambled, stratified: less noise "
+                 "per sample; ignored by adaptive's lattice)")
+      ->check(CLI::IsMember(tray::Sampler::names()))
       ->capture_default_str();
   app.add_option("--filter", o.settings.filter,
                  "reconstruction filter: box, tent, gaussian, mitchell")

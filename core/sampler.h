@@ -1,21 +1,53 @@
 #pragma once
 #include <cstdint>
+#include <string>
+#include <vector>
 
 #include "core/math.h"
+#include "core/sobol.h"
 
 namespace tray {
 
-/// Counter-based random numbers: each value is a hash of (pixel, sample, dimension, seed), so
-/// a pixel's samples do not depend on which thread renders it or in what order.
+/// Counter-based random numbers: each value is a function of (pixel, sample, dimension, seed),
+/// so a pixel's samples do not depend on which thread renders it or in what order.
 class Sampler {
  public:
-  Sampler(uint32_t pixelIndex, uint32_t sampleIndex, uint64_t seed)
-      : key_(mix(mix(seed ^ 0x9e3779b97f4a7c15ull) ^ (uint64_t(pixelIndex) << 32 | sampleIndex))) {}
+  enum class Sequence : uint8_t {
+    kIndependent,  ///< a hash per value: uniform, independent (Mitsuba's `independent`)
+    kSobol,        ///< Owen-scrambled Sobol' in padded 2D pairs (core/sobol.h): stratified
+  };
+  /// Names accepted by --sampler.
+  static const std::vector<std::string>& names();
+  /// Resolves a name (throws tray::Error naming the choices for an unknown one).
+  static Sequence parse(const std::string& name);
+
+  Sampler(uint32_t pixelIndex, uint32_t sampleIndex, uint64_t seed,
+          Sequence sequence = Sequence::kIndependent)
+      : pixelKey_(mix(mix(seed ^ 0x9e3779b97f4a7c15ull) ^ (uint64_t(pixelIndex) << 32) ^
+                      0x5851f42d4c957f2dull)),
+        key_(mix(mix(seed ^ 0x9e3779b97f4a7c15ull) ^ (uint64_t(pixelIndex) << 32 | sampleIndex))),
+        sampleIndex_(sampleIndex),
+        sequence_(sequence) {}
   /// Uniform in [0, 1).
-  float next1D() { return toUnit(mix(key_ + 0xbf58476d1ce4e5b9ull * ++dimension_)); }
+  float next1D() {
+    if (sequence_ == Sequence::kIndependent)
+      return toUnit(mix(key_ + 0xbf58476d1ce4e5b9ull * ++dimension_));
+    const uint64_t h = dimensionHash(++dimension_);
+    const uint32_t index = sobol::shuffle(sampleIndex_, uint32_t(h));
+    return sobol::toUnit(sobol::scrambledDimension0(index, uint32_t(h >> 32)));
+  }
+  /// Two dimensions; with kSobol, the pair is one 2D Sobol' point (stratified jointly).
   Vec2 next2D() {
-    float a = next1D();
-    return {a, next1D()};
+    if (sequence_ == Sequence::kIndependent) {
+      float a = next1D();
+      return {a, next1D()};
+    }
+    const uint64_t h = dimensionHash(dimension_ += 2);
+    const uint32_t index = sobol::shuffle(sampleIndex_, uint32_t(h));
+    // Three 32-bit seeds from one 64-bit hash and a cheap odd-multiply remix of it.
+    const uint32_t seedX = uint32_t(h >> 32), seedY = uint32_t((h * 0x9e3779b97f4a7c15ull) >> 32);
+    return {sobol::toUnit(sobol::scrambledDimension0(index, seedX)),
+            sobol::toUnit(sobol::scrambledDimension1(index, seedY))};
   }
   uint32_t dimension() const { return dimension_; }
 
@@ -27,8 +59,15 @@ class Sampler {
     return z ^ (z >> 31);
   }
   static float toUnit(uint64_t v) { return float(v >> 40) * (1.0f / 16777216.0f); }
-  uint64_t key_;
+  /// Per pixel and dimension, the same for all of the pixel's samples (so they form one
+  /// scrambled sequence).
+  uint64_t dimensionHash(uint32_t dimension) const {
+    return mix(pixelKey_ + 0xbf58476d1ce4e5b9ull * dimension);
+  }
+  uint64_t pixelKey_, key_;
+  uint32_t sampleIndex_;
   uint32_t dimension_ = 0;
+  Sequence sequence_;
 };
 
 }  // namespace tray

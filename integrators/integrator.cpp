@@ -21,6 +21,7 @@ uint32_t Integrator::accumulate(int x, int y, int begin, int end, PixelSums& sum
   const Filter filter = Filter::make(s.filter);
   const PixelSampler pixelSampler(PixelSampler::parse(s.pixelSampler, s.spp), s.spp,
                                   filter.radius());
+  const Sampler::Sequence sequence = Sampler::parse(s.sampler);
   const uint32_t pixelIndex = uint32_t(y) * uint32_t(ctx_.width) + uint32_t(x);
   const float cx = x + 0.5f, cy = y + 0.5f;
   // Filter-weighted sums, normalised by the weight sum at the end (pbrt-v4 8.8's weighted
@@ -28,7 +29,7 @@ uint32_t Integrator::accumulate(int x, int y, int begin, int end, PixelSums& sum
   // mean accurate at very high sample counts and let sums of sample ranges be combined.
   end = std::min(end, pixelSampler.count());
   for (int i = begin; i < end; ++i) {
-    Sampler sampler(pixelIndex, uint32_t(i), s.seed);
+    Sampler sampler(pixelIndex, uint32_t(i), s.seed, sequence);
     const Vec2 d = pixelSampler.offset(i, sampler.next2D());
     Ray ray = ctx_.camera.generateRay(cx + d.x, cy + d.y);
     ++stats.cameraRays;

@@ -18,13 +18,14 @@ struct Image {
   std::vector<float> rgb;  // kSize x kSize x 3
 };
 
-Image renderCornell(const Scene& scene, int spp) {
+Image renderCornell(const Scene& scene, int spp, const std::string& sampler = "independent") {
   auto camera = Camera::create(scene.cameras.at(0), kSize, kSize);
   auto accel = makeAccelerator("embree", scene);
   RenderSettings settings;
   settings.integrator = "path";
   settings.spp = spp;
   settings.maxDepth = 8;
+  settings.sampler = sampler;
   RenderContext ctx{scene, *accel, *camera, settings, kSize, kSize};
   auto integrator = makeIntegrator(ctx);
   Film film(kSize, kSize);
@@ -79,6 +80,20 @@ TEST(PathCornell, MatchesMitsubaReferenceAndConvergesAsMonteCarlo) {
   std::printf("Cornell RMSE vs reference: 64 spp %.5f, 256 spp %.5f, ratio %.3f\n", e64, e256,
               e64 / e256);
   EXPECT_NEAR(e64 / e256, 2.0, 0.3);
+
+  // --sampler sobol: the same estimator on stratified numbers. Unbiased (means within 0.5%)
+  // and less noisy: at 64 spp it must beat independent sampling's 64-spp error by at least
+  // a quarter (measured: 0.0104 against 0.0157, the error of about 2.2x the samples).
+  Image sobol64 = renderCornell(scene, 64, "sobol");
+  for (int c = 0; c < 3; ++c) {
+    double m = 0, r = 0;
+    for (size_t i = c; i < ref.rgb.size(); i += 3) m += sobol64.rgb[i], r += ref.rgb[i];
+    EXPECT_NEAR(m / r, 1.0, 0.005) << "sobol, channel " << c;
+  }
+  const double s64 = rmse(sobol64, ref);
+  std::printf("Cornell RMSE at 64 spp: independent %.5f, sobol %.5f (MSE ratio %.2f)\n", e64, s64,
+              (e64 * e64) / (s64 * s64));
+  EXPECT_LT(s64, 0.75 * e64);
 }
 
 }  // namespace
