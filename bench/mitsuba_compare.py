@@ -1,0 +1,176 @@
+#!/usr/bin/env python3
+"""TRay's path tracer against Mitsuba 3, both measured in this run on this machine.
+
+Speed: Mitsuba's Cornell box (mi.cornell_box(), path max_depth 8, box filter, independent
+sampler) at --size/--spp in the llvm_ad_rgb and scalar_rgb variants (one warm-up render so JIT
+compilation is excluded, then best of --repeats), and TRay's path_bench on the same scene as glTF
+(best of --repeats). Error: both at the reference's 256x256 and --error-spp against Mitsuba's
+converged render (/work/shared/reference/cornell-box.ref.exr).
+
+Run with the venv of tools/setup-mitsuba.sh (tools/compare-mitsuba.sh does it all).
+"""
+import argparse
+import os
+import re
+import subprocess
+import sys
+import tempfile
+import time
+
+try:
+    import drjit as dr
+    import mitsuba as mi
+    import numpy as np
+except ImportError as e:
+    print(f"mitsuba_compare: {e}: run tools/setup-mitsuba.sh and use build/mitsuba-venv/bin/python",
+          file=sys.stderr)
+    sys.exit(2)
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SHARED = os.path.normpath(os.path.join(HERE, "..", "..", "shared", "reference"))
+LINES = []
+
+
+def say(text=""):
+    print(text, flush=True)
+    LINES.append(text)
+
+
+def fail(text):
+    print(f"mitsuba_compare: {text}", file=sys.stderr)
+    sys.exit(1)
+
+
+def mitsuba_scene(size, spp, depth):
+    d = mi.cornell_box()
+    d["sensor"]["film"]["width"] = size
+    d["sensor"]["film"]["height"] = size
+    d["sensor"]["film"]["rfilter"] = {"type": "box"}
+    d["sensor"]["sampler"] = {"type": "independent", "sample_count": spp}
+    d["integrator"] = {"type": "path", "max_depth": depth}
+    return mi.load_dict(d)
+
+
+def mitsuba_render(scene, spp, seed):
+    img = mi.render(scene, spp=spp, seed=seed)
+    dr.eval(img)
+    dr.sync_thread()  # the llvm variant renders asynchronously: wait before stopping the clock
+    return img
+
+
+def mitsuba_speed(variant, size, spp, depth, repeats):
+    mi.set_variant(variant)
+    scene = mitsuba_scene(size, spp, depth)
+    t = time.perf_counter()
+    mitsuba_render(scene, spp, 0)  # warm-up: JIT compile (llvm) and first-touch allocations
+    warm = time.perf_counter() - t
+    best = float("inf")
+    for i in range(repeats):
+        t = time.perf_counter()
+        mitsuba_render(scene, spp, i + 1)
+        best = min(best, time.perf_counter() - t)
+    rate = size * size * spp / best * 1e-6
+    say(f"  Mitsuba {variant:12s} best {best:7.2f} s  {rate:7.3f} Msamples/s  (warm-up {warm:.2f} s)")
+    return rate
+
+
+def tray_speed(bench, gltf, threads, size, spp, repeats):
+    best = 0.0
+    for _ in range(repeats):
+        r = subprocess.run([bench, gltf, str(threads), str(size), str(spp)], capture_output=True,
+                           text=True)
+        if r.returncode != 0:
+            fail(f"{bench} failed (exit {r.returncode}): {r.stderr.strip() or r.stdout.strip()}")
+        m = re.search(r"Msamples/s\s+([0-9.]+)", r.stdout)
+        if not m:
+            fail(f"{bench}: no 'Msamples/s' line in its output:\n{r.stdout}")
+        best = max(best, float(m.group(1)))
+    say(f"  TRay    {'path_bench':12s} best {size * size * spp / best * 1e-6:7.2f} s  "
+        f"{best:7.3f} Msamples/s  ({threads} threads)")
+    return best
+
+
+def read_rgb(path):
+    """Linear RGB float array (H, W, 3) of an EXR: its first three channels."""
+    try:
+        bmp = mi.Bitmap(path)
+    except Exception as e:  # mitsuba raises RuntimeError subclasses for unreadable files
+        fail(f"{path}: cannot read: {e}")
+    a = np.array(bmp, dtype=np.float64)
+    if a.ndim != 3 or a.shape[2] < 3:
+        fail(f"{path}: expected an RGB image, got array shape {a.shape}")
+    return a[:, :, :3]
+
+
+def report_error(name, img, ref):
+    if img.shape != ref.shape:
+        fail(f"{name}: image shape {img.shape} differs from the reference's {ref.shape}")
+    if not np.all(np.isfinite(img)):
+        fail(f"{name}: image has NaN or infinite pixels")
+    rmse = float(np.sqrt(np.mean((img - ref) ** 2)))
+    means = img.reshape(-1, 3).mean(axis=0)
+    rel = (means / ref.reshape(-1, 3).mean(axis=0) - 1) * 100
+    say(f"  {name:22s} RMSE {rmse:.5f}  means R {means[0]:.5f} G {means[1]:.5f} B {means[2]:.5f}"
+        f"  ({rel[0]:+.2f}% {rel[1]:+.2f}% {rel[2]:+.2f}%)")
+    return rmse
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p.add_argument("--tray-bench", default=os.path.join(HERE, "..", "build", "path_bench"))
+    p.add_argument("--tray-render", default=os.path.join(HERE, "..", "build", "tray-render"))
+    p.add_argument("--gltf", default=os.path.join(SHARED, "cornell-box.gltf"))
+    p.add_argument("--reference", default=os.path.join(SHARED, "cornell-box.ref.exr"))
+    p.add_argument("--size", type=int, default=512)
+    p.add_argument("--spp", type=int, default=64)
+    p.add_argument("--max-depth", type=int, default=8)
+    p.add_argument("--threads", type=int, default=2, help="TRay's threads (Mitsuba uses all cores)")
+    p.add_argument("--repeats", type=int, default=3)
+    p.add_argument("--error-spp", type=int, default=64)
+    p.add_argument("--report", help="also write the report to this text file")
+    a = p.parse_args()
+    for f in (a.tray_bench, a.tray_render, a.gltf, a.reference):
+        if not os.path.exists(f):
+            fail(f"{f}: not found")
+
+    say(f"TRay vs Mitsuba {mi.__version__} (drjit {dr.__version__}), Cornell box, measured "
+        f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())} on {os.cpu_count()} cores "
+        f"(load {os.getloadavg()[0]:.2f})")
+    say(f"Speed: {a.size}x{a.size}, {a.spp} spp, max depth {a.max_depth}, best of {a.repeats}")
+    mi_llvm = mitsuba_speed("llvm_ad_rgb", a.size, a.spp, a.max_depth, a.repeats)
+    mi_scalar = mitsuba_speed("scalar_rgb", a.size, a.spp, a.max_depth, a.repeats)
+    tray = tray_speed(a.tray_bench, a.gltf, a.threads, a.size, a.spp, a.repeats)
+    say(f"  TRay / Mitsuba llvm_ad_rgb  {tray / mi_llvm:.2f}")
+    say(f"  TRay / Mitsuba scalar_rgb   {tray / mi_scalar:.2f}")
+
+    ref = read_rgb(a.reference)
+    size = ref.shape[1]
+    m = ref.reshape(-1, 3).mean(axis=0)
+    say()
+    say(f"Error: {size}x{ref.shape[0]}, {a.error_spp} spp, independent sampling, against "
+        f"{os.path.basename(a.reference)} (means R {m[0]:.5f} G {m[1]:.5f} B {m[2]:.5f})")
+    rmse = {}
+    for variant in ("llvm_ad_rgb", "scalar_rgb"):
+        mi.set_variant(variant)
+        img = mitsuba_render(mitsuba_scene(size, a.error_spp, a.max_depth), a.error_spp, 1)
+        rmse[variant] = report_error(f"Mitsuba {variant}", np.array(img, dtype=np.float64), ref)
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "tray.exr")
+        cmd = [a.tray_render, "--integrator", "path", "--spp", str(a.error_spp), "--max-depth",
+               str(a.max_depth), "--resolution", f"{size}x{ref.shape[0]}", "--float", a.gltf,
+               "-o", out]
+        r = subprocess.run(cmd, capture_output=True, text=True)
+        if r.returncode != 0 or not os.path.exists(out):
+            fail(f"{' '.join(cmd)} failed (exit {r.returncode}): {r.stderr.strip()}")
+        rmse["tray"] = report_error("TRay path", read_rgb(out), ref)
+    say(f"  RMSE TRay / Mitsuba llvm_ad_rgb  {rmse['tray'] / rmse['llvm_ad_rgb']:.3f}")
+    say(f"  RMSE TRay / Mitsuba scalar_rgb   {rmse['tray'] / rmse['scalar_rgb']:.3f}")
+    say("  (1 = the same error at equal spp; both are unbiased with independent samples)")
+
+    if a.report:
+        with open(a.report, "w") as f:
+            f.write("\n".join(LINES) + "\n")
+
+
+if __name__ == "__main__":
+    main()
