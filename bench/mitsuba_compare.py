@@ -64,18 +64,20 @@ def mitsuba_speed(variant, size, spp, depth, repeats):
     t = time.perf_counter()
     mitsuba_render(scene, spp, 0)  # warm-up: JIT compile (llvm) and first-touch allocations
     warm = time.perf_counter() - t
-    best = float("inf")
+    best, best_cpu = float("inf"), float("inf")
     for i in range(repeats):
-        t = time.perf_counter()
+        t, c = time.perf_counter(), time.process_time()  # process time: all of Dr.Jit's threads
         mitsuba_render(scene, spp, i + 1)
         best = min(best, time.perf_counter() - t)
-    rate = size * size * spp / best * 1e-6
-    say(f"  Mitsuba {variant:12s} best {best:7.2f} s  {rate:7.3f} Msamples/s  (warm-up {warm:.2f} s)")
-    return rate
+        best_cpu = min(best_cpu, time.process_time() - c)
+    n = size * size * spp * 1e-6
+    say(f"  Mitsuba {variant:12s} best {best:7.2f} s  {n / best:7.3f} Msamples/s  "
+        f"{n / best_cpu:7.3f} per CPU-s  (warm-up {warm:.2f} s)")
+    return n / best, n / best_cpu
 
 
 def tray_speed(bench, gltf, threads, size, spp, repeats):
-    best = 0.0
+    best, best_cpu = 0.0, 0.0
     for _ in range(repeats):
         r = subprocess.run([bench, gltf, str(threads), str(size), str(spp)], capture_output=True,
                            text=True)
@@ -84,10 +86,13 @@ def tray_speed(bench, gltf, threads, size, spp, repeats):
         m = re.search(r"Msamples/s\s+([0-9.]+)", r.stdout)
         if not m:
             fail(f"{bench}: no 'Msamples/s' line in its output:\n{r.stdout}")
-        best = max(best, float(m.group(1)))
+        c = re.search(r"([0-9.]+) Msamples per CPU-second", r.stdout)
+        if not c:
+            fail(f"{bench}: no 'Msamples per CPU-second' in its output:\n{r.stdout}")
+        best, best_cpu = max(best, float(m.group(1))), max(best_cpu, float(c.group(1)))
     say(f"  TRay    {'path_bench':12s} best {size * size * spp / best * 1e-6:7.2f} s  "
-        f"{best:7.3f} Msamples/s  ({threads} threads)")
-    return best
+        f"{best:7.3f} Msamples/s  {best_cpu:7.3f} per CPU-s  ({threads} threads)")
+    return best, best_cpu
 
 
 def read_rgb(path):
@@ -140,8 +145,11 @@ def main():
     mi_llvm = mitsuba_speed("llvm_ad_rgb", a.size, a.spp, a.max_depth, a.repeats)
     mi_scalar = mitsuba_speed("scalar_rgb", a.size, a.spp, a.max_depth, a.repeats)
     tray = tray_speed(a.tray_bench, a.gltf, a.threads, a.size, a.spp, a.repeats)
-    say(f"  TRay / Mitsuba llvm_ad_rgb  {tray / mi_llvm:.2f}")
-    say(f"  TRay / Mitsuba scalar_rgb   {tray / mi_scalar:.2f}")
+    for name, m in (("llvm_ad_rgb", mi_llvm), ("scalar_rgb", mi_scalar)):
+        say(f"  TRay / Mitsuba {name:12s} {tray[0] / m[0]:.2f} (wall clock), "
+            f"{tray[1] / m[1]:.2f} (per CPU-second)")
+    say(f"  (load at the end of the speed runs: {os.getloadavg()[0]:.2f}; per CPU-second figures"
+        " depend less on other jobs)")
 
     ref = read_rgb(a.reference)
     size = ref.shape[1]

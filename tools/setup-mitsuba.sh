@@ -19,9 +19,10 @@ if [ ! -x "$VENV/bin/python" ]; then
   mkdir -p build
   python3 -m venv "$VENV"
 fi
-if ! "$VENV/bin/python" -c "import mitsuba, sys; sys.exit(mitsuba.__version__ != '$MITSUBA_VERSION')" \
+# numpy: the comparison computes its RMSE on the images as arrays.
+if ! "$VENV/bin/python" -c "import numpy, mitsuba, sys; sys.exit(mitsuba.__version__ != '$MITSUBA_VERSION')" \
   2>/dev/null; then
-  "$VENV/bin/pip" install --quiet "mitsuba==$MITSUBA_VERSION"
+  "$VENV/bin/pip" install --quiet "mitsuba==$MITSUBA_VERSION" numpy
 fi
 echo "Mitsuba $MITSUBA_VERSION ready: $VENV/bin/python" \
   "(export DRJIT_LIBLLVM_PATH=/usr/lib/x86_64-linux-gnu/libLLVM.so.19.1)"
