@@ -174,6 +174,12 @@ def main():
     say(f"  RMSE TRay / Mitsuba llvm_ad_rgb  {rmse['tray'] / rmse['llvm_ad_rgb']:.3f}")
     say(f"  RMSE TRay / Mitsuba scalar_rgb   {rmse['tray'] / rmse['scalar_rgb']:.3f}")
     say("  (1 = the same error at equal spp; both are unbiased with independent samples)")
+    # Monte Carlo variance falls as 1/spp, so reaching the other's error takes rmse-ratio^2
+    # times the samples: efficiency (1 / (variance x time)) ratio = speed ratio / rmse ratio^2.
+    for name, m in (("llvm_ad_rgb", mi_llvm), ("scalar_rgb", mi_scalar)):
+        q = (rmse["tray"] / rmse[name]) ** 2
+        say(f"  time to equal error, Mitsuba {name} / TRay: {tray[0] / m[0] / q:.2f} (wall clock), "
+            f"{tray[1] / m[1] / q:.2f} (per CPU-second)")
 
     if a.report:
         with open(a.report, "w") as f:
