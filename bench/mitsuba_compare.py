@@ -5,8 +5,9 @@ Speed: Mitsuba's Cornell box (mi.cornell_box(), path max_depth 8, box filter, in
 sampler) at --size/--spp in the llvm_ad_rgb and scalar_rgb variants (one warm-up render so JIT
 compilation is excluded, then best of --repeats), and TRay's path_bench on the same scene as glTF
 (best of --repeats). Error: both at the reference's 256x256 and --error-spp against Mitsuba's
-converged render (/work/shared/reference/cornell-box.ref.exr); TRay both with its default
-stratified pixel positions and with independent ones, like Mitsuba's independent sampler.
+converged render (/work/shared/reference/cornell-box.ref.exr); TRay with its default (Sobol'
+numbers, jittered pixel positions), with independent numbers, and independent throughout like
+Mitsuba's independent sampler.
 
 Run with the venv of tools/setup-mitsuba.sh (tools/compare-mitsuba.sh does it all).
 """
@@ -77,11 +78,11 @@ def mitsuba_speed(variant, size, spp, depth, repeats):
     return n / best, n / best_cpu
 
 
-def tray_speed(bench, gltf, threads, size, spp, repeats):
+def tray_speed(bench, gltf, threads, size, spp, repeats, sampler):
     best, best_cpu = 0.0, 0.0
     for _ in range(repeats):
-        r = subprocess.run([bench, gltf, str(threads), str(size), str(spp)], capture_output=True,
-                           text=True)
+        r = subprocess.run([bench, gltf, str(threads), str(size), str(spp), "--sampler", sampler,
+                            "--no-replay", "--no-error"], capture_output=True, text=True)
         if r.returncode != 0:
             fail(f"{bench} failed (exit {r.returncode}): {r.stderr.strip() or r.stdout.strip()}")
         m = re.search(r"Msamples/s\s+([0-9.]+)", r.stdout)
@@ -91,7 +92,7 @@ def tray_speed(bench, gltf, threads, size, spp, repeats):
         if not c:
             fail(f"{bench}: no 'Msamples per CPU-second' in its output:\n{r.stdout}")
         best, best_cpu = max(best, float(m.group(1))), max(best_cpu, float(c.group(1)))
-    say(f"  TRay    {'path_bench':12s} best {size * size * spp / best * 1e-6:7.2f} s  "
+    say(f"  TRay    {sampler:12s} best {size * size * spp / best * 1e-6:7.2f} s  "
         f"{best:7.3f} Msamples/s  {best_cpu:7.3f} per CPU-s  ({threads} threads)")
     return best, best_cpu
 
@@ -157,9 +158,12 @@ def main():
     say(f"Speed: {a.size}x{a.size}, {a.spp} spp, max depth {a.max_depth}, best of {a.repeats}")
     mi_llvm = mitsuba_speed("llvm_ad_rgb", a.size, a.spp, a.max_depth, a.repeats)
     mi_scalar = mitsuba_speed("scalar_rgb", a.size, a.spp, a.max_depth, a.repeats)
-    tray = tray_speed(a.tray_bench, a.gltf, a.threads, a.size, a.spp, a.repeats)
+    # Per sample, like for like: TRay's independent sequence; its default, Sobol', costs more
+    # per sample and is worth more (the error section).
+    tray = tray_speed(a.tray_bench, a.gltf, a.threads, a.size, a.spp, a.repeats, "independent")
+    tray_sobol = tray_speed(a.tray_bench, a.gltf, a.threads, a.size, a.spp, a.repeats, "sobol")
     for name, m in (("llvm_ad_rgb", mi_llvm), ("scalar_rgb", mi_scalar)):
-        say(f"  TRay / Mitsuba {name:12s} {tray[0] / m[0]:.2f} (wall clock), "
+        say(f"  TRay independent / Mitsuba {name:12s} {tray[0] / m[0]:.2f} (wall clock), "
             f"{tray[1] / m[1]:.2f} (per CPU-second)")
     say(f"  (load at the end of the speed runs: {os.getloadavg()[0]:.2f}; per CPU-second figures"
         " depend less on other jobs)")
@@ -177,28 +181,34 @@ def main():
         rmse[variant] = report_error(f"Mitsuba {variant}", np.array(img, dtype=np.float64), ref)
     res = f"{size}x{ref.shape[0]}"
     with tempfile.TemporaryDirectory() as tmp:
-        # TRay's default places a pixel's camera rays one per stratum of an 8x8 grid (jitter),
-        # which lowers the error on edges and penumbrae; everything else is independent.
+        # TRay's default: Owen-scrambled Sobol' numbers (--sampler sobol), and camera rays
+        # one per stratum of an 8x8 grid (--pixel-sampler auto = jitter).
         img = tray_render(a, tmp, res, a.error_spp, [])
-        rmse["tray"] = report_error("TRay path (jitter)", img, ref)
+        rmse["tray"] = report_error("TRay path (default)", img, ref)
+        # Independent numbers, still jittered pixel positions.
+        img = tray_render(a, tmp, res, a.error_spp, ["--sampler", "independent"])
+        rmse["tray_jitter"] = report_error("TRay path (jitter)", img, ref)
         # Like-for-like with Mitsuba's independent sampler: at 2 spp the jitter grid has one
         # stratum (n = floor(sqrt(2)) = 1, core/pixel_sampler.cpp), so the positions are uniform
         # in the pixel; the mean of error-spp/2 such renders with distinct seeds is a
         # error-spp render with independent samples throughout (box filter: equal weights).
         runs = max(1, a.error_spp // 2)
-        img = sum(tray_render(a, tmp, res, 2, ["--pixel-sampler", "jitter", "--seed", str(k + 1)])
+        img = sum(tray_render(a, tmp, res, 2, ["--pixel-sampler", "jitter", "--sampler",
+                                               "independent", "--seed", str(k + 1)])
                   for k in range(runs)) / runs
         rmse["tray_indep"] = report_error("TRay path (independent)", img, ref)
     for name in ("llvm_ad_rgb", "scalar_rgb"):
         say(f"  RMSE TRay / Mitsuba {name:12s} {rmse['tray_indep'] / rmse[name]:.3f} (independent)"
-            f", {rmse['tray'] / rmse[name]:.3f} (TRay's default jitter)")
+            f", {rmse['tray_jitter'] / rmse[name]:.3f} (jitter), {rmse['tray'] / rmse[name]:.3f}"
+            " (TRay's default)")
     say("  (1 = the same error at equal spp; both renderers are unbiased)")
     # Monte Carlo variance falls as 1/spp, so reaching the other's error takes rmse-ratio^2
     # times the samples: efficiency (1 / (variance x time)) ratio = speed ratio / rmse ratio^2.
-    for name, m in (("llvm_ad_rgb", mi_llvm), ("scalar_rgb", mi_scalar)):
-        q = (rmse["tray"] / rmse[name]) ** 2
-        say(f"  time to equal error, Mitsuba {name} / TRay (default): {tray[0] / m[0] / q:.2f} "
-            f"(wall clock), {tray[1] / m[1] / q:.2f} (per CPU-second)")
+    for label, key, speed in (("default", "tray", tray_sobol), ("jitter", "tray_jitter", tray)):
+        for name, m in (("llvm_ad_rgb", mi_llvm), ("scalar_rgb", mi_scalar)):
+            q = (rmse[key] / rmse[name]) ** 2
+            say(f"  time to equal error, Mitsuba {name} / TRay ({label}): "
+                f"{speed[0] / m[0] / q:.2f} (wall clock), {speed[1] / m[1] / q:.2f} (per CPU-second)")
 
     if a.report:
         with open(a.report, "w") as f:

@@ -43,6 +43,7 @@ std::vector<SweepConfig> standardSweep(const std::vector<std::string>& accels,
     RenderSettings p;
     p.integrator = "path";
     p.pixelSampler = "jitter";
+    p.sampler = "independent";
     for (int spp = 1; spp <= maxSpp; spp *= 4) {
       p.spp = spp;
       add("path", "spp=" + std::to_string(spp), p);

@@ -22,7 +22,7 @@ struct RenderSettings {
   int maxDepth = -1;              ///< -1: the integrator's own default
   int spp = 1;
   uint64_t seed = 0;
-  std::string sampler = "independent";  ///< random sequence: independent | sobol (core/sampler.h)
+  std::string sampler = "sobol";  ///< random sequence: sobol | independent (core/sampler.h)
   std::string pixelSampler = "auto";  ///< center | corners | grid | jitter | auto (center at 1 spp)
   std::string filter = "box";
   float aaThreshold = 0.03f;  // reaches the 4x4 grid's RMSE with 32% of its rays (bench/aa_bench)
