@@ -49,6 +49,21 @@ class Sampler {
     return {sobol::toUnit(sobol::scrambledDimension0(index, seedX)),
             sobol::toUnit(sobol::scrambledDimension1(index, seedY))};
   }
+  /// Three dimensions; with kSobol one 3D Sobol' point (dimensions 0-2 at one shuffled index),
+  /// its (y, z) a (0, 2)-net like next2D's pair. Independent: three next1D() values in order.
+  Vec3 next3D() {
+    if (sequence_ == Sequence::kIndependent) {
+      const float a = next1D(), b = next1D();
+      return {a, b, next1D()};
+    }
+    const uint64_t h = dimensionHash(dimension_ += 3);
+    const uint32_t index = sobol::shuffle(sampleIndex_, uint32_t(h));
+    const uint64_t h2 = h * 0x9e3779b97f4a7c15ull;
+    const uint32_t seedX = uint32_t(h2 >> 32), seedY = uint32_t(h >> 32), seedZ = uint32_t(h2);
+    return {sobol::toUnit(sobol::scrambledDimension2(index, seedX)),
+            sobol::toUnit(sobol::scrambledDimension0(index, seedY)),
+            sobol::toUnit(sobol::scrambledDimension1(index, seedZ))};
+  }
   uint32_t dimension() const { return dimension_; }
 
  private:

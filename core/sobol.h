@@ -37,13 +37,39 @@ inline uint32_t dimension0(uint32_t index) {
   return reverseBits(index);
 }
 
-/// Sobol' dimension 1 (primitive polynomial x + 1: direction numbers v_{k+1} = v_k ^ v_k >> 1),
-/// by the definition: the XOR of the direction numbers the index bits select.
+/// Direction numbers v_1..v_32 (as 32-bit fixed point) of the Sobol' dimension with primitive
+/// polynomial of degree s and inner coefficients a (Bratley & Fox 1988, recurrence
+/// v_k = a_1 v_(k-1) ^ ... ^ a_(s-1) v_(k-s+1) ^ v_(k-s) ^ v_(k-s) >> s), from initial m_1..m_s
+/// (Joe & Kuo 2008, new-joe-kuo-6.21201: dimension 2 has s = 1, m = 1; dimension 3 s = 2, a = 1,
+/// m = 1, 3).
+struct DirectionNumbers {
+  uint32_t v[32];
+  constexpr DirectionNumbers(int s, uint32_t a, const uint32_t* m) : v{} {
+    for (int k = 0; k < s; ++k) v[k] = m[k] << (31 - k);
+    for (int k = s; k < 32; ++k) {
+      uint32_t x = v[k - s] ^ (v[k - s] >> s);
+      for (int j = 1; j < s; ++j)
+        if ((a >> (s - 1 - j)) & 1u) x ^= v[k - j];
+      v[k] = x;
+    }
+  }
+  /// The sample at `index`: the XOR of the direction numbers its bits select.
+  constexpr uint32_t sample(uint32_t index) const {
+    uint32_t result = 0;
+    for (int k = 0; index; index >>= 1, ++k)
+      if (index & 1u) result ^= v[k];
+    return result;
+  }
+};
+inline constexpr uint32_t kM1[1] = {1}, kM2[2] = {1, 3};
+inline constexpr DirectionNumbers kDimension1Numbers(1, 0, kM1), kDimension2Numbers(2, 1, kM2);
+
+/// Sobol' dimensions 1 and 2 by the definition (tests compare the tables against these).
 constexpr uint32_t dimension1Reference(uint32_t index) {
-  uint32_t result = 0;
-  for (uint32_t v = 1u << 31; index; index >>= 1, v ^= v >> 1)
-    if (index & 1u) result ^= v;
-  return result;
+  return kDimension1Numbers.sample(index);
+}
+constexpr uint32_t dimension2Reference(uint32_t index) {
+  return kDimension2Numbers.sample(index);
 }
 
 namespace detail {
@@ -52,29 +78,35 @@ constexpr uint32_t reverseBitsSlow(uint32_t v) {
   for (int i = 0; i < 32; ++i, v >>= 1) r = (r << 1) | (v & 1u);
   return r;
 }
-/// dimension1 of each byte of the index in each of its four positions, bit-reversed (what
-/// Owen scrambling takes): the matrix-vector product over GF(2) as four lookups (4 KB),
-/// instead of a data-dependent loop over 32 bits.
-struct Dimension1Tables {
+/// A dimension's value for each byte of the index in each of its four positions, bit-reversed
+/// (what Owen scrambling takes): the matrix-vector product over GF(2) as four lookups (4 KB
+/// per dimension), instead of a data-dependent loop over 32 bits.
+struct ReversedTables {
   uint32_t byte[4][256];
-  constexpr Dimension1Tables() : byte{} {
+  constexpr explicit ReversedTables(const DirectionNumbers& d) : byte{} {
     for (int b = 0; b < 4; ++b)
-      for (uint32_t i = 0; i < 256; ++i)
-        byte[b][i] = reverseBitsSlow(dimension1Reference(i << (8 * b)));
+      for (uint32_t i = 0; i < 256; ++i) byte[b][i] = reverseBitsSlow(d.sample(i << (8 * b)));
+  }
+  uint32_t operator()(uint32_t index) const {
+    return byte[0][index & 255u] ^ byte[1][(index >> 8) & 255u] ^ byte[2][(index >> 16) & 255u] ^
+           byte[3][index >> 24];
   }
 };
-inline constexpr Dimension1Tables kDimension1;
+inline constexpr ReversedTables kDimension1(kDimension1Numbers), kDimension2(kDimension2Numbers);
 }  // namespace detail
 
-/// reverseBits(dimension1(index)).
+/// reverseBits(dimension1(index)), reverseBits(dimension2(index)).
 inline uint32_t reversedDimension1(uint32_t index) {
-  const auto& t = detail::kDimension1.byte;
-  return t[0][index & 255u] ^ t[1][(index >> 8) & 255u] ^ t[2][(index >> 16) & 255u] ^
-         t[3][index >> 24];
+  return detail::kDimension1(index);
 }
-
+inline uint32_t reversedDimension2(uint32_t index) {
+  return detail::kDimension2(index);
+}
 inline uint32_t dimension1(uint32_t index) {
   return reverseBits(reversedDimension1(index));
+}
+inline uint32_t dimension2(uint32_t index) {
+  return reverseBits(reversedDimension2(index));
 }
 
 /// A permutation of sample indices under which every aligned block of 2^k indices maps to an
@@ -91,6 +123,9 @@ inline uint32_t scrambledDimension0(uint32_t index, uint32_t seed) {
 }
 inline uint32_t scrambledDimension1(uint32_t index, uint32_t seed) {
   return reverseBits(carryHash(reversedDimension1(index), seed));
+}
+inline uint32_t scrambledDimension2(uint32_t index, uint32_t seed) {
+  return reverseBits(carryHash(reversedDimension2(index), seed));
 }
 
 /// Fixed-point bits to [0, 1): the top 24 bits, so 1 is never reached.

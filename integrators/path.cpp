@@ -147,8 +147,9 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats
 
     // Next-event estimation: one light sample, MIS-weighted against BSDF sampling.
     if (bsdf.hasNonDelta() && !lights_.empty()) {
-      float uLight = sampler.next1D();
-      LightSample ls = lights_.sample(s.p, n, bsdf.transmits(), uLight, sampler.next2D());
+      // The light choice and the point on it as one 3D sample (stratified jointly by Sobol').
+      const Vec3 u = sampler.next3D();
+      LightSample ls = lights_.sample(s.p, n, bsdf.transmits(), u.x, {u.y, u.z});
       if (ls.valid() && !isBlack(ls.L)) {
         float bsdfPdf;
         Color f = bsdf.eval(wo, ls.wi, bsdfPdf) * std::fabs(dot(ls.wi, n));
@@ -164,8 +165,8 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats
     }
 
     // BSDF sampling continues the path.
-    float uLobe = sampler.next1D();
-    BsdfSample bs = bsdf.sample(wo, uLobe, sampler.next2D());
+    const Vec3 u = sampler.next3D();  // the lobe choice, then the direction
+    BsdfSample bs = bsdf.sample(wo, u.x, {u.y, u.z});
     if (!bs.valid()) break;
     beta *= bs.f * (std::fabs(dot(bs.wi, n)) / bs.pdf);
     if (!isFinite(beta)) {

@@ -25,9 +25,19 @@ TEST(SobolTest, DimensionsMatchTheSobolSequence) {
   }
 }
 
+TEST(SobolTest, ThirdDimensionMatchesJoeKuo) {
+  // Dimension 3 of Joe & Kuo's table (s = 2, a = 1, m = 1, 3): direction numbers 1/2, 3/4,
+  // 3/8 (m_3 = 2 m_2 ^ 4 m_1 ^ m_1 = 3), so points 0, 1/2, 3/4, 1/4, 3/8, 7/8, 1/8, 5/8.
+  const double expected[8] = {0, 0.5, 0.75, 0.25, 0.375, 0.875, 0.625, 0.125};
+  for (uint32_t i = 0; i < 8; ++i)
+    EXPECT_EQ(sobol::dimension2Reference(i) / 4294967296.0, expected[i]) << i;
+}
+
 TEST(SobolTest, TablesAndShortcutsMatchTheDefinitions) {
   for (uint32_t i : {0u, 1u, 2u, 255u, 256u, 0x12345678u, 0x80000000u, 0xffffffffu}) {
     EXPECT_EQ(sobol::dimension1(i), sobol::dimension1Reference(i)) << i;
+    EXPECT_EQ(sobol::dimension2(i), sobol::dimension2Reference(i)) << i;
+    EXPECT_EQ(sobol::scrambledDimension2(i, 77u), sobol::owenScramble(sobol::dimension2(i), 77u));
     EXPECT_EQ(sobol::scrambledDimension0(i, 77u), sobol::owenScramble(sobol::dimension0(i), 77u));
     EXPECT_EQ(sobol::scrambledDimension1(i, 77u), sobol::owenScramble(sobol::dimension1(i), 77u));
     EXPECT_EQ(sobol::reverseBits(sobol::reverseBits(i)), i);
@@ -85,6 +95,28 @@ TEST(SamplerTest, SobolPairsAreNetsInEveryPairAndPixel) {
       }
   // Independent samples are not (the failure the stratification fixes).
   EXPECT_FALSE(isNet(pixelPoints(0, 6, 0, Sequence::kIndependent), 6));
+}
+
+TEST(SamplerTest, Sobol3DPointsAreStratified) {
+  // next3D: (y, z) is dimensions 0 and 1, a (0, m, 2)-net; x (dimension 2) is stratified in 1D.
+  const int m = 6, n = 1 << m;
+  std::vector<Vec2> yz;
+  std::vector<int> strata(n, 0);
+  for (uint32_t i = 0; i < uint32_t(n); ++i) {
+    Sampler s(21, i, 5, Sequence::kSobol);
+    s.next2D();
+    const Vec3 u = s.next3D();
+    yz.push_back({u.y, u.z});
+    ++strata[size_t(u.x * n)];
+  }
+  EXPECT_TRUE(isNet(yz, m));
+  for (int c : strata) EXPECT_EQ(c, 1);
+  // Independent: the same values as three next1D calls (images rendered before next3D stay).
+  Sampler a(4, 2, 9), b(4, 2, 9);
+  const Vec3 u = a.next3D();
+  EXPECT_EQ(u.x, b.next1D());
+  EXPECT_EQ(u.y, b.next1D());
+  EXPECT_EQ(u.z, b.next1D());
 }
 
 TEST(SamplerTest, Sobol1DIsStratified) {
