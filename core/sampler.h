@@ -26,14 +26,14 @@ class Sampler {
       : pixelKey_(mix(mix(seed ^ 0x9e3779b97f4a7c15ull) ^ (uint64_t(pixelIndex) << 32) ^
                       0x5851f42d4c957f2dull)),
         key_(mix(mix(seed ^ 0x9e3779b97f4a7c15ull) ^ (uint64_t(pixelIndex) << 32 | sampleIndex))),
-        sampleIndex_(sampleIndex),
+        reversedIndex_(sobol::reverseBits(sampleIndex)),
         sequence_(sequence) {}
   /// Uniform in [0, 1).
   float next1D() {
     if (sequence_ == Sequence::kIndependent)
       return toUnit(mix(key_ + 0xbf58476d1ce4e5b9ull * ++dimension_));
     const uint64_t h = dimensionHash(++dimension_);
-    const uint32_t index = sobol::shuffle(sampleIndex_, uint32_t(h));
+    const uint32_t index = sobol::shuffleReversed(reversedIndex_, uint32_t(h));
     return sobol::toUnit(sobol::scrambledDimension0(index, uint32_t(h >> 32)));
   }
   /// Two dimensions; with kSobol, the pair is one 2D Sobol' point (stratified jointly).
@@ -43,7 +43,7 @@ class Sampler {
       return {a, next1D()};
     }
     const uint64_t h = dimensionHash(dimension_ += 2);
-    const uint32_t index = sobol::shuffle(sampleIndex_, uint32_t(h));
+    const uint32_t index = sobol::shuffleReversed(reversedIndex_, uint32_t(h));
     // Three 32-bit seeds from one 64-bit hash and a cheap odd-multiply remix of it.
     const uint32_t seedX = uint32_t(h >> 32), seedY = uint32_t((h * 0x9e3779b97f4a7c15ull) >> 32);
     return {sobol::toUnit(sobol::scrambledDimension0(index, seedX)),
@@ -57,7 +57,7 @@ class Sampler {
       return {a, b, next1D()};
     }
     const uint64_t h = dimensionHash(dimension_ += 3);
-    const uint32_t index = sobol::shuffle(sampleIndex_, uint32_t(h));
+    const uint32_t index = sobol::shuffleReversed(reversedIndex_, uint32_t(h));
     const uint64_t h2 = h * 0x9e3779b97f4a7c15ull;
     const uint32_t seedX = uint32_t(h2 >> 32), seedY = uint32_t(h >> 32), seedZ = uint32_t(h2);
     return {sobol::toUnit(sobol::scrambledDimension2(index, seedX)),
@@ -80,7 +80,7 @@ class Sampler {
     return mix(pixelKey_ + 0xbf58476d1ce4e5b9ull * dimension);
   }
   uint64_t pixelKey_, key_;
-  uint32_t sampleIndex_;
+  uint32_t reversedIndex_;  ///< the sample index, bit-reversed for the Sobol' shuffle
   uint32_t dimension_ = 0;
   Sequence sequence_;
 };

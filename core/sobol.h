@@ -115,6 +115,10 @@ inline uint32_t dimension2(uint32_t index) {
 inline uint32_t shuffle(uint32_t index, uint32_t seed) {
   return owenScramble(index, seed);
 }
+/// The same from reverseBits(index), which a sampler computes once for all its dimensions.
+inline uint32_t shuffleReversed(uint32_t reversedIndex, uint32_t seed) {
+  return reverseBits(carryHash(reversedIndex, seed));
+}
 
 /// Owen-scrambled dimensions 0 and 1 at a (shuffled) index: owenScramble(dimensionN(index))
 /// with the bit reversals that cancel left out.

@@ -41,6 +41,7 @@ TEST(SobolTest, TablesAndShortcutsMatchTheDefinitions) {
     EXPECT_EQ(sobol::scrambledDimension0(i, 77u), sobol::owenScramble(sobol::dimension0(i), 77u));
     EXPECT_EQ(sobol::scrambledDimension1(i, 77u), sobol::owenScramble(sobol::dimension1(i), 77u));
     EXPECT_EQ(sobol::reverseBits(sobol::reverseBits(i)), i);
+    EXPECT_EQ(sobol::shuffleReversed(sobol::reverseBits(i), 99u), sobol::shuffle(i, 99u));
   }
   EXPECT_EQ(sobol::reverseBits(1u), 0x80000000u);
 }
