@@ -43,12 +43,16 @@ def fail(text):
     sys.exit(1)
 
 
-def mitsuba_scene(size, spp, depth):
+# Mitsuba 3's samplers that stratify (its default, `independent`, does not).
+MITSUBA_STRATIFIED = ("stratified", "ldsampler")
+
+
+def mitsuba_scene(size, spp, depth, sampler="independent"):
     d = mi.cornell_box()
     d["sensor"]["film"]["width"] = size
     d["sensor"]["film"]["height"] = size
     d["sensor"]["film"]["rfilter"] = {"type": "box"}
-    d["sensor"]["sampler"] = {"type": "independent", "sample_count": spp}
+    d["sensor"]["sampler"] = {"type": sampler, "sample_count": spp}
     d["integrator"] = {"type": "path", "max_depth": depth}
     return mi.load_dict(d)
 
@@ -60,9 +64,9 @@ def mitsuba_render(scene, spp, seed):
     return img
 
 
-def mitsuba_speed(variant, size, spp, depth, repeats):
+def mitsuba_speed(variant, size, spp, depth, repeats, sampler="independent"):
     mi.set_variant(variant)
-    scene = mitsuba_scene(size, spp, depth)
+    scene = mitsuba_scene(size, spp, depth, sampler)
     t = time.perf_counter()
     mitsuba_render(scene, spp, 0)  # warm-up: JIT compile (llvm) and first-touch allocations
     warm = time.perf_counter() - t
@@ -73,7 +77,8 @@ def mitsuba_speed(variant, size, spp, depth, repeats):
         best = min(best, time.perf_counter() - t)
         best_cpu = min(best_cpu, time.process_time() - c)
     n = size * size * spp * 1e-6
-    say(f"  Mitsuba {variant:12s} best {best:7.2f} s  {n / best:7.3f} Msamples/s  "
+    name = variant if sampler == "independent" else f"{variant} {sampler}"
+    say(f"  Mitsuba {name:12s} best {best:7.2f} s  {n / best:7.3f} Msamples/s  "
         f"{n / best_cpu:7.3f} per CPU-s  (warm-up {warm:.2f} s)")
     return n / best, n / best_cpu
 
@@ -158,6 +163,9 @@ def main():
     say(f"Speed: {a.size}x{a.size}, {a.spp} spp, max depth {a.max_depth}, best of {a.repeats}")
     mi_llvm = mitsuba_speed("llvm_ad_rgb", a.size, a.spp, a.max_depth, a.repeats)
     mi_scalar = mitsuba_speed("scalar_rgb", a.size, a.spp, a.max_depth, a.repeats)
+    # Mitsuba's own stratified samplers, for a best-against-best comparison at equal error.
+    mi_better = {smp: mitsuba_speed("llvm_ad_rgb", a.size, a.spp, a.max_depth, a.repeats, smp)
+                 for smp in MITSUBA_STRATIFIED}
     # Per sample, like for like: TRay's independent sequence; its default, Sobol', costs more
     # per sample and is worth more (the error section).
     tray = tray_speed(a.tray_bench, a.gltf, a.threads, a.size, a.spp, a.repeats, "independent")
@@ -179,6 +187,10 @@ def main():
         mi.set_variant(variant)
         img = mitsuba_render(mitsuba_scene(size, a.error_spp, a.max_depth), a.error_spp, 1)
         rmse[variant] = report_error(f"Mitsuba {variant}", np.array(img, dtype=np.float64), ref)
+    mi.set_variant("llvm_ad_rgb")
+    for smp in MITSUBA_STRATIFIED:
+        img = mitsuba_render(mitsuba_scene(size, a.error_spp, a.max_depth, smp), a.error_spp, 1)
+        rmse[smp] = report_error(f"Mitsuba llvm {smp}", np.array(img, dtype=np.float64), ref)
     res = f"{size}x{ref.shape[0]}"
     with tempfile.TemporaryDirectory() as tmp:
         # TRay's default: Owen-scrambled Sobol' numbers (--sampler sobol), and camera rays
@@ -209,6 +221,11 @@ def main():
             q = (rmse[key] / rmse[name]) ** 2
             say(f"  time to equal error, Mitsuba {name} / TRay ({label}): "
                 f"{speed[0] / m[0] / q:.2f} (wall clock), {speed[1] / m[1] / q:.2f} (per CPU-second)")
+    for smp, m in mi_better.items():
+        q = (rmse["tray"] / rmse[smp]) ** 2
+        say(f"  time to equal error, Mitsuba llvm_ad_rgb {smp} / TRay (default): "
+            f"{tray_sobol[0] / m[0] / q:.2f} (wall clock), {tray_sobol[1] / m[1] / q:.2f} "
+            "(per CPU-second)")
 
     if a.report:
         with open(a.report, "w") as f:

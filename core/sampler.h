@@ -14,7 +14,7 @@ class Sampler {
  public:
   enum class Sequence : uint8_t {
     kIndependent,  ///< a hash per value: uniform, independent (Mitsuba's `independent`)
-    kSobol,        ///< Owen-scrambled Sobol' in padded 2D pairs (core/sobol.h): stratified
+    kSobol,        ///< Owen-scrambled Sobol' in padded 1-3D groups (core/sobol.h): stratified
   };
   /// Names accepted by --sampler.
   static const std::vector<std::string>& names();
@@ -58,7 +58,8 @@ class Sampler {
     }
     const uint64_t h = dimensionHash(dimension_ += 3);
     const uint32_t index = sobol::shuffleReversed(reversedIndex_, uint32_t(h));
-    const uint64_t h2 = h * 0x9e3779b97f4a7c15ull;
+    // The shuffle and three scrambles need four 32-bit seeds: two 64-bit hashes.
+    const uint64_t h2 = mix(h ^ 0x94d049bb133111ebull);
     const uint32_t seedX = uint32_t(h2 >> 32), seedY = uint32_t(h >> 32), seedZ = uint32_t(h2);
     return {sobol::toUnit(sobol::scrambledDimension2(index, seedX)),
             sobol::toUnit(sobol::scrambledDimension0(index, seedY)),
