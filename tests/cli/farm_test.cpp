@@ -136,6 +136,11 @@ TEST(Farm, MergeRefusesIncompleteOrForeignParts) {
       runCli(TRAY_RENDER_BIN, job + " --seed 8 --sample-range 4,8 " + out(dir, "seed8.exr"), dir)
           .exitCode,
       0);
+  // The same samples drawn from the other random sequence belong to another render.
+  ASSERT_EQ(runCli(TRAY_RENDER_BIN,
+                   job + " --sampler independent --sample-range 4,8 " + out(dir, "indep.exr"), dir)
+                .exitCode,
+            0);
   ASSERT_EQ(runCli(TRAY_RENDER_BIN, job + " " + out(dir, "full.exr"), dir).exitCode, 0);
   ASSERT_EQ(runCli(TRAY_RENDER_BIN,
                    job + " --threads 1 --test-interrupt-after-tiles 1 --sample-range 4,8 " +
@@ -151,6 +156,7 @@ TEST(Farm, MergeRefusesIncompleteOrForeignParts) {
       {a, "a part is missing"},
       {a + " " + b + " " + b, "renders too"},
       {a + " '" + (dir / "seed8.exr").string() + "'", "another render"},
+      {a + " '" + (dir / "indep.exr").string() + "'", "another render"},
       {"'" + (dir / "full.exr").string() + "'", "not a part"},
       {a + " '" + (dir / "unfinished.exr").string() + "'", "unfinished part"},
   };
