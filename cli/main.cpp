@@ -226,7 +226,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 1000));
   app.add_option("--seed", o.settings.seed, "random seed")->capture_default_str();
   app.add_option("--pixel-sampler", o.settings.pixelSampler,
-                 "where samples go in a pixel: auto, center, corners, grid, jitter")
+                 "where samples go in a pixel: auto, center, corners, grid, jitter, sequence")
       ->check(CLI::IsMember(tray::PixelSampler::names()))
       ->capture_default_str();
   app.add_option("--sampler", o.settings.sampler,

@@ -12,22 +12,25 @@ namespace tray {
 class PixelSampler {
  public:
   enum class Pattern {
-    kCenter,   ///< one ray through the centre (the seed's ray casting)
-    kCorners,  ///< four rays through the pixel corners (the seed's supersampling)
-    kGrid,     ///< n x n stratum centres, n = floor(sqrt(spp))
-    kJitter,   ///< one uniform sample per stratum of an n x n grid; the spp - n^2 rest uniform
+    kCenter,    ///< one ray through the centre (the seed's ray casting)
+    kCorners,   ///< four rays through the pixel corners (the seed's supersampling)
+    kGrid,      ///< n x n stratum centres, n = floor(sqrt(spp))
+    kJitter,    ///< one uniform sample per stratum of an n x n grid; the spp - n^2 rest uniform
+    kSequence,  ///< the random sequence's own 2D points (stratified when it is Sobol')
   };
-  /// Names accepted by --pixel-sampler; "auto" is center at 1 spp, jitter above.
+  /// Names accepted by --pixel-sampler; "auto" is center at 1 spp, above it "sequence" when
+  /// the sequence stratifies and spp is a power of two (its points are then a (0, m, 2)-net,
+  /// which is stratified on every grid of spp cells), jitter otherwise.
   static const std::vector<std::string>& names();
   /// Resolves a name (throws tray::Error naming the choices for an unknown one).
-  static Pattern parse(const std::string& name, int spp);
+  static Pattern parse(const std::string& name, int spp, bool stratifiedSequence = false);
 
   PixelSampler(Pattern pattern, int spp, float radius);
   Pattern pattern() const { return pattern_; }
   /// Camera rays per pixel.
   int count() const { return count_; }
   /// Offset from the pixel centre of sample i < count(); `u` is uniform in [0,1)^2 and is only
-  /// used by jitter.
+  /// used by jitter and sequence.
   Vec2 offset(int i, const Vec2& u) const;
 
  private:

@@ -11,7 +11,8 @@ namespace tray {
 
 int Integrator::samplesPerPixel() const {
   const RenderSettings& s = ctx_.settings;
-  const PixelSampler sampler(PixelSampler::parse(s.pixelSampler, s.spp), s.spp, 0.5f);
+  const bool stratified = Sampler::parse(s.sampler) == Sampler::Sequence::kSobol;
+  const PixelSampler sampler(PixelSampler::parse(s.pixelSampler, s.spp, stratified), s.spp, 0.5f);
   return sampler.count();
 }
 
@@ -19,9 +20,10 @@ uint32_t Integrator::accumulate(int x, int y, int begin, int end, PixelSums& sum
                                 PrimaryHit& first, RayStats& stats, IdCoverage* coverage) const {
   const RenderSettings& s = ctx_.settings;
   const Filter filter = Filter::make(s.filter);
-  const PixelSampler pixelSampler(PixelSampler::parse(s.pixelSampler, s.spp), s.spp,
-                                  filter.radius());
   const Sampler::Sequence sequence = Sampler::parse(s.sampler);
+  const PixelSampler pixelSampler(
+      PixelSampler::parse(s.pixelSampler, s.spp, sequence == Sampler::Sequence::kSobol), s.spp,
+      filter.radius());
   const uint32_t pixelIndex = uint32_t(y) * uint32_t(ctx_.width) + uint32_t(x);
   const float cx = x + 0.5f, cy = y + 0.5f;
   // Filter-weighted sums, normalised by the weight sum at the end (pbrt-v4 8.8's weighted

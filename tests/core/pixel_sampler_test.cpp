@@ -19,6 +19,17 @@ TEST(PixelSampler, NamesResolve) {
   EXPECT_EQ(PixelSampler::parse("auto", 1), Pattern::kCenter);
   EXPECT_EQ(PixelSampler::parse("auto", 4), Pattern::kJitter);
   EXPECT_EQ(PixelSampler::parse("corners", 1), Pattern::kCorners);
+  // With a stratifying sequence, auto takes its points at power-of-two counts (nets).
+  EXPECT_EQ(PixelSampler::parse("auto", 64, true), Pattern::kSequence);
+  EXPECT_EQ(PixelSampler::parse("auto", 48, true), Pattern::kJitter);
+  EXPECT_EQ(PixelSampler::parse("auto", 64, false), Pattern::kJitter);
+  EXPECT_EQ(PixelSampler::parse("auto", 1, true), Pattern::kCenter);
+  EXPECT_EQ(PixelSampler::parse("sequence", 4), Pattern::kSequence);
+  const PixelSampler seq(Pattern::kSequence, 5, 1.5f);
+  EXPECT_EQ(seq.count(), 5);
+  const Vec2 o = seq.offset(3, {0.25f, 0.75f});
+  EXPECT_FLOAT_EQ(o.x, -0.75f);
+  EXPECT_FLOAT_EQ(o.y, 0.75f);
   EXPECT_THROW(PixelSampler::parse("halton", 4), Error);
 }
 
