@@ -48,8 +48,10 @@ std::vector<SweepConfig> standardSweep(const std::vector<std::string>& accels,
       p.spp = spp;
       add("path", "spp=" + std::to_string(spp), p);
     }
-    // The same estimator on Owen-scrambled Sobol' numbers: equal error at fewer samples.
+    // The same estimator on Owen-scrambled Sobol' numbers, camera rays at the sequence's own
+    // points (TRay's default at power-of-two spp): equal error at fewer samples.
     p.sampler = "sobol";
+    p.pixelSampler = "sequence";
     for (int spp = 1; spp <= maxSpp; spp *= 4) {
       p.spp = spp;
       add("path sobol", "spp=" + std::to_string(spp), p);
