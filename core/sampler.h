@@ -23,9 +23,12 @@ class Sampler {
 
   Sampler(uint32_t pixelIndex, uint32_t sampleIndex, uint64_t seed,
           Sequence sequence = Sequence::kIndependent)
-      : pixelKey_(mix(mix(seed ^ 0x9e3779b97f4a7c15ull) ^ (uint64_t(pixelIndex) << 32) ^
-                      0x5851f42d4c957f2dull)),
-        key_(mix(mix(seed ^ 0x9e3779b97f4a7c15ull) ^ (uint64_t(pixelIndex) << 32 | sampleIndex))),
+      // Independent: one key per sample. Sobol': one per pixel, the same for all its samples
+      // (they form one scrambled sequence), with the sample index kept apart.
+      : key_(mix(mix(seed ^ 0x9e3779b97f4a7c15ull) ^
+                 (sequence == Sequence::kIndependent
+                      ? uint64_t(pixelIndex) << 32 | sampleIndex
+                      : uint64_t(pixelIndex) << 32 ^ 0x5851f42d4c957f2dull))),
         reversedIndex_(sobol::reverseBits(sampleIndex)),
         sequence_(sequence) {}
   /// Uniform in [0, 1).
@@ -75,12 +78,11 @@ class Sampler {
     return z ^ (z >> 31);
   }
   static float toUnit(uint64_t v) { return float(v >> 40) * (1.0f / 16777216.0f); }
-  /// Per pixel and dimension, the same for all of the pixel's samples (so they form one
-  /// scrambled sequence).
+  /// Sobol': per pixel and dimension, the seed of its shuffle and scrambles.
   uint64_t dimensionHash(uint32_t dimension) const {
-    return mix(pixelKey_ + 0xbf58476d1ce4e5b9ull * dimension);
+    return mix(key_ + 0xbf58476d1ce4e5b9ull * dimension);
   }
-  uint64_t pixelKey_, key_;
+  uint64_t key_;
   uint32_t reversedIndex_;  ///< the sample index, bit-reversed for the Sobol' shuffle
   uint32_t dimension_ = 0;
   Sequence sequence_;

@@ -8,12 +8,20 @@
 #include "core/pixel_sampler.h"
 
 namespace tray {
+namespace {
+
+/// The settings' pixel sampler over a filter support of the given radius ("auto" depends on
+/// whether the random sequence stratifies).
+PixelSampler pixelSamplerOf(const RenderSettings& s, Sampler::Sequence sequence, float radius) {
+  const bool stratified = sequence == Sampler::Sequence::kSobol;
+  return PixelSampler(PixelSampler::parse(s.pixelSampler, s.spp, stratified), s.spp, radius);
+}
+
+}  // namespace
 
 int Integrator::samplesPerPixel() const {
   const RenderSettings& s = ctx_.settings;
-  const bool stratified = Sampler::parse(s.sampler) == Sampler::Sequence::kSobol;
-  const PixelSampler sampler(PixelSampler::parse(s.pixelSampler, s.spp, stratified), s.spp, 0.5f);
-  return sampler.count();
+  return pixelSamplerOf(s, Sampler::parse(s.sampler), 0.5f).count();
 }
 
 uint32_t Integrator::accumulate(int x, int y, int begin, int end, PixelSums& sums,
@@ -21,9 +29,7 @@ uint32_t Integrator::accumulate(int x, int y, int begin, int end, PixelSums& sum
   const RenderSettings& s = ctx_.settings;
   const Filter filter = Filter::make(s.filter);
   const Sampler::Sequence sequence = Sampler::parse(s.sampler);
-  const PixelSampler pixelSampler(
-      PixelSampler::parse(s.pixelSampler, s.spp, sequence == Sampler::Sequence::kSobol), s.spp,
-      filter.radius());
+  const PixelSampler pixelSampler = pixelSamplerOf(s, sequence, filter.radius());
   const uint32_t pixelIndex = uint32_t(y) * uint32_t(ctx_.width) + uint32_t(x);
   const float cx = x + 0.5f, cy = y + 0.5f;
   // Filter-weighted sums, normalised by the weight sum at the end (pbrt-v4 8.8's weighted
