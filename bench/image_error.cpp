@@ -2,8 +2,12 @@
 
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
+#include <OpenImageIO/imageio.h>
 
 #include <cmath>
+#include <vector>
+
+#include "core/error.h"
 
 namespace tray {
 namespace {
@@ -15,6 +19,21 @@ OIIO::ImageBuf beautyBuffer(const Film& f) {
 }
 
 }  // namespace
+
+Film readReference(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw Error(path + ": cannot read the reference image");
+  const int width = in->spec().width, height = in->spec().height;
+  Film film(width, height);
+  std::vector<float> rgb(size_t(width) * height * 3);
+  if (!in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, rgb.data()))
+    throw Error(path + ": " + in->geterror());
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      for (int c = 0; c < 3; ++c)
+        film.pixel(Film::kBeauty, x, y)[c] = rgb[(size_t(y) * width + x) * 3 + c];
+  return film;
+}
 
 ImageError compareBeauty(const Film& a, const Film& b) {
   if (a.width() != b.width() || a.height() != b.height())

@@ -1,15 +1,21 @@
 #pragma once
 // Error of a render against a reference image: the figures the speed/accuracy charts plot.
+#include <string>
+
 #include "core/film.h"
 
 namespace tray {
 
 struct ImageError {
-  double rmse = 0;     ///< sqrt(mean over pixels and RGB of (x - r)^2)
-  double relMse = 0;   ///< mean of (x - r)^2 / (r^2 + 1e-2), robust to dark pixels (Rousselle 2011)
-  double bias = 0;     ///< mean(x) - mean(r) over RGB: systematic error that more samples don't fix
-  double maxAbs = 0;   ///< largest single-channel difference
+  double rmse = 0;    ///< sqrt(mean over pixels and RGB of (x - r)^2)
+  double relMse = 0;  ///< mean of (x - r)^2 / (r^2 + 1e-2), robust to dark pixels (Rousselle 2011)
+  double bias = 0;    ///< mean(x) - mean(r) over RGB: systematic error that more samples don't fix
+  double maxAbs = 0;  ///< largest single-channel difference
 };
+
+/// Reads the first three channels of an image file (a converged reference) into the beauty of
+/// a film of the file's size; throws tray::Error "PATH: problem".
+Film readReference(const std::string& path);
 
 /// Compares the beauty RGB of two films of the same size (throws tray::Error otherwise).
 ImageError compareBeauty(const Film& render, const Film& reference);

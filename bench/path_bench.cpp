@@ -2,7 +2,6 @@
 // Embree traversal of incoherent rays measured in the same run on the same threads.
 // Usage: path_bench [scene.gltf] [threads] [size] [spp] [--accel NAME] [--no-replay]
 //   (default: the shared Cornell box, 2 threads, 512, 64; smaller runs serve for profiling)
-#include <OpenImageIO/imageio.h>
 #include <sys/resource.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -11,8 +10,10 @@
 #include <atomic>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <mutex>
 
+#include "bench/image_error.h"
 #include "core/error.h"
 #include "core/renderer.h"
 #include "core/sampler.h"
@@ -96,50 +97,29 @@ double replaySeconds(const Accelerator& accel, const std::vector<Ray>& rays, boo
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-/// Reads the RGB of an EXR reference (any channels after the first three are ignored).
-bool readReference(const std::string& path, int& width, int& height, std::vector<float>& rgb) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) return false;
-  width = in->spec().width, height = in->spec().height;
-  rgb.resize(size_t(width) * height * 3);
-  if (!in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, rgb.data()))
-    throw Error(path + ": " + in->geterror());
-  return true;
-}
-
 /// Error at equal samples, and so equal-error speed: both random sequences render the scene at
-/// the reference's size and `spp`; the RMSE of each against the reference gives how many
-/// independent samples a Sobol' sample is worth (the MSE ratio).
-void equalError(const Scene& scene, const Accelerator& accel, const std::string& refPath, int spp,
-                int threads) {
-  int w, h;
-  std::vector<float> ref;
-  if (!readReference(refPath, w, h, ref)) return;
+/// the reference's size with `base`'s settings; the RMSE of each against the reference gives
+/// how many independent samples a Sobol' sample is worth (the MSE ratio).
+void equalError(const Scene& scene, const Accelerator& accel, const std::string& refPath,
+                RenderSettings base, int threads) {
+  if (!std::filesystem::exists(refPath)) return;
+  const Film ref = readReference(refPath);
+  const int w = ref.width(), h = ref.height();
   auto camera = Camera::create(scene.cameras.at(0), w, h);
-  std::printf("equal error: %dx%d, %d spp, against %s\n", w, h, spp, refPath.c_str());
+  std::printf("equal error: %dx%d, %d spp, against %s\n", w, h, base.spp, refPath.c_str());
   double mse[2], rate[2];
   const char* names[2] = {"independent", "sobol"};
   for (int k = 0; k < 2; ++k) {
-    RenderSettings settings;
-    settings.integrator = "path";
-    settings.spp = spp;
-    settings.maxDepth = 8;
-    settings.sampler = names[k];
-    RenderContext ctx{scene, accel, *camera, settings, w, h};
+    base.sampler = names[k];
+    RenderContext ctx{scene, accel, *camera, base, w, h};
     Film film(w, h);
     RenderOptions options;
     options.threads = threads;
     RenderStats stats = renderImage(*makeIntegrator(ctx), film, options);
-    double se = 0;
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x)
-        for (int c = 0; c < 3; ++c) {
-          const double d = film.pixel(Film::kBeauty, x, y)[c] - ref[(size_t(y) * w + x) * 3 + c];
-          se += d * d;
-        }
-    mse[k] = se / (3.0 * w * h);
-    rate[k] = double(w) * h * spp / stats.seconds * 1e-6;
-    std::printf("  %-11s RMSE %.5f, %.3f Msamples/s\n", names[k], std::sqrt(mse[k]), rate[k]);
+    const double rmse = compareBeauty(film, ref).rmse;
+    mse[k] = rmse * rmse;
+    rate[k] = double(w) * h * base.spp / stats.seconds * 1e-6;
+    std::printf("  %-11s RMSE %.5f, %.3f Msamples/s\n", names[k], rmse, rate[k]);
   }
   // A Sobol' sample is worth mse[0] / mse[1] independent ones at this error level.
   std::printf("  sobol: MSE ratio %.2f, so %.2f independent-equivalent Msamples/s\n",
@@ -206,7 +186,11 @@ int run(const std::string& path, const std::string& accelName, int threads, int 
   }
   std::printf("  NaN samples     %llu\n", (unsigned long long)stats.rays.nanSamples);
   const std::string refPath = path.substr(0, path.rfind('.')) + ".ref.exr";
-  if (error) equalError(scene, *accel, refPath, 64, threads);
+  if (error) {
+    RenderSettings at64 = settings;
+    at64.spp = 64;
+    equalError(scene, *accel, refPath, at64, threads);
+  }
   return 0;
 }
 

@@ -21,16 +21,10 @@ void save(const Film& f, const std::string& name) {
   std::printf("wrote %s\n", path.c_str());
 }
 
-/// Independent numbers unless asked: the failures shown are those of plain Monte Carlo.
-RenderSettings path(int spp, float clamp = 0, int maxDepth = -1,
-                    const std::string& sampler = "independent") {
-  RenderSettings s;
-  s.integrator = "path";
-  s.sampler = sampler;
-  s.pixelSampler = "jitter";
-  s.spp = spp;
-  s.clampIndirect = clamp;
-  s.maxDepth = maxDepth;
+/// Direct light only (max depth 2).
+RenderSettings directPath(int spp) {
+  RenderSettings s = pathSettings(spp);
+  s.maxDepth = 2;
   return s;
 }
 
@@ -48,7 +42,7 @@ int main(int argc, char** argv) {
   // fixed shadow-ray epsilon of 1e-4.
   {
     SceneWithCamera big = acneScene(1e4f, Vec3(0.0f), false);
-    save(renderFilm(big.scene, big.camera, kW, kH, path(4, 0, 2)), "1-scale-1e4-robust-offset");
+    save(renderFilm(big.scene, big.camera, kW, kH, directPath(4)), "1-scale-1e4-robust-offset");
     save(renderFixedEpsilon(big, kW, kH, 1e-4f), "1-scale-1e4-fixed-epsilon");
     SceneWithCamera far = acneScene(1.0f, Vec3(1e5f, 0, 1e5f), false);
     save(renderFixedEpsilon(far, kW, kH, 0.0f), "1-moved-1e5-no-offset");
@@ -71,22 +65,24 @@ int main(int argc, char** argv) {
     RenderSettings w;
     w.maxDepth = 64;
     save(renderFilm(a.scene, a.camera, kW, kH, w), "3-tir-whitted");
-    save(renderFilm(a.scene, a.camera, kW, kH, path(64)), "3-tir-path");
+    save(renderFilm(a.scene, a.camera, kW, kH, pathSettings(64)), "3-tir-path");
   }
   // 4. Caustics: 64 spp unclamped, clamped, and the unclamped 1024 spp reference.
   {
     SceneWithCamera c = causticScene();
-    save(renderFilm(c.scene, c.camera, kW, kH, path(64)), "4-caustic-64spp");
-    save(renderFilm(c.scene, c.camera, kW, kH, path(64, 10.0f)), "4-caustic-64spp-clamp-10");
-    save(renderFilm(c.scene, c.camera, kW, kH, path(64, 0, -1, "sobol")), "4-caustic-64spp-sobol");
-    save(renderFilm(c.scene, c.camera, kW, kH, path(1024)), "4-caustic-1024spp-reference");
+    save(renderFilm(c.scene, c.camera, kW, kH, pathSettings(64)), "4-caustic-64spp");
+    save(renderFilm(c.scene, c.camera, kW, kH, pathSettings(64, 10.0f)),
+         "4-caustic-64spp-clamp-10");
+    save(renderFilm(c.scene, c.camera, kW, kH, pathSettings(64, 0, "sobol")),
+         "4-caustic-64spp-sobol");
+    save(renderFilm(c.scene, c.camera, kW, kH, pathSettings(1024)), "4-caustic-1024spp-reference");
   }
   // 7. NaN normals on every 5th vertex: flat facets, no NaN pixels.
   {
     TriangleMesh m = smoothSphere();
     poisonNormals(m);
     SceneWithCamera a = meshOnFloor(std::move(m));
-    save(renderFilm(a.scene, a.camera, kW, kH, path(16)), "7-nan-normals-path");
+    save(renderFilm(a.scene, a.camera, kW, kH, pathSettings(16)), "7-nan-normals-path");
   }
   return 0;
 }

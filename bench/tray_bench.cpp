@@ -2,8 +2,6 @@
 // registered method and setting, measures wall time, rays and error against a converged
 // reference, and writes CSV for tools/plot_bench.py (charts + Pareto report).
 #include <CLI/CLI.hpp>
-#include <OpenImageIO/imageio.h>
-
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -23,22 +21,13 @@ using namespace tray;
 
 namespace {
 
-/// Reads an EXR's RGBA into a film of the expected size.
-Film readReference(const std::string& path, int width, int height) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw Error(path + ": cannot read the reference image");
-  const OIIO::ImageSpec& spec = in->spec();
-  if (spec.width != width || spec.height != height)
-    throw Error(path + ": reference is " + std::to_string(spec.width) + "x" +
-                std::to_string(spec.height) + ", the render " + std::to_string(width) + "x" +
+/// The reference image, which must have the render's size.
+Film referenceOfSize(const std::string& path, int width, int height) {
+  Film film = readReference(path);
+  if (film.width() != width || film.height() != height)
+    throw Error(path + ": reference is " + std::to_string(film.width()) + "x" +
+                std::to_string(film.height()) + ", the render " + std::to_string(width) + "x" +
                 std::to_string(height) + " (use --resolution)");
-  Film film(width, height);
-  std::vector<float> rgb(size_t(width) * height * 3);
-  if (!in->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, rgb.data()))
-    throw Error(path + ": " + in->geterror());
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x)
-      for (int c = 0; c < 3; ++c) film.pixel(Film::kBeauty, x, y)[c] = rgb[(size_t(y) * width + x) * 3 + c];
   return film;
 }
 
@@ -53,7 +42,8 @@ struct Bench {
     if (!a) a = makeAccelerator(name, scene);
     return *a;
   }
-  std::pair<Film, RenderStats> render(const RenderSettings& s, const std::string& accelName, int threads) {
+  std::pair<Film, RenderStats> render(const RenderSettings& s, const std::string& accelName,
+                                      int threads) {
     RenderContext ctx{scene, accel(accelName), camera, s, size.width, size.height};
     auto integrator = makeIntegrator(ctx);
     Film film(size.width, size.height);
@@ -73,8 +63,8 @@ std::vector<std::string> splitList(const std::string& s) {
 }
 
 int sweep(const std::string& scenePath, const std::string& resolution, const std::string& outDir,
-          const std::string& referencePath, int referenceSpp, int maxSpp, const std::string& accelList,
-          const std::string& threadList) {
+          const std::string& referencePath, int referenceSpp, int maxSpp,
+          const std::string& accelList, const std::string& threadList) {
   Scene scene = loadGltf(scenePath);
   scene.sourcePath = scenePath;
   CameraDesc cd = chooseCamera(scene, -1);
@@ -95,36 +85,39 @@ int sweep(const std::string& scenePath, const std::string& resolution, const std
                                                     std::to_string(size.width) + "x" +
                                                     std::to_string(size.height) + ".exr";
     if (!fs::exists(path)) {
-      std::fprintf(stderr, "tray-bench: rendering the %s reference to %s\n", family.c_str(), path.c_str());
+      std::fprintf(stderr, "tray-bench: rendering the %s reference to %s\n", family.c_str(),
+                   path.c_str());
       auto [film, st] = bench.render(referenceSettings(family, referenceSpp), "embree", 0);
       ImageOutputOptions o;
       o.halfFloat = false;
       writeImage(film, path, o);
     }
-    return references.emplace(family, readReference(path, size.width, size.height)).first->second;
+    return references.emplace(family, referenceOfSize(path, size.width, size.height)).first->second;
   };
 
   std::vector<int> threads;
   for (const auto& t : splitList(threadList)) threads.push_back(std::stoi(t));
   std::string csvPath = outDir + "/" + stem + ".csv";
   std::ofstream csv(csvPath);
-  csv << "scene,method,setting,integrator,accel,threads,spp,seconds,rays,rmse,relmse,bias,max_abs\n";
+  csv << "scene,method,setting,integrator,accel,threads,spp,seconds,rays,rmse,relmse,bias,max_"
+         "abs\n";
   std::printf("%-34s %-16s %9s %10s %10s %10s %10s\n", "method", "setting", "seconds", "Mrays",
               "RMSE", "relMSE", "bias");
   for (const SweepConfig& c : standardSweep(splitList(accelList), threads, maxSpp)) {
-    const Film& ref = reference(c.settings.integrator == "adaptive" ? c.settings.inner
-                                                                    : c.settings.integrator);
+    const Film& ref =
+        reference(c.settings.integrator == "adaptive" ? c.settings.inner : c.settings.integrator);
     auto [film, st] = bench.render(c.settings, c.accel, c.threads);
     ImageError e = compareBeauty(film, ref);
-    std::printf("%-34s %-16s %9.3f %10.3f %10.3e %10.3e %+10.2e\n", c.method.c_str(), c.setting.c_str(),
-                st.seconds, st.rays.total() * 1e-6, e.rmse, e.relMse, e.bias);
+    std::printf("%-34s %-16s %9.3f %10.3f %10.3e %10.3e %+10.2e\n", c.method.c_str(),
+                c.setting.c_str(), st.seconds, st.rays.total() * 1e-6, e.rmse, e.relMse, e.bias);
     std::fflush(stdout);
     csv << stem << ',' << c.method << ',' << c.setting << ',' << c.settings.integrator << ','
         << c.accel << ',' << c.threads << ',' << c.settings.spp << ',' << st.seconds << ','
         << st.rays.total() << ',' << e.rmse << ',' << e.relMse << ',' << e.bias << ',' << e.maxAbs
         << '\n';
   }
-  std::printf("wrote %s (chart and Pareto report: tools/plot_bench.py %s)\n", csvPath.c_str(), csvPath.c_str());
+  std::printf("wrote %s (chart and Pareto report: tools/plot_bench.py %s)\n", csvPath.c_str(),
+              csvPath.c_str());
   return 0;
 }
 
@@ -139,12 +132,16 @@ int main(int argc, char** argv) {
   int referenceSpp = 4096, maxSpp = 1024;
   sw->add_option("scene", scene, "glTF scene")->required();
   sw->add_option("--resolution", resolution, "image size WxH")->capture_default_str();
-  sw->add_option("--out", out, "output folder for CSV and cached references")->capture_default_str();
-  sw->add_option("--reference", reference, "converged reference EXR (default: rendered and cached)");
-  sw->add_option("--reference-spp", referenceSpp, "spp of a rendered path reference")->capture_default_str();
+  sw->add_option("--out", out, "output folder for CSV and cached references")
+      ->capture_default_str();
+  sw->add_option("--reference", reference,
+                 "converged reference EXR (default: rendered and cached)");
+  sw->add_option("--reference-spp", referenceSpp, "spp of a rendered path reference")
+      ->capture_default_str();
   sw->add_option("--max-spp", maxSpp, "largest spp swept")->capture_default_str();
   sw->add_option("--accels", accels, "comma-separated accelerators")->capture_default_str();
-  sw->add_option("--threads", threads, "comma-separated thread counts (0 = all)")->capture_default_str();
+  sw->add_option("--threads", threads, "comma-separated thread counts (0 = all)")
+      ->capture_default_str();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
