@@ -7,6 +7,7 @@
 
 #include "core/renderer.h"
 #include "integrators/path.h"
+#include "tests/integrators/path_probe.h"
 #include "tests/scene_builder.h"
 
 namespace tray {
@@ -24,17 +25,10 @@ float floorRadiance(const Light& light, const Vec3& at) {
   addShape(s, std::make_shared<Plane>(), Mat4::identity(), addMaterial(s, diffuse(Color(kAlbedo))));
   s.lights.push_back(light);
   s.finalize();
-  auto accel = makeAccelerator("embree", s);
-  auto camera = Camera::create(lookAt({0, 1, 3}, {0, 0, 0}), 4, 4);
-  RenderSettings st;
-  st.maxDepth = 2;
-  RenderContext ctx{s, *accel, *camera, st, 4, 4};
-  auto path = makePath(ctx);
-  RayStats stats;
+  PathProbe probe(s, 2);
   Sampler sampler(3, 0, 1);
   const Vec3 eye = at + Vec3(0.3f, 0.4f, 0.1f);
-  Color L = path->Li(Ray{eye, normalize(at - eye)}, sampler, stats, nullptr);
-  return L.x;
+  return probe.Li(Ray{eye, normalize(at - eye)}, sampler).x;
 }
 
 TEST(PathLights, PointLightGivesInverseSquareCosineIrradiance) {
@@ -85,16 +79,10 @@ TEST(PathLights, EmissiveTrianglesShineFromTheirFrontUnlessDoubleSided) {
     uint32_t quad = addMesh(s, quadMesh(1.0f, addMaterial(s, glow)));
     addMeshInstance(s, quad, Mat4::scale({1, -1, 1}));  // the mirror flips it to face -y
     s.finalize();
-    auto accel = makeAccelerator("embree", s);
-    auto camera = Camera::create(lookAt({0, 1, 3}, {0, 0, 0}), 4, 4);
-    RenderSettings st;
-    st.maxDepth = 1;
-    RenderContext ctx{s, *accel, *camera, st, 4, 4};
-    auto path = makePath(ctx);
-    RayStats stats;
+    PathProbe probe(s, 1);
     Sampler sampler(0, 0, 1);
-    Color front = path->Li(Ray{{0.1f, -2, 0}, {0, 1, 0}}, sampler, stats, nullptr);
-    Color back = path->Li(Ray{{0.1f, 2, 0}, {0, -1, 0}}, sampler, stats, nullptr);
+    Color front = probe.Li(Ray{{0.1f, -2, 0}, {0, 1, 0}}, sampler);
+    Color back = probe.Li(Ray{{0.1f, 2, 0}, {0, -1, 0}}, sampler);
     EXPECT_EQ(front.x, 2.0f);
     EXPECT_EQ(back.x, twoSided ? 2.0f : 0.0f) << "doubleSided " << twoSided;
   }

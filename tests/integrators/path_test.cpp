@@ -5,6 +5,7 @@
 #include "core/renderer.h"
 #include "materials/bsdf.h"
 #include "materials/medium_stack.h"
+#include "tests/integrators/path_probe.h"
 #include "tests/render_film.h"
 #include "tests/scene_builder.h"
 
@@ -68,24 +69,16 @@ TEST(Path, DiffuseFloorUnderSphereLightMatchesAnalyticIrradiance) {
   addShape(s, std::make_shared<Plane>(), Mat4::identity(), floor);
   addSphere(s, {0, d, 0}, r, addMaterial(s, glow));
   s.finalize();
-  auto accel = makeAccelerator("embree", s);
-  auto camera = Camera::create(lookAt({0, 1, 3}, {0, 0, 0}), 4, 4);
-  RenderSettings st;
-  st.maxDepth = 2;
-  RenderContext ctx{s, *accel, *camera, st, 4, 4};
-  auto path = makePath(ctx);
-  RayStats stats;
+  PathProbe probe(s, 2);
   double sum = 0;
   const int n = 20000;
   for (int i = 0; i < n; ++i) {
     Sampler sampler(7, uint32_t(i), 1);
-    Color L =
-        path->Li(Ray{{0.3f, 0.4f, 0}, normalize(Vec3(-0.3f, -0.4f, 0))}, sampler, stats, nullptr);
-    sum += L.x;
+    sum += probe.Li(Ray{{0.3f, 0.4f, 0}, normalize(Vec3(-0.3f, -0.4f, 0))}, sampler).x;
   }
   double expected = albedo * Le.x * (r / d) * (r / d);
   EXPECT_NEAR(sum / n, expected, 0.01 * expected);
-  EXPECT_EQ(stats.shadowRays, uint64_t(n));
+  EXPECT_EQ(probe.stats.shadowRays, uint64_t(n));
 }
 
 // --- Nested dielectrics ---------------------------------------------------------------------

@@ -6,6 +6,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <string>
 #include <utility>
 
 #include "core/renderer.h"
@@ -169,6 +170,19 @@ inline SceneWithCamera trappedLightScene() {
 }
 
 // --- 4. Caustics: a glass ball focusing a small bright light onto a diffuse floor -----------
+
+/// The path tracer as the stability tests and their images run it: jittered camera rays and
+/// independent numbers unless asked, since the failures shown are those of plain Monte Carlo.
+inline RenderSettings pathSettings(int spp, float clampIndirect = 0,
+                                   const std::string& sampler = "independent") {
+  RenderSettings s;
+  s.integrator = "path";
+  s.sampler = sampler;
+  s.pixelSampler = "jitter";
+  s.spp = spp;
+  s.clampIndirect = clampIndirect;
+  return s;
+}
 
 inline SceneWithCamera causticScene() {
   SceneWithCamera a;
