@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "tests/exr_read.h"
+
 namespace tray::test {
 
 namespace fs = std::filesystem;
@@ -75,31 +77,6 @@ inline int waitExit(pid_t pid) {
   int status = 0;
   waitpid(pid, &status, 0);
   return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
-}
-
-/// An EXR read back whole: spec and every channel as float (half converts exactly).
-struct Exr {
-  OIIO::ImageSpec spec;
-  std::vector<float> pixels;  ///< interleaved, spec.nchannels per pixel
-  int channel(const std::string& name) const {
-    for (int c = 0; c < spec.nchannels; ++c)
-      if (spec.channelnames[c] == name) return c;
-    return -1;
-  }
-  float at(int x, int y, const std::string& name) const {
-    return pixels[(size_t(y) * spec.width + x) * spec.nchannels + channel(name)];
-  }
-};
-
-inline Exr readExrFile(const fs::path& path) {
-  Exr e;
-  auto in = OIIO::ImageInput::open(path.string());
-  EXPECT_TRUE(in) << path << ": " << OIIO::geterror();
-  if (!in) return e;
-  e.spec = in->spec();
-  e.pixels.resize(size_t(e.spec.width) * e.spec.height * e.spec.nchannels);
-  EXPECT_TRUE(in->read_image(0, 0, 0, e.spec.nchannels, OIIO::TypeDesc::FLOAT, e.pixels.data()));
-  return e;
 }
 
 /// Same channels, windows and pixel bits (memcmp: NaN-safe, -0 differs from +0).

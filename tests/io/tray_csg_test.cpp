@@ -8,6 +8,7 @@
 #include "io/gltf_loader.h"
 #include "shapes/box.h"
 #include "shapes/sphere.h"
+#include "tests/base64.h"
 
 namespace tray {
 namespace {
@@ -26,17 +27,7 @@ std::string writeGltf(const std::string& name, const std::string& nodes, const s
                               2, 3, 7, 2, 7, 6, 1, 2, 6, 1, 6, 5, 0, 4, 7, 0, 7, 3};
     std::string bytes(reinterpret_cast<const char*>(p), sizeof p);
     bytes.append(reinterpret_cast<const char*>(idx), open ? sizeof idx - 12 : sizeof idx);
-    static const char* b64 = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    std::string enc;
-    for (size_t i = 0; i < bytes.size(); i += 3) {
-      uint32_t v = uint8_t(bytes[i]) << 16;
-      if (i + 1 < bytes.size()) v |= uint8_t(bytes[i + 1]) << 8;
-      if (i + 2 < bytes.size()) v |= uint8_t(bytes[i + 2]);
-      enc += b64[(v >> 18) & 63];
-      enc += b64[(v >> 12) & 63];
-      enc += i + 1 < bytes.size() ? b64[(v >> 6) & 63] : '=';
-      enc += i + 2 < bytes.size() ? b64[v & 63] : '=';
-    }
+    const std::string enc = test::base64(bytes);
     size_t nIdx = open ? 30 : 36;
     meshes =
         R"(,"meshes":[{"name":"cube","primitives":[{"attributes":{"POSITION":0},"indices":1,"material":1}]}],
