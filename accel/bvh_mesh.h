@@ -10,7 +10,7 @@
 #include "accel/bvh_triangle4.h"
 #include "core/hit.h"
 #include "core/ray.h"
-#include "shapes/triangle_mesh.h"
+#include "core/triangle_mesh.h"
 
 namespace tray {
 

@@ -1,8 +1,12 @@
+#include "accel/registry.h"
+
+#include <algorithm>
 #include <string>
 
 #include "accel/bvh_accelerator.h"
 #include "accel/embree_accelerator.h"
 #include "core/error.h"
+#include "core/scene.h"
 
 namespace tray {
 namespace {
@@ -28,6 +32,12 @@ std::unique_ptr<Accelerator> makeAccelerator(const std::string& name, const Scen
   std::string known;
   for (const auto& e : kAccelerators) known += std::string(known.empty() ? "" : ", ") + e.name;
   throw Error("unknown accelerator '" + name + "' (known: " + known + ")");
+}
+
+AcceleratorFactory acceleratorFactory(const std::string& name) {
+  const auto names = acceleratorNames();  // an unknown name fails here, not in a solid
+  if (std::find(names.begin(), names.end(), name) == names.end()) makeAccelerator(name, Scene{});
+  return [name](const Scene& scene) { return makeAccelerator(name, scene); };
 }
 
 std::vector<std::string> acceleratorNames() {

@@ -7,9 +7,11 @@
 #include <cstdio>
 #include <string>
 
+#include "accel/registry.h"
 #include "bench/image_error.h"
 #include "core/render_setup.h"
 #include "core/renderer.h"
+#include "integrators/registry.h"
 #include "io/gltf_loader.h"
 
 using namespace tray;

@@ -21,6 +21,7 @@
 #include <random>
 
 #include "accel/bvh_accelerator.h"
+#include "accel/registry.h"
 #include "bench/bench_meshes.h"
 #include "core/accelerator.h"
 #include "core/camera.h"

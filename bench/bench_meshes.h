@@ -6,7 +6,7 @@
 #include <cmath>
 #include <functional>
 
-#include "shapes/triangle_mesh.h"
+#include "core/triangle_mesh.h"
 
 namespace tray::bench {
 

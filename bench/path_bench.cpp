@@ -13,12 +13,14 @@
 #include <filesystem>
 #include <mutex>
 
+#include "accel/registry.h"
 #include "bench/image_error.h"
 #include "core/error.h"
 #include "core/renderer.h"
 #include "core/sampler.h"
 #include "core/sampling.h"
 #include "integrators/path.h"
+#include "integrators/registry.h"
 #include "io/gltf_loader.h"
 
 using namespace tray;

@@ -1,4 +1,5 @@
 #include "bench/sweep.h"
+#include "integrators/registry.h"
 
 namespace tray {
 namespace {

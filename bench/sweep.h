@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "integrators/integrator.h"
+#include "core/integrator.h"
 
 namespace tray {
 

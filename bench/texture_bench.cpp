@@ -8,9 +8,11 @@
 #include <functional>
 #include <string>
 
+#include "accel/registry.h"
 #include "core/render_setup.h"
 #include "core/renderer.h"
 #include "core/texture_sampler.h"
+#include "integrators/registry.h"
 #include "io/gltf_loader.h"
 
 using namespace tray;

@@ -8,11 +8,13 @@
 #include <map>
 #include <memory>
 
+#include "accel/registry.h"
 #include "bench/image_error.h"
 #include "bench/sweep.h"
 #include "core/error.h"
 #include "core/render_setup.h"
 #include "core/renderer.h"
+#include "integrators/registry.h"
 #include "io/gltf_loader.h"
 #include "io/image_output.h"
 

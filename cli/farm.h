@@ -7,7 +7,7 @@
 
 #include "core/film.h"
 #include "core/render_state.h"
-#include "integrators/integrator.h"
+#include "core/integrator.h"
 #include "io/image_output.h"
 
 namespace tray {

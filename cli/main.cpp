@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "accel/registry.h"
 #include "cli/farm.h"
 #include "cli/progress_bar.h"
 #include "core/accelerator.h"
@@ -22,6 +23,7 @@
 #include "core/renderer.h"
 #include "core/sampler.h"
 #include "integrators/adaptive.h"
+#include "integrators/registry.h"
 #include "io/gltf_loader.h"
 #include "io/image_output.h"
 

@@ -1,5 +1,6 @@
 #pragma once
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -27,10 +28,8 @@ class Accelerator {
   virtual size_t memoryBytes() const { return 0; }
 };
 
-/// Builds the named accelerator ("embree", ...) over the scene. The scene must outlive it.
-/// Throws tray::Error for an unknown name.
-std::unique_ptr<Accelerator> makeAccelerator(const std::string& name, const Scene& scene);
-/// Names accepted by makeAccelerator, for --help.
-std::vector<std::string> acceleratorNames();
+/// Builds an accelerator over a scene that outlives it: how a layer below accel/ (a mesh used
+/// as a CSG solid) gets one without depending on accel/ (accel/registry.h makes them by name).
+using AcceleratorFactory = std::function<std::unique_ptr<Accelerator>(const Scene&)>;
 
 }  // namespace tray

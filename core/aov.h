@@ -3,7 +3,7 @@
 #include <vector>
 
 #include "core/film.h"
-#include "integrators/integrator.h"
+#include "core/integrator.h"
 
 namespace tray {
 

@@ -6,7 +6,7 @@
 
 #include "core/film.h"
 #include "core/render_state.h"
-#include "integrators/integrator.h"
+#include "core/integrator.h"
 
 namespace tray {
 

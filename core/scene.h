@@ -8,8 +8,8 @@
 #include "core/light.h"
 #include "core/material.h"
 #include "core/transform.h"
-#include "shapes/shape.h"
-#include "shapes/triangle_mesh.h"
+#include "core/shape.h"
+#include "core/triangle_mesh.h"
 
 namespace tray {
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "integrators/registry.h"
 
 namespace tray {
 namespace {

@@ -4,7 +4,7 @@
 #include <memory>
 
 #include "core/film.h"
-#include "integrators/integrator.h"
+#include "core/integrator.h"
 
 namespace tray {
 

@@ -67,13 +67,14 @@ void applyPacked(const OCIO::ConstCPUProcessorRcPtr& cpu, float* rgb, size_t n, 
 
 std::string ColorPipeline::defaultConfigPath() {
   if (const char* env = std::getenv("OCIO"); env && *env) return env;
-  // An installed or copied binary finds the config beside it; a build tree uses the source's.
+  // An installed binary finds the config in ../share/tray, a build tree's beside it (CMake
+  // copies it there): no source-tree path is compiled in.
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
   if (!ec)
     for (const fs::path rel : {"ocio/config.ocio", "../share/tray/ocio/config.ocio"})
       if (fs::path p = exe.parent_path() / rel; fs::is_regular_file(p, ec)) return p.string();
-  return std::string(TRAY_SOURCE_DIR) + "/ocio/config.ocio";
+  return "ocio/config.ocio";  // not found: the error names this relative path
 }
 
 const ColorPipeline& ColorPipeline::instance() {

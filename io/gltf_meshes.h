@@ -3,7 +3,7 @@
 #include <vector>
 
 #include "io/gltf_context.h"
-#include "shapes/triangle_mesh.h"
+#include "core/triangle_mesh.h"
 
 namespace tray {
 

@@ -1,3 +1,4 @@
+#include "accel/registry.h"
 #include "io/tray_csg.h"
 
 #include <algorithm>
@@ -60,7 +61,7 @@ std::shared_ptr<const Shape> meshSolid(const GltfContext& ctx, int meshIndex, in
   if (merged.uvs.size() != merged.positions.size()) merged.uvs.clear();
   material = merged.material;
   try {
-    return std::make_shared<MeshSolid>(std::move(merged));
+    return std::make_shared<MeshSolid>(std::move(merged), acceleratorFactory("embree"));
   } catch (const Error& e) {
     ctx.fail(e.what());
   }

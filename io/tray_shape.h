@@ -4,7 +4,7 @@
 #include <string>
 
 #include "io/gltf_context.h"
-#include "shapes/shape.h"
+#include "core/shape.h"
 
 namespace tray {
 

@@ -5,7 +5,7 @@
 
 #include "core/transform.h"
 #include "shapes/interval_ops.h"
-#include "shapes/shape.h"
+#include "core/shape.h"
 
 namespace tray {
 

@@ -1,7 +1,7 @@
 #pragma once
 #include <vector>
 
-#include "shapes/shape.h"
+#include "core/shape.h"
 
 namespace tray {
 

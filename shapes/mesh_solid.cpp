@@ -56,7 +56,7 @@ struct MeshCrossing {
 
 }  // namespace
 
-MeshSolid::MeshSolid(TriangleMesh mesh, const std::string& accelerator) {
+MeshSolid::MeshSolid(TriangleMesh mesh, const AcceleratorFactory& accelerator) {
   const std::string what = "mesh '" + mesh.name + "' used as a CSG solid";
   if (mesh.triangleCount() == 0 || mesh.indices.size() % 3 != 0)
     throw Error(what + " has no triangles");
@@ -77,7 +77,7 @@ MeshSolid::MeshSolid(TriangleMesh mesh, const std::string& accelerator) {
   p.name = scene_.meshes[0].name;
   scene_.primitives.push_back(p);
   scene_.finalize();
-  accel_ = makeAccelerator(accelerator, scene_);
+  accel_ = accelerator(scene_);
 }
 
 Vec3 MeshSolid::triangleNormal(uint32_t i) const {

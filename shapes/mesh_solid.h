@@ -4,7 +4,7 @@
 
 #include "core/accelerator.h"
 #include "core/scene.h"
-#include "shapes/shape.h"
+#include "core/shape.h"
 
 namespace tray {
 
@@ -16,8 +16,9 @@ class MeshSolid final : public Shape {
  public:
   /// Checks that the mesh is closed and consistently wound (every edge, welded by exact
   /// position, is used once in each direction) and turns an inward-wound mesh outward.
-  /// Throws tray::Error naming the mesh otherwise. `accelerator`: a makeAccelerator name.
-  explicit MeshSolid(TriangleMesh mesh, const std::string& accelerator = "embree");
+  /// Throws tray::Error naming the mesh otherwise. `accelerator` builds the all-hits query
+  /// over the private scene (accel/registry.h: acceleratorFactory("embree")).
+  MeshSolid(TriangleMesh mesh, const AcceleratorFactory& accelerator);
   MeshSolid(const MeshSolid&) = delete;  // the accelerator refers to scene_
   MeshSolid& operator=(const MeshSolid&) = delete;
 

@@ -1,6 +1,6 @@
 #pragma once
 // Per-vertex tangents for normal mapping when a glTF mesh has no TANGENT attribute.
-#include "shapes/triangle_mesh.h"
+#include "core/triangle_mesh.h"
 
 namespace tray {
 

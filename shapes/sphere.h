@@ -1,5 +1,5 @@
 #pragma once
-#include "shapes/shape.h"
+#include "core/shape.h"
 
 namespace tray {
 

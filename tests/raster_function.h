@@ -7,7 +7,7 @@
 #include <mutex>
 #include <vector>
 
-#include "integrators/integrator.h"
+#include "core/integrator.h"
 
 namespace tray::test {
 

@@ -3,9 +3,11 @@
 #include <string>
 #include <vector>
 
+#include "accel/registry.h"
 #include "core/accelerator.h"
 #include "core/renderer.h"
-#include "integrators/integrator.h"
+#include "core/integrator.h"
+#include "integrators/registry.h"
 
 namespace tray::test {
 

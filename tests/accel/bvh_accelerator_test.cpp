@@ -6,6 +6,7 @@
 
 #include <random>
 
+#include "accel/registry.h"
 #include "core/accelerator.h"
 #include "tests/scene_builder.h"
 

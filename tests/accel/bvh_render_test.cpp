@@ -6,9 +6,11 @@
 #include <cmath>
 #include <filesystem>
 
+#include "accel/registry.h"
 #include "core/accelerator.h"
 #include "core/render_setup.h"
 #include "core/renderer.h"
+#include "integrators/registry.h"
 #include "io/gltf_loader.h"
 #include "tests/scene_builder.h"
 

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include "accel/registry.h"
 #include "core/accelerator.h"
 #include "core/error.h"
 #include "tests/scene_builder.h"

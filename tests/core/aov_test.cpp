@@ -1,9 +1,11 @@
+#include "accel/registry.h"
 #include "core/aov.h"
 
 #include <gtest/gtest.h>
 
 #include "core/error.h"
 #include "core/renderer.h"
+#include "integrators/registry.h"
 #include "tests/scene_builder.h"
 
 namespace tray {

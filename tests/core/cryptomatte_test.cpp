@@ -1,5 +1,6 @@
 // Cryptomatte: the hash and its float conversion against the specification's own examples, and
 // the ranking filter on a rendered scene (coverage from all samples, filter-weighted).
+#include "accel/registry.h"
 #include "core/cryptomatte.h"
 
 #include <gtest/gtest.h>
@@ -14,6 +15,7 @@
 #include "core/error.h"
 #include "core/renderer.h"
 #include "integrators/adaptive.h"
+#include "integrators/registry.h"
 #include "tests/scene_builder.h"
 
 namespace tray {

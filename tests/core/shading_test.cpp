@@ -1,11 +1,13 @@
 // MaterialEvaluator and the pixel footprint: textured factors, normal mapping with computed and
 // supplied tangents, and uv derivatives checked against rays through neighbouring pixels.
+#include "accel/registry.h"
 #include "core/shading.h"
 
 #include <gtest/gtest.h>
 
 #include "core/accelerator.h"
 #include "core/renderer.h"
+#include "integrators/registry.h"
 #include "lights/light_set.h"
 #include "shapes/mesh_tangents.h"
 #include "tests/scene_builder.h"

@@ -1,3 +1,4 @@
+#include "accel/registry.h"
 #include "integrators/adaptive.h"
 
 #include <gtest/gtest.h>
@@ -7,6 +8,7 @@
 #include "core/aov.h"
 #include "core/error.h"
 #include "core/renderer.h"
+#include "integrators/registry.h"
 #include "tests/raster_function.h"
 #include "tests/scene_builder.h"
 

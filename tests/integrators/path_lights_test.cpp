@@ -5,8 +5,10 @@
 
 #include <cmath>
 
+#include "accel/registry.h"
 #include "core/renderer.h"
 #include "integrators/path.h"
+#include "integrators/registry.h"
 #include "tests/integrators/path_probe.h"
 #include "tests/scene_builder.h"
 

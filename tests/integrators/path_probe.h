@@ -3,6 +3,7 @@
 // (closed forms at one point): the camera and size only complete the render context.
 #include <memory>
 
+#include "accel/registry.h"
 #include "core/renderer.h"
 #include "integrators/path.h"
 #include "tests/scene_builder.h"

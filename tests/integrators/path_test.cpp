@@ -1,3 +1,4 @@
+#include "accel/registry.h"
 #include "integrators/path.h"
 
 #include <gtest/gtest.h>

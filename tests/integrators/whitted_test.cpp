@@ -1,3 +1,4 @@
+#include "accel/registry.h"
 #include "integrators/whitted.h"
 
 #include <gtest/gtest.h>

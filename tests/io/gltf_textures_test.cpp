@@ -1,5 +1,7 @@
 // Textures from glTF files: decoding (sRGB, PNG/JPEG only, caps), samplers, embedded and
 // external images, the errors bad images give, and the Khronos texture test assets rendered.
+#include "accel/registry.h"
+#include "integrators/registry.h"
 #include "io/gltf_textures.h"
 
 #include <OpenImageIO/imageio.h>

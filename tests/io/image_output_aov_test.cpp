@@ -9,9 +9,11 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "accel/registry.h"
 #include "core/aov.h"
 #include "core/cryptomatte.h"
 #include "core/renderer.h"
+#include "integrators/registry.h"
 #include "io/image_output.h"
 #include "tests/scene_builder.h"
 

@@ -2,7 +2,9 @@
 // an analytic lens, and against the equivalent triangle meshes. (Ray-level tests: csg_test.cpp.)
 #include <gtest/gtest.h>
 
+#include "accel/registry.h"
 #include "core/renderer.h"
+#include "integrators/registry.h"
 #include "shapes/csg.h"
 #include "shapes/mesh_solid.h"
 #include "tests/scene_builder.h"
@@ -205,7 +207,7 @@ std::shared_ptr<Csg> lPrismCsg(Variant v) {
           CsgOp::kDifference,
           std::vector<CsgChild>{
               child(box(Vec3(-1), Vec3(1))),
-              child(std::make_shared<MeshSolid>(boxMesh({0, 0, -2}, {2, 2, 2})))});
+              child(std::make_shared<MeshSolid>(boxMesh({0, 0, -2}, {2, 2, 2}), acceleratorFactory("embree")))});
   }
   return nullptr;
 }

@@ -1,3 +1,4 @@
+#include "accel/registry.h"
 #include "shapes/csg.h"
 
 #include <gtest/gtest.h>

@@ -1,3 +1,4 @@
+#include "accel/registry.h"
 #include "shapes/mesh_solid.h"
 
 #include <gtest/gtest.h>
@@ -19,7 +20,7 @@ Ray line(Vec3 o, Vec3 d) {
 }
 
 TEST(MeshSolid, CubeMeshHasTheIntervalsOfTheAnalyticBox) {
-  MeshSolid mesh(boxMesh(Vec3(-1.0f), Vec3(1.0f)));
+  MeshSolid mesh(boxMesh(Vec3(-1.0f), Vec3(1.0f)), acceleratorFactory("embree"));
   Box box;
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> u(-1.5f, 1.5f);
@@ -45,7 +46,7 @@ TEST(MeshSolid, CubeMeshHasTheIntervalsOfTheAnalyticBox) {
 }
 
 TEST(MeshSolid, RaysThroughSharedEdgesAndVerticesGiveOneInterval) {
-  MeshSolid mesh(boxMesh(Vec3(-1.0f), Vec3(1.0f)));
+  MeshSolid mesh(boxMesh(Vec3(-1.0f), Vec3(1.0f)), acceleratorFactory("embree"));
   // Each face is two triangles sharing a diagonal; these rays cross diagonals, edges, corners.
   for (Ray r :
        {line({-5, -5, 0}, {1, 1, 0}), line({-5, -5, -5}, {1, 1, 1}), line({0, 0, -5}, {0, 0, 1}),
@@ -58,7 +59,7 @@ TEST(MeshSolid, RaysThroughSharedEdgesAndVerticesGiveOneInterval) {
 }
 
 TEST(MeshSolid, TorusHasTwoIntervalsAcrossAndNoneThroughTheHole) {
-  MeshSolid torus(torusMesh(1.0f, 0.3f, 64, 32));
+  MeshSolid torus(torusMesh(1.0f, 0.3f, 64, 32), acceleratorFactory("embree"));
   std::vector<Interval> spans;
   torus.intervals(line({-3, 0.01f, 0.01f}, {1, 0, 0}), spans);
   ASSERT_EQ(spans.size(), 2u);
@@ -85,7 +86,7 @@ TEST(MeshSolid, KhronosBoxWithPerFaceVerticesIsAClosedSolid) {
   Scene scene = loadGltf(std::string(TRAY_SHARED_DIR) + "/gltf-samples/Box.glb");
   ASSERT_EQ(scene.meshes.size(), 1u);
   EXPECT_EQ(scene.meshes[0].positions.size(), 24u);
-  MeshSolid solid(scene.meshes[0]);
+  MeshSolid solid(scene.meshes[0], acceleratorFactory("embree"));
   Box box(Vec3(-0.5f), Vec3(0.5f));
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);
@@ -108,7 +109,7 @@ TEST(MeshSolid, InwardWoundMeshIsTurnedOutward) {
   TriangleMesh m = boxMesh(Vec3(-1.0f), Vec3(1.0f));
   for (size_t t = 0; t < m.triangleCount(); ++t)
     std::swap(m.indices[3 * t + 1], m.indices[3 * t + 2]);
-  MeshSolid solid(m);
+  MeshSolid solid(m, acceleratorFactory("embree"));
   std::vector<Interval> spans;
   solid.intervals(line({0, 0, -5}, {0, 0, 1}), spans);
   ASSERT_EQ(spans.size(), 1u);
@@ -121,16 +122,16 @@ TEST(MeshSolid, OpenOrEmptyMeshesAreRejectedByName) {
   open.name = "lid";
   open.indices.resize(open.indices.size() - 6);  // drop one face
   try {
-    MeshSolid s(open);
+    MeshSolid s(open, acceleratorFactory("embree"));
     FAIL() << "accepted an open mesh";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("mesh 'lid' used as a CSG solid is not closed"),
               std::string::npos)
         << e.what();
   }
-  EXPECT_THROW(MeshSolid(TriangleMesh{}), Error);
+  EXPECT_THROW(MeshSolid(TriangleMesh{}, acceleratorFactory("embree")), Error);
   // Vertices duplicated per face (as glTF exports hard edges) still weld into a closed solid.
-  EXPECT_NO_THROW(MeshSolid(boxMesh(Vec3(0.0f), Vec3(1.0f))));
+  EXPECT_NO_THROW(MeshSolid(boxMesh(Vec3(0.0f), Vec3(1.0f)), acceleratorFactory("embree")));
 }
 
 }  // namespace

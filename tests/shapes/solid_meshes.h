@@ -2,7 +2,7 @@
 // Closed triangle meshes built in code for CSG tests: boxes, extruded polygons, a torus.
 #include <vector>
 
-#include "shapes/triangle_mesh.h"
+#include "core/triangle_mesh.h"
 
 namespace tray::test {
 

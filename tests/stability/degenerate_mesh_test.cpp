@@ -16,6 +16,7 @@
 #include <limits>
 #include <sstream>
 
+#include "accel/registry.h"
 #include "io/gltf_loader.h"
 #include "tests/stability/stability_scenes.h"
 

@@ -9,8 +9,10 @@
 #include <cmath>
 #include <cstdio>
 
+#include "accel/registry.h"
 #include "core/filter.h"
 #include "core/pixel_sampler.h"
+#include "integrators/registry.h"
 #include "tests/stability/stability_scenes.h"
 
 namespace tray {

@@ -9,8 +9,9 @@
 #include <string>
 #include <utility>
 
+#include "accel/registry.h"
 #include "core/renderer.h"
-#include "integrators/integrator.h"
+#include "core/integrator.h"
 #include "tests/render_film.h"
 #include "tests/scene_builder.h"
 

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "accel/registry.h"
 #include "tests/stability/stability_scenes.h"
 
 namespace tray {

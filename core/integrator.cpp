@@ -1,4 +1,4 @@
-#include "integrators/integrator.h"
+#include "core/integrator.h"
 
 #include <algorithm>
 #include <cmath>
@@ -64,16 +64,6 @@ PixelValue Integrator::renderPixel(int x, int y, RayStats& stats, IdCoverage* co
   out.radiance = sums.radiance();
   out.alpha = sums.coverage();
   return out;
-}
-
-std::unique_ptr<Integrator> makeIntegrator(const RenderContext& ctx, const std::string& name) {
-  const std::string& wanted = name.empty() ? ctx.settings.integrator : name;
-  for (const auto& e : integratorRegistry())
-    if (wanted == e.name) return e.create(ctx);
-  std::string known;
-  for (const auto& e : integratorRegistry())
-    known += std::string(known.empty() ? "" : ", ") + e.name;
-  throw Error("unknown integrator '" + wanted + "' (known: " + known + ")");
 }
 
 }  // namespace tray
