@@ -17,7 +17,8 @@
 //   1. read the file (gltf_file_access) and check its envelope (gltf_container);
 //   2. let tinygltf parse it, with file access routed through TRay's URI policy and images
 //      left undecoded;
-//   3. validate the whole document (gltf_validate, gltf_accessors, checkAllNodes);
+//   3. validate the whole document (gltf_validate, gltf_accessors), converting every camera,
+//      light, node and environment once (convertObjects);
 //   4. convert materials and meshes, then walk the chosen scene's nodes (gltf_scene_graph);
 //   5. decode the images the materials use (gltf_images) and bind them (gltf_textures).
 
@@ -104,10 +105,8 @@ Scene convert(const tinygltf::Model& model, const std::string& path, const LoadO
               LoadReport* report, const ImageBytes& images) {
   GltfContext ctx{model, path, report};
   validateDocument(ctx);
-  checkAllNodes(ctx);
-  // Cameras and lights are placed by nodes later; check them all now, placed or not.
-  for (size_t i = 0; i < model.cameras.size(); ++i) convertCamera(ctx, int(i));
-  for (size_t i = 0; i < model.lights.size(); ++i) convertLight(ctx, int(i));
+  // Cameras, lights, nodes and environments converted once, placed or not.
+  const ObjectTable objects = convertObjects(ctx);
   const int sceneIndex = chooseScene(ctx, options.scene);
 
   Scene scene;
@@ -126,7 +125,7 @@ Scene convert(const tinygltf::Model& model, const std::string& path, const LoadO
   meshes.moved.assign(model.meshes.size(), false);
   reportMeshStats(ctx, stats);
 
-  if (sceneIndex >= 0) addSceneNodes(ctx, sceneIndex, defaultMaterial, meshes, scene);
+  if (sceneIndex >= 0) addSceneNodes(ctx, objects, sceneIndex, defaultMaterial, meshes, scene);
 
   bool defaultUsed = false;
   for (const auto& m : scene.meshes) defaultUsed = defaultUsed || m.material == defaultMaterial;

@@ -56,6 +56,7 @@ bool worldTransform(const GltfContext& ctx, const Mat4& m, const std::string& wh
 
 struct Walker {
   const GltfContext& ctx;
+  const ObjectTable& objects;
   int defaultMaterial;
   MeshTable& meshes;
   Scene& scene;
@@ -95,13 +96,13 @@ struct Walker {
     bool invertible = worldTransform(ctx, world, where, toWorld);
     if (node.camera >= 0) {
       if (!invertible) ctx.fail(where + " places a camera with a singular transform");
-      CameraDesc c = convertCamera(ctx, node.camera);
+      CameraDesc c = objects.cameras[size_t(node.camera)];
       if (c.name.empty()) c.name = node.name;
       c.toWorld = toWorld;
       scene.cameras.push_back(c);
     }
-    if (int l = nodeLight(ctx, index); l >= 0) {
-      Light light = convertLight(ctx, l);
+    if (int l = objects.nodeLights[size_t(index)]; l >= 0) {
+      Light light = objects.lights[size_t(l)];
       // Lights sit at the node's origin and shine down its local -Z (KHR_lights_punctual).
       light.position = {world.m[0][3], world.m[1][3], world.m[2][3]};
       Vec3 d{-world.m[0][2], -world.m[1][2], -world.m[2][2]};
@@ -109,11 +110,11 @@ struct Walker {
       light.direction = normalize(d);
       scene.lights.push_back(light);
     }
-    const tinygltf::Value* shapeExt = findExtension(node.extensions, "TRAY_shape");
-    if ((shapeExt || node.mesh >= 0) && !invertible) {
+    const std::optional<TrayShape>& shape = objects.shapes[size_t(index)];
+    if ((shape || node.mesh >= 0) && !invertible) {
       ++hiddenNodes;
-    } else if (shapeExt) {  // a shape replaces the node's mesh, if any
-      TrayShape s = parseTrayShape(ctx, *shapeExt, where);
+    } else if (shape) {  // a shape replaces the node's mesh, if any
+      const TrayShape& s = *shape;
       Primitive p;
       p.kind = Primitive::Kind::kShape;
       p.shape = s.shape;
@@ -163,21 +164,28 @@ Mat4 localMatrix(const GltfContext& ctx, int index) {
   return m;
 }
 
-void checkAllNodes(const GltfContext& ctx) {
-  for (size_t i = 0; i < ctx.model.nodes.size(); ++i) {
-    localMatrix(ctx, int(i));
-    nodeLight(ctx, int(i));
-    const auto& node = ctx.model.nodes[i];
-    if (const tinygltf::Value* ext = findExtension(node.extensions, "TRAY_shape"))
-      parseTrayShape(ctx, *ext, nameOf("node", int(i), node.name));
+ObjectTable convertObjects(const GltfContext& ctx) {
+  const auto& model = ctx.model;
+  ObjectTable t;
+  for (size_t i = 0; i < model.cameras.size(); ++i) t.cameras.push_back(convertCamera(ctx, int(i)));
+  for (size_t i = 0; i < model.lights.size(); ++i) t.lights.push_back(convertLight(ctx, int(i)));
+  for (size_t i = 0; i < model.nodes.size(); ++i) {
+    t.localMatrices.push_back(localMatrix(ctx, int(i)));
+    t.nodeLights.push_back(nodeLight(ctx, int(i)));
+    const auto& node = model.nodes[i];
+    const tinygltf::Value* ext = findExtension(node.extensions, "TRAY_shape");
+    t.shapes.push_back(ext ? std::optional(parseTrayShape(ctx, *ext, nameOf("node", int(i), node.name)))
+                           : std::nullopt);
   }
-  for (size_t i = 0; i < ctx.model.scenes.size(); ++i) sceneEnvironment(ctx, int(i));
+  for (size_t i = 0; i < model.scenes.size(); ++i)
+    t.environments.push_back(sceneEnvironment(ctx, int(i)));
+  return t;
 }
 
-void addSceneNodes(const GltfContext& ctx, int sceneIndex, int defaultMaterial, MeshTable& meshes,
-                   Scene& scene) {
-  Walker walker{ctx, defaultMaterial, meshes, scene, 0};
-  scene.environment = sceneEnvironment(ctx, sceneIndex);
+void addSceneNodes(const GltfContext& ctx, const ObjectTable& objects, int sceneIndex,
+                   int defaultMaterial, MeshTable& meshes, Scene& scene) {
+  Walker walker{ctx, objects, defaultMaterial, meshes, scene, 0};
+  scene.environment = objects.environments[size_t(sceneIndex)];
   // Explicit stack of (node, parent's world matrix); children pushed in reverse so nodes are
   // visited in the order a recursive pre-order walk would (cameras keep the file's order).
   std::vector<std::pair<int, Mat4>> stack;
@@ -186,7 +194,7 @@ void addSceneNodes(const GltfContext& ctx, int sceneIndex, int defaultMaterial, 
   while (!stack.empty()) {
     auto [index, parentWorld] = stack.back();
     stack.pop_back();
-    Mat4 world = parentWorld * localMatrix(ctx, index);
+    Mat4 world = parentWorld * objects.localMatrices[size_t(index)];
     walker.visit(index, world);
     const auto& children = ctx.model.nodes[size_t(index)].children;
     for (auto it = children.rbegin(); it != children.rend(); ++it) stack.push_back({*it, world});

@@ -1,10 +1,12 @@
 #pragma once
 // The node hierarchy (glTF 2.0 §3.5): world transforms composed down the tree, and what each
 // node places into the scene: mesh instances, TRAY_shape shapes, cameras, lights.
+#include <optional>
 #include <vector>
 
 #include "core/scene.h"
 #include "io/gltf_context.h"
+#include "io/tray_shape.h"
 
 namespace tray {
 
@@ -19,14 +21,25 @@ struct MeshTable {
 /// Local transform of node `index` from `matrix` or TRS, checked finite (glTF 2.0 §3.5.2).
 Mat4 localMatrix(const GltfContext& ctx, int index);
 
-/// Checks every node's transform, TRAY_shape and light reference and every scene's
-/// TRAY_environment, so a broken node fails the file even when no scene uses it.
-void checkAllNodes(const GltfContext& ctx);
+/// Every camera, light, node and scene environment of the document, each converted once (and
+/// so checked, used or not: a broken node fails the file even when no scene uses it). The walk
+/// of the chosen scene only places these.
+struct ObjectTable {
+  std::vector<CameraDesc> cameras;              ///< per glTF camera
+  std::vector<Light> lights;                    ///< per glTF light (KHR_lights_punctual)
+  std::vector<Mat4> localMatrices;              ///< per node: matrix or TRS (glTF 2.0 §3.5.2)
+  std::vector<int> nodeLights;                  ///< per node: its light, or -1
+  std::vector<std::optional<TrayShape>> shapes;  ///< per node: its TRAY_shape, if any
+  std::vector<Environment> environments;        ///< per scene: its TRAY_environment
+};
+
+/// Converts every object of the document once; throws (ctx.fail) on the first invalid one.
+ObjectTable convertObjects(const GltfContext& ctx);
 
 /// Walks glTF scene `sceneIndex` depth first (iteratively: no recursion depth to exhaust) and
 /// appends primitives, cameras (in traversal order) and lights to `scene`, and sets its
 /// environment. Shapes and meshes without material get `defaultMaterial`.
-void addSceneNodes(const GltfContext& ctx, int sceneIndex, int defaultMaterial, MeshTable& meshes,
-                   Scene& scene);
+void addSceneNodes(const GltfContext& ctx, const ObjectTable& objects, int sceneIndex,
+                   int defaultMaterial, MeshTable& meshes, Scene& scene);
 
 }  // namespace tray
