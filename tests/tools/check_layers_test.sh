@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# tools/check_layers.py passes on the real tree and fails, naming the file and line, on a copy
+# with one deliberate wrong include (core/ including integrators/), as the build would.
+set -euo pipefail
+source=$1
+python3 "$source/tools/check_layers.py" "$source"
+tree=$(mktemp -d)
+trap 'rm -rf "$tree"' EXIT
+for d in core shapes accel materials lights integrators io cli; do cp -r "$source/$d" "$tree/"; done
+printf '#include "integrators/registry.h"\n' >>"$tree/core/scene.h"
+if out=$(python3 "$source/tools/check_layers.py" "$tree" 2>&1); then
+  echo "a wrong include passed the layer check" >&2
+  exit 1
+fi
+grep -q "core/scene.h:.*layer 'core' includes 'integrators/'" <<<"$out" || {
+  echo "unexpected message: $out" >&2
+  exit 1
+}
+echo "wrong include refused: $out"
