@@ -82,13 +82,12 @@ struct DAffine {
       for (int j = 0; j < 4; ++j) a.m[i][j] = f.m[i][j];
     return a;
   }
-  D3 point(D3 p) const { return add(vec(p), {{m[0][3], m[1][3], m[2][3]}}); }
+  D3 point(D3 p) const { return vec(p) + D3{{m[0][3], m[1][3], m[2][3]}}; }
   D3 vec(D3 p) const {
     D3 r;
     for (int i = 0; i < 3; ++i) r[i] = m[i][0] * p[0] + m[i][1] * p[1] + m[i][2] * p[2];
     return r;
   }
-  static D3 add(D3 a, D3 b) { return a + b; }
 };
 DAffine operator*(const DAffine& a, const DAffine& b) {
   DAffine r;
@@ -136,7 +135,6 @@ struct Tree {
   Node root;
   std::shared_ptr<const Shape> csg;  ///< the root Csg
   Mat4 place;       ///< CSG object space -> world
-  bool hasSphere = false;
 
   /// Signed-distance bound of the solid at world point p (see the file comment).
   double f(const D3& p) const { return eval(root, p); }
@@ -235,7 +233,6 @@ Node makeNode(Rng& rng, Tree& tree, int depth, const DAffine& toWorld,
       local = Mat4::translate(c);
       p.sphere = true;
       p.radius = r;
-      tree.hasSphere = true;
     }
     p.toWorld = toWorld * DAffine::of(local);
     p.toLocal = inverse(p.toWorld);
