@@ -1,6 +1,7 @@
 #include "shapes/interval_ops.h"
 
 #include <algorithm>
+#include <limits>
 
 namespace tray {
 namespace {
@@ -11,7 +12,26 @@ struct Event {
   int operand;
   bool entering;
   const Crossing* crossing;
+  float key = 0;  ///< t, or the t of the earlier boundary it is tied to (same surface)
 };
+
+/// Largest sine of the angle between the normals of two boundaries that can be one surface.
+constexpr double kParallelSine = 1e-3;
+
+/// Can two boundaries be the same surface? Coincident surfaces (a shared face, a notch flush
+/// with a side) have parallel normals, the same or opposite way. Surfaces that meet at an
+/// angle only come close along rays passing near the edge where they meet, and there their
+/// order along the ray is the geometry: merging them would cut a band as wide as the tolerance
+/// off every such edge (issue 18).
+bool sameSurface(const Crossing& a, const Crossing& b) {
+  const Vec3 &n = a.normal, &m = b.normal;
+  double nn = double(n.x) * n.x + double(n.y) * n.y + double(n.z) * n.z;
+  double mm = double(m.x) * m.x + double(m.y) * m.y + double(m.z) * m.z;
+  if (nn == 0 || mm == 0) return true;  // no normal to tell: treat as one surface
+  double cx = double(n.y) * m.z - double(n.z) * m.y, cy = double(n.z) * m.x - double(n.x) * m.z,
+         cz = double(n.x) * m.y - double(n.y) * m.x;
+  return cx * cx + cy * cy + cz * cz <= kParallelSine * kParallelSine * nn * mm;
+}
 
 /// Is the result inside, given how many intervals of each operand the point lies in?
 bool insideResult(CsgOp op, const std::vector<int>& depth) {
@@ -42,15 +62,18 @@ bool inFirst(CsgOp op) {
   return op == CsgOp::kUnion;
 }
 
-/// The crossing reported for a result boundary made within a tied event: that of the
-/// lowest-indexed operand among the processed events pushing the same way, so a face shared by
-/// two children always shows the same child. Subtracted faces point into the removed solid.
+/// The crossing reported for a result boundary made by event `made`: that of the
+/// lowest-indexed operand among the processed events tied to it (the same surface, same key)
+/// pushing the same way, so a face shared by two children always shows the same child. Only
+/// tied events count: near an edge the boundary is the surface the ray actually crosses there.
+/// Subtracted faces point into the removed solid.
 Crossing resultCrossing(CsgOp op, const std::vector<Event>& events, const std::vector<bool>& done,
-                        size_t first, size_t last, bool resultEntering) {
+                        size_t first, size_t last, const Event& made) {
   const Event* best = nullptr;
+  bool resultEntering = pushesIn(op, made);
   for (size_t i = first; i < last; ++i)
-    if (done[i - first] && pushesIn(op, events[i]) == resultEntering &&
-        (!best || events[i].operand < best->operand))
+    if (done[i - first] && events[i].key == made.key &&
+        pushesIn(op, events[i]) == resultEntering && (!best || events[i].operand < best->operand))
       best = &events[i];
   Crossing c = *best->crossing;
   if (op == CsgOp::kDifference && best->operand > 0) c.normal = -c.normal;
@@ -78,17 +101,39 @@ void combineIntervals(CsgOp op, const std::vector<std::vector<Interval>>& operan
   std::vector<bool> done;
   bool inside = false;
   Interval current;
+  float lastExitKey = std::numeric_limits<float>::quiet_NaN();
   for (size_t first = 0; first < events.size();) {
-    // One tied event: every boundary within the tolerance of the previous one. Infinite
-    // ends tie only with equal infinities.
+    // A cluster: every boundary within the tolerance of the previous one. Infinite ends
+    // cluster only with equal infinities.
     size_t last = first + 1;
     while (last < events.size()) {
       float a = events[last - 1].t, b = events[last].t;
       if (!(a == b || (std::isfinite(a) && std::isfinite(b) && b - a <= tolerance.at(b)))) break;
       ++last;
     }
-    // Process the tie: each operand's own boundaries in their order (a thin chord through one
-    // child stays a chord), different operands in the order the rule prefers.
+    // Ties: a boundary within the tolerance of an earlier one of the same surface (parallel
+    // normals) takes its key; every other boundary keeps its own t as key. Rounding only
+    // needs forgiving where two operands share a surface: transversal surfaces meeting at an
+    // edge keep their computed order, which is right up to float rounding as for a mesh.
+    // Issue 18: this sweep used to tie every boundary within the tolerance (1e-5 of the ray's
+    // distance scale, ~1e-4 for a camera 7 units away: 100 times float rounding). A ray
+    // passing that close to an edge where faces of two operands meet at an angle then lost
+    // the thin chord the edge leaves (intersection, difference: exits first), so camera rays
+    // went through the solid next to its silhouette, or was reported on the wrong face (the
+    // lowest operand's crossing, up to the tolerance before the real boundary: a hit in empty
+    // space, or on a face a subtracted solid removes). Found by tests/shapes/csg_oracle_test.
+    for (size_t i = first; i < last; ++i) {
+      Event& e = events[i];
+      e.key = e.t;
+      for (size_t j = first; j < i; ++j)
+        if (e.t - events[j].t <= tolerance.at(e.t) && sameSurface(*e.crossing, *events[j].crossing)) {
+          e.key = events[j].key;
+          break;
+        }
+    }
+    // Process the cluster in key order: each operand's own boundaries in their order (a thin
+    // chord through one child stays a chord), tied boundaries of different operands in the
+    // order the rule prefers.
     done.assign(last - first, false);
     for (size_t n = first; n < last; ++n) {
       size_t pick = last;
@@ -103,6 +148,10 @@ void combineIntervals(CsgOp op, const std::vector<std::vector<Interval>>& operan
           continue;
         }
         const Event& p = events[pick];
+        if (e.key != p.key) {
+          if (e.key < p.key) pick = i;
+          continue;
+        }
         bool eFirst = pushesIn(op, e) == inFirst(op), pFirst = pushesIn(op, p) == inFirst(op);
         if (eFirst != pFirst ? eFirst : e.operand < p.operand) pick = i;
       }
@@ -111,15 +160,16 @@ void combineIntervals(CsgOp op, const std::vector<std::vector<Interval>>& operan
       depth[size_t(e.operand)] += e.entering ? 1 : -1;
       bool nowInside = insideResult(op, depth);
       if (nowInside && !inside) {
-        current.enter = resultCrossing(op, events, done, first, last, true);
-        if (!out.empty() && current.enter.t <= out.back().exit.t) {
+        current.enter = resultCrossing(op, events, done, first, last, e);
+        if (!out.empty() && (e.key == lastExitKey || current.enter.t <= out.back().exit.t)) {
           current.enter = out.back().enter;  // re-entered within the tie: one interval
           out.pop_back();
         }
       } else if (!nowInside && inside) {
-        current.exit = resultCrossing(op, events, done, first, last, false);
+        current.exit = resultCrossing(op, events, done, first, last, e);
         if (current.exit.t < current.enter.t) current.exit.t = current.enter.t;
         out.push_back(current);
+        lastExitKey = e.key;
       }
       inside = nowInside;
     }

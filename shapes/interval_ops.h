@@ -26,14 +26,19 @@ struct TieTolerance {
 /// disjoint intervals of the result, in one sweep over all boundaries in t order.
 ///
 /// Rules, so that every ray sees one consistent solid:
-/// - Boundaries closer than the tolerance are tied. Within a tie each operand's own
-///   boundaries keep their order (a thin chord through one child stays), while boundaries of
-///   different operands are ordered by the operation: a union takes entries first (touching
-///   solids merge, no inner face), an intersection and a difference take exits from the
-///   result first (no slivers; a subtracted face flush with the first solid's face removes
-///   that face: the subtracted solid wins).
-/// - Each result boundary reports the crossing of the lowest-indexed operand, among the tied
-///   boundaries that push the result the same way (deterministic material on shared faces).
+/// - Boundaries closer than the tolerance are tied when they can be the same surface: their
+///   normals are parallel (the same or opposite way; sine of the angle <= 1e-3), as on a face
+///   shared by two children. Boundaries of surfaces meeting at an angle (a ray passing near
+///   the edge where they meet) are never tied: their computed order is kept, so no band as
+///   wide as the tolerance is cut off or added along such edges (issue 18).
+/// - Within a tie each operand's own boundaries keep their order (a thin chord through one
+///   child stays), while boundaries of different operands are ordered by the operation: a
+///   union takes entries first (touching solids merge, no inner face), an intersection and a
+///   difference take exits from the result first (no slivers; a subtracted face flush with
+///   the first solid's face removes that face: the subtracted solid wins).
+/// - Each result boundary reports the crossing of the lowest-indexed operand among the
+///   boundaries tied with the one that made it, pushing the result the same way
+///   (deterministic material on shared faces; elsewhere the surface actually crossed).
 /// - Crossings of subtracted operands have their normal flipped: the result's outward normal
 ///   there points into the subtracted solid.
 /// `out` is overwritten. Infinite ends (half-spaces) are kept as infinite ends.

@@ -100,6 +100,43 @@ TEST(IntervalOps, BoundariesWithinToleranceAreOneEvent) {
   EXPECT_EQ(ends(combine(CsgOp::kUnion, {{span(0, 1)}, {span(1.001f, 2)}}, tol)).size(), 4u);
 }
 
+TEST(IntervalOps, SurfacesMeetingAtAnAngleAreNotTied) {
+  // Issue 18: a ray passing a hair inside the edge where faces of two operands meet at an
+  // angle crosses them closer than the tolerance; their order is the geometry, not rounding.
+  const TieTolerance tol{1e-5f, 1.0f};  // 1e-5 at t = 0, 2e-5 at t = 1
+  const Vec3 x{1, 0, 0}, y{0, 1, 0};
+  auto spanN = [](float a, float b, Vec3 na, Vec3 nb, int tag) {
+    return Interval{{a, -1.0f * na, {}, tag}, {b, nb, {}, tag}};
+  };
+  // Intersection: the result starts at the later entry, on that operand's face.
+  Spans i = combine(CsgOp::kIntersection,
+                    {{spanN(1, 2, x, x, 1)}, {spanN(1.000005f, 3, y, y, 2)}}, tol);
+  ASSERT_EQ(i.size(), 1u);
+  EXPECT_EQ(i[0].enter.t, 1.000005f);
+  EXPECT_EQ(i[0].enter.material, 2);
+  // Union: the earlier entry, whichever operand.
+  Spans u = combine(CsgOp::kUnion, {{spanN(1.000005f, 2, x, x, 1)}, {spanN(1, 3, y, y, 2)}}, tol);
+  ASSERT_EQ(u.size(), 1u);
+  EXPECT_EQ(u[0].enter.t, 1.0f);
+  EXPECT_EQ(u[0].enter.material, 2);
+  // Difference: the thin chord left between the hole's exit and the solid's exit stays, and so
+  // does the one before the hole's entry.
+  EXPECT_EQ(ends(combine(CsgOp::kDifference,
+                         {{spanN(0, 1.000005f, x, x, 1)}, {spanN(0.5f, 1, y, y, 2)}}, tol)),
+            V({0, 0.5f, 1, 1.000005f}));
+  EXPECT_EQ(ends(combine(CsgOp::kDifference,
+                         {{spanN(1, 2, x, x, 1)}, {spanN(1.000005f, 3, y, y, 2)}}, tol)),
+            V({1, 1.000005f}));
+  // The same boundaries on parallel faces (a shared face computed twice) are tied as before.
+  EXPECT_TRUE(combine(CsgOp::kDifference,
+                      {{spanN(1, 2, x, x, 1)}, {spanN(1.000005f, 3, x, x, 2)}}, tol)
+                  .empty());
+  EXPECT_EQ(ends(combine(CsgOp::kDifference,
+                         {{spanN(0, 1.000005f, x, x, 1)}, {spanN(0.5f, 1, x, -1.0f * x, 2)}},
+                         tol)),
+            V({0, 0.5f}));
+}
+
 TEST(IntervalOps, SharedFaceReportsTheLowestOperand) {
   // Two solids entered at the same t: the first child's surface (its material) is reported.
   Spans u = combine(CsgOp::kUnion, {{span(0, 1, 7)}, {span(0, 2, 8)}});
