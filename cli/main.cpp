@@ -38,7 +38,7 @@ struct CliOptions {
   int threads = 0;
   std::string accel = "embree";
   bool floatOutput = false;
-  std::string outputColorspace = "lin_rec709";
+  std::string outputColorspace;  ///< empty: the config's linear Rec.709, else scene_linear
   std::string display, view;
   bool allowAnyPath = false;
   bool quiet = false;
@@ -61,6 +61,12 @@ std::string joined(const std::vector<std::string>& names) {
 int run(const CliOptions& o) {
   // First: a signal while the scene loads also stops the render (at its first pixel).
   const std::atomic<bool>& stop = tray::installInterruptHandlers();
+  {  // Output mistakes (format, folder, colorspace, display/view, $OCIO) before any work.
+    tray::ImageOutputOptions check;
+    check.colorspace = o.outputColorspace, check.display = o.display, check.view = o.view;
+    tray::checkOutputs(o.outputs, check);
+    if (!o.aaHeatmap.empty()) tray::checkOutputs({o.aaHeatmap}, check);
+  }
   tray::LoadOptions loadOptions;
   loadOptions.scene = o.scene;
   loadOptions.allowAnyPath = o.allowAnyPath;
@@ -261,8 +267,9 @@ int main(int argc, char** argv) {
   app.add_option("--accel", o.accel, "accelerator: " + joined(tray::acceleratorNames()))
       ->capture_default_str();
   app.add_flag("--float", o.floatOutput, "write 32-bit float EXR (default half)");
-  app.add_option("--output-colorspace", o.outputColorspace, "OCIO colorspace of EXR output")
-      ->capture_default_str();
+  app.add_option("--output-colorspace", o.outputColorspace,
+                 "OCIO colorspace (name, alias or role) of EXR output (default: the config's "
+                 "linear Rec.709, lin_rec709 in TRay's; else its scene_linear role)");
   app.add_option("--display", o.display, "OCIO display for PNG/JPG output (default: sRGB)");
   app.add_option("--view", o.view, "OCIO view for PNG/JPG output (default: the display's first)");
   app.add_flag("--allow-any-path", o.allowAnyPath, "let scene URIs leave the scene's folder");

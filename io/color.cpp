@@ -15,6 +15,11 @@ namespace tray {
 
 struct ColorPipeline::Impl {
   OCIO::ConstConfigRcPtr config;
+  /// From TRay's linear Rec.709 into bridge_ (null when the config has the working space).
+  OCIO::ConstTransformRcPtr bridge;
+  /// The transform from the working space to a colorspace of the config.
+  OCIO::ConstTransformRcPtr fromWorking(const std::string& working, const std::string& bridge,
+                                        const std::string& target) const;
 };
 
 namespace {
@@ -65,6 +70,11 @@ void applyPacked(const OCIO::ConstCPUProcessorRcPtr& cpu, float* rgb, size_t n, 
 
 }  // namespace
 
+std::string ColorPipeline::noBridge() const {
+  return path_ + ": OpenColorIO config has no linear Rec.709 colorspace and no aces_interchange "
+         "or cie_xyz_d65_interchange role: TRay's linear Rec.709 cannot be converted into it";
+}
+
 std::string ColorPipeline::defaultConfigPath() {
   if (const char* env = std::getenv("OCIO"); env && *env) return env;
   // An installed binary finds the config in ../share/tray, a build tree's beside it (CMake
@@ -97,13 +107,60 @@ ColorPipeline::ColorPipeline(const std::string& configPath)
   for (const char* name : kWorkingNames)
     if (auto cs = cfg->getColorSpace(name); cs && !cs->isData()) {
       working_ = cs->getName();
-      break;
+      return;
     }
-  if (working_.empty()) {
-    auto cs = cfg->getColorSpace(OCIO::ROLE_SCENE_LINEAR);
-    if (!cs) throw Error(configPath + ": OpenColorIO config has no linear Rec.709 colorspace");
-    working_ = cs->getName();
+  // A studio config (the ACES configs have no Rec.709-linear space): enter it through an
+  // interchange role (OCIO 2.1 roles aces_interchange, cie_xyz_d65_interchange) with OCIO's
+  // own built-in transforms, never by pretending its scene_linear is Rec.709.
+  auto rec709ToAp1 = OCIO::BuiltinTransform::Create();
+  rec709ToAp1->setStyle("UTILITY - ACES-AP1_to_LINEAR-REC709_BFD");
+  rec709ToAp1->setDirection(OCIO::TRANSFORM_DIR_INVERSE);
+  auto second = OCIO::BuiltinTransform::Create();
+  if (auto aces = cfg->getColorSpace(OCIO::ROLE_INTERCHANGE_SCENE)) {
+    bridge_ = aces->getName();
+    second->setStyle("ACEScg_to_ACES2065-1");
+  } else if (auto xyz = cfg->getColorSpace(OCIO::ROLE_INTERCHANGE_DISPLAY)) {
+    bridge_ = xyz->getName();
+    second->setStyle("UTILITY - ACES-AP1_to_CIE-XYZ-D65_BFD");
+  } else {
+    return;  // conversions fail with a message naming what is missing (check())
   }
+  auto group = OCIO::GroupTransform::Create();
+  group->appendTransform(rec709ToAp1);
+  group->appendTransform(second);
+  impl_->bridge = group;
+}
+
+OCIO::ConstTransformRcPtr ColorPipeline::Impl::fromWorking(const std::string& working,
+                                                           const std::string& bridgeSpace,
+                                                           const std::string& target) const {
+  auto toTarget = OCIO::ColorSpaceTransform::Create();
+  toTarget->setSrc(working.empty() ? bridgeSpace.c_str() : working.c_str());
+  toTarget->setDst(target.c_str());
+  if (working.empty()) {
+    auto group = OCIO::GroupTransform::Create();
+    group->appendTransform(bridge->createEditableCopy());
+    group->appendTransform(toTarget);
+    return group;
+  }
+  return toTarget;
+}
+
+std::string ColorPipeline::defaultOutputSpace() const {
+  if (!working_.empty()) return working_;
+  auto cs = impl_->config->getColorSpace(OCIO::ROLE_SCENE_LINEAR);
+  if (!cs)
+    throw Error(path_ + ": OpenColorIO config has neither a linear Rec.709 colorspace nor a "
+                "scene_linear role: name the EXR colorspace with --output-colorspace");
+  return cs->getName();
+}
+
+void ColorPipeline::check(const std::string& colorspace, const std::string& display,
+                          const std::string& view) const {
+  float probe[3] = {0.18f, 0.18f, 0.18f};
+  convertFromWorking(probe, 1, 3, colorspace);
+  float shown[3] = {0.18f, 0.18f, 0.18f};
+  toDisplay(shown, 1, 3, display, view);
 }
 
 ColorPipeline::~ColorPipeline() = default;
@@ -125,13 +182,14 @@ std::string ColorPipeline::canonicalName(const std::string& colorspace) const {
 
 void ColorPipeline::convertFromWorking(float* rgb, size_t n, int stride,
                                        const std::string& colorspace) const {
-  const std::string target = canonicalName(colorspace);
+  const std::string target =
+      canonicalName(colorspace.empty() ? defaultOutputSpace() : colorspace);
   if (stride < 3) throw Error("colour conversion needs at least 3 floats per pixel");
   if (target == working_) return;
+  if (working_.empty() && !impl_->bridge) throw Error(noBridge());
   try {
-    auto cpu =
-        impl_->config->getProcessor(working_.c_str(), target.c_str())->getDefaultCPUProcessor();
-    applyPacked(cpu, rgb, n, stride);
+    auto t = impl_->fromWorking(working_, bridge_, target);
+    applyPacked(impl_->config->getProcessor(t)->getDefaultCPUProcessor(), rgb, n, stride);
   } catch (const OCIO::Exception& e) {
     throw Error("OpenColorIO: converting to '" + target + "': " + oneLine(e.what()));
   }
@@ -160,12 +218,20 @@ void ColorPipeline::toDisplay(float* rgb, size_t n, int stride, const std::strin
   if (!viewKnown)
     throw Error("unknown view '" + v + "' for display '" + d + "' (" + path_ + " has: " + views +
                 ")");
+  if (working_.empty() && !impl_->bridge) throw Error(noBridge());
   try {
     auto t = OCIO::DisplayViewTransform::Create();
-    t->setSrc(working_.c_str());
+    t->setSrc(working_.empty() ? bridge_.c_str() : working_.c_str());
     t->setDisplay(d.c_str());
     t->setView(v.c_str());
-    applyPacked(cfg->getProcessor(t)->getDefaultCPUProcessor(), rgb, n, stride);
+    OCIO::ConstTransformRcPtr all = t;
+    if (working_.empty()) {
+      auto group = OCIO::GroupTransform::Create();
+      group->appendTransform(impl_->bridge->createEditableCopy());
+      group->appendTransform(t);
+      all = group;
+    }
+    applyPacked(cfg->getProcessor(all)->getDefaultCPUProcessor(), rgb, n, stride);
   } catch (const OCIO::Exception& e) {
     throw Error("OpenColorIO: display '" + d + "' view '" + v + "': " + oneLine(e.what()));
   }
@@ -185,9 +251,12 @@ std::optional<std::array<float, 8>> ColorPipeline::chromaticities(
   // Another config's space (Rec.2020, P3-D65, ...): derive its primaries by taking unit RGB
   // back to linear Rec.709 and on to XYZ (through OCIO's built-in Rec.709 -> AP1 -> XYZ D65,
   // whose Bradford steps cancel). Valid only for linear spaces, so check linearity first.
+  if (working_.empty() && !impl_->bridge) return std::nullopt;
   try {
-    auto toWorking =
-        impl_->config->getProcessor(cs->getName(), working_.c_str())->getDefaultCPUProcessor();
+    auto toWorking = impl_->config
+                         ->getProcessor(impl_->fromWorking(working_, bridge_, cs->getName()),
+                                        OCIO::TRANSFORM_DIR_INVERSE)
+                         ->getDefaultCPUProcessor();
     auto group = OCIO::GroupTransform::Create();
     auto rec709ToAp1 = OCIO::BuiltinTransform::Create();
     rec709ToAp1->setStyle("UTILITY - ACES-AP1_to_LINEAR-REC709_BFD");

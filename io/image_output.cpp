@@ -36,6 +36,11 @@ bool halfEligible(const FilmLayer& l) {
   return l.name.empty() || l.name == "albedo" || l.name == "N";
 }
 
+/// Layers holding colours in the working space, converted to the output colorspace.
+bool isColourLayer(const FilmLayer& l) {
+  return (l.name.empty() || l.name == "albedo") && l.channels.size() >= 3;
+}
+
 /// Opens `tmp` with the writer chosen by the real path's extension, writes, closes.
 void writeFile(const std::string& path, const std::string& tmp, const OIIO::ImageSpec& spec,
                OIIO::TypeDesc bufferType, const void* pixels) {
@@ -50,7 +55,8 @@ void writeFile(const std::string& path, const std::string& tmp, const OIIO::Imag
 void writeExr(const Film& film, const std::string& path, const std::string& tmp,
               const ImageOutputOptions& o) {
   const ColorPipeline& color = ColorPipeline::instance();
-  const std::string cs = color.canonicalName(o.colorspace);
+  const std::string cs =
+      color.canonicalName(o.colorspace.empty() ? color.defaultOutputSpace() : o.colorspace);
   std::vector<std::string> names;
   std::vector<OIIO::TypeDesc> formats;
   for (const FilmLayer& l : film.layers())
@@ -70,8 +76,9 @@ void writeExr(const Film& film, const std::string& path, const std::string& tmp,
   spec.full_height = o.fullHeight > 0 ? o.fullHeight : film.height();
   spec.attribute("compression", "zip");  // lossless; zip beats piz on noise-free renders
 
-  // Interleave every layer into one pixel (beauty first), then convert only its RGB: AOVs
-  // (normals, depth, albedo) are data or stay in the working space.
+  // Interleave every layer into one pixel (beauty first), then convert the colour layers'
+  // RGB (beauty and albedo) like the beauty, so the file's colorspace is true of both; the
+  // other AOVs (normals, depth, positions, ids) are data.
   const size_t n = size_t(film.width()) * film.height(), nc = names.size();
   std::vector<float> pixels(n * nc);
   size_t offset = 0;
@@ -79,9 +86,9 @@ void writeExr(const Film& film, const std::string& path, const std::string& tmp,
     const size_t lc = l.channels.size();
     for (size_t p = 0; p < n; ++p)
       for (size_t c = 0; c < lc; ++c) pixels[p * nc + offset + c] = l.data[p * lc + c];
+    if (isColourLayer(l)) color.convertFromWorking(pixels.data() + offset, n, int(nc), cs);
     offset += lc;
   }
-  color.convertFromWorking(pixels.data(), n, int(nc), cs);
 
   // The colorspace is named twice: OIIO's convention and a plain attribute for other readers;
   // chromaticities (OpenEXR standard attribute) let any reader interpret the primaries.
@@ -126,18 +133,45 @@ std::string exrChannelName(const FilmLayer& layer, const std::string& channel) {
   return layer.name + "." + channel;
 }
 
-void writeImage(const Film& film, const std::string& path, const ImageOutputOptions& options) {
+namespace {
+
+/// The path's format, checked: true for EXR, false for PNG/JPEG; throws for anything else, a
+/// missing folder or a path that is a folder.
+bool checkPath(const std::string& path) {
   const std::string ext = lowerExtension(path);
   const bool exr = ext == ".exr", display = ext == ".png" || ext == ".jpg" || ext == ".jpeg";
   if (!exr && !display)
     throw Error(path + ": unsupported output format '" + ext + "' (use .exr, .png, .jpg or .jpeg)");
-  if (options.fullWidth < 0 || options.fullHeight < 0)
-    throw Error(path + ": negative display window size");
   const fs::path folder = fs::path(path).parent_path();
   std::error_code ec;
   if (!folder.empty() && !fs::is_directory(folder, ec))
     throw Error(path + ": folder '" + folder.string() + "' does not exist");
   if (fs::is_directory(path, ec)) throw Error(path + ": is a folder");
+  return exr;
+}
+
+}  // namespace
+
+void checkOutputs(const std::vector<std::string>& paths, const ImageOutputOptions& options) {
+  for (const auto& path : paths) {
+    const bool exr = checkPath(path);
+    try {
+      const ColorPipeline& color = ColorPipeline::instance();
+      if (exr)
+        color.check(options.colorspace.empty() ? color.defaultOutputSpace() : options.colorspace);
+      else
+        color.check("", options.display, options.view);
+    } catch (const Error& e) {
+      throw Error(path + ": " + e.what(), e.kind());
+    }
+  }
+}
+
+void writeImage(const Film& film, const std::string& path, const ImageOutputOptions& options) {
+  const bool exr = checkPath(path);
+  if (options.fullWidth < 0 || options.fullHeight < 0)
+    throw Error(path + ": negative display window size");
+  std::error_code ec;
   // Written under a temporary name in the same folder and renamed into place when complete:
   // rename(2) is atomic within a file system, so readers never see a partial image and a
   // failed write leaves any earlier file intact. Unique per process and call.

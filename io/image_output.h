@@ -11,7 +11,9 @@ namespace tray {
 struct ImageOutputOptions {
   /// EXR beauty, albedo and N as half (else float); Z, P, ids and counts are always float.
   bool halfFloat = true;
-  std::string colorspace = "lin_rec709";  ///< EXR output colorspace (an OCIO name)
+  /// EXR output colorspace (an OCIO name, alias or role); empty: the config's linear Rec.709
+  /// space, else its scene_linear role (ColorPipeline::defaultOutputSpace).
+  std::string colorspace;
   std::string display, view;              ///< PNG/JPEG display/view; empty = config defaults
   std::vector<std::pair<std::string, std::string>> stringMetadata;
   std::vector<std::pair<std::string, float>> floatMetadata;
@@ -28,6 +30,11 @@ struct ImageOutputOptions {
 /// temporary name in the same folder and renamed when complete, so an existing file is never left
 /// truncated. Throws tray::Error with a one-line "PATH: problem" message.
 void writeImage(const Film& film, const std::string& path, const ImageOutputOptions& options = {});
+
+/// Checks, before anything is rendered, what writeImage would refuse afterwards: each path's
+/// format (by extension) and folder, and that its colour conversions (colorspace, display,
+/// view; the OCIO config itself) can be made. Throws tray::Error "PATH: problem".
+void checkOutputs(const std::vector<std::string>& paths, const ImageOutputOptions& options);
 
 /// EXR channel name of a layer's channel: bare for the beauty layer ("R") and for a layer with
 /// one channel of its own name ("Z"); otherwise "layer.channel" ("N.X").
