@@ -78,7 +78,7 @@ int run(const CliOptions& o) {
   tray::CameraDesc cam = tray::chooseCamera(scene, o.camera);
   if (tray::addDefaultLightingIfUnlit(scene, cam))
     std::fprintf(stderr,
-                 "warning: %s has no lights: using TRay's default headlight and a 0.1 "
+                 "warning: %s has no lights of meaningful power: using TRay's default headlight and a 0.1 "
                  "environment (docs/scene-format.md)\n",
                  o.scenePath.c_str());
   const tray::ImageSize size = tray::resolveImageSize(o.resolution, cam);

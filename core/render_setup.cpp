@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include "core/error.h"
 
@@ -18,19 +19,70 @@ CameraDesc chooseCamera(const Scene& scene, int index) {
   return Camera::framing(scene.bounds(), 4.0f / 3.0f);
 }
 
+namespace {
+
+/// Mean linear RGB of a decoded texture (1 when the reference is invalid or the image empty).
+Color meanOf(const Scene& scene, const TextureRef& ref) {
+  if (!ref.valid() || size_t(ref.image) >= scene.textures.size()) return Color(1.0f);
+  const TextureImage& im = scene.textures[size_t(ref.image)];
+  const size_t n = im.pixels.size() / 3;
+  if (n == 0) return Color(1.0f);
+  double sum[3] = {0, 0, 0};
+  for (size_t p = 0; p < n; ++p)
+    for (int c = 0; c < 3; ++c) sum[c] += im.pixels[3 * p + size_t(c)];
+  return Color(float(sum[0] / n), float(sum[1] / n), float(sum[2] / n));
+}
+
+}  // namespace
+
+EmissionSummary summarizeEmission(const Scene& scene) {
+  EmissionSummary e;
+  std::vector<float> exitance(scene.materials.size(), -1.0f);  // per material, lazily
+  for (const Primitive& prim : scene.primitives) {
+    const int mi = prim.kind == Primitive::Kind::kMesh ? scene.meshes[prim.mesh].material
+                                                       : prim.material;
+    const Material& m = scene.material(mi);
+    float& M = exitance[size_t(mi)];
+    if (M < 0) {  // radiant exitance pi L of a Lambertian emitter, L = factor x mean texel
+      const Color L = m.emissive * meanOf(scene, m.emissiveTexture);
+      M = isFinite(L) ? kPi * luminance(L) * (m.doubleSided ? 2.0f : 1.0f) : 0.0f;
+    }
+    if (prim.kind == Primitive::Kind::kShape) {
+      // No area for analytic shapes here: any emissive one counts as a light.
+      if (M > 0) e.emissiveShapes = true;
+      continue;
+    }
+    const TriangleMesh& mesh = scene.meshes[prim.mesh];
+    for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+      const uint32_t* idx = &mesh.indices[3 * t];
+      const Vec3 a = prim.toWorld.point(mesh.positions[idx[0]]);
+      const float area = 0.5f * length(cross(prim.toWorld.point(mesh.positions[idx[1]]) - a,
+                                             prim.toWorld.point(mesh.positions[idx[2]]) - a));
+      if (!std::isfinite(area)) continue;
+      e.surfaceArea += area;
+      e.meshPower += double(area) * M;
+    }
+  }
+  return e;
+}
+
+bool EmissionSummary::meaningful() const {
+  if (emissiveShapes) return true;
+  return meshPower > 0 && meshPower >= kMeaningfulShare * kDefaultIrradiance * surfaceArea / 4;
+}
+
 bool addDefaultLightingIfUnlit(Scene& scene, const CameraDesc& camera) {
   if (!scene.lights.empty() || !isBlack(scene.environment.ambient) ||
       !isBlack(scene.environment.background))
     return false;
-  for (const Material& m : scene.materials)
-    if (!isBlack(m.emissive)) return false;
+  if (summarizeEmission(scene).meaningful()) return false;
   // glTF cameras look down -Z with +Y up; the key light travels forward, down and right.
   const Vec3 forward = normalize(camera.toWorld.vector(Vec3(0, 0, -1)));
   const Vec3 up = normalize(camera.toWorld.vector(Vec3(0, 1, 0)));
   const Vec3 right = normalize(cross(forward, up));
   Light key;
   key.type = Light::Type::kDirectional;
-  key.intensity = Color(2.5f);
+  key.intensity = Color(EmissionSummary::kDefaultIrradiance);
   key.direction = normalize(forward - 0.6f * up + 0.4f * right);
   scene.lights.push_back(key);
   scene.environment.ambient = Color(0.1f);

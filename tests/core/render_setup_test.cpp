@@ -53,5 +53,48 @@ TEST(DefaultLighting, LeavesLitScenesAlone) {
   EXPECT_TRUE(withEmitter.lights.empty());
 }
 
+/// A 10 x 10 floor (area 100) and a 1 x 1 quad (area 1) above it whose emission is the
+/// factor times an emissive texture: `lit` of its 64 x 64 texels are 1, the rest black.
+Scene floorWithTexturedEmitter(float factor, int lit) {
+  Scene s;
+  addMeshInstance(s, addMesh(s, quadMesh(5.0f, addMaterial(s, diffuse(Color(0.5f))))),
+                  Mat4::identity());
+  Material glow = diffuse(Color(0.0f));
+  glow.emissive = Color(factor);
+  TextureImage t;
+  t.width = t.height = 64;
+  t.pixels.assign(64 * 64 * 3, 0.0f);
+  for (int i = 0; i < 3 * lit; ++i) t.pixels[size_t(i)] = 1.0f;
+  s.textures.push_back(t);
+  glow.emissiveTexture.image = 0;
+  addMeshInstance(s, addMesh(s, quadMesh(0.5f, addMaterial(s, glow))),
+                  Mat4::translate({0, 1, 0}));
+  s.finalize();
+  return s;
+}
+
+TEST(DefaultLighting, DecidesByEmittedPowerNotByAnEmissiveTexture) {
+  // A car whose emissive texture is black but for its lamps counted as lit and rendered black.
+  // Threshold: 1% of 2.5 x 101 / 4 = 0.63 W; the quad gives pi x factor x lit/4096.
+  const CameraDesc cam = lookAt(Vec3(0, 5, 5), Vec3(0.0f));
+  Scene lamps = floorWithTexturedEmitter(1.0f, 40);  // 0.031 W
+  EXPECT_FALSE(summarizeEmission(lamps).meaningful());
+  EXPECT_NEAR(summarizeEmission(lamps).meshPower, kPi * 40 / 4096, 1e-6);
+  EXPECT_NEAR(summarizeEmission(lamps).surfaceArea, 101.0, 1e-3);
+  EXPECT_TRUE(addDefaultLightingIfUnlit(lamps, cam));
+
+  Scene panel = floorWithTexturedEmitter(5.0f, 4096);  // 15.7 W: a real light panel
+  EXPECT_TRUE(summarizeEmission(panel).meaningful());
+  EXPECT_FALSE(addDefaultLightingIfUnlit(panel, cam));
+}
+
+TEST(DefaultLighting, UnusedEmissiveMaterialsDoNotCount) {
+  Scene s = unlitSphereScene();
+  Material glow = diffuse(Color(0.0f));
+  glow.emissive = Color(100.0f);
+  addMaterial(s, glow);  // in the file, on no object
+  EXPECT_TRUE(addDefaultLightingIfUnlit(s, lookAt(Vec3(0, 0, 5), Vec3(0.0f))));
+}
+
 }  // namespace
 }  // namespace tray
