@@ -31,10 +31,10 @@ bool allFinite(const Film& f) {
 
 RenderStats renderTrapped(const Case& c, int maxDepth) {
   RenderSettings st;
-  st.integrator = c.integrator;
-  st.pixelSampler = "jitter";
-  st.spp = c.spp;
-  st.maxDepth = maxDepth;
+  st.set("integrator", c.integrator);
+  st.set("pixel-sampler", "jitter");
+  st.set("spp", c.spp);
+  st.set("max-depth", maxDepth);
   const SceneWithCamera a = trappedLightScene();
   RenderStats stats;
   const Film film = renderFilm(a.scene, a.camera, kW, kH, st, &stats);
