@@ -37,9 +37,9 @@ Run render(const Scene& scene, const Camera& camera, ImageSize size, const Rende
 
 RenderSettings grid(int n) {
   RenderSettings s;
-  s.integrator = "whitted";
-  s.pixelSampler = "grid";
-  s.spp = n * n;
+  s.set("integrator", "whitted");
+  s.set("pixel-sampler", "grid");
+  s.set("spp", n * n);
   return s;
 }
 
@@ -71,10 +71,10 @@ int main(int argc, char** argv) {
     double bestShare = -1, bestRmse = 0, bestThreshold = 0;
     for (float t : {0.2f, 0.1f, 0.05f, 0.03f, 0.02f, 0.01f, 0.005f}) {
       RenderSettings s;
-      s.integrator = "adaptive";
-      s.inner = "whitted";
-      s.aaDepth = 4;
-      s.aaThreshold = t;
+      s.set("integrator", "adaptive");
+      s.set("inner", "whitted");
+      s.set("aa-depth", 4);
+      s.set("aa-threshold", t);
       const Run a = render(scene, *camera, size, s, threads);
       const double rays = double(a.stats.rays.cameraRays);
       const double e = compareBeauty(a.film, reference.film).rmse;

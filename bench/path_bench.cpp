@@ -108,11 +108,12 @@ void equalError(const Scene& scene, const Accelerator& accel, const std::string&
   const Film ref = readReference(refPath);
   const int w = ref.width(), h = ref.height();
   auto camera = Camera::create(scene.cameras.at(0), w, h);
-  std::printf("equal error: %dx%d, %d spp, against %s\n", w, h, base.spp, refPath.c_str());
+  std::printf("equal error: %dx%d, %d spp, against %s\n", w, h, base.getInt("spp"),
+              refPath.c_str());
   double mse[2], rate[2];
   const char* names[2] = {"independent", "sobol"};
   for (int k = 0; k < 2; ++k) {
-    base.sampler = names[k];
+    base.set("sampler", names[k]);
     RenderContext ctx{scene, accel, *camera, base, w, h};
     Film film(w, h);
     RenderOptions options;
@@ -120,7 +121,7 @@ void equalError(const Scene& scene, const Accelerator& accel, const std::string&
     RenderStats stats = renderImage(*makeIntegrator(ctx), film, options);
     const double rmse = compareBeauty(film, ref).rmse;
     mse[k] = rmse * rmse;
-    rate[k] = double(w) * h * base.spp / stats.seconds * 1e-6;
+    rate[k] = double(w) * h * base.getInt("spp") / stats.seconds * 1e-6;
     std::printf("  %-11s RMSE %.5f, %.3f Msamples/s\n", names[k], rmse, rate[k]);
   }
   // A Sobol' sample is worth mse[0] / mse[1] independent ones at this error level.
@@ -134,10 +135,10 @@ int run(const std::string& path, const std::string& accelName, int threads, int 
   auto camera = Camera::create(scene.cameras.at(0), size, size);
   auto accel = makeAccelerator(accelName, scene);
   RenderSettings settings;
-  settings.integrator = "path";
-  settings.spp = spp;
-  settings.maxDepth = 8;
-  settings.sampler = sampler;
+  settings.set("integrator", "path");
+  settings.set("spp", spp);
+  settings.set("max-depth", 8);
+  settings.set("sampler", sampler);
   RenderContext ctx{scene, *accel, *camera, settings, size, size};
   auto integrator = makeIntegrator(ctx);
   Film film(size, size);
@@ -190,7 +191,7 @@ int run(const std::string& path, const std::string& accelName, int threads, int 
   const std::string refPath = path.substr(0, path.rfind('.')) + ".ref.exr";
   if (error) {
     RenderSettings at64 = settings;
-    at64.spp = 64;
+    at64.set("spp", 64);
     equalError(scene, *accel, refPath, at64, threads);
   }
   return 0;

@@ -24,7 +24,7 @@ void save(const Film& f, const std::string& name) {
 /// Direct light only (max depth 2).
 RenderSettings directPath(int spp) {
   RenderSettings s = pathSettings(spp);
-  s.maxDepth = 2;
+  s.set("max-depth", 2);
   return s;
 }
 
@@ -63,7 +63,7 @@ int main(int argc, char** argv) {
   {
     SceneWithCamera a = trappedLightScene();
     RenderSettings w;
-    w.maxDepth = 64;
+    w.set("max-depth", 64);
     save(renderFilm(a.scene, a.camera, kW, kH, w), "3-tir-whitted");
     save(renderFilm(a.scene, a.camera, kW, kH, pathSettings(64)), "3-tir-path");
   }

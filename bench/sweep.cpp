@@ -20,41 +20,41 @@ std::vector<SweepConfig> standardSweep(const std::vector<std::string>& accels,
   };
   // Whitted: anti-aliasing strategies at growing cost.
   RenderSettings w;
-  w.integrator = "whitted";
-  w.pixelSampler = "center";
+  w.set("integrator", "whitted");
+  w.set("pixel-sampler", "center");
   add("whitted center", "spp=1", w);
   for (int n : {2, 4, 8}) {
     if (n * n > maxSpp) break;
-    w.pixelSampler = "grid", w.spp = n * n;
+    w.set("pixel-sampler", "grid"), w.set("spp", n * n);
     add("whitted grid", "spp=" + std::to_string(n * n), w);
-    w.pixelSampler = "jitter";
+    w.set("pixel-sampler", "jitter");
     add("whitted jitter", "spp=" + std::to_string(n * n), w);
   }
   if (registered("adaptive")) {
     RenderSettings a;
-    a.integrator = "adaptive";
-    a.inner = "whitted";
+    a.set("integrator", "adaptive");
+    a.set("inner", "whitted");
     for (float t : {0.2f, 0.1f, 0.05f, 0.02f}) {
-      a.aaThreshold = t;
+      a.set("aa-threshold", t);
       add("whitted adaptive", "threshold=" + std::to_string(t).substr(0, 4), a);
     }
   }
   // Path tracing: error against samples.
   if (registered("path")) {
     RenderSettings p;
-    p.integrator = "path";
-    p.pixelSampler = "jitter";
-    p.sampler = "independent";
+    p.set("integrator", "path");
+    p.set("pixel-sampler", "jitter");
+    p.set("sampler", "independent");
     for (int spp = 1; spp <= maxSpp; spp *= 4) {
-      p.spp = spp;
+      p.set("spp", spp);
       add("path", "spp=" + std::to_string(spp), p);
     }
     // The same estimator on Owen-scrambled Sobol' numbers, camera rays at the sequence's own
     // points (TRay's default at power-of-two spp): equal error at fewer samples.
-    p.sampler = "sobol";
-    p.pixelSampler = "sequence";
+    p.set("sampler", "sobol");
+    p.set("pixel-sampler", "sequence");
     for (int spp = 1; spp <= maxSpp; spp *= 4) {
-      p.spp = spp;
+      p.set("spp", spp);
       add("path sobol", "spp=" + std::to_string(spp), p);
     }
   }
@@ -75,16 +75,16 @@ std::vector<SweepConfig> standardSweep(const std::vector<std::string>& accels,
 RenderSettings referenceSettings(const std::string& integrator, int referenceSpp) {
   RenderSettings s;
   if (integrator == "path") {
-    s.integrator = "path";
-    s.pixelSampler = "jitter";
-    s.spp = referenceSpp;
+    s.set("integrator", "path");
+    s.set("pixel-sampler", "jitter");
+    s.set("spp", referenceSpp);
   } else {
     // Whitted-family methods converge to the 32x32 grid.
-    s.integrator = "whitted";
-    s.pixelSampler = "grid";
-    s.spp = 32 * 32;
+    s.set("integrator", "whitted");
+    s.set("pixel-sampler", "grid");
+    s.set("spp", 32 * 32);
   }
-  s.seed = 0x5eed;  // a seed no sweep run uses, so reference noise is independent
+  s.set("seed", 0x5eed);  // a seed no sweep run uses, so reference noise is independent
   return s;
 }
 

@@ -55,7 +55,7 @@ void lookups() {
 RenderStats render(const Scene& scene, const Camera& camera, ImageSize size, int threads) {
   auto accel = makeAccelerator("embree", scene);
   RenderSettings s;
-  s.integrator = "whitted";
+  s.set("integrator", "whitted");
   RenderContext ctx{scene, *accel, camera, s, size.width, size.height};
   auto integrator = makeIntegrator(ctx);
   Film film(size.width, size.height);

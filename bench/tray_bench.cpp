@@ -106,15 +106,16 @@ int sweep(const std::string& scenePath, const std::string& resolution, const std
   std::printf("%-34s %-16s %9s %10s %10s %10s %10s\n", "method", "setting", "seconds", "Mrays",
               "RMSE", "relMSE", "bias");
   for (const SweepConfig& c : standardSweep(splitList(accelList), threads, maxSpp)) {
+    const std::string integrator = c.settings.getString("integrator");
     const Film& ref =
-        reference(c.settings.integrator == "adaptive" ? c.settings.inner : c.settings.integrator);
+        reference(integrator == "adaptive" ? c.settings.getString("inner") : integrator);
     auto [film, st] = bench.render(c.settings, c.accel, c.threads);
     ImageError e = compareBeauty(film, ref);
     std::printf("%-34s %-16s %9.3f %10.3f %10.3e %10.3e %+10.2e\n", c.method.c_str(),
                 c.setting.c_str(), st.seconds, st.rays.total() * 1e-6, e.rmse, e.relMse, e.bias);
     std::fflush(stdout);
-    csv << stem << ',' << c.method << ',' << c.setting << ',' << c.settings.integrator << ','
-        << c.accel << ',' << c.threads << ',' << c.settings.spp << ',' << st.seconds << ','
+    csv << stem << ',' << c.method << ',' << c.setting << ',' << integrator << ',' << c.accel
+        << ',' << c.threads << ',' << c.settings.getInt("spp") << ',' << st.seconds << ','
         << st.rays.total() << ',' << e.rmse << ',' << e.relMse << ',' << e.bias << ',' << e.maxAbs
         << '\n';
   }

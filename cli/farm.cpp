@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "integrators/registry.h"
 #include "io/image_input.h"
 
 namespace tray {
@@ -47,20 +48,16 @@ extern "C" void onInterrupt(int sig) {
 
 }  // namespace
 
-std::string jobSignature(const RenderSettings& s, const JobFrame& f) {
-  char aa[64];
-  std::snprintf(aa, sizeof aa, "%.9g/%d/%d", s.aaThreshold, s.aaDepth, int(s.aaRobust));
-  char clamp[32];
-  std::snprintf(clamp, sizeof clamp, "%.9g", s.clampIndirect);
+std::string jobSignature(const RenderSettings& settings, const JobFrame& f) {
   std::string job = "scene=" + std::filesystem::path(f.scenePath).filename().string();
   job += " scene#=" + std::to_string(f.scene) + " camera=" + std::to_string(f.camera);
   job += " size=" + std::to_string(f.width) + "x" + std::to_string(f.height);
-  job += " integrator=" + s.integrator + " inner=" + s.inner;
-  job += " spp=" + std::to_string(s.spp) + " seed=" + std::to_string(s.seed);
-  job += " depth=" + std::to_string(s.maxDepth) + " sampler=" + s.pixelSampler;
-  job += " filter=" + s.filter + " aa=" + aa + " clamp=" + clamp;
-  // Only when not the default, so parts and checkpoints written before --sampler still match.
-  if (s.sampler != "independent") job += " sequence=" + s.sampler;
+  // Every declared option that decides the pixels, of this render's integrator and the one it
+  // wraps, by its command-line name: an option added to a table is in the signature at once.
+  const RenderSettings bound = withIntegratorOptions(settings);
+  for (const OptionSpec& spec : bound.declared())
+    if (spec.affectsPixels)
+      job += " " + spec.name + "=" + formatOptionValue(bound.value(spec.name));
   job += " accel=" + f.accelerator + " aov=" + f.aovs;
   return job;
 }

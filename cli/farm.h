@@ -7,7 +7,7 @@
 
 #include "core/film.h"
 #include "core/render_state.h"
-#include "core/integrator.h"
+#include "core/render_options.h"
 #include "io/image_output.h"
 
 namespace tray {
@@ -34,7 +34,7 @@ struct SampleRange {
 SampleRange parseSampleRange(const std::string& text, int samplesPerPixel,
                              const std::string& integrator);
 
-/// What a job renders besides its RenderSettings.
+/// What a job renders besides its option values.
 struct JobFrame {
   std::string scenePath;
   int scene = -1, camera = -1, width = 0, height = 0;
@@ -42,8 +42,10 @@ struct JobFrame {
 };
 
 /// Everything that decides the pixels of a render but its region and sample range (written as
-/// "tray:job"): checkpoints resume and parts merge only with their own job. The scene is named
-/// by its file name, so that machines may mount it at different paths.
+/// "tray:job"): the frame, then "name=value" for every declared option that affects pixels
+/// (render-wide, the integrator's, the wrapped integrator's). Checkpoints resume and parts
+/// merge only with their own job. The scene is named by its file name, so that machines may
+/// mount it at different paths.
 std::string jobSignature(const RenderSettings& settings, const JobFrame& frame);
 
 /// The first .exr of `outputs` (empty if none): where checkpoints go and --resume reads.

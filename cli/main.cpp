@@ -11,17 +11,15 @@
 
 #include "accel/registry.h"
 #include "cli/farm.h"
+#include "cli/option_cli.h"
 #include "cli/progress_bar.h"
 #include "core/accelerator.h"
 #include "core/aov.h"
 #include "core/camera_matrices.h"
 #include "core/cryptomatte.h"
 #include "core/error.h"
-#include "core/filter.h"
-#include "core/pixel_sampler.h"
 #include "core/render_setup.h"
 #include "core/renderer.h"
-#include "core/sampler.h"
 #include "integrators/adaptive.h"
 #include "integrators/registry.h"
 #include "io/gltf_loader.h"
@@ -87,10 +85,12 @@ int run(const CliOptions& o) {
   auto accel = tray::makeAccelerator(o.accel, scene);
   tray::RenderContext ctx{scene, *accel, *camera, o.settings, width, height};
   auto integrator = tray::makeIntegrator(ctx);
+  const std::string integratorName = o.settings.getString("integrator");
+  const int spp = o.settings.getInt("spp");
 
   const tray::PixelRegion region = tray::parseRegion(o.region, width, height);
   const tray::SampleRange range =
-      tray::parseSampleRange(o.sampleRange, integrator->samplesPerPixel(), o.settings.integrator);
+      tray::parseSampleRange(o.sampleRange, integrator->samplesPerPixel(), integratorName);
   const std::vector<std::string> aovNames = tray::AovSet::parse(o.aovs);
   if (!o.sampleRange.empty() && tray::Cryptomatte::requested(aovNames))
     throw tray::Error(
@@ -148,22 +148,17 @@ int run(const CliOptions& o) {
     const size_t done = now.pixelsDone(), all = now.done.size();
     tray::ImageOutputOptions w = out;
     w.stringMetadata = {{"tray:version", TRAY_VERSION},
-                        {"tray:integrator", o.settings.integrator},
                         {"tray:accelerator", o.accel},
                         {"tray:scene", o.scenePath},
-                        {"tray:seed", std::to_string(o.settings.seed)},
-                        {"tray:filter", o.settings.filter},
-                        {"tray:pixelSampler", o.settings.pixelSampler},
-                        {"tray:sampler", o.settings.sampler},
                         {"tray:status", done == all ? "complete" : "partial"},
                         {"tray:job", job}};
-    w.floatMetadata = {{"tray:spp", float(o.settings.spp)},
-                       {"tray:renderSeconds", float(seconds)},
+    w.floatMetadata = {{"tray:renderSeconds", float(seconds)},
                        {"tray:pixelsDone", float(done)},
                        {"tray:pixelsTotal", float(all)},
                        {"tray:sampleBegin", float(range.begin)},
                        {"tray:sampleEnd", float(range.end)},
                        {"tray:samplesPerPixel", float(integrator->samplesPerPixel())}};
+    tray::addOptionMetadata(o.settings, w);  // tray:integrator, tray:spp, tray:maxDepth, ...
     if (integrator->samplesPerPixel() > 0)  // adaptive: the samples AOV counts them per pixel
       w.floatMetadata.emplace_back("tray:samplesDone",
                                    float(done) * float(range.end - range.begin));
@@ -200,7 +195,7 @@ int run(const CliOptions& o) {
 
   if (!o.quiet) {
     std::printf("%s: %dx%d, %d spp, %s on %s: %.3f s, %.2f M rays, %.2f Mrays/s",
-                o.scenePath.c_str(), width, height, o.settings.spp, o.settings.integrator.c_str(),
+                o.scenePath.c_str(), width, height, spp, integratorName.c_str(),
                 o.accel.c_str(), stats.seconds, stats.rays.total() * 1e-6, stats.mraysPerSecond());
     if (stats.rays.nanSamples)
       std::printf(", %llu NaN/Inf samples discarded", (unsigned long long)stats.rays.nanSamples);
@@ -213,8 +208,6 @@ int run(const CliOptions& o) {
 
 int main(int argc, char** argv) {
   CliOptions o;
-  std::vector<std::string> integratorNames;
-  for (const auto& e : tray::integratorRegistry()) integratorNames.push_back(e.name);
 
   CLI::App app{"TRay: offline renderer for glTF 2.0 scenes (Embree, Whitted and path tracing)"};
   app.set_version_flag("--version", std::string("tray-render ") + TRAY_VERSION);
@@ -222,40 +215,9 @@ int main(int argc, char** argv) {
   app.add_option("-o,--output", o.outputs,
                  "output image(s): .exr (scene-linear) or .png/.jpg (display-referred); repeatable")
       ->capture_default_str();
-  app.add_option("--integrator", o.settings.integrator, "integrator: " + joined(integratorNames))
-      ->capture_default_str();
-  app.add_option("--inner", o.settings.inner, "integrator wrapped by a wrapping integrator")
-      ->capture_default_str();
-  app.add_option("--spp", o.settings.spp, "samples per pixel")
-      ->check(CLI::Range(1, 1 << 20))
-      ->capture_default_str();
-  app.add_option("--max-depth", o.settings.maxDepth,
-                 "maximum recursion depth (default: the integrator's, 5 for whitted)")
-      ->check(CLI::Range(0, 1000));
-  app.add_option("--seed", o.settings.seed, "random seed")->capture_default_str();
-  app.add_option("--pixel-sampler", o.settings.pixelSampler,
-                 "where samples go in a pixel: auto, center, corners, grid, jitter, sequence")
-      ->check(CLI::IsMember(tray::PixelSampler::names()))
-      ->capture_default_str();
-  app.add_option("--sampler", o.settings.sampler,
-                 "random sequence: independent, or sobol (Owen-scrambled, stratified: less noise "
-                 "per sample; ignored by adaptive's lattice)")
-      ->check(CLI::IsMember(tray::Sampler::names()))
-      ->capture_default_str();
-  app.add_option("--filter", o.settings.filter,
-                 "reconstruction filter: box, tent, gaussian, mitchell")
-      ->check(CLI::IsMember(tray::Filter::names()))
-      ->capture_default_str();
-  app.add_option("--aa-threshold", o.settings.aaThreshold,
-                 "adaptive: corner contrast (max-min)/(max+min) above which a square subdivides")
-      ->check(CLI::Range(0.0f, 1.0f))
-      ->capture_default_str();
-  app.add_option("--aa-depth", o.settings.aaDepth, "adaptive: maximum subdivision depth")
-      ->check(CLI::Range(0, 12))
-      ->capture_default_str();
-  app.add_flag(
-      "--aa-robust", o.settings.aaRobust,
-      "adaptive: jittered corners + minimum subdivision near object boundaries (thin features)");
+  // --integrator, --spp, --seed, --sampler, --pixel-sampler, --filter and every registered
+  // integrator's own options (--max-depth, --aa-depth, ...), from their declarations.
+  tray::addRenderOptions(app, o.settings);
   app.add_option("--aa-heatmap", o.aaHeatmap, "write an image of camera rays per pixel (PNG/EXR)");
   app.add_option("--threads", o.threads, "worker threads (0: all cores)")
       ->check(CLI::Range(0, 4096))
@@ -280,12 +242,6 @@ int main(int argc, char** argv) {
                  "Cryptomatte: ids kept per pixel and type (2 per EXR layer)")
       ->check(CLI::Range(1, 32))
       ->capture_default_str();
-  app.add_option(
-         "--clamp-indirect", o.settings.clampIndirect,
-         "path: clamp each indirect contribution to this value (fireflies; biased; 0 = off)")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
-  app.add_flag("--debug-nan", o.settings.debugNan, "print where NaN/Inf samples arise");
   app.add_option("--region", o.region,
                  "render pixels x0..x1-1, y0..y1-1 only: an EXR data window of the full image");
   app.add_option("--sample-range", o.sampleRange,
@@ -299,9 +255,13 @@ int main(int argc, char** argv) {
 
   try {
     app.parse(argc, argv);
+    tray::validateOptions(o.settings);  // ranges and choices, before any loading
   } catch (const CLI::ParseError& e) {
     int code = app.exit(e);
     return code == 0 ? 0 : 2;
+  } catch (const tray::Error& e) {
+    std::fprintf(stderr, "tray-render: error: %s\n", e.what());
+    return 2;
   }
   try {
     return run(o);

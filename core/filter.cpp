@@ -30,6 +30,12 @@ const std::vector<std::string>& Filter::names() {
   return n;
 }
 
+const OptionSpec& Filter::option() {
+  static const OptionSpec spec =
+      choiceOption("filter", "box", names(), "reconstruction filter");
+  return spec;
+}
+
 Filter Filter::make(const std::string& name) {
   const auto& n = names();
   for (size_t i = 0; i < n.size(); ++i)

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/math.h"
+#include "core/options.h"
 
 namespace tray {
 
@@ -17,6 +18,8 @@ class Filter {
   /// throws tray::Error naming the choices for an unknown name.
   static Filter make(const std::string& name);
   static const std::vector<std::string>& names();
+  /// --filter: declared here, beside the filters it names.
+  static const OptionSpec& option();
   explicit Filter(Kind kind);
 
   Kind kind() const { return kind_; }

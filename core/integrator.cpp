@@ -14,22 +14,35 @@ namespace {
 /// whether the random sequence stratifies).
 PixelSampler pixelSamplerOf(const RenderSettings& s, Sampler::Sequence sequence, float radius) {
   const bool stratified = sequence == Sampler::Sequence::kSobol;
-  return PixelSampler(PixelSampler::parse(s.pixelSampler, s.spp, stratified), s.spp, radius);
+  const int spp = s.getInt("spp");
+  return PixelSampler(PixelSampler::parse(s.getString("pixel-sampler"), spp, stratified), spp,
+                      radius);
 }
 
 }  // namespace
 
+Integrator::Integrator(const RenderContext& ctx)
+    : ctx_(ctx),
+      filter_(Filter::make(ctx.settings.getString("filter"))),
+      sequence_(Sampler::parse(ctx.settings.getString("sampler"))),
+      pixelSampler_(pixelSamplerOf(ctx.settings, sequence_, filter_.radius())),
+      seed_(uint64_t(ctx.settings.getInt64("seed"))) {}
+
+RenderContext declaring(const RenderContext& ctx, const std::vector<OptionSpec>& specs) {
+  RenderContext bound = ctx;
+  bound.settings.declare(specs);
+  bound.settings.validate();
+  return bound;
+}
+
 int Integrator::samplesPerPixel() const {
-  const RenderSettings& s = ctx_.settings;
-  return pixelSamplerOf(s, Sampler::parse(s.sampler), 0.5f).count();
+  return pixelSampler_.count();
 }
 
 uint32_t Integrator::accumulate(int x, int y, int begin, int end, PixelSums& sums,
                                 PrimaryHit& first, RayStats& stats, IdCoverage* coverage) const {
-  const RenderSettings& s = ctx_.settings;
-  const Filter filter = Filter::make(s.filter);
-  const Sampler::Sequence sequence = Sampler::parse(s.sampler);
-  const PixelSampler pixelSampler = pixelSamplerOf(s, sequence, filter.radius());
+  const Filter& filter = filter_;
+  const PixelSampler& pixelSampler = pixelSampler_;
   const uint32_t pixelIndex = uint32_t(y) * uint32_t(ctx_.width) + uint32_t(x);
   const float cx = x + 0.5f, cy = y + 0.5f;
   // Filter-weighted sums, normalised by the weight sum at the end (pbrt-v4 8.8's weighted
@@ -37,7 +50,7 @@ uint32_t Integrator::accumulate(int x, int y, int begin, int end, PixelSums& sum
   // mean accurate at very high sample counts and let sums of sample ranges be combined.
   end = std::min(end, pixelSampler.count());
   for (int i = begin; i < end; ++i) {
-    Sampler sampler(pixelIndex, uint32_t(i), s.seed, sequence);
+    Sampler sampler(pixelIndex, uint32_t(i), seed_, sequence_);
     const Vec2 d = pixelSampler.offset(i, sampler.next2D());
     Ray ray = ctx_.camera.generateRay(cx + d.x, cy + d.y);
     ++stats.cameraRays;

@@ -9,28 +9,14 @@
 #include "core/camera.h"
 #include "core/id_coverage.h"
 #include "core/math.h"
+#include "core/filter.h"
+#include "core/pixel_sampler.h"
 #include "core/pixel_sums.h"
+#include "core/render_options.h"
 #include "core/sampler.h"
 #include "core/scene.h"
 
 namespace tray {
-
-/// Every option an integrator may read; the CLI fills it, tests set fields directly.
-struct RenderSettings {
-  std::string integrator = "whitted";
-  std::string inner = "whitted";  ///< integrator wrapped by a wrapping integrator (adaptive)
-  int maxDepth = -1;              ///< -1: the integrator's own default
-  int spp = 1;
-  uint64_t seed = 0;
-  std::string sampler = "sobol";  ///< random sequence: sobol | independent (core/sampler.h)
-  std::string pixelSampler = "auto";  ///< center | corners | grid | jitter | auto (center at 1 spp)
-  std::string filter = "box";
-  float aaThreshold = 0.03f;  // reaches the 4x4 grid's RMSE with 32% of its rays (bench/aa_bench)
-  int aaDepth = 4;
-  bool aaRobust = false;  ///< adaptive: jittered lattice + minimum subdivision near thin features
-  float clampIndirect = 0.0f;  ///< 0 = off
-  bool debugNan = false;
-};
 
 /// Counters gathered per tile and summed for the summary line.
 struct RayStats {
@@ -71,13 +57,19 @@ struct RenderContext {
   int width, height;
 };
 
+/// `ctx` with `specs` declared in its settings and its values validated (throws tray::Error
+/// naming the option): each integrator factory declares its own options this way, so that it
+/// reads them (defaults included) however it was created.
+RenderContext declaring(const RenderContext& ctx, const std::vector<OptionSpec>& specs);
+
 /// A light transport algorithm. Ray-based integrators implement Li; renderPixel's default
-/// averages settings.spp samples placed by the pixel sampler. Wrapping integrators (adaptive
+/// averages the "spp" samples placed by the pixel sampler. Wrapping integrators (adaptive
 /// anti-aliasing) override renderPixel and call an inner integrator's Li (and report
 /// samplesPerPixel() == 0: their samples cannot be split into ranges).
 class Integrator {
  public:
-  explicit Integrator(const RenderContext& ctx) : ctx_(ctx) {}
+  /// Resolves the render-wide filter, sampler and pixel-sampler names once, for every pixel.
+  explicit Integrator(const RenderContext& ctx);
   virtual ~Integrator() = default;
   /// Radiance arriving along ray (towards its origin). `primary`, when not null, receives the
   /// first surface hit.
@@ -100,6 +92,12 @@ class Integrator {
 
  protected:
   RenderContext ctx_;
+
+ private:
+  Filter filter_;
+  Sampler::Sequence sequence_;
+  PixelSampler pixelSampler_;
+  uint64_t seed_;
 };
 
 }  // namespace tray

@@ -12,6 +12,12 @@ const std::vector<std::string>& PixelSampler::names() {
   return n;
 }
 
+const OptionSpec& PixelSampler::option() {
+  static const OptionSpec spec =
+      choiceOption("pixel-sampler", "auto", names(), "where samples go in a pixel");
+  return spec;
+}
+
 PixelSampler::Pattern PixelSampler::parse(const std::string& name, int spp,
                                           bool stratifiedSequence) {
   if (name == "auto") {

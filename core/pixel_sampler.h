@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/math.h"
+#include "core/options.h"
 
 namespace tray {
 
@@ -22,6 +23,8 @@ class PixelSampler {
   /// the sequence stratifies and spp is a power of two (its points are then a (0, m, 2)-net,
   /// which is stratified on every grid of spp cells), jitter otherwise.
   static const std::vector<std::string>& names();
+  /// --pixel-sampler: declared here, beside the patterns it names.
+  static const OptionSpec& option();
   /// Resolves a name (throws tray::Error naming the choices for an unknown one).
   static Pattern parse(const std::string& name, int spp, bool stratifiedSequence = false);
 

@@ -9,6 +9,14 @@ const std::vector<std::string>& Sampler::names() {
   return kNames;
 }
 
+const OptionSpec& Sampler::option() {
+  static const OptionSpec spec = choiceOption(
+      "sampler", "sobol", names(),
+      "random sequence: sobol is Owen-scrambled and stratified (less noise per sample); "
+      "ignored by adaptive's lattice");
+  return spec;
+}
+
 Sampler::Sequence Sampler::parse(const std::string& name) {
   if (name == "independent") return Sequence::kIndependent;
   if (name == "sobol") return Sequence::kSobol;

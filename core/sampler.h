@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/math.h"
+#include "core/options.h"
 #include "core/sobol.h"
 
 namespace tray {
@@ -18,6 +19,8 @@ class Sampler {
   };
   /// Names accepted by --sampler.
   static const std::vector<std::string>& names();
+  /// --sampler: declared here, beside the sequences it names.
+  static const OptionSpec& option();
   /// Resolves a name (throws tray::Error naming the choices for an unknown one).
   static Sequence parse(const std::string& name);
 

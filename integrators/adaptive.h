@@ -8,13 +8,15 @@
 
 namespace tray {
 
-/// Wraps another integrator (settings.inner) and decides per pixel where its camera rays go.
-/// Corners lie on a lattice of (W 2^d + 1) x (H 2^d + 1) points, d = settings.aaDepth; each
+/// Wraps another integrator (option "inner") and decides per pixel where its camera rays go.
+/// Corners lie on a lattice of (W 2^d + 1) x (H 2^d + 1) points, d = option "aa-depth"; each
 /// lattice point is traced exactly once across all threads and pixels (a concurrent map), and
 /// its value depends only on its lattice coordinate, so images are thread-count independent.
 /// PixelValue::samples is the number of distinct lattice points the pixel used (shared corners
 /// included), which the renderer writes to the "samples" AOV.
 std::unique_ptr<Integrator> makeAdaptive(const RenderContext& ctx);
+/// Its options: --inner (default whitted), --aa-threshold, --aa-depth, --aa-robust.
+const std::vector<OptionSpec>& adaptiveOptions();
 /// The same around a given inner integrator (tests wrap a counting one).
 std::unique_ptr<Integrator> makeAdaptiveAround(const RenderContext& ctx,
                                                std::unique_ptr<Integrator> inner);

@@ -3,6 +3,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "core/error.h"
 #include "core/shading.h"
@@ -20,13 +21,11 @@ class PathIntegrator final : public Integrator {
  public:
   explicit PathIntegrator(const RenderContext& ctx)
       : Integrator(ctx),
-        maxDepth_(ctx.settings.maxDepth >= 0 ? ctx.settings.maxDepth : 8),
-        clampIndirect_(ctx.settings.clampIndirect),
+        maxDepth_(ctx.settings.getInt("max-depth")),
+        clampIndirect_(ctx.settings.getFloat("clamp-indirect")),
+        debugNan_(ctx.settings.getBool("debug-nan")),
         lights_(ctx.scene),
-        materials_(ctx.scene, ctx.camera, ctx.settings.spp) {
-    if (!(clampIndirect_ >= 0) || !std::isfinite(clampIndirect_))
-      throw Error("--clamp-indirect must be a finite value >= 0 (0 = off)");
-  }
+        materials_(ctx.scene, ctx.camera, ctx.settings.getInt("spp")) {}
 
   uint32_t accumulate(int x, int y, int begin, int end, PixelSums& sums, PrimaryHit& first,
                       RayStats& stats, IdCoverage* coverage) const override {
@@ -41,7 +40,7 @@ class PathIntegrator final : public Integrator {
   /// Prints where a non-finite value appeared (first few only); the base class then discards
   /// and counts the sample.
   void reportNan(const char* what, int depth) const {
-    if (!ctx_.settings.debugNan || nanReports_.fetch_add(1) >= kMaxNanReports) return;
+    if (!debugNan_ || nanReports_.fetch_add(1) >= kMaxNanReports) return;
     std::fprintf(stderr, "debug-nan: pixel (%d, %d), depth %d: non-finite %s\n", tlsPixelX,
                  tlsPixelY, depth, what);
   }
@@ -52,6 +51,7 @@ class PathIntegrator final : public Integrator {
   static constexpr int kMaxNullCrossings = 64;
   int maxDepth_;
   float clampIndirect_;
+  bool debugNan_;
   LightSet lights_;
   MaterialEvaluator materials_;
   mutable std::atomic<int> nanReports_{0};
@@ -201,8 +201,20 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats
 
 }  // namespace
 
+const std::vector<OptionSpec>& pathOptions() {
+  static const std::vector<OptionSpec> specs = {
+      intOption("max-depth", 8, 0, 1000,
+                "maximum path length in segments (1: emitters seen directly; 2: direct light)"),
+      floatOption("clamp-indirect", 0.0f, 0.0f, std::numeric_limits<float>::infinity(),
+                  "clamp each indirect contribution to this value (fireflies; biased; 0 = off)"),
+      // Prints only: the pixels are the same with or without it.
+      diagnostic(flagOption("debug-nan", "print where NaN/Inf samples arise")),
+  };
+  return specs;
+}
+
 std::unique_ptr<Integrator> makePath(const RenderContext& ctx) {
-  return std::make_unique<PathIntegrator>(ctx);
+  return std::make_unique<PathIntegrator>(declaring(ctx, pathOptions()));
 }
 
 }  // namespace tray

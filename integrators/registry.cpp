@@ -1,31 +1,89 @@
 #include "integrators/registry.h"
 
+#include <algorithm>
+
 #include "core/error.h"
 #include "integrators/adaptive.h"
 #include "integrators/path.h"
 #include "integrators/whitted.h"
 
 namespace tray {
+namespace {
 
-// The integrator table: a new integrator is one file plus one line here.
-const std::vector<IntegratorEntry>& integratorRegistry() {
-  static const std::vector<IntegratorEntry> table = {
+// The integrator table: a new integrator is one file plus one line here (its options travel
+// with it, declared beside its code; docs/options.md).
+std::vector<IntegratorEntry>& table() {
+  static std::vector<IntegratorEntry> entries = {
       {"whitted", "recursive ray tracing: Phong, shadows, mirror reflection, refraction",
-       makeWhitted},
-      {"adaptive", "adaptive supersampling around --inner: corners, subdivide where they differ", makeAdaptive},
-      {"path", "path tracing: MIS next-event estimation, GGX/dielectric BSDFs, area lights", makePath},
+       makeWhitted, whittedOptions(), ""},
+      {"adaptive", "adaptive supersampling around --inner: corners, subdivide where they differ",
+       makeAdaptive, adaptiveOptions(), "inner"},
+      {"path", "path tracing: MIS next-event estimation, GGX/dielectric BSDFs, area lights",
+       makePath, pathOptions(), ""},
   };
-  return table;
+  return entries;
+}
+
+}  // namespace
+
+const std::vector<IntegratorEntry>& integratorRegistry() {
+  return table();
+}
+
+void registerIntegrator(IntegratorEntry entry) {
+  for (const auto& e : table())
+    if (e.name == entry.name) throw Error("integrator '" + entry.name + "' is registered twice");
+  table().push_back(std::move(entry));
+}
+
+const IntegratorEntry& findIntegrator(const std::string& name) {
+  for (const auto& e : integratorRegistry())
+    if (name == e.name) return e;
+  std::string known;
+  for (const auto& e : integratorRegistry()) known += (known.empty() ? "" : ", ") + e.name;
+  throw Error("unknown integrator '" + name + "' (known: " + known + ")");
+}
+
+RenderSettings withIntegratorOptions(const RenderSettings& settings, const std::string& name) {
+  // From the values alone: options a caller declared for another integrator do not leak in.
+  RenderSettings bound;
+  for (const auto& [option, value] : settings.given()) bound.setValue(option, value);
+  std::vector<std::string> seen;
+  std::string wanted = name.empty() ? bound.getString("integrator") : name;
+  for (;;) {
+    const IntegratorEntry& e = findIntegrator(wanted);
+    bound.declare(e.options);
+    seen.push_back(e.name);
+    if (e.innerOption.empty()) break;
+    wanted = bound.getString(e.innerOption);
+    // A wrapper around itself: its factory refuses it with a message of its own.
+    if (std::find(seen.begin(), seen.end(), wanted) != seen.end()) break;
+  }
+  return bound;
+}
+
+void validateOptions(const RenderSettings& settings) {
+  withIntegratorOptions(settings).validate();
+  // Options of integrators not chosen are checked too: a bad value is a mistake either way.
+  for (const auto& [name, value] : settings.given()) {
+    bool known = false;
+    auto check = [&](const std::vector<OptionSpec>& specs) {
+      for (const OptionSpec& spec : specs)
+        if (spec.name == name) validateOptionValue(spec, value), known = true;
+    };
+    check(renderOptions());
+    for (const auto& e : integratorRegistry()) check(e.options);
+    if (!known) throw Error("unknown option --" + name);
+  }
 }
 
 std::unique_ptr<Integrator> makeIntegrator(const RenderContext& ctx, const std::string& name) {
-  const std::string& wanted = name.empty() ? ctx.settings.integrator : name;
-  for (const auto& e : integratorRegistry())
-    if (wanted == e.name) return e.create(ctx);
-  std::string known;
-  for (const auto& e : integratorRegistry())
-    known += std::string(known.empty() ? "" : ", ") + e.name;
-  throw Error("unknown integrator '" + wanted + "' (known: " + known + ")");
+  const IntegratorEntry& e =
+      findIntegrator(name.empty() ? ctx.settings.getString("integrator") : name);
+  RenderContext bound = ctx;
+  bound.settings = withIntegratorOptions(ctx.settings, e.name);
+  bound.settings.validate();
+  return e.create(bound);
 }
 
 }  // namespace tray

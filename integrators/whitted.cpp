@@ -23,8 +23,8 @@ class WhittedIntegrator final : public Integrator {
  public:
   explicit WhittedIntegrator(const RenderContext& ctx)
       : Integrator(ctx),
-        maxDepth_(ctx.settings.maxDepth >= 0 ? ctx.settings.maxDepth : 5),
-        materials_(ctx.scene, ctx.camera, ctx.settings.spp) {}
+        maxDepth_(ctx.settings.getInt("max-depth")),
+        materials_(ctx.scene, ctx.camera, ctx.settings.getInt("spp")) {}
 
   Color Li(const Ray& ray, Sampler&, RayStats& stats, PrimaryHit* primary) const override {
     return trace(ray, 0, stats, primary);
@@ -102,8 +102,15 @@ class WhittedIntegrator final : public Integrator {
 
 }  // namespace
 
+const std::vector<OptionSpec>& whittedOptions() {
+  static const std::vector<OptionSpec> specs = {
+      intOption("max-depth", 5, 0, 1000, "maximum recursion depth (reflection and refraction)"),
+  };
+  return specs;
+}
+
 std::unique_ptr<Integrator> makeWhitted(const RenderContext& ctx) {
-  return std::make_unique<WhittedIntegrator>(ctx);
+  return std::make_unique<WhittedIntegrator>(declaring(ctx, whittedOptions()));
 }
 
 }  // namespace tray

@@ -11,7 +11,7 @@
 
 namespace tray::test {
 
-/// Renders `scene` through `cam` with settings.integrator on `accelerator`; threads 0 = all
+/// Renders `scene` through `cam` with the settings' integrator on `accelerator`; threads 0 = all
 /// cores. `stats`, when not null, receives the render's counters.
 inline Film renderFilm(const Scene& scene, const CameraDesc& cam, int w, int h,
                        const RenderSettings& settings, RenderStats* stats = nullptr,

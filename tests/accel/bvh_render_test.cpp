@@ -104,7 +104,7 @@ TEST(BvhRender, WhittedImagesMatchEmbreeOnEveryScene) {
     // texel edges (up to 0.04 on LightsPunctualLamp), and this test is about geometry.
     withoutTextures(scene);
     RenderSettings s;
-    s.integrator = "whitted";
+    s.set("integrator", "whitted");
     Film ref = render(scene, "embree", s, 96, 72);
     for (const char* accel : {"bvh", "bvh-gs"}) {
       Difference d = compare(render(scene, accel, s, 96, 72), ref);
@@ -129,9 +129,9 @@ TEST(BvhRender, PathImagesMatchEmbreeInMean) {
     Scene scene = loadGltf(file);
     withoutTextures(scene);  // geometry only, as above (and MIP levels would dominate the time)
     RenderSettings s;
-    s.integrator = "path";
-    s.spp = 4;
-    s.seed = 7;
+    s.set("integrator", "path");
+    s.set("spp", 4);
+    s.set("seed", 7);
     Difference d = compare(render(scene, "bvh", s, 48, 36), render(scene, "embree", s, 48, 36));
     EXPECT_LE(std::fabs(d.meanA - d.meanB), 1e-3 * std::max(d.meanB, 1e-6)) << file;
     worst = std::max(worst, std::fabs(d.meanA - d.meanB) / std::max(d.meanB, 1e-6));

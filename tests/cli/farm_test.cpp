@@ -141,6 +141,11 @@ TEST(Farm, MergeRefusesIncompleteOrForeignParts) {
                    job + " --sampler independent --sample-range 4,8 " + out(dir, "indep.exr"), dir)
                 .exitCode,
             0);
+  // An integrator option (declared in path.cpp only) is part of the job too.
+  ASSERT_EQ(runCli(TRAY_RENDER_BIN,
+                   job + " --max-depth 3 --sample-range 4,8 " + out(dir, "depth3.exr"), dir)
+                .exitCode,
+            0);
   ASSERT_EQ(runCli(TRAY_RENDER_BIN, job + " " + out(dir, "full.exr"), dir).exitCode, 0);
   ASSERT_EQ(runCli(TRAY_RENDER_BIN,
                    job + " --threads 1 --test-interrupt-after-tiles 1 --sample-range 4,8 " +
@@ -157,6 +162,7 @@ TEST(Farm, MergeRefusesIncompleteOrForeignParts) {
       {a + " " + b + " " + b, "renders too"},
       {a + " '" + (dir / "seed8.exr").string() + "'", "another render"},
       {a + " '" + (dir / "indep.exr").string() + "'", "another render"},
+      {a + " '" + (dir / "depth3.exr").string() + "'", "another render"},
       {"'" + (dir / "full.exr").string() + "'", "not a part"},
       {a + " '" + (dir / "unfinished.exr").string() + "'", "unfinished part"},
   };

@@ -120,9 +120,9 @@ std::vector<Rank> ranks(const Film& film, const std::string& type, int x, int y,
 
 RenderSettings gridSettings(const std::string& filter) {
   RenderSettings s;
-  s.spp = 16;
-  s.pixelSampler = "grid";
-  s.filter = filter;
+  s.set("spp", 16);
+  s.set("pixel-sampler", "grid");
+  s.set("filter", filter);
   return s;
 }
 
@@ -219,9 +219,9 @@ TEST(Cryptomatte, SameImageForAnyThreadCount) {
 TEST(Cryptomatte, AdaptiveWeighsItsCornerSamples) {
   TwoObjects t;
   RenderSettings s;
-  s.integrator = "adaptive";
-  s.aaDepth = 3;
-  s.aaThreshold = 0.0f;  // subdivide everywhere: every pixel gets 81 lattice points
+  s.set("integrator", "adaptive");
+  s.set("aa-depth", 3);
+  s.set("aa-threshold", 0.0f);  // subdivide everywhere: every pixel gets 81 lattice points
   Film film = t.render(s, "crypto_object");
   for (int y = 0; y < t.H; ++y)
     for (int x = 0; x < t.W; ++x) {

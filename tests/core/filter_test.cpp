@@ -49,7 +49,7 @@ PixelValue renderOne(const RasterImage& image, const std::string& filter,
                      const std::string& pattern, int spp, int x = 4, int y = 4) {
   RasterWorld world;
   RenderSettings s;
-  s.filter = filter, s.pixelSampler = pattern, s.spp = spp;
+  s.set("filter", filter), s.set("pixel-sampler", pattern), s.set("spp", spp);
   RasterIntegrator integrator(world.context(s, 9, 9), image);
   RayStats stats;
   PixelValue v = integrator.renderPixel(x, y, stats);

@@ -58,7 +58,7 @@ TEST(PixelSampler, GridPositionsAreExactStratumCentres) {
 TEST(PixelSampler, CornersModeTracesTheFourPixelCorners) {
   RasterWorld world;
   RenderSettings s;
-  s.pixelSampler = "corners";
+  s.set("pixel-sampler", "corners");
   RasterIntegrator integrator(world.context(s, 8, 8), {[](float, float) { return 1.0f; }}, true);
   RayStats stats;
   PixelValue v = integrator.renderPixel(3, 5, stats);

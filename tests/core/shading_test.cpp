@@ -124,7 +124,7 @@ TEST(MaterialEvaluator, PathTracerSeesEmissiveTexturesAndDoesNotLightSampleThem)
   auto camera = Camera::create(lookAt({0, 0, 5}, {0, 0, 0}, 0.3f), 16, 16);
   auto accel = makeAccelerator("embree", scene);
   RenderSettings settings;
-  settings.integrator = "path";
+  settings.set("integrator", "path");
   RenderContext ctx{scene, *accel, *camera, settings, 16, 16};
   auto integrator = makeIntegrator(ctx);
   Film film(16, 16);

@@ -42,9 +42,9 @@ float valueAt(const Film& f, int x, int y) {
 
 RenderSettings adaptiveSettings(int depth = 4, float threshold = 0.05f) {
   RenderSettings s;
-  s.integrator = "adaptive";
-  s.aaDepth = depth;
-  s.aaThreshold = threshold;
+  s.set("integrator", "adaptive");
+  s.set("aa-depth", depth);
+  s.set("aa-threshold", threshold);
   return s;
 }
 
@@ -148,8 +148,8 @@ TEST(Adaptive, SameImageAndRayCountsForOneAndTwoThreads) {
   auto camera = Camera::create(lookAt({0, 3, 6}, {0, 0.5f, 0}), W, H);
   for (bool robust : {false, true}) {
     RenderSettings s = adaptiveSettings();
-    s.inner = "whitted";
-    s.aaRobust = robust;
+    s.set("inner", "whitted");
+    s.set("aa-robust", robust);
     RenderContext ctx{scene, *accel, *camera, s, W, H};
     auto one = makeIntegrator(ctx), two = makeIntegrator(ctx);
     Result a = render(*one, W, H, 1), b = render(*two, W, H, 2);
@@ -224,12 +224,12 @@ double missingPoleRows(const Film& f, const Film& reference) {
 TEST(Adaptive, ThinFeaturesAreMissedByCornersAndFoundByTheRobustMode) {
   const Scene scene = thinScene();
   RenderSettings ref;
-  ref.pixelSampler = "grid", ref.spp = 32 * 32;
+  ref.set("pixel-sampler", "grid"), ref.set("spp", 32 * 32);
   const Film reference = renderThin(scene, ref);
   RenderSettings plain = adaptiveSettings();
-  plain.inner = "whitted";
+  plain.set("inner", "whitted");
   RenderSettings robust = plain;
-  robust.aaRobust = true;
+  robust.set("aa-robust", true);
   const Film a = renderThin(scene, plain), b = renderThin(scene, robust);
   const double plainError = rmse(a, reference), robustError = rmse(b, reference);
   const double plainMissing = missingPoleRows(a, reference),
@@ -263,7 +263,7 @@ TEST(Adaptive, RejectsBadSettings) {
   RenderSettings s = adaptiveSettings(13);
   EXPECT_THROW(makeIntegrator(world.context(s, 4, 4)), Error);
   s = adaptiveSettings();
-  s.inner = "adaptive";
+  s.set("inner", "adaptive");
   EXPECT_THROW(makeIntegrator(world.context(s, 4, 4)), Error);
 }
 

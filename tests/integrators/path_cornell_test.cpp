@@ -24,10 +24,10 @@ Image renderCornell(const Scene& scene, int spp, const std::string& sampler = "i
   auto camera = Camera::create(scene.cameras.at(0), kSize, kSize);
   auto accel = makeAccelerator("embree", scene);
   RenderSettings settings;
-  settings.integrator = "path";
-  settings.spp = spp;
-  settings.maxDepth = 8;
-  settings.sampler = sampler;
+  settings.set("integrator", "path");
+  settings.set("spp", spp);
+  settings.set("max-depth", 8);
+  settings.set("sampler", sampler);
   RenderContext ctx{scene, *accel, *camera, settings, kSize, kSize};
   auto integrator = makeIntegrator(ctx);
   Film film(kSize, kSize);

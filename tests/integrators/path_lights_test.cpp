@@ -104,9 +104,9 @@ TEST(PathLights, NonFiniteSamplesAreCountedDiscardedAndReportedWithDebugNan) {
     auto accel = makeAccelerator("embree", s);
     auto camera = Camera::create(lookAt({0, 0, 4}, {0, 0, 0}, 0.6f), 8, 8);
     RenderSettings st;
-    st.integrator = "path";
-    st.spp = 2;
-    st.debugNan = debug;
+    st.set("integrator", "path");
+    st.set("spp", 2);
+    st.set("debug-nan", debug);
     RenderContext ctx{s, *accel, *camera, st, 8, 8};
     auto integrator = makeIntegrator(ctx);
     Film film(8, 8);

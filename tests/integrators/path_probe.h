@@ -27,7 +27,7 @@ struct PathProbe {
  private:
   static RenderSettings settingsWithDepth(int maxDepth) {
     RenderSettings s;
-    s.maxDepth = maxDepth;
+    s.set("max-depth", maxDepth);
     return s;
   }
 };

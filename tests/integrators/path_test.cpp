@@ -17,7 +17,7 @@ using namespace tray::test;
 
 Film render(const Scene& scene, const CameraDesc& cam, int w, int h, RenderSettings settings,
             int threads = 0, RenderStats* stats = nullptr) {
-  settings.integrator = "path";
+  settings.set("integrator", "path");
   return renderFilm(scene, cam, w, h, settings, stats, {}, "embree", threads);
 }
 
@@ -35,8 +35,8 @@ TEST_P(WhiteFurnace, EveryPixelIsAlbedoTimesEnvironment) {
   s.environment.background = Color(1.0f);
   s.finalize();
   RenderSettings st;
-  st.spp = 256;
-  st.maxDepth = 100;
+  st.set("spp", 256);
+  st.set("max-depth", 100);
   RenderStats stats;
   Film f = render(s, lookAt({0, 0, 3}, {0, 0, 0}, 0.5f), 8, 8, st, 0, &stats);
   int onSphere = 0;
@@ -191,7 +191,7 @@ Scene mixedScene() {
 TEST(Path, SameImageForOneAndTwoThreadsAndNoNaN) {
   Scene s = mixedScene();
   RenderSettings st;
-  st.spp = 4;
+  st.set("spp", 4);
   CameraDesc cam = lookAt({0, 2, 5}, {0, 0.5f, 0});
   RenderStats a, b;
   Film one = render(s, cam, 40, 30, st, 1, &a), two = render(s, cam, 40, 30, st, 2, &b);
@@ -206,7 +206,7 @@ TEST(Path, MaxDepthOneShowsOnlyEmittersAndEnvironment) {
   // Mitsuba's convention: depth 1 = directly visible emitters (and the environment) only.
   Scene s = mixedScene();
   RenderSettings st;
-  st.maxDepth = 1;
+  st.set("max-depth", 1);
   RenderStats stats;
   Film f = render(s, lookAt({0, 2, 5}, {0, 0.5f, 0}), 20, 15, st, 0, &stats);
   EXPECT_EQ(stats.rays.shadowRays, 0u);

@@ -152,7 +152,7 @@ struct GlassSphere {
     accel = makeAccelerator("embree", scene);
     camera = Camera::create(lookAt({0, 0, 5}, {0, 0, 0}), 4, 4);
     RenderSettings st;
-    st.maxDepth = maxDepth;
+    st.set("max-depth", maxDepth);
     whitted = makeWhitted(RenderContext{scene, *accel, *camera, st, 4, 4});
   }
 };
@@ -238,8 +238,8 @@ TEST(Whitted, SameImageForOneAndTwoThreads) {
   s.lights.push_back(pointLight({2, 5, 2}, Color(40.0f)));
   s.finalize();
   RenderSettings st;
-  st.spp = 4;
-  st.pixelSampler = "jitter";
+  st.set("spp", 4);
+  st.set("pixel-sampler", "jitter");
   CameraDesc cam = lookAt({0, 3, 6}, {0, 0.5f, 0});
   Rendered a = render(s, cam, 48, 32, st, 1), b = render(s, cam, 48, 32, st, 2);
   EXPECT_EQ(a.film.layers()[0].data, b.film.layers()[0].data);

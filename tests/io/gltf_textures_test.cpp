@@ -228,7 +228,7 @@ Render renderAmbient(const std::string& file, int w, int h, int threads = 0) {
   auto camera = Camera::create(cam, w, h);
   auto accel = makeAccelerator("embree", scene);
   RenderSettings settings;
-  settings.integrator = "whitted";
+  settings.set("integrator", "whitted");
   RenderContext ctx{scene, *accel, *camera, settings, w, h};
   auto integrator = makeIntegrator(ctx);
   Film film(w, h);

@@ -73,9 +73,9 @@ class AovExr : public ::testing::Test {
     accel = makeAccelerator("embree", scene);
     camera = Camera::create(lookAt({0, 1, 0}, {0, 1, -1}, 1.0f), W, H);
     RenderSettings settings;
-    settings.spp = 16;
-    settings.pixelSampler = "grid";
-    settings.filter = "box";
+    settings.set("spp", 16);
+    settings.set("pixel-sampler", "grid");
+    settings.set("filter", "box");
     RenderContext ctx{scene, *accel, *camera, settings, W, H};
     auto integrator = makeIntegrator(ctx);
     Film film(W, H);

@@ -50,7 +50,7 @@ Fireflies fireflies(const Film& f) {
 Film renderCaustic(int w, int h, int spp, float clamp, uint64_t seed,
                    const std::string& sampler = "independent") {
   RenderSettings st = pathSettings(spp, clamp, sampler);
-  st.seed = seed;
+  st.set("seed", seed);
   const SceneWithCamera a = causticScene();
   return renderFilm(a.scene, a.camera, w, h, st);
 }
@@ -114,13 +114,13 @@ TEST(Caustics, ClampingNeverTouchesDirectLight) {
   // BSDF sampling. The clamp is not for it: even a clamp far below the lamp's radiance leaves
   // the image unchanged, bit for bit.
   RenderSettings st;
-  st.integrator = "path";
-  st.spp = 4;
-  st.pixelSampler = "jitter";
-  st.maxDepth = 2;
+  st.set("integrator", "path");
+  st.set("spp", 4);
+  st.set("pixel-sampler", "jitter");
+  st.set("max-depth", 2);
   SceneWithCamera a = causticScene();
   const Film direct = renderFilm(a.scene, a.camera, 48, 36, st);
-  st.clampIndirect = 1e-3f;
+  st.set("clamp-indirect", 1e-3f);
   const Film directClamped = renderFilm(a.scene, a.camera, 48, 36, st);
   for (int y = 0; y < 36; ++y)
     for (int x = 0; x < 48; ++x)

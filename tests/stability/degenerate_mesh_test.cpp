@@ -57,9 +57,9 @@ struct Render {
 
 Render render(const SceneWithCamera& a, const char* integrator, const char* accel) {
   RenderSettings st;
-  st.integrator = integrator;
-  st.spp = 4;
-  st.pixelSampler = "jitter";
+  st.set("integrator", integrator);
+  st.set("spp", 4);
+  st.set("pixel-sampler", "jitter");
   RenderStats stats;
   Film f = renderFilm(a.scene, a.camera, kW, kH, st, &stats, {}, accel);
   return {std::move(f), stats};

@@ -24,10 +24,10 @@ constexpr int kSpp = 65536;
 
 RenderSettings settings(const char* integrator) {
   RenderSettings st;
-  st.integrator = integrator;
-  st.pixelSampler = "jitter";
-  st.spp = kSpp;
-  st.seed = 7;
+  st.set("integrator", integrator);
+  st.set("pixel-sampler", "jitter");
+  st.set("spp", kSpp);
+  st.set("seed", 7);
   return st;
 }
 
@@ -49,11 +49,12 @@ std::vector<float> pixelSamples(const SceneWithCamera& a, const RenderSettings& 
   auto accel = makeAccelerator("embree", a.scene);
   RenderContext ctx{a.scene, *accel, *camera, st, 1, 1};
   auto integrator = makeIntegrator(ctx);
-  const PixelSampler ps(PixelSampler::parse(st.pixelSampler, st.spp), st.spp, 0.5f);
+  const int spp = st.getInt("spp");
+  const PixelSampler ps(PixelSampler::parse(st.getString("pixel-sampler"), spp), spp, 0.5f);
   std::vector<float> out;
   RayStats stats;
   for (int i = 0; i < ps.count(); ++i) {
-    Sampler sampler(0, uint32_t(i), st.seed);
+    Sampler sampler(0, uint32_t(i), st.getInt64("seed"));
     const Vec2 d = ps.offset(i, sampler.next2D());
     out.push_back(
         integrator->Li(camera->generateRay(0.5f + d.x, 0.5f + d.y), sampler, stats, nullptr).x);

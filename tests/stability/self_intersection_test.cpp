@@ -27,8 +27,8 @@ const Placement kPlacements[] = {{"scale 1e-3", 1e-3f, Vec3(0.0f)},
 /// path tracer's image is deterministic, so a shadowed pixel is shadowed, not noisy.
 size_t pathShadowedPixels(const Placement& p, bool meshFloor) {
   RenderSettings st;
-  st.integrator = "path";
-  st.maxDepth = 2;
+  st.set("integrator", "path");
+  st.set("max-depth", 2);
   SceneWithCamera a = acneScene(p.scale, p.offset, meshFloor);
   return shadowedPixels(renderFilm(a.scene, a.camera, kW, kH, st));
 }

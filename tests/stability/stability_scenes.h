@@ -177,11 +177,11 @@ inline SceneWithCamera trappedLightScene() {
 inline RenderSettings pathSettings(int spp, float clampIndirect = 0,
                                    const std::string& sampler = "independent") {
   RenderSettings s;
-  s.integrator = "path";
-  s.sampler = sampler;
-  s.pixelSampler = "jitter";
-  s.spp = spp;
-  s.clampIndirect = clampIndirect;
+  s.set("integrator", "path");
+  s.set("sampler", sampler);
+  s.set("pixel-sampler", "jitter");
+  s.set("spp", spp);
+  s.set("clamp-indirect", clampIndirect);
   return s;
 }
 

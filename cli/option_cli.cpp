@@ -1,0 +1,108 @@
+#include "cli/option_cli.h"
+
+#include <cctype>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "integrators/registry.h"
+
+namespace tray {
+namespace {
+
+/// One command-line option: the first spec of its name, and the help of every declaration.
+struct CliOption {
+  OptionSpec spec;
+  std::string help;
+};
+
+std::vector<CliOption> cliOptions() {
+  std::vector<CliOption> out;
+  auto add = [&](const OptionSpec& spec, const std::string& owner) {
+    const std::string text = (owner.empty() ? "" : owner + ": ") + describeOption(spec);
+    for (CliOption& o : out)
+      if (o.spec.name == spec.name) {
+        o.help += "; " + text;
+        return;
+      }
+    out.push_back({spec, text});
+  };
+  // Integrator names are known here, not in core or in a wrapper's own file: the help lists
+  // them (the registry checks them).
+  std::vector<std::string> names;
+  for (const auto& e : integratorRegistry()) names.push_back(e.name);
+  for (OptionSpec spec : renderOptions()) {
+    if (spec.name == "integrator") spec.choices = names;
+    add(spec, "");
+  }
+  for (const auto& e : integratorRegistry())
+    for (OptionSpec spec : e.options) {
+      if (spec.name == e.innerOption) spec.choices = names;
+      add(spec, e.name);
+    }
+  return out;
+}
+
+const char* typeName(const OptionSpec& spec) {
+  switch (spec.type) {
+    case OptionType::kInt:
+      return "INT";
+    case OptionType::kFloat:
+      return "FLOAT";
+    case OptionType::kBool:
+      return "";
+    case OptionType::kString:
+      return spec.choices.empty() ? "TEXT" : "NAME";
+  }
+  return "";
+}
+
+/// "pixel-sampler" -> "pixelSampler": the attribute names EXR readers already know.
+std::string camelCase(const std::string& name) {
+  std::string out;
+  bool upper = false;
+  for (char c : name) {
+    if (c == '-') {
+      upper = true;
+      continue;
+    }
+    out += upper ? char(std::toupper(static_cast<unsigned char>(c))) : c;
+    upper = false;
+  }
+  return out;
+}
+
+}  // namespace
+
+void addRenderOptions(CLI::App& app, RenderSettings& settings) {
+  for (const CliOption& o : cliOptions()) {
+    const OptionSpec spec = o.spec;
+    const std::string flag = "--" + spec.name;
+    if (spec.type == OptionType::kBool) {
+      app.add_flag_function(
+          flag, [&settings, spec](int64_t count) { settings.set(spec.name, count > 0); }, o.help);
+      continue;
+    }
+    app.add_option_function<std::string>(
+           flag,
+           [&settings, spec](const std::string& text) {
+             settings.setValue(spec.name, parseOptionValue(spec, text));
+           },
+           o.help)
+        ->type_name(typeName(spec));
+  }
+}
+
+void addOptionMetadata(const RenderSettings& settings, ImageOutputOptions& out) {
+  const RenderSettings bound = withIntegratorOptions(settings);
+  for (const OptionSpec& spec : bound.declared()) {
+    if (!spec.affectsPixels) continue;
+    const std::string key = "tray:" + camelCase(spec.name);
+    if (spec.name == "spp")
+      out.floatMetadata.emplace_back(key, float(bound.getInt("spp")));
+    else
+      out.stringMetadata.emplace_back(key, formatOptionValue(bound.value(spec.name)));
+  }
+}
+
+}  // namespace tray
