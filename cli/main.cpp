@@ -137,8 +137,9 @@ int run(const CliOptions& o) {
   out.matrixMetadata = {{"worldToCamera", tray::exrWorldToCamera(cam)},
                         {"worldToNDC", tray::exrWorldToNdc(cam, width, height)}};
   // Writes `film` with the metadata of this render; partial renders and parts carry their state.
+  // `final`: the render's outputs, not a checkpoint (warned about once, at the end).
   auto write = [&](tray::Film& image, const tray::RenderState& now, double seconds,
-                   const std::vector<std::string>& paths) {
+                   const std::vector<std::string>& paths, bool final) {
     const size_t done = now.pixelsDone(), all = now.done.size();
     tray::ImageOutputOptions w = out;
     w.stringMetadata = {{"tray:version", TRAY_VERSION},
@@ -162,7 +163,9 @@ int run(const CliOptions& o) {
       w.floatMetadata.emplace_back("tray:samplesDone",
                                    float(done) * float(range.end - range.begin));
     if (part || done < all) tray::storeState(now, image);
-    for (const auto& path : paths) tray::writeImage(image, path, w);
+    for (const auto& path : paths)
+      if (const size_t clamped = tray::writeImage(image, path, w); clamped && final)
+        std::fprintf(stderr, "warning: %s\n", tray::halfClampWarning(path, clamped).c_str());
   };
   const auto started = std::chrono::steady_clock::now();
   if (o.checkpointSeconds > 0) {
@@ -172,7 +175,7 @@ int run(const CliOptions& o) {
       const double elapsed =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
       try {  // a failed checkpoint (full disk) costs the safety net, not the render
-        write(copy, s, previousSeconds + elapsed, {checkpointPath});
+        write(copy, s, previousSeconds + elapsed, {checkpointPath}, false);
       } catch (const tray::Error& e) {
         std::fprintf(stderr, "warning: checkpoint not written: %s\n", e.what());
       }
@@ -181,7 +184,7 @@ int run(const CliOptions& o) {
   tray::RenderStats stats = tray::renderImage(*integrator, film, state, renderOptions);
   progress.finish();
 
-  write(film, state, previousSeconds + stats.seconds, o.outputs);
+  write(film, state, previousSeconds + stats.seconds, o.outputs, true);
   if (!o.aaHeatmap.empty() && !stats.interrupted)
     tray::writeImage(tray::samplesHeatmap(film), o.aaHeatmap);
   if (stats.interrupted) {

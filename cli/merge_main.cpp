@@ -24,7 +24,8 @@ int main(int argc, char** argv) {
   }
   try {
     tray::ExrImage merged = tray::mergeParts(parts);
-    tray::writeImage(merged.film, output, merged.options);
+    if (const size_t clamped = tray::writeImage(merged.film, output, merged.options))
+      std::fprintf(stderr, "warning: %s\n", tray::halfClampWarning(output, clamped).c_str());
     return 0;
   } catch (const tray::Error& e) {
     std::fprintf(stderr, "tray-merge: error: %s\n", e.what());

@@ -1,0 +1,58 @@
+// tray-render's own checks at the boundary: option values it must refuse, the out-of-memory
+// message, the half-float overflow warning, and one pixel sample of the white furnace that once
+// came back black.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+
+#include "tests/cli/cli_run.h"
+
+namespace tray::test {
+namespace {
+
+/// 'path' for /bin/sh (appended piecewise: GCC 12 warns falsely on "lit" + std::string&&).
+std::string quoted(const fs::path& path) {
+  std::string s = "'";
+  s += path.string();
+  s += "'";
+  return s;
+}
+
+size_t lines(const std::string& s) {
+  return size_t(std::count(s.begin(), s.end(), '\n'));
+}
+
+TEST(CliHalfOverflow, ClampsTo65504AndWarnsOnce) {
+  const fs::path dir = tempFolder("cli_main");
+  // Nothing but a sphere in an environment of radiance 1e6, beyond half's 65504.
+  const fs::path scene = dir / "bright.gltf";
+  std::ofstream(scene) << R"({"asset": {"version": "2.0"}, "scene": 0,
+    "extensionsUsed": ["TRAY_shape", "TRAY_environment"],
+    "scenes": [{"nodes": [0], "extensions": {"TRAY_environment": {"background": [1e6, 1e6, 1e6]}}}],
+    "nodes": [{"extensions": {"TRAY_shape": {"type": "sphere", "radius": 1}},
+               "translation": [0, 0, -5]}]})";
+  CliResult half = runCli(TRAY_RENDER_BIN,
+                          quoted(scene) + " --resolution 8x6 -o " + quoted(dir / "half.exr"),
+                          dir);
+  ASSERT_EQ(half.exitCode, 0) << half.err;
+  EXPECT_EQ(lines(half.err), 1u) << half.err;
+  EXPECT_NE(half.err.find("half.exr: "), std::string::npos) << half.err;
+  EXPECT_NE(half.err.find("clamped to +-65504 (use --float"), std::string::npos) << half.err;
+  const Exr e = readExrFile(dir / "half.exr");
+  EXPECT_EQ(e.spec.channelformat(0), OIIO::TypeDesc::HALF);
+  EXPECT_EQ(e.at(0, 0, "R"), 65504.0f);  // a corner sees the environment: finite, not +Inf
+
+  CliResult full = runCli(TRAY_RENDER_BIN,
+                          quoted(scene) + " --resolution 8x6 --float -o " +
+                              quoted(dir / "float.exr"),
+                          dir);
+  ASSERT_EQ(full.exitCode, 0) << full.err;
+  EXPECT_EQ(full.err, "");
+  EXPECT_EQ(readExrFile(dir / "float.exr").at(0, 0, "R"), 1e6f);
+}
+
+}  // namespace
+}  // namespace tray::test
