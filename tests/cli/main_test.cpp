@@ -54,5 +54,25 @@ TEST(CliHalfOverflow, ClampsTo65504AndWarnsOnce) {
   EXPECT_EQ(readExrFile(dir / "float.exr").at(0, 0, "R"), 1e6f);
 }
 
+TEST(CliFurnace, TheLostSampleIsNotBlack) {
+  // Issue 18: seed 0, 256 x 256, pixel (48, 111), sample 168 of 256 (Sobol'): the diffuse
+  // bounce off the albedo-0.8 sphere drew u = 0, sampleCosineHemisphere returned a direction on
+  // the horizon with pdf 0, the path ended there, and the sample was exactly 0. Inside the
+  // emissive enclosure the BSDF sample is the only estimator (no light samples from inside a
+  // sphere light), so it must give 0.8 x 1.
+  const fs::path dir = tempFolder("cli_main");
+  const fs::path scene = fs::path(TRAY_SHARED_DIR) / "reference" / "furnace-sphere.gltf";
+  if (!fs::exists(scene)) GTEST_SKIP() << scene << " is missing";
+  CliResult r = runCli(TRAY_RENDER_BIN,
+                       quoted(scene) + " --resolution 256x256 --integrator path --spp 256 " +
+                           "--sampler sobol --seed 0 --region 48,111,49,112 --sample-range " +
+                           "168,169 --float -o " + quoted(dir / "f.exr"),
+                       dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const Exr e = readExrFile(dir / "f.exr");
+  ASSERT_EQ(e.spec.width, 1);
+  for (const char* c : {"R", "G", "B"}) EXPECT_NEAR(e.at(0, 0, c), 0.8f, 1e-4f) << c;
+}
+
 }  // namespace
 }  // namespace tray::test
