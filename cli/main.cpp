@@ -58,6 +58,19 @@ std::string joined(const std::vector<std::string>& names) {
   return s;
 }
 
+/// Rejects a leading minus before CLI11 converts: it would store --seed -1 as 2^64 - 1, and an
+/// index of -1 would mean "absent" (the default camera or scene) instead of an error.
+CLI::Validator nonNegative(const std::string& expected) {
+  return CLI::Validator(
+      [expected](std::string& value) -> std::string {
+        const size_t first = value.find_first_not_of(" \t");
+        if (first != std::string::npos && value[first] == '-')
+          return "'" + value + "' is negative: expected " + expected;
+        return {};
+      },
+      "", "non-negative");
+}
+
 int run(const CliOptions& o) {
   // First: a signal while the scene loads also stops the render (at its first pixel).
   const std::atomic<bool>& stop = tray::installInterruptHandlers();
@@ -229,7 +242,9 @@ int main(int argc, char** argv) {
   app.add_option("--max-depth", o.settings.maxDepth,
                  "maximum recursion depth (default: the integrator's, 5 for whitted)")
       ->check(CLI::Range(0, 1000));
-  app.add_option("--seed", o.settings.seed, "random seed")->capture_default_str();
+  app.add_option("--seed", o.settings.seed, "random seed")
+      ->check(nonNegative("a whole number >= 0"))
+      ->capture_default_str();
   app.add_option("--pixel-sampler", o.settings.pixelSampler,
                  "where samples go in a pixel: auto, center, corners, grid, jitter, sequence")
       ->check(CLI::IsMember(tray::PixelSampler::names()))
@@ -259,8 +274,10 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--resolution", o.resolution,
                  "image size WxH (default 640 wide, height from the camera)");
-  app.add_option("--camera", o.camera, "index of the scene camera to render (default: the first)");
-  app.add_option("--scene", o.scene, "index of the glTF scene (default: the file's default scene)");
+  app.add_option("--camera", o.camera, "index of the scene camera to render (default: the first)")
+      ->check(nonNegative("a camera index >= 0 (omit --camera for the first camera)"));
+  app.add_option("--scene", o.scene, "index of the glTF scene (default: the file's default scene)")
+      ->check(nonNegative("a scene index >= 0 (omit --scene for the file's default scene)"));
   app.add_option("--accel", o.accel, "accelerator: " + joined(tray::acceleratorNames()))
       ->capture_default_str();
   app.add_flag("--float", o.floatOutput, "write 32-bit float EXR (default half)");
@@ -293,6 +310,10 @@ int main(int argc, char** argv) {
   app.add_option("--test-interrupt-after-tiles", o.testInterruptAfterTiles)->group("");
   app.add_flag("-q,--quiet", o.quiet, "no progress bar or summary");
 
+  // One line, in the form of every other error (CLI11 adds a second "Run with --help" line).
+  app.failure_message([](const CLI::App*, const CLI::Error& e) {
+    return std::string("tray-render: error: ") + e.what() + " (see --help)\n";
+  });
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -21,8 +21,34 @@ std::string quoted(const fs::path& path) {
   return s;
 }
 
+const std::string kScene = quoted(fs::path(TRAY_SOURCE_DIR) / "scenes" / "whitted.gltf");
+
 size_t lines(const std::string& s) {
   return size_t(std::count(s.begin(), s.end(), '\n'));
+}
+
+TEST(CliOptions, NegativeSeedCameraOrSceneIsAnErrorNotADefault) {
+  const fs::path dir = tempFolder("cli_main");
+  for (const std::string option : {"--seed", "--camera", "--scene"}) {
+    for (const std::string value : {"-1", "-7"}) {
+      const fs::path out = dir / "x.exr";
+      CliResult r = runCli(TRAY_RENDER_BIN,
+                           kScene + " --resolution 8x6 " + option + " " + value + " -o " +
+                               quoted(out),
+                           dir);
+      EXPECT_EQ(r.exitCode, 2) << option << " " << value << ": " << r.err;
+      EXPECT_EQ(lines(r.err), 1u) << r.err;
+      EXPECT_NE(r.err.find(option), std::string::npos) << r.err;
+      EXPECT_NE(r.err.find("negative"), std::string::npos) << r.err;
+      EXPECT_FALSE(fs::exists(out)) << option << " " << value;
+    }
+  }
+  // Explicit 0 is fine, and so is a seed of 2^64 - 1.
+  CliResult ok = runCli(TRAY_RENDER_BIN,
+                        kScene + " --resolution 8x6 --camera 0 --scene 0 --seed " +
+                            "18446744073709551615 -o " + quoted(dir / "ok.exr"),
+                        dir);
+  EXPECT_EQ(ok.exitCode, 0) << ok.err;
 }
 
 TEST(CliHalfOverflow, ClampsTo65504AndWarnsOnce) {
