@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cstring>
 #include <mutex>
+#include <new>
 #include <string>
 #include <unordered_map>
 
@@ -198,10 +199,13 @@ class EmbreeAccelerator final : public Accelerator {
   size_t memoryBytes() const override { return size_t(std::max<int64_t>(memory_.load(), 0)); }
 
  private:
-  static void onError(void* self, RTCError, const char* message) {
+  static void onError(void* self, RTCError code, const char* message) {
     auto* a = static_cast<EmbreeAccelerator*>(self);
     std::lock_guard<std::mutex> lock(a->errorMutex_);
-    if (a->error_.empty()) a->error_ = message ? message : "unknown error";
+    if (a->error_.empty()) {
+      a->error_ = message ? message : "unknown error";
+      a->outOfMemory_ = code == RTC_ERROR_OUT_OF_MEMORY;
+    }
   }
   static bool onMemory(void* self, ssize_t bytes, bool) {
     static_cast<EmbreeAccelerator*>(self)->memory_ += bytes;
@@ -209,6 +213,7 @@ class EmbreeAccelerator final : public Accelerator {
   }
   void checkError() {
     std::lock_guard<std::mutex> lock(errorMutex_);
+    if (outOfMemory_) throw std::bad_alloc();  // main names the phase, as for any allocation
     if (!error_.empty()) throw Error("Embree: " + error_, Error::Kind::kRender);
   }
 
@@ -309,6 +314,7 @@ class EmbreeAccelerator final : public Accelerator {
   std::atomic<int64_t> memory_{0};
   std::mutex errorMutex_;
   std::string error_;
+  bool outOfMemory_ = false;
 };
 
 }  // namespace

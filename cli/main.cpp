@@ -6,6 +6,7 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -58,6 +59,9 @@ std::string joined(const std::vector<std::string>& names) {
   return s;
 }
 
+/// What run() is doing, for the out-of-memory message (std::bad_alloc says nothing itself).
+const char* gPhase = "starting";
+
 /// Rejects a leading minus before CLI11 converts: it would store --seed -1 as 2^64 - 1, and an
 /// index of -1 would mean "absent" (the default camera or scene) instead of an error.
 CLI::Validator nonNegative(const std::string& expected) {
@@ -74,6 +78,7 @@ CLI::Validator nonNegative(const std::string& expected) {
 int run(const CliOptions& o) {
   // First: a signal while the scene loads also stops the render (at its first pixel).
   const std::atomic<bool>& stop = tray::installInterruptHandlers();
+  gPhase = "loading the scene";
   tray::LoadOptions loadOptions;
   loadOptions.scene = o.scene;
   loadOptions.allowAnyPath = o.allowAnyPath;
@@ -91,7 +96,9 @@ int run(const CliOptions& o) {
   const tray::ImageSize size = tray::resolveImageSize(o.resolution, cam);
   const int width = size.width, height = size.height;
   auto camera = tray::Camera::create(cam, width, height);
+  gPhase = "building the accelerator";
   auto accel = tray::makeAccelerator(o.accel, scene);
+  gPhase = "rendering";
   tray::RenderContext ctx{scene, *accel, *camera, o.settings, width, height};
   auto integrator = tray::makeIntegrator(ctx);
 
@@ -197,6 +204,7 @@ int run(const CliOptions& o) {
   tray::RenderStats stats = tray::renderImage(*integrator, film, state, renderOptions);
   progress.finish();
 
+  gPhase = "writing images";
   write(film, state, previousSeconds + stats.seconds, o.outputs, true);
   if (!o.aaHeatmap.empty() && !stats.interrupted)
     tray::writeImage(tray::samplesHeatmap(film), o.aaHeatmap);
@@ -325,6 +333,12 @@ int main(int argc, char** argv) {
   } catch (const tray::Error& e) {
     std::fprintf(stderr, "tray-render: error: %s\n", e.what());
     return e.kind() == tray::Error::Kind::kInput ? 2 : 1;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr,
+                 "tray-render: error: out of memory while %s (%s; a smaller --resolution, "
+                 "fewer --aov layers or more memory may help)\n",
+                 gPhase, o.scenePath.c_str());
+    return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "tray-render: error: %s\n", e.what());
     return 1;

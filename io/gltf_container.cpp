@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <new>
 #include <nlohmann/json.hpp>
 
 #include "io/gltf_context.h"
@@ -90,6 +91,8 @@ void checkJsonRoot(const std::string& path, std::string_view text) {
   nlohmann::json root;
   try {
     root = nlohmann::json::parse(text.begin(), text.end());
+  } catch (const std::bad_alloc&) {  // not a problem of the file: main reports it
+    throw;
   } catch (const std::exception& e) {
     // nlohmann's messages start with "[json.exception.parse_error.101] ": keep the sentence.
     std::string what = e.what();

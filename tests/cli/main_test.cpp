@@ -51,6 +51,27 @@ TEST(CliOptions, NegativeSeedCameraOrSceneIsAnErrorNotADefault) {
   EXPECT_EQ(ok.exitCode, 0) << ok.err;
 }
 
+TEST(CliOutOfMemory, ReportsThePhaseAndExits1) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "ASan reserves terabytes of address space: no address-space limit applies";
+#endif
+  const fs::path dir = tempFolder("cli_main");
+  if (std::system("prlimit --as=1000000000 true >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "prlimit cannot limit the address space here";
+  // 16384 x 16384 pixels of RGBA float are 4 GiB: more than the 1.5 GB address space allowed,
+  // while loading the scene and building the accelerator fit easily.
+  CliResult r = runTool("prlimit",
+                        "--as=1500000000 " + quoted(TRAY_RENDER_BIN) + " " + kScene +
+                            " -q --threads 1 --resolution 16384x16384 -o " +
+                            quoted(dir / "big.exr"),
+                        dir);
+  EXPECT_EQ(r.exitCode, 1) << r.err;
+  EXPECT_EQ(lines(r.err), 1u) << r.err;
+  EXPECT_NE(r.err.find("tray-render: error: out of memory while rendering"), std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(dir / "big.exr"));
+}
+
 TEST(CliHalfOverflow, ClampsTo65504AndWarnsOnce) {
   const fs::path dir = tempFolder("cli_main");
   // Nothing but a sphere in an environment of radiance 1e6, beyond half's 65504.
