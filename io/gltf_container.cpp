@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/gltf_context.h"
+#include "io/gltf_raw_fields.h"
 
 namespace tray {
 
@@ -130,6 +131,7 @@ void checkJsonRoot(const std::string& path, std::string_view text) {
   auto scene = root.find("scene");
   if (scene != root.end() && !scene->is_number_unsigned())
     failFile(path, "'scene' is not a non-negative integer");
+  checkRawFields(path, root);
 }
 
 }  // namespace tray
