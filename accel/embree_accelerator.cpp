@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstring>
 #include <mutex>
+#include <new>
 #include <string>
 #include <unordered_map>
 
@@ -197,10 +199,13 @@ class EmbreeAccelerator final : public Accelerator {
   size_t memoryBytes() const override { return size_t(std::max<int64_t>(memory_.load(), 0)); }
 
  private:
-  static void onError(void* self, RTCError, const char* message) {
+  static void onError(void* self, RTCError code, const char* message) {
     auto* a = static_cast<EmbreeAccelerator*>(self);
     std::lock_guard<std::mutex> lock(a->errorMutex_);
-    if (a->error_.empty()) a->error_ = message ? message : "unknown error";
+    if (a->error_.empty()) {
+      a->error_ = message ? message : "unknown error";
+      a->outOfMemory_ = code == RTC_ERROR_OUT_OF_MEMORY;
+    }
   }
   static bool onMemory(void* self, ssize_t bytes, bool) {
     static_cast<EmbreeAccelerator*>(self)->memory_ += bytes;
@@ -208,6 +213,7 @@ class EmbreeAccelerator final : public Accelerator {
   }
   void checkError() {
     std::lock_guard<std::mutex> lock(errorMutex_);
+    if (outOfMemory_) throw std::bad_alloc();  // main names the phase, as for any allocation
     if (!error_.empty()) throw Error("Embree: " + error_, Error::Kind::kRender);
   }
 
@@ -235,6 +241,17 @@ class EmbreeAccelerator final : public Accelerator {
     return rh;
   }
 
+  /// A new Embree-owned buffer of `count` items of `stride` bytes, filled from `data`.
+  void copyToEmbree(RTCGeometry g, RTCBufferType type, RTCFormat format, const void* data,
+                    size_t stride, size_t count) {
+    void* dst = rtcSetNewGeometryBuffer(g, type, 0, format, stride, count);
+    if (!dst) {
+      checkError();
+      throw Error("Embree: cannot allocate a geometry buffer", Error::Kind::kRender);
+    }
+    std::memcpy(dst, data, stride * count);
+  }
+
   RTCScene meshScene(uint32_t meshIndex) {
     auto it = meshScenes_.find(meshIndex);
     if (it != meshScenes_.end()) return it->second;
@@ -244,10 +261,14 @@ class EmbreeAccelerator final : public Accelerator {
     rtcSetSceneFlags(s, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
     rtcSetSceneBuildQuality(s, RTC_BUILD_QUALITY_HIGH);
     RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, m.positions.data(),
-                               0, sizeof(Vec3), m.positions.size());
-    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, m.indices.data(), 0,
-                               3 * sizeof(uint32_t), m.triangleCount());
+    // Copied into buffers Embree allocates, not shared: Embree reads the last vertex with a
+    // 16-byte SSE load, so a shared float3 array needs padding after it (docs of
+    // rtcSetSharedGeometryBuffer); the mesh's std::vector has none, and valgrind saw reads past
+    // its end. Embree pads the buffers it allocates itself (rtcSetNewGeometryBuffer docs).
+    copyToEmbree(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, m.positions.data(), sizeof(Vec3),
+                 m.positions.size());
+    copyToEmbree(g, RTC_BUFFER_TYPE_INDEX, RTC_FORMAT_UINT3, m.indices.data(),
+                 3 * sizeof(uint32_t), m.triangleCount());
     rtcCommitGeometry(g);
     rtcAttachGeometryByID(s, g, 0);
     rtcReleaseGeometry(g);
@@ -293,6 +314,7 @@ class EmbreeAccelerator final : public Accelerator {
   std::atomic<int64_t> memory_{0};
   std::mutex errorMutex_;
   std::string error_;
+  bool outOfMemory_ = false;
 };
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -56,6 +57,22 @@ std::string joined(const std::vector<std::string>& names) {
   return s;
 }
 
+/// What run() is doing, for the out-of-memory message (std::bad_alloc says nothing itself).
+const char* gPhase = "starting";
+
+/// Rejects a leading minus before CLI11 converts: it would store --seed -1 as 2^64 - 1, and an
+/// index of -1 would mean "absent" (the default camera or scene) instead of an error.
+CLI::Validator nonNegative(const std::string& expected) {
+  return CLI::Validator(
+      [expected](std::string& value) -> std::string {
+        const size_t first = value.find_first_not_of(" \t");
+        if (first != std::string::npos && value[first] == '-')
+          return "'" + value + "' is negative: expected " + expected;
+        return {};
+      },
+      "", "non-negative");
+}
+
 int run(const CliOptions& o) {
   // First: a signal while the scene loads also stops the render (at its first pixel).
   const std::atomic<bool>& stop = tray::installInterruptHandlers();
@@ -65,6 +82,7 @@ int run(const CliOptions& o) {
     tray::checkOutputs(o.outputs, check);
     if (!o.aaHeatmap.empty()) tray::checkOutputs({o.aaHeatmap}, check);
   }
+  gPhase = "loading the scene";
   tray::LoadOptions loadOptions;
   loadOptions.scene = o.scene;
   loadOptions.allowAnyPath = o.allowAnyPath;
@@ -82,7 +100,9 @@ int run(const CliOptions& o) {
   const tray::ImageSize size = tray::resolveImageSize(o.resolution, cam);
   const int width = size.width, height = size.height;
   auto camera = tray::Camera::create(cam, width, height);
+  gPhase = "building the accelerator";
   auto accel = tray::makeAccelerator(o.accel, scene);
+  gPhase = "rendering";
   tray::RenderContext ctx{scene, *accel, *camera, o.settings, width, height};
   auto integrator = tray::makeIntegrator(ctx);
   const std::string integratorName = o.settings.getString("integrator");
@@ -143,8 +163,9 @@ int run(const CliOptions& o) {
   out.matrixMetadata = {{"worldToCamera", tray::exrWorldToCamera(cam)},
                         {"worldToNDC", tray::exrWorldToNdc(cam, width, height)}};
   // Writes `film` with the metadata of this render; partial renders and parts carry their state.
+  // `final`: the render's outputs, not a checkpoint (warned about once, at the end).
   auto write = [&](tray::Film& image, const tray::RenderState& now, double seconds,
-                   const std::vector<std::string>& paths) {
+                   const std::vector<std::string>& paths, bool final) {
     const size_t done = now.pixelsDone(), all = now.done.size();
     tray::ImageOutputOptions w = out;
     w.stringMetadata = {{"tray:version", TRAY_VERSION},
@@ -163,7 +184,9 @@ int run(const CliOptions& o) {
       w.floatMetadata.emplace_back("tray:samplesDone",
                                    float(done) * float(range.end - range.begin));
     if (part || done < all) tray::storeState(now, image);
-    for (const auto& path : paths) tray::writeImage(image, path, w);
+    for (const auto& path : paths)
+      if (const size_t clamped = tray::writeImage(image, path, w); clamped && final)
+        std::fprintf(stderr, "warning: %s\n", tray::halfClampWarning(path, clamped).c_str());
   };
   const auto started = std::chrono::steady_clock::now();
   if (o.checkpointSeconds > 0) {
@@ -173,7 +196,7 @@ int run(const CliOptions& o) {
       const double elapsed =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
       try {  // a failed checkpoint (full disk) costs the safety net, not the render
-        write(copy, s, previousSeconds + elapsed, {checkpointPath});
+        write(copy, s, previousSeconds + elapsed, {checkpointPath}, false);
       } catch (const tray::Error& e) {
         std::fprintf(stderr, "warning: checkpoint not written: %s\n", e.what());
       }
@@ -182,7 +205,8 @@ int run(const CliOptions& o) {
   tray::RenderStats stats = tray::renderImage(*integrator, film, state, renderOptions);
   progress.finish();
 
-  write(film, state, previousSeconds + stats.seconds, o.outputs);
+  gPhase = "writing images";
+  write(film, state, previousSeconds + stats.seconds, o.outputs, true);
   if (!o.aaHeatmap.empty() && !stats.interrupted)
     tray::writeImage(tray::samplesHeatmap(film), o.aaHeatmap);
   if (stats.interrupted) {
@@ -224,8 +248,10 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--resolution", o.resolution,
                  "image size WxH (default 640 wide, height from the camera)");
-  app.add_option("--camera", o.camera, "index of the scene camera to render (default: the first)");
-  app.add_option("--scene", o.scene, "index of the glTF scene (default: the file's default scene)");
+  app.add_option("--camera", o.camera, "index of the scene camera to render (default: the first)")
+      ->check(nonNegative("a camera index >= 0 (omit --camera for the first camera)"));
+  app.add_option("--scene", o.scene, "index of the glTF scene (default: the file's default scene)")
+      ->check(nonNegative("a scene index >= 0 (omit --scene for the file's default scene)"));
   app.add_option("--accel", o.accel, "accelerator: " + joined(tray::acceleratorNames()))
       ->capture_default_str();
   app.add_flag("--float", o.floatOutput, "write 32-bit float EXR (default half)");
@@ -253,6 +279,10 @@ int main(int argc, char** argv) {
   app.add_option("--test-interrupt-after-tiles", o.testInterruptAfterTiles)->group("");
   app.add_flag("-q,--quiet", o.quiet, "no progress bar or summary");
 
+  // One line, in the form of every other error (CLI11 adds a second "Run with --help" line).
+  app.failure_message([](const CLI::App*, const CLI::Error& e) {
+    return std::string("tray-render: error: ") + e.what() + " (see --help)\n";
+  });
   try {
     app.parse(argc, argv);
     tray::validateOptions(o.settings);  // ranges and choices, before any loading
@@ -268,6 +298,12 @@ int main(int argc, char** argv) {
   } catch (const tray::Error& e) {
     std::fprintf(stderr, "tray-render: error: %s\n", e.what());
     return e.kind() == tray::Error::Kind::kInput ? 2 : 1;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr,
+                 "tray-render: error: out of memory while %s (%s; a smaller --resolution, "
+                 "fewer --aov layers or more memory may help)\n",
+                 gPhase, o.scenePath.c_str());
+    return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "tray-render: error: %s\n", e.what());
     return 1;

@@ -2,6 +2,7 @@
 // the image one machine would have rendered. Exit codes: 0 ok, 1 error writing, 2 bad parts.
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -22,13 +23,19 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
   }
+  const char* phase = "reading the parts";  // for the out-of-memory message
   try {
     tray::ExrImage merged = tray::mergeParts(parts);
-    tray::writeImage(merged.film, output, merged.options);
+    phase = "writing the image";
+    if (const size_t clamped = tray::writeImage(merged.film, output, merged.options))
+      std::fprintf(stderr, "warning: %s\n", tray::halfClampWarning(output, clamped).c_str());
     return 0;
   } catch (const tray::Error& e) {
     std::fprintf(stderr, "tray-merge: error: %s\n", e.what());
     return e.kind() == tray::Error::Kind::kInput ? 2 : 1;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "tray-merge: error: out of memory while %s\n", phase);
+    return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "tray-merge: error: %s\n", e.what());
     return 1;

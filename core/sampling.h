@@ -27,10 +27,15 @@ inline Vec2 sampleUniformDiskPolar(Vec2 u) {
   return {r * std::cos(theta), r * std::sin(theta)};
 }
 
-/// Cosine-weighted direction about +z (Malley's method); pdf = cos(theta) / pi.
+/// Cosine-weighted direction about +z (Malley's method); pdf = cos(theta) / pi, always > 0.
+/// The concentric map sends u.x == 0 or u.y == 0 to the disk's rim, the horizon, where the pdf
+/// is 0 and every caller must drop the sample: one sample in 2^24 per coordinate of 24-bit
+/// uniforms came back black (the white furnace's lost sample). z is kept at least 2^-11 (about
+/// 0.03 degrees above the horizon) instead; the rim has measure zero, so nothing is biased.
 inline Vec3 sampleCosineHemisphere(Vec2 u) {
   Vec2 d = sampleUniformDiskConcentric(u);
-  float z = std::sqrt(std::max(0.0f, 1.0f - d.x * d.x - d.y * d.y));
+  constexpr float kMaxR2 = 1.0f - 0x1p-22f;  // 1 - kMaxR2 is exact: z >= 2^-11
+  float z = std::sqrt(1.0f - std::min(d.x * d.x + d.y * d.y, kMaxR2));
   return {d.x, d.y, z};
 }
 inline float cosineHemispherePdf(float cosTheta) {

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <new>
 #include <nlohmann/json.hpp>
 
 #include "io/gltf_context.h"
+#include "io/gltf_raw_fields.h"
 
 namespace tray {
 
@@ -90,6 +92,8 @@ void checkJsonRoot(const std::string& path, std::string_view text) {
   nlohmann::json root;
   try {
     root = nlohmann::json::parse(text.begin(), text.end());
+  } catch (const std::bad_alloc&) {  // not a problem of the file: main reports it
+    throw;
   } catch (const std::exception& e) {
     // nlohmann's messages start with "[json.exception.parse_error.101] ": keep the sentence.
     std::string what = e.what();
@@ -127,6 +131,7 @@ void checkJsonRoot(const std::string& path, std::string_view text) {
   auto scene = root.find("scene");
   if (scene != root.end() && !scene->is_number_unsigned())
     failFile(path, "'scene' is not a non-negative integer");
+  checkRawFields(path, root);
 }
 
 }  // namespace tray

@@ -1,6 +1,7 @@
 #include "io/gltf_loader.h"
 
 #include <filesystem>
+#include <new>
 
 #include "io/gltf_cameras_lights.h"
 #include "io/gltf_container.h"
@@ -57,6 +58,8 @@ tinygltf::Model parse(const std::vector<unsigned char>& bytes, const std::string
                                             unsigned(bytes.size()), policy.folder())
                 : gltf.LoadASCIIFromString(&model, &err, &warn, json.data(), unsigned(json.size()),
                                            policy.folder());
+  } catch (const std::bad_alloc&) {  // not a problem of the file: main reports it
+    throw;
   } catch (const std::exception& e) {  // nlohmann type errors on oddly typed members
     failFile(path, std::string("tinygltf: ") + e.what());
   }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <map>
+#include <new>
 #include <utility>
 
 #include "core/error.h"
@@ -104,6 +105,8 @@ class Binder {
       TextureImage out[2];
       try {
         decodeImage(ctx_, infos[i], srgb != slots_.end(), linear != slots_.end(), out);
+      } catch (const std::bad_alloc&) {  // not a problem of the file: main reports it
+        throw;
       } catch (const std::exception& e) {
         problems[i] = e.what();
         return;

@@ -52,8 +52,29 @@ void writeFile(const std::string& path, const std::string& tmp, const OIIO::Imag
   if (!ok) throw Error(path + ": writing failed: " + oneLine(out->geterror()));
 }
 
-void writeExr(const Film& film, const std::string& path, const std::string& tmp,
-              const ImageOutputOptions& o) {
+/// Half's largest finite value; larger ones would become +Inf (and smaller ones -Inf).
+constexpr float kHalfMax = 65504.0f;
+
+/// Clamps every half channel's values to +-kHalfMax, each value on its own (a clamped pixel may
+/// change hue; its other channels stay exact). Returns how many values were clamped.
+size_t clampToHalf(std::vector<float>& pixels, const std::vector<OIIO::TypeDesc>& formats) {
+  const size_t nc = formats.size();
+  size_t clamped = 0;
+  for (size_t c = 0; c < nc; ++c) {
+    if (formats[c] != OIIO::TypeDesc::HALF) continue;
+    for (size_t i = c; i < pixels.size(); i += nc) {
+      float& v = pixels[i];
+      if (v > kHalfMax || v < -kHalfMax) {  // NaN compares false: stays NaN
+        v = v > 0 ? kHalfMax : -kHalfMax;
+        ++clamped;
+      }
+    }
+  }
+  return clamped;
+}
+
+size_t writeExr(const Film& film, const std::string& path, const std::string& tmp,
+                const ImageOutputOptions& o) {
   const ColorPipeline& color = ColorPipeline::instance();
   const std::string cs =
       color.canonicalName(o.colorspace.empty() ? color.defaultOutputSpace() : o.colorspace);
@@ -89,6 +110,7 @@ void writeExr(const Film& film, const std::string& path, const std::string& tmp,
     if (isColourLayer(l)) color.convertFromWorking(pixels.data() + offset, n, int(nc), cs);
     offset += lc;
   }
+  const size_t clamped = clampToHalf(pixels, formats);
 
   // The colorspace is named twice: OIIO's convention and a plain attribute for other readers;
   // chromaticities (OpenEXR standard attribute) let any reader interpret the primaries.
@@ -101,6 +123,7 @@ void writeExr(const Film& film, const std::string& path, const std::string& tmp,
   for (const auto& [k, v] : o.floatMetadata) spec.attribute(k, v);
   for (const auto& [k, m] : o.matrixMetadata) spec.attribute(k, OIIO::TypeMatrix44, m.data());
   writeFile(path, tmp, spec, OIIO::TypeDesc::FLOAT, pixels.data());
+  return clamped;
 }
 
 void writeDisplay(const Film& film, const std::string& path, const std::string& tmp,
@@ -131,6 +154,11 @@ std::string exrChannelName(const FilmLayer& layer, const std::string& channel) {
   if (layer.name.empty()) return channel;
   if (layer.channels.size() == 1 && layer.channels[0] == layer.name) return channel;
   return layer.name + "." + channel;
+}
+
+std::string halfClampWarning(const std::string& path, size_t clamped) {
+  return path + ": " + std::to_string(clamped) +
+         " value(s) beyond half float's range clamped to +-65504 (use --float to keep them)";
 }
 
 namespace {
@@ -167,7 +195,7 @@ void checkOutputs(const std::vector<std::string>& paths, const ImageOutputOption
   }
 }
 
-void writeImage(const Film& film, const std::string& path, const ImageOutputOptions& options) {
+size_t writeImage(const Film& film, const std::string& path, const ImageOutputOptions& options) {
   const bool exr = checkPath(path);
   if (options.fullWidth < 0 || options.fullHeight < 0)
     throw Error(path + ": negative display window size");
@@ -178,13 +206,15 @@ void writeImage(const Film& film, const std::string& path, const ImageOutputOpti
   static std::atomic<unsigned> counter{0};
   const std::string tmp =
       path + ".tmp-" + std::to_string(getpid()) + "-" + std::to_string(counter.fetch_add(1));
+  size_t clamped = 0;
   try {
     if (exr)
-      writeExr(film, path, tmp, options);
+      clamped = writeExr(film, path, tmp, options);
     else
       writeDisplay(film, path, tmp, options);
     fs::rename(tmp, path, ec);
     if (ec) throw Error(path + ": cannot move the finished file into place: " + ec.message());
+    return clamped;
   } catch (const Error& e) {
     std::error_code ignored;
     fs::remove(tmp, ignored);

@@ -29,7 +29,14 @@ struct ImageOutputOptions {
 /// RGB through the display view, 8-bit). The file appears atomically: it is written under a
 /// temporary name in the same folder and renamed when complete, so an existing file is never left
 /// truncated. Throws tray::Error with a one-line "PATH: problem" message.
-void writeImage(const Film& film, const std::string& path, const ImageOutputOptions& options = {});
+/// Half EXR channels hold at most 65504: larger values are clamped to +-65504, each on its own
+/// (not +Inf); returns how many were (0 for float EXR, PNG and JPEG). Callers warn with
+/// halfClampWarning.
+size_t writeImage(const Film& film, const std::string& path,
+                  const ImageOutputOptions& options = {});
+
+/// The one-line warning for `clamped` values clamped to half's range in `path`.
+std::string halfClampWarning(const std::string& path, size_t clamped);
 
 /// Checks, before anything is rendered, what writeImage would refuse afterwards: each path's
 /// format (by extension) and folder, and that its colour conversions (colorspace, display,

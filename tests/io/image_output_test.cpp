@@ -142,6 +142,34 @@ TEST(ImageOutput, HalfIsTheDefault) {
   EXPECT_NEAR(r.at(0, 0, "R"), 0.1f, 1e-4f);
 }
 
+TEST(ImageOutput, HalfClampsBeyond65504InsteadOfInfinity) {
+  // Half's largest finite value is 65504; 1e6 used to become +Inf silently. Each channel is
+  // clamped on its own; float output keeps every value.
+  const fs::path dir = tempFolder();
+  Film film(2, 1);
+  float* p = film.pixel(Film::kBeauty, 0, 0);
+  p[0] = 1e6f, p[1] = -1e6f, p[2] = 65504.0f, p[3] = 1.0f;
+  float* q = film.pixel(Film::kBeauty, 1, 0);
+  q[0] = 0.5f, q[1] = 70000.0f, q[2] = 2.0f, q[3] = 1.0f;
+  EXPECT_EQ(writeImage(film, (dir / "half.exr").string()), 3u);
+  const test::Exr h = test::readExrFile(dir / "half.exr");
+  EXPECT_EQ(h.at(0, 0, "R"), 65504.0f);
+  EXPECT_EQ(h.at(0, 0, "G"), -65504.0f);
+  EXPECT_EQ(h.at(0, 0, "B"), 65504.0f);
+  EXPECT_EQ(h.at(1, 0, "R"), 0.5f);
+  EXPECT_EQ(h.at(1, 0, "G"), 65504.0f);
+  EXPECT_EQ(h.at(1, 0, "B"), 2.0f);
+  for (float v : h.pixels) EXPECT_TRUE(std::isfinite(v));
+
+  ImageOutputOptions o;
+  o.halfFloat = false;
+  EXPECT_EQ(writeImage(film, (dir / "float.exr").string(), o), 0u);
+  EXPECT_EQ(test::readExrFile(dir / "float.exr").at(0, 0, "R"), 1e6f);
+  EXPECT_EQ(halfClampWarning("a.exr", 3),
+            "a.exr: 3 value(s) beyond half float's range clamped to +-65504 (use --float to keep "
+            "them)");
+}
+
 TEST(ImageOutput, DataAndDisplayWindows) {
   const fs::path path = tempFolder() / "region.exr";
   ImageOutputOptions o;

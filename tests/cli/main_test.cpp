@@ -1,0 +1,130 @@
+// tray-render's own checks at the boundary: option values it must refuse, the out-of-memory
+// message, the half-float overflow warning, and one pixel sample of the white furnace that once
+// came back black.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+
+#include "tests/cli/cli_run.h"
+
+namespace tray::test {
+namespace {
+
+/// 'path' for /bin/sh (appended piecewise: GCC 12 warns falsely on "lit" + std::string&&).
+std::string quoted(const fs::path& path) {
+  std::string s = "'";
+  s += path.string();
+  s += "'";
+  return s;
+}
+
+const std::string kScene = quoted(fs::path(TRAY_SOURCE_DIR) / "scenes" / "whitted.gltf");
+
+size_t lines(const std::string& s) {
+  return size_t(std::count(s.begin(), s.end(), '\n'));
+}
+
+TEST(CliOptions, NegativeSeedCameraOrSceneIsAnErrorNotADefault) {
+  const fs::path dir = tempFolder("cli_main");
+  for (const std::string option : {"--seed", "--camera", "--scene"}) {
+    for (const std::string value : {"-1", "-7"}) {
+      const fs::path out = dir / "x.exr";
+      CliResult r = runCli(TRAY_RENDER_BIN,
+                           kScene + " --resolution 8x6 " + option + " " + value + " -o " +
+                               quoted(out),
+                           dir);
+      EXPECT_EQ(r.exitCode, 2) << option << " " << value << ": " << r.err;
+      EXPECT_EQ(lines(r.err), 1u) << r.err;
+      EXPECT_NE(r.err.find(option), std::string::npos) << r.err;
+      // "negative" (--camera/--scene) or the option table's range (--seed: ">= 0").
+      EXPECT_TRUE(r.err.find("negative") != std::string::npos ||
+                  r.err.find(">= 0") != std::string::npos)
+          << r.err;
+      EXPECT_FALSE(fs::exists(out)) << option << " " << value;
+    }
+  }
+  // Explicit 0 is fine, and so is the largest seed, 2^63 - 1 (the option table's integers).
+  CliResult ok = runCli(TRAY_RENDER_BIN,
+                        kScene + " --resolution 8x6 --camera 0 --scene 0 --seed " +
+                            "9223372036854775807 -o " + quoted(dir / "ok.exr"),
+                        dir);
+  EXPECT_EQ(ok.exitCode, 0) << ok.err;
+}
+
+TEST(CliOutOfMemory, ReportsThePhaseAndExits1) {
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "ASan reserves terabytes of address space: no address-space limit applies";
+#endif
+  const fs::path dir = tempFolder("cli_main");
+  if (std::system("prlimit --as=1000000000 true >/dev/null 2>&1") != 0)
+    GTEST_SKIP() << "prlimit cannot limit the address space here";
+  // 16384 x 16384 pixels of RGBA float are 4 GiB: more than the 3 GB address space allowed,
+  // while loading the scene and building the accelerator take under 1 GB (two malloc arenas:
+  // glibc reserves 64 MiB of address space for each, up to 8 per core).
+  CliResult r = runTool("env",
+                        "MALLOC_ARENA_MAX=2 prlimit --as=3000000000 " + quoted(TRAY_RENDER_BIN) +
+                            " " + kScene +
+                            " -q --threads 1 --resolution 16384x16384 -o " +
+                            quoted(dir / "big.exr"),
+                        dir);
+  EXPECT_EQ(r.exitCode, 1) << r.err;
+  EXPECT_EQ(lines(r.err), 1u) << r.err;
+  EXPECT_NE(r.err.find("tray-render: error: out of memory while rendering"), std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(dir / "big.exr"));
+}
+
+TEST(CliHalfOverflow, ClampsTo65504AndWarnsOnce) {
+  const fs::path dir = tempFolder("cli_main");
+  // Nothing but a sphere in an environment of radiance 1e6, beyond half's 65504.
+  const fs::path scene = dir / "bright.gltf";
+  std::ofstream(scene) << R"({"asset": {"version": "2.0"}, "scene": 0,
+    "extensionsUsed": ["TRAY_shape", "TRAY_environment"],
+    "scenes": [{"nodes": [0], "extensions": {"TRAY_environment": {"background": [1e6, 1e6, 1e6]}}}],
+    "nodes": [{"extensions": {"TRAY_shape": {"type": "sphere", "radius": 1}},
+               "translation": [0, 0, -5]}]})";
+  CliResult half = runCli(TRAY_RENDER_BIN,
+                          quoted(scene) + " --resolution 8x6 -o " + quoted(dir / "half.exr"),
+                          dir);
+  ASSERT_EQ(half.exitCode, 0) << half.err;
+  EXPECT_EQ(lines(half.err), 1u) << half.err;
+  EXPECT_NE(half.err.find("half.exr: "), std::string::npos) << half.err;
+  EXPECT_NE(half.err.find("clamped to +-65504 (use --float"), std::string::npos) << half.err;
+  const Exr e = readExrFile(dir / "half.exr");
+  EXPECT_EQ(e.spec.channelformat(0), OIIO::TypeDesc::HALF);
+  EXPECT_EQ(e.at(0, 0, "R"), 65504.0f);  // a corner sees the environment: finite, not +Inf
+
+  CliResult full = runCli(TRAY_RENDER_BIN,
+                          quoted(scene) + " --resolution 8x6 --float -o " +
+                              quoted(dir / "float.exr"),
+                          dir);
+  ASSERT_EQ(full.exitCode, 0) << full.err;
+  EXPECT_EQ(full.err, "");
+  EXPECT_EQ(readExrFile(dir / "float.exr").at(0, 0, "R"), 1e6f);
+}
+
+TEST(CliFurnace, TheLostSampleIsNotBlack) {
+  // Issue 18: seed 0, 256 x 256, pixel (48, 111), sample 168 of 256 (Sobol'): the diffuse
+  // bounce off the albedo-0.8 sphere drew u = 0, sampleCosineHemisphere returned a direction on
+  // the horizon with pdf 0, the path ended there, and the sample was exactly 0. Inside the
+  // emissive enclosure the BSDF sample is the only estimator (no light samples from inside a
+  // sphere light), so it must give 0.8 x 1.
+  const fs::path dir = tempFolder("cli_main");
+  const fs::path scene = fs::path(TRAY_SHARED_DIR) / "reference" / "furnace-sphere.gltf";
+  if (!fs::exists(scene)) GTEST_SKIP() << scene << " is missing";
+  CliResult r = runCli(TRAY_RENDER_BIN,
+                       quoted(scene) + " --resolution 256x256 --integrator path --spp 256 " +
+                           "--sampler sobol --seed 0 --region 48,111,49,112 --sample-range " +
+                           "168,169 --float -o " + quoted(dir / "f.exr"),
+                       dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const Exr e = readExrFile(dir / "f.exr");
+  ASSERT_EQ(e.spec.width, 1);
+  for (const char* c : {"R", "G", "B"}) EXPECT_NEAR(e.at(0, 0, c), 0.8f, 1e-4f) << c;
+}
+
+}  // namespace
+}  // namespace tray::test

@@ -1,0 +1,32 @@
+#!/bin/sh
+# Memcheck over a few representative renders: a triangle-mesh scene through Embree with the path
+# tracer (the Cornell box), CSG (user geometry, all-hits queries) and textures (OIIO decoding),
+# each tiny and on one thread so the whole test takes well under two minutes. Any invalid read
+# or write, use of uninitialised memory or bad free fails the test; leaks are not errors here
+# (ASan's LeakSanitizer covers them, README "Hardened input").
+# Usage: run.sh TRAY_RENDER SOURCE_DIR SHARED_DIR. Exit 77 (ctest SKIP_RETURN_CODE): no valgrind.
+set -u
+render=$1 src=$2 shared=$3
+command -v valgrind >/dev/null 2>&1 || { echo "valgrind not installed: skipped"; exit 77; }
+out=$(mktemp -d "${TMPDIR:-/tmp}/tray_valgrind.XXXXXX")
+trap 'rm -rf "$out"' EXIT
+status=0
+check() {  # check NAME SCENE ARGS...
+  name=$1 scene=$2
+  shift 2
+  if [ ! -f "$scene" ]; then echo "$name: $scene missing: not checked"; return; fi
+  start=$(date +%s)
+  valgrind --error-exitcode=9 --errors-for-leak-kinds=none --log-file="$out/$name.log" \
+    "$render" "$scene" --resolution 32x24 --threads 1 -q -o "$out/$name.exr" "$@"
+  rc=$?
+  echo "$name: exit $rc, $(grep -h 'ERROR SUMMARY' "$out/$name.log" | sed 's/^==[0-9]*== //')," \
+    "$(($(date +%s) - start)) s"
+  if [ "$rc" -ne 0 ]; then
+    cat "$out/$name.log"
+    status=1
+  fi
+}
+check cornell-path "$shared/reference/cornell-box.gltf" --integrator path --spp 2
+check csg "$src/scenes/csg.gltf"
+check textured "$src/scenes/textured.gltf"
+exit $status
