@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "core/error.h"
+#include "core/front_face.h"
 #include "core/shading.h"
 #include "lights/light_set.h"
 #include "materials/bsdf.h"
@@ -133,7 +134,7 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats
 
     // Emission found by BSDF sampling (or seen directly), MIS-weighted against the chance
     // that light sampling would have picked the same point.
-    if (!isBlack(sm.emissive) && (s.frontFace || m.doubleSided)) {
+    if (!isBlack(sm.emissive) && emitsToward(s.front, -ray.d, m.doubleSided)) {
       float w = 1.0f;
       int light = lights_.lightAt(hit.primitive, hit.triangle);
       if (!specular && light >= 0) w = powerHeuristic(prevPdf, lights_.pdf(light, prevP, s.p));

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "core/sampler.h"
+#include "tests/polygon_irradiance.h"
 #include "tests/scene_builder.h"
 
 namespace tray {
@@ -26,24 +27,6 @@ uint32_t addTriangleLight(Scene& s, const Vec3& a, const Vec3& b, const Vec3& c,
   mesh.indices = {0, 1, 2};
   mesh.material = addMaterial(s, m);
   return addMeshInstance(s, addMesh(s, mesh), Mat4::identity());
-}
-
-/// Irradiance at x (normal n) from a polygon of unit radiance, all of it above x's horizon:
-/// Lambert's formula E = 1/2 sum_i angle(u_i, u_i+1) n . unit(u_i x u_i+1), in double.
-double polygonIrradiance(const Vec3& x, const Vec3& n, const std::vector<Vec3>& poly) {
-  double sum = 0;
-  for (size_t i = 0; i < poly.size(); ++i) {
-    double u[3], v[3];
-    const Vec3 &a = poly[i], &b = poly[(i + 1) % poly.size()];
-    for (int k = 0; k < 3; ++k) u[k] = a[k] - x[k], v[k] = b[k] - x[k];
-    double lu = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
-    double lv = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    double c[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
-    double lc = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
-    double angle = std::acos((u[0] * v[0] + u[1] * v[1] + u[2] * v[2]) / (lu * lv));
-    sum += 0.5 * angle * (n.x * c[0] + n.y * c[1] + n.z * c[2]) / lc;
-  }
-  return std::fabs(sum);
 }
 
 TEST(LightSet, TriangleSamplesEstimateLambertsIrradianceWithTheirOwnPdf) {
