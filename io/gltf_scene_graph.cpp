@@ -101,7 +101,7 @@ struct Walker {
       scene.cameras.push_back(c);
     }
     if (int l = nodeLight(ctx, index); l >= 0) {
-      Light light = convertLight(ctx, l);
+      PunctualLightDesc light = convertLight(ctx, l);
       // Lights sit at the node's origin and shine down its local -Z (KHR_lights_punctual).
       light.position = {world.m[0][3], world.m[1][3], world.m[2][3]};
       Vec3 d{-world.m[0][2], -world.m[1][2], -world.m[2][2]};
