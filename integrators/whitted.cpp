@@ -57,7 +57,8 @@ class WhittedIntegrator final : public Integrator {
 
     Color L = ph.ambient * scene.environment.ambient + sm.emissive;
     // Whitted's direct light: the delta lights only (area lights are seen by reflection).
-    for (int i : lights_.delta()) L += directLight(lights_.light(size_t(i)), s.p, ng, n, wo, ph, stats);
+    for (int i : lights_.delta())
+      L += directLight(lights_.light(size_t(i)), s.p, ng, n, wo, ph, stats);
 
     if (depth >= maxDepth_) return L;
     if (ph.reflectance > 0) {

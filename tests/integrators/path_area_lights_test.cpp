@@ -124,8 +124,8 @@ Scene boxOverFloor(bool asMesh) {
     m.material = glow;
     addMeshInstance(s, addMesh(s, m), Mat4::identity());
   } else {
-    addShape(s, std::make_shared<Box>(Vec3(-kBoxHalf, kBoxLo, -kBoxHalf), Vec3(kBoxHalf, kBoxHi, kBoxHalf)),
-             Mat4::identity(), glow);
+    const Vec3 lo(-kBoxHalf, kBoxLo, -kBoxHalf), hi(kBoxHalf, kBoxHi, kBoxHalf);
+    addShape(s, std::make_shared<Box>(lo, hi), Mat4::identity(), glow);
   }
   s.finalize();
   return s;
