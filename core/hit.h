@@ -28,6 +28,8 @@ struct SurfacePoint {
   Vec2 uv;                  ///< texture coordinates
   int material = 0;         ///< index into Scene::materials
   uint32_t primitive = kNoPrimitive;
+  Vec3 front;               ///< unit front-face normal (core/front_face.h: the winding, not
+                            ///< vertex normals): the side one-sided emitters emit from
   bool frontFace = true;    ///< the ray arrived from the side ng points to
 };
 

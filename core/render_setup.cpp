@@ -80,8 +80,8 @@ bool addDefaultLightingIfUnlit(Scene& scene, const CameraDesc& camera) {
   const Vec3 forward = normalize(camera.toWorld.vector(Vec3(0, 0, -1)));
   const Vec3 up = normalize(camera.toWorld.vector(Vec3(0, 1, 0)));
   const Vec3 right = normalize(cross(forward, up));
-  Light key;
-  key.type = Light::Type::kDirectional;
+  PunctualLightDesc key;
+  key.type = PunctualLightDesc::Type::kDirectional;
   key.intensity = Color(EmissionSummary::kDefaultIrradiance);
   key.direction = normalize(forward - 0.6f * up + 0.4f * right);
   scene.lights.push_back(key);

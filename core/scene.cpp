@@ -1,6 +1,7 @@
 #include "core/scene.h"
 
 #include "core/error.h"
+#include "core/front_face.h"
 
 namespace tray {
 
@@ -58,6 +59,7 @@ SurfacePoint Scene::surface(const Ray& ray, const Hit& hit) const {
     s.p = prim.toWorld.point(pl);
     s.ng = normalize(prim.toWorld.normal(hit.normal));
     s.n = s.ng;
+    s.front = s.ng;  // outward
     s.uv = hit.uv;
     s.material = hit.material >= 0 ? hit.material : prim.material;
   } else {
@@ -67,14 +69,15 @@ SurfacePoint Scene::surface(const Ray& ray, const Hit& hit) const {
     float b0 = 1.0f - hit.b1 - hit.b2;
     const Vec3 &p0 = m.positions[i0], &p1 = m.positions[i1], &p2 = m.positions[i2];
     s.p = prim.toWorld.point(b0 * p0 + hit.b1 * p1 + hit.b2 * p2);
-    Vec3 ngLocal = cross(p1 - p0, p2 - p0);
-    s.ng = normalize(prim.toWorld.normal(ngLocal));
+    s.ng = normalize(triangleFrontNormal(prim.toWorld, p0, p1, p2));
+    s.front = s.ng;
     if (!m.normals.empty()) {
       Vec3 nl = b0 * m.normals[i0] + hit.b1 * m.normals[i1] + hit.b2 * m.normals[i2];
       Vec3 nw = prim.toWorld.normal(nl);
       float len = length(nw);
       s.n = len > 0 && std::isfinite(len) ? nw / len : s.ng;
-      // Keep the shading normal on the geometric normal's side (flat fallback otherwise).
+      // Shading keeps the geometric normal on the shading normal's side (flat fallback
+      // otherwise); the front face for emission stays the winding's (s.front).
       if (dot(s.n, s.ng) < 0) s.ng = -s.ng;
     } else {
       s.n = s.ng;

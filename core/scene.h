@@ -5,7 +5,7 @@
 
 #include "core/camera.h"
 #include "core/hit.h"
-#include "core/light.h"
+#include "core/light_desc.h"
 #include "core/material.h"
 #include "core/transform.h"
 #include "core/shape.h"
@@ -42,7 +42,7 @@ struct Scene {
   std::vector<TriangleMesh> meshes;
   std::vector<Primitive> primitives;
   std::vector<Material> materials;  ///< never empty once finalize() ran
-  std::vector<Light> lights;
+  std::vector<PunctualLightDesc> lights;
   std::vector<CameraDesc> cameras;
   std::vector<TextureImage> textures;
   Environment environment;

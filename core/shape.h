@@ -1,9 +1,11 @@
 #pragma once
+#include <optional>
 #include <vector>
 
 #include "core/bounds.h"
 #include "core/hit.h"
 #include "core/ray.h"
+#include "core/transform.h"
 
 namespace tray {
 
@@ -19,6 +21,25 @@ struct Crossing {
 struct Interval {
   Crossing enter, exit;
 };
+
+/// A point on a shape's surface, in world space (pbrt-v4 6.1.4's ShapeSample).
+struct ShapeSample {
+  Vec3 p;         ///< the point
+  Vec3 n;         ///< unit outward normal there
+  Vec3 wi;        ///< Shape::sample(ctx, u) only: unit direction from ctx.p towards p
+  float pdf = 0;  ///< per world area (sampleArea) or per solid angle at ctx.p (sample)
+};
+
+/// Where a shape is sampled from, and how it is placed (pbrt-v4's ShapeSampleContext; TRay's
+/// shapes live in object space, so the primitive's transform travels with the query).
+struct ShapeSampleContext {
+  const Transform& toWorld;
+  Vec3 p;  ///< the world-space reference point
+};
+
+/// Factor by which toWorld scales the area of a surface element with object-space unit normal
+/// n: |det M| |M^-T n| (Nanson's formula).
+float areaScale(const Transform& toWorld, const Vec3& n);
 
 /// An analytic shape in its own object space. The primitive's transform places it in the world;
 /// rays arrive already transformed (direction not normalised, so t is the world t).
@@ -43,6 +64,30 @@ class Shape {
     (void)p, (void)n;
     dpdu = dpdv = Vec3(0.0f);
   }
+
+  // Sampling, for emitters made of shapes (lights/area_light.h); pbrt-v4 6.1's Shape::Area,
+  // Sample(u), Sample(ctx, u) and PDF(ctx, wi). A shape that cannot be sampled (infinite, or
+  // CSG) keeps the defaults: area 0 and no samples; its emission is then found by BSDF
+  // sampling alone, with MIS weight 1.
+
+  /// World-space surface area when placed by toWorld; 0: not samplable.
+  virtual float area(const Transform& toWorld) const {
+    (void)toWorld;
+    return 0.0f;
+  }
+  /// A point uniform by world area (pdf = 1 / area(toWorld)); nullopt when not samplable.
+  virtual std::optional<ShapeSample> sampleArea(const Transform& toWorld, Vec2 u) const {
+    (void)toWorld, (void)u;
+    return std::nullopt;
+  }
+  /// A point as seen from ctx.p, pdf per solid angle there, wi filled. The default converts an
+  /// area sample (pdf-to-solid-angle factor d^2 / |cos|, pbrt-v4 6.1.4); shapes with a better
+  /// strategy (a sphere's cone, pbrt-v4 6.2.4) override it together with pdf().
+  virtual std::optional<ShapeSample> sample(const ShapeSampleContext& ctx, Vec2 u) const;
+  /// The solid-angle pdf with which sample(ctx, u) returns the point p with unit normal n (the
+  /// point where a direction from ctx.p first meets the shape: pbrt's PDF(ctx, wi) with the
+  /// intersection already found by the caller).
+  virtual float pdf(const ShapeSampleContext& ctx, const Vec3& p, const Vec3& n) const;
 };
 
 }  // namespace tray

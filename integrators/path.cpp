@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "core/error.h"
+#include "core/front_face.h"
 #include "core/shading.h"
 #include "lights/light_set.h"
 #include "materials/bsdf.h"
@@ -67,8 +68,7 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats
   int nullCrossings = 0;
   bool specular = true;  // the last scattering was a delta lobe (or the camera): no MIS
   float prevPdf = 0;     // BSDF pdf of the last scattering, for MIS against light sampling
-  Vec3 prevP, prevN;     // the last scattering point and its shading normal
-  bool prevTransmits = false;
+  LightSampleContext prev;  // the last scattering point, as light sampling saw it
   float etaFactor = 1;  // undoes the 1/eta^2 radiance scaling for Russian roulette
   MediumStack media;
   // Firefly clamping (--clamp-indirect): light that reached the camera path after scattering
@@ -91,13 +91,13 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats
   for (;;) {
     Hit hit;
     if (!ctx_.accel.intersect(ray, hit)) {
-      // Escaped: the constant environment, weighted against its light-sampling pdf.
-      const Color& bg = scene.environment.background;
-      if (!isBlack(bg)) {
-        float w = specular ? 1.0f
-                           : powerHeuristic(prevPdf, lights_.environmentPdf(prevN, prevTransmits,
-                                                                            normalize(ray.d)));
-        add(beta * bg * w, "environment", indirectEmission);
+      // Escaped: the infinite lights' radiance, weighted against their light-sampling pdfs.
+      for (int i : lights_.infinite()) {
+        const Vec3 dir = normalize(ray.d);
+        const Color Le = lights_.light(size_t(i)).Le(dir);
+        if (isBlack(Le)) continue;
+        float w = specular ? 1.0f : powerHeuristic(prevPdf, lights_.pdf(i, prev, dir, {}, {}));
+        add(beta * Le * w, "environment", indirectEmission);
       }
       break;
     }
@@ -133,10 +133,11 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats
 
     // Emission found by BSDF sampling (or seen directly), MIS-weighted against the chance
     // that light sampling would have picked the same point.
-    if (!isBlack(sm.emissive) && (s.frontFace || m.doubleSided)) {
+    if (!isBlack(sm.emissive) && emitsToward(s.front, -ray.d, m.doubleSided)) {
       float w = 1.0f;
       int light = lights_.lightAt(hit.primitive, hit.triangle);
-      if (!specular && light >= 0) w = powerHeuristic(prevPdf, lights_.pdf(light, prevP, s.p));
+      if (!specular && light >= 0)
+        w = powerHeuristic(prevPdf, lights_.pdf(light, prev, -wo, s.p, s.ng));
       add(beta * sm.emissive * w, "emission", indirectEmission);
     }
     if (depth + 1 > maxDepth_) break;
@@ -149,7 +150,7 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats
     if (bsdf.hasNonDelta() && !lights_.empty()) {
       // The light choice and the point on it as one 3D sample (stratified jointly by Sobol').
       const Vec3 u = sampler.next3D();
-      LightSample ls = lights_.sample(s.p, n, bsdf.transmits(), u.x, {u.y, u.z});
+      LightSample ls = lights_.sample({s.p, n, bsdf.transmits()}, u.x, {u.y, u.z});
       if (ls.valid() && !isBlack(ls.L)) {
         float bsdfPdf;
         Color f = bsdf.eval(wo, ls.wi, bsdfPdf) * std::fabs(dot(ls.wi, n));
@@ -178,9 +179,7 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats
     indirectEmission = indirectNee;
     indirectNee = indirectNee || !bs.delta;
     prevPdf = bs.pdf;
-    prevP = s.p;
-    prevN = n;
-    prevTransmits = bsdf.transmits();
+    prev = {s.p, n, bsdf.transmits()};
     if (bs.transmission && refractive) {
       media.cross(s.material, m, s.frontFace);
       etaFactor /= bs.etaScale;

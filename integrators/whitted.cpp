@@ -1,6 +1,7 @@
 #include "integrators/whitted.h"
 
 #include "core/shading.h"
+#include "lights/light_set.h"
 
 namespace tray {
 
@@ -24,6 +25,7 @@ class WhittedIntegrator final : public Integrator {
   explicit WhittedIntegrator(const RenderContext& ctx)
       : Integrator(ctx),
         maxDepth_(ctx.settings.getInt("max-depth")),
+        lights_(ctx.scene),
         materials_(ctx.scene, ctx.camera, ctx.settings.getInt("spp")) {}
 
   Color Li(const Ray& ray, Sampler&, RayStats& stats, PrimaryHit* primary) const override {
@@ -34,7 +36,7 @@ class WhittedIntegrator final : public Integrator {
   Color trace(const Ray& ray, int depth, RayStats& stats, PrimaryHit* primary) const {
     const Scene& scene = ctx_.scene;
     Hit hit;
-    if (!ctx_.accel.intersect(ray, hit)) return scene.environment.background;
+    if (!ctx_.accel.intersect(ray, hit)) return background(ray.d);
     SurfacePoint s = scene.surface(ray, hit);
     const Material& mat = scene.material(s.material);
     const ShadingMaterial sm = materials_.evaluate(hit, s);  // textures applied
@@ -54,7 +56,9 @@ class WhittedIntegrator final : public Integrator {
     }
 
     Color L = ph.ambient * scene.environment.ambient + sm.emissive;
-    for (const Light& light : scene.lights) L += directLight(light, s.p, ng, n, wo, ph, stats);
+    // Whitted's direct light: the delta lights only (area lights are seen by reflection).
+    for (int i : lights_.delta())
+      L += directLight(lights_.light(size_t(i)), s.p, ng, n, wo, ph, stats);
 
     if (depth >= maxDepth_) return L;
     if (ph.reflectance > 0) {
@@ -72,31 +76,26 @@ class WhittedIntegrator final : public Integrator {
     return L;
   }
 
+  /// What a ray that leaves the scene sees: the infinite lights' radiance.
+  Color background(const Vec3& d) const {
+    Color L(0.0f);
+    for (int i : lights_.infinite()) L += lights_.light(size_t(i)).Le(normalize(d));
+    return L;
+  }
+
+  /// A delta light's irradiance (exact: its one sample) through the Phong lobe.
   Color directLight(const Light& light, const Vec3& p, const Vec3& ng, const Vec3& n,
                     const Vec3& wo, const PhongParams& ph, RayStats& stats) const {
-    Vec3 wi;
-    Color E;
-    Ray shadow;
-    if (light.type == Light::Type::kDirectional) {
-      wi = -light.direction;
-      E = light.intensity;
-      if (dot(wi, n) <= 0) return Color(0.0f);
-      shadow = spawnRay(p, ng, wi);
-    } else {
-      Vec3 toLight = light.position - p;
-      float dist2 = lengthSquared(toLight);
-      wi = toLight / std::sqrt(dist2);
-      if (dot(wi, n) <= 0) return Color(0.0f);
-      E = light.intensity * (light.spotFalloff(-wi) / dist2);
-      if (isBlack(E)) return E;
-      shadow = spawnRayTo(p, ng, light.position);
-    }
+    const LightSample ls = light.sample({p, n, false}, {0.0f, 0.0f});
+    if (!ls.valid() || dot(ls.wi, n) <= 0) return Color(0.0f);
+    const Ray shadow = ls.infinite ? spawnRay(p, ng, ls.wi) : spawnRayTo(p, ng, ls.p);
     ++stats.shadowRays;
     if (ctx_.accel.occluded(shadow)) return Color(0.0f);
-    return phongDirect(ph, n, wo, wi, E);
+    return phongDirect(ph, n, wo, ls.wi, ls.L);
   }
 
   int maxDepth_;
+  LightSet lights_;
   MaterialEvaluator materials_;
 };
 

@@ -48,16 +48,16 @@ CameraDesc convertCamera(const GltfContext& ctx, int index) {
   return c;
 }
 
-Light convertLight(const GltfContext& ctx, int index) {
+PunctualLightDesc convertLight(const GltfContext& ctx, int index) {
   const tinygltf::Light& g = ctx.model.lights[size_t(index)];
   const std::string where = nameOf("light", index, g.name);
-  Light l;
+  PunctualLightDesc l;
   if (g.type == "point") {
-    l.type = Light::Type::kPoint;
+    l.type = PunctualLightDesc::Type::kPoint;
   } else if (g.type == "spot") {
-    l.type = Light::Type::kSpot;
+    l.type = PunctualLightDesc::Type::kSpot;
   } else if (g.type == "directional") {
-    l.type = Light::Type::kDirectional;
+    l.type = PunctualLightDesc::Type::kDirectional;
   } else {
     ctx.fail(where + " has unknown type '" + g.type + "'");
   }
@@ -71,7 +71,7 @@ Light convertLight(const GltfContext& ctx, int index) {
   if (!finite(g.intensity) || g.intensity < 0)
     ctx.fail(where + " intensity must be finite and non-negative");
   l.intensity = color * float(g.intensity);
-  if (l.type == Light::Type::kSpot) {
+  if (l.type == PunctualLightDesc::Type::kSpot) {
     double inner = g.spot.innerConeAngle, outer = g.spot.outerConeAngle;
     // KHR_lights_punctual: 0 <= inner < outer <= pi/2.
     if (!finite(inner) || !finite(outer) || inner < 0 || inner >= outer || outer > kPi / 2 + 1e-6)

@@ -13,6 +13,6 @@ CameraDesc convertCamera(const GltfContext& ctx, int index);
 /// Light `index` of KHR_lights_punctual. intensity = color x intensity with no photometric
 /// conversion (docs/scene-format.md, "Light units"); position and direction are set by the
 /// node. `range` is ignored.
-Light convertLight(const GltfContext& ctx, int index);
+PunctualLightDesc convertLight(const GltfContext& ctx, int index);
 
 }  // namespace tray

@@ -102,7 +102,7 @@ struct Walker {
       scene.cameras.push_back(c);
     }
     if (int l = objects.nodeLights[size_t(index)]; l >= 0) {
-      Light light = objects.lights[size_t(l)];
+      PunctualLightDesc light = objects.lights[size_t(l)];
       // Lights sit at the node's origin and shine down its local -Z (KHR_lights_punctual).
       light.position = {world.m[0][3], world.m[1][3], world.m[2][3]};
       Vec3 d{-world.m[0][2], -world.m[1][2], -world.m[2][2]};

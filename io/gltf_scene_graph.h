@@ -26,7 +26,7 @@ Mat4 localMatrix(const GltfContext& ctx, int index);
 /// of the chosen scene only places these.
 struct ObjectTable {
   std::vector<CameraDesc> cameras;              ///< per glTF camera
-  std::vector<Light> lights;                    ///< per glTF light (KHR_lights_punctual)
+  std::vector<PunctualLightDesc> lights;        ///< per glTF light (KHR_lights_punctual)
   std::vector<Mat4> localMatrices;              ///< per node: matrix or TRS (glTF 2.0 §3.5.2)
   std::vector<int> nodeLights;                  ///< per node: its light, or -1
   std::vector<std::optional<TrayShape>> shapes;  ///< per node: its TRAY_shape, if any

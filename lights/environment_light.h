@@ -1,40 +1,51 @@
 #pragma once
+#include "core/light.h"
 #include "core/sampling.h"
-#include "lights/light_sample.h"
 
 namespace tray {
 
-/// TRAY_environment's background: a constant radiance from every direction. Samples follow a
-/// cosine lobe about the receiver's shading normal: for a diffuse surface the light and BSDF
-/// pdfs are then equal and MIS splits the integral exactly (a white furnace is noise-free).
-/// A receiver that also transmits (`bothSides`) mixes in the uniform sphere, so directions
-/// below its normal keep a positive pdf.
-struct EnvironmentLight {
-  Color Le;
-  float sceneRadius = 1;
+/// TRAY_environment's background as a light: a constant radiance from every direction
+/// (pbrt-v4 12.5.2's UniformInfiniteLight; an image-based one would replace Le and the
+/// sampling). Samples follow a cosine lobe about the receiver's shading normal: for a diffuse
+/// surface the light and BSDF pdfs are then equal and MIS splits the integral exactly (a white
+/// furnace is noise-free). A receiver that also transmits mixes in the uniform sphere, so
+/// directions below its normal keep a positive pdf.
+class EnvironmentLight final : public Light {
+ public:
+  EnvironmentLight(const Color& Le, float sceneRadius) : Le_(Le), sceneRadius_(sceneRadius) {}
   static constexpr float kCosineShareTwoSided = 0.5f;
-  float power() const { return luminance(Le) * 4.0f * kPi * kPi * sceneRadius * sceneRadius; }
-  LightSample sample(const Vec3& n, bool bothSides, Vec2 u) const {
+
+  uint8_t flags() const override { return kLightInfinite; }
+  float power() const override {
+    return luminance(Le_) * 4.0f * kPi * kPi * sceneRadius_ * sceneRadius_;
+  }
+  Color Le(const Vec3&) const override { return Le_; }
+  LightSample sample(const LightSampleContext& ctx, Vec2 u) const override {
     LightSample s;
-    const float share = bothSides ? kCosineShareTwoSided : 1.0f;
+    const float share = ctx.transmits ? kCosineShareTwoSided : 1.0f;
     if (u.x < share) {
       u.x = std::min(u.x / share, 0.99999994f);
-      s.wi = Frame::fromNormal(n).toWorld(sampleCosineHemisphere(u));
+      s.wi = Frame::fromNormal(ctx.n).toWorld(sampleCosineHemisphere(u));
     } else {
       u.x = (u.x - share) / (1.0f - share);
       s.wi = sampleUniformSphere(u);
     }
     s.wi = normalize(s.wi);
-    s.L = Le;
-    s.pdf = pdf(n, bothSides, s.wi);
+    s.L = Le_;
+    s.pdf = pdf(ctx, s.wi, Vec3(), Vec3());
     s.infinite = true;
     return s;
   }
-  float pdf(const Vec3& n, bool bothSides, const Vec3& wi) const {
-    if (!bothSides) return cosineHemispherePdf(dot(n, wi));
-    return kCosineShareTwoSided * cosineHemispherePdf(dot(n, wi)) +
+  float pdf(const LightSampleContext& ctx, const Vec3& wi, const Vec3&,
+            const Vec3&) const override {
+    if (!ctx.transmits) return cosineHemispherePdf(dot(ctx.n, wi));
+    return kCosineShareTwoSided * cosineHemispherePdf(dot(ctx.n, wi)) +
            (1.0f - kCosineShareTwoSided) * kUniformSpherePdf;
   }
+
+ private:
+  Color Le_;
+  float sceneRadius_ = 1;
 };
 
 }  // namespace tray

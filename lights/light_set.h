@@ -2,28 +2,33 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/light.h"
 #include "core/scene.h"
 #include "lights/alias_table.h"
+#include "lights/area_light.h"
 #include "lights/environment_light.h"
 #include "lights/punctual_light.h"
-#include "lights/sphere_light.h"
-#include "lights/triangle_light.h"
 
 namespace tray {
 
-/// Every light of a scene, chosen in proportion to power with an alias table:
-/// emissive mesh triangles, emissive analytic spheres, KHR_lights_punctual lights, and the
-/// constant environment. Built once per render; queries are const and allocation-free.
+/// Every light of a scene behind the Light interface, chosen in proportion to power with an
+/// alias table (pbrt-v4 12.6.3's PowerLightSampler): emissive mesh triangles and samplable
+/// emissive analytic shapes (AreaLight, in primitive order), KHR_lights_punctual lights, and
+/// the environment. Built once per render; queries are const and allocation-free. Refers to
+/// the scene's shapes and transforms: the scene must outlive it, unchanged.
 class LightSet {
  public:
   explicit LightSet(const Scene& scene);
-  size_t size() const { return refs_.size(); }
-  bool empty() const { return table_.empty(); }
+  LightSet(const LightSet&) = delete;  // lights_ points into the vectors below
+  LightSet& operator=(const LightSet&) = delete;
 
-  /// Chooses a light with u1, then a direction to it from ref with u2. The receiver's shading
-  /// normal n, and whether it transmits, shape the environment's samples. The returned pdf
+  size_t size() const { return lights_.size(); }
+  bool empty() const { return table_.empty(); }
+  const Light& light(size_t i) const { return *lights_[i]; }
+
+  /// Chooses a light with u1, then a direction to it from ctx with u2. The returned pdf
   /// includes the choice probability.
-  LightSample sample(const Vec3& ref, const Vec3& n, bool transmits, float u1, Vec2 u2) const;
+  LightSample sample(const LightSampleContext& ctx, float u1, Vec2 u2) const;
 
   /// Index of the light that a hit on (primitive, triangle) belongs to, or -1 when that
   /// surface is not in the set (it may still glow: BSDF sampling then gets full weight).
@@ -31,31 +36,30 @@ class LightSet {
     if (primitive >= firstLight_.size() || firstLight_[primitive] < 0) return -1;
     return firstLight_[primitive] + (isTriangles_[primitive] ? int(triangle) : 0);
   }
-  /// Pdf (choice x solid angle) that sample() would have produced the point p on the finite
-  /// light `index`, seen from ref.
-  float pdf(int index, const Vec3& ref, const Vec3& p) const;
-  /// Pdf (choice x solid angle) that sample() from a point with normal n returns the
-  /// environment in direction wi; 0 without an environment.
-  float environmentPdf(const Vec3& n, bool transmits, const Vec3& wi) const;
+  /// Pdf (choice x solid angle) that sample() from ctx returns direction wi towards light
+  /// `index`, meeting it at p with geometric normal n (finite lights; see Light::pdf).
+  float pdf(int index, const LightSampleContext& ctx, const Vec3& wi, const Vec3& p,
+            const Vec3& n) const {
+    if (index < 0 || size_t(index) >= lights_.size()) return 0.0f;
+    return table_.pmf(uint32_t(index)) * lights_[size_t(index)]->pdf(ctx, wi, p, n);
+  }
+  /// Indices of the lights that rays escaping the scene see (Light::Le): the environment.
+  const std::vector<int>& infinite() const { return infinite_; }
+  /// Indices of the delta lights (point, spot, directional), in the scene's order.
+  const std::vector<int>& delta() const { return delta_; }
   /// Number of emissive triangles in the set.
-  size_t triangleCount() const { return triangles_.size(); }
+  size_t triangleCount() const { return triangleCount_; }
 
  private:
-  enum class Kind : uint8_t { kTriangle, kSphere, kPunctual, kEnvironment };
-  struct Ref {
-    Kind kind;
-    uint32_t index;
-  };
-  LightSample sampleLight(const Ref& r, const Vec3& ref, const Vec3& n, bool transmits,
-                          Vec2 u2) const;
-  std::vector<Ref> refs_;
-  std::vector<TriangleLight> triangles_;
-  std::vector<SphereLight> spheres_;
+  void addPrimitive(const Scene& scene, size_t i, std::vector<float>& power);
+  std::vector<AreaLight> area_;
   std::vector<PunctualLight> punctual_;
   std::vector<EnvironmentLight> environment_;
-  std::vector<int> firstLight_;    ///< per primitive: its first light index, or -1
-  std::vector<bool> isTriangles_;  ///< per primitive: lights are per triangle
-  int environmentIndex_ = -1;
+  std::vector<const Light*> lights_;  ///< in alias-table order
+  std::vector<int> firstLight_;       ///< per primitive: its first light index, or -1
+  std::vector<bool> isTriangles_;     ///< per primitive: lights are per triangle
+  std::vector<int> infinite_, delta_;
+  size_t triangleCount_ = 0;
   AliasTable table_;
 };
 

@@ -1,49 +1,61 @@
 #pragma once
 #include "core/light.h"
-#include "lights/light_sample.h"
+#include "core/light_desc.h"
 
 namespace tray {
 
 /// KHR_lights_punctual point, spot and directional lights: delta lights, reached only by light
-/// sampling. Units as the shared reference notes state: point/spot radiant intensity
-/// color x intensity, directional irradiance color x intensity.
-struct PunctualLight {
-  Light light;
-  float sceneRadius = 1;  ///< for a directional light's power
+/// sampling (pbrt-v4 12.2, 12.4). Units as the shared reference notes state: point/spot
+/// radiant intensity color x intensity, directional irradiance color x intensity.
+class PunctualLight final : public Light {
+ public:
+  PunctualLight(const PunctualLightDesc& desc, float sceneRadius)
+      : desc_(desc), sceneRadius_(sceneRadius) {}
 
-  float power() const {
-    float I = luminance(light.intensity);
-    switch (light.type) {
-      case Light::Type::kPoint:
+  uint8_t flags() const override {
+    return desc_.type == PunctualLightDesc::Type::kDirectional ? kLightDeltaDirection
+                                                                : kLightDeltaPosition;
+  }
+  float power() const override {
+    float I = luminance(desc_.intensity);
+    switch (desc_.type) {
+      case PunctualLightDesc::Type::kPoint:
         return 4.0f * kPi * I;
-      case Light::Type::kSpot:  // pbrt-v4's estimate of the smooth cone's solid angle
+      case PunctualLightDesc::Type::kSpot:  // pbrt-v4's estimate of the smooth cone's solid angle
         return 2.0f * kPi * I *
-               (1.0f - 0.5f * (std::cos(light.innerConeAngle) + std::cos(light.outerConeAngle)));
-      case Light::Type::kDirectional:
-        return kPi * sceneRadius * sceneRadius * I;
+               (1.0f - 0.5f * (std::cos(desc_.innerConeAngle) + std::cos(desc_.outerConeAngle)));
+      case PunctualLightDesc::Type::kDirectional:  // through the scene's bounding disk
+        return kPi * sceneRadius_ * sceneRadius_ * I;
     }
     return 0.0f;
   }
-  LightSample sample(const Vec3& ref) const {
+  LightSample sample(const LightSampleContext& ctx, Vec2) const override {
     LightSample s;
     s.delta = true;
-    if (light.type == Light::Type::kDirectional) {
-      s.wi = -light.direction;
-      s.L = light.intensity;
+    if (desc_.type == PunctualLightDesc::Type::kDirectional) {
+      s.wi = -desc_.direction;
+      s.L = desc_.intensity;
       s.infinite = true;
       s.pdf = 1;
       return s;
     }
-    Vec3 d = light.position - ref;
+    Vec3 d = desc_.position - ctx.p;
     float dist2 = lengthSquared(d);
     if (!(dist2 > 0)) return s;
     s.wi = d / std::sqrt(dist2);
-    s.p = light.position;
-    s.L = light.intensity * (light.spotFalloff(-s.wi) / dist2);
+    s.p = desc_.position;
+    s.L = desc_.intensity * (desc_.spotFalloff(-s.wi) / dist2);
     if (isBlack(s.L)) return s;
     s.pdf = 1;
     return s;
   }
+  float pdf(const LightSampleContext&, const Vec3&, const Vec3&, const Vec3&) const override {
+    return 0.0f;  // a direction sampled otherwise never meets a delta light
+  }
+
+ private:
+  PunctualLightDesc desc_;
+  float sceneRadius_ = 1;  ///< for a directional light's power
 };
 
 }  // namespace tray

@@ -15,8 +15,15 @@ class Box final : public Shape {
   void intervals(const Ray& ray, std::vector<Interval>& out) const override;
   void uvDerivatives(const Vec3& p, const Vec3& n, Vec3& dpdu, Vec3& dpdv) const override;
   Vec3 refine(const Vec3& p) const override;
+  /// Sum of the six faces' world areas (each an object-space rectangle scaled by the
+  /// transform, core/shape.h areaScale).
+  float area(const Transform& toWorld) const override;
+  /// A face chosen by world area, then a uniform point on it: uniform over the whole surface.
+  std::optional<ShapeSample> sampleArea(const Transform& toWorld, Vec2 u) const override;
 
  private:
+  /// World area of each face, in the order axis 0..2, sign - then + (index 2 axis + side).
+  void faceAreas(const Transform& toWorld, float out[6]) const;
   /// Slab test over the whole line; false if the line misses. Axis of entry/exit returned.
   bool slabs(const Ray& ray, float& t0, float& t1, int& axis0, int& axis1) const;
   Crossing crossing(const Ray& ray, float t, int axis, bool entering) const;

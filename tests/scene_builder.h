@@ -89,9 +89,9 @@ inline CameraDesc lookAt(const Vec3& eye, const Vec3& target, float yfov = 0.8f)
   return d;
 }
 
-inline Light pointLight(const Vec3& p, const Color& intensity) {
-  Light l;
-  l.type = Light::Type::kPoint;
+inline PunctualLightDesc pointLight(const Vec3& p, const Color& intensity) {
+  PunctualLightDesc l;
+  l.type = PunctualLightDesc::Type::kPoint;
   l.position = p;
   l.intensity = intensity;
   return l;

@@ -20,7 +20,7 @@ ALLOWED = {
     "shapes": {"core"},
     "accel": {"core"},
     "materials": {"core"},
-    "lights": {"core", "shapes"},  # until lights see shapes only through core/shape.h
+    "lights": {"core"},
     "integrators": {"core", "materials", "lights"},
     "io": {"core", "shapes", "accel", "materials", "lights"},
     "cli": {"core", "shapes", "accel", "materials", "lights", "integrators", "io"},

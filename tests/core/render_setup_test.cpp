@@ -23,7 +23,7 @@ TEST(DefaultLighting, AddsAHeadlightToAnUnlitScene) {
   const CameraDesc cam = lookAt(Vec3(0, 0, 5), Vec3(0.0f));
   ASSERT_TRUE(addDefaultLightingIfUnlit(s, cam));
   ASSERT_EQ(s.lights.size(), 1u);
-  EXPECT_EQ(s.lights[0].type, Light::Type::kDirectional);
+  EXPECT_EQ(s.lights[0].type, PunctualLightDesc::Type::kDirectional);
   // The light travels away from the camera (forward = -Z here), so the side the camera sees
   // is lit; and from above (it travels downwards).
   EXPECT_LT(s.lights[0].direction.z, -0.5f);

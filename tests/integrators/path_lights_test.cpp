@@ -22,7 +22,7 @@ constexpr float kAlbedo = 0.6f;
 /// Radiance reflected towards the viewer by the floor point `at` (y = 0, normal +y) of a
 /// scene with a Lambert floor and the given light, at max depth 2 (direct light only). Delta
 /// lights are sampled exactly, so one sample is the answer.
-float floorRadiance(const Light& light, const Vec3& at) {
+float floorRadiance(const PunctualLightDesc& light, const Vec3& at) {
   Scene s;
   addShape(s, std::make_shared<Plane>(), Mat4::identity(), addMaterial(s, diffuse(Color(kAlbedo))));
   s.lights.push_back(light);
@@ -44,8 +44,8 @@ TEST(PathLights, PointLightGivesInverseSquareCosineIrradiance) {
 TEST(PathLights, SpotLightFollowsTheGltfConeFalloff) {
   // KHR_lights_punctual: full intensity inside the inner cone, none outside the outer one, and
   // in between the square of the linear ramp in cos(angle) (the spec's reference code).
-  Light spot;
-  spot.type = Light::Type::kSpot;
+  PunctualLightDesc spot;
+  spot.type = PunctualLightDesc::Type::kSpot;
   spot.position = {0, 2, 0};
   spot.direction = {0, -1, 0};
   spot.intensity = Color(5.0f);
@@ -62,8 +62,8 @@ TEST(PathLights, SpotLightFollowsTheGltfConeFalloff) {
 }
 
 TEST(PathLights, DirectionalLightGivesCosineIrradiance) {
-  Light sun;
-  sun.type = Light::Type::kDirectional;
+  PunctualLightDesc sun;
+  sun.type = PunctualLightDesc::Type::kDirectional;
   sun.direction = normalize(Vec3(1, -2, 0.5f));
   sun.intensity = Color(3.0f);
   const double E = 3 * -sun.direction.y;

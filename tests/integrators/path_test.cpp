@@ -171,15 +171,15 @@ Scene mixedScene() {
   addSphere(s, {0, 3, 1}, 0.4f, addMaterial(s, light));
   uint32_t quad = addMesh(s, quadMesh(0.5f, addMaterial(s, light)));
   addMeshInstance(s, quad, Mat4::translate({2, 3, -1}) * Mat4::scale({1, -1, 1}));  // faces down
-  Light spot;
-  spot.type = Light::Type::kSpot;
+  PunctualLightDesc spot;
+  spot.type = PunctualLightDesc::Type::kSpot;
   spot.position = {-2, 3, 2};
   spot.direction = normalize(Vec3(0.5f, -1, -0.5f));
   spot.intensity = Color(20.0f);
   s.lights.push_back(spot);
   s.lights.push_back(pointLight({2, 2, 2}, Color(5.0f)));
-  Light sun;
-  sun.type = Light::Type::kDirectional;
+  PunctualLightDesc sun;
+  sun.type = PunctualLightDesc::Type::kDirectional;
   sun.direction = normalize(Vec3(1, -2, -1));
   sun.intensity = Color(1.0f);
   s.lights.push_back(sun);

@@ -400,15 +400,15 @@ TEST(GltfTiny, PunctualLights) {
        "extensions":{"KHR_lights_punctual":{"light":1}}},
       {"scale":[3,3,3],"extensions":{"KHR_lights_punctual":{"light":2}}}])");
   ASSERT_EQ(s.lights.size(), 3u);
-  EXPECT_EQ(s.lights[0].type, Light::Type::kPoint);
+  EXPECT_EQ(s.lights[0].type, PunctualLightDesc::Type::kPoint);
   expectNear(s.lights[0].intensity, {8, 4, 2});
   expectNear(s.lights[0].position, {1, 2, 3});
-  EXPECT_EQ(s.lights[1].type, Light::Type::kSpot);
+  EXPECT_EQ(s.lights[1].type, PunctualLightDesc::Type::kSpot);
   expectNear(s.lights[1].intensity, {2, 2, 2});
   expectNear(s.lights[1].direction, {0, -1, 0});  // -Z turned -90 deg about X points down
   EXPECT_FLOAT_EQ(s.lights[1].innerConeAngle, 0.1f);
   EXPECT_FLOAT_EQ(s.lights[1].outerConeAngle, 0.5f);
-  EXPECT_EQ(s.lights[2].type, Light::Type::kDirectional);
+  EXPECT_EQ(s.lights[2].type, PunctualLightDesc::Type::kDirectional);
   expectNear(s.lights[2].intensity, {0, 1, 0});
   expectNear(s.lights[2].direction, {0, 0, -1});  // normalized despite the scale
 }

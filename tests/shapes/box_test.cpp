@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <optional>
+
 namespace tray {
 namespace {
 
@@ -99,6 +101,32 @@ TEST(Box, IntervalAndRefine) {
   EXPECT_FLOAT_EQ(iv[0].enter.t, 2.0f);
   EXPECT_FLOAT_EQ(iv[0].exit.t, 4.0f);
   EXPECT_EQ(b.refine({0.2f, 0.999f, 0.1f}), Vec3(0.2f, 1.0f, 0.1f));
+}
+
+TEST(Box, AreaSamplesAreUniformOverTheWorldSurfaceUnderANonUniformScale) {
+  // [-1, 1]^3 scaled by (2, 1, 0.5): a 4 x 2 x 1 box of area 2 (8 + 4 + 2) = 28. Faces are
+  // picked by world area; every sample lies on a face with its outward normal, pdf 1 / 28.
+  Box b;
+  const Transform t(Mat4::translate({1, 2, 3}) * Mat4::scale({2, 1, 0.5f}));
+  EXPECT_NEAR(b.area(t), 28.0f, 1e-4f);
+  EXPECT_EQ(b.area(Transform()), 24.0f);
+  int perAxis[3] = {0, 0, 0};
+  const int n = 28000;
+  for (int i = 0; i < n; ++i) {
+    const Vec2 u{(float(i) + 0.5f) / n, float((i * 7919) % n) / n};
+    std::optional<ShapeSample> s = b.sampleArea(t, u);
+    ASSERT_TRUE(s);
+    EXPECT_NEAR(s->pdf, 1.0f / 28.0f, 1e-6f);
+    const Vec3 q = t.inversePoint(s->p), aq = abs(q);
+    const int axis = aq.x >= aq.y && aq.x >= aq.z ? 0 : (aq.y >= aq.z ? 1 : 2);
+    EXPECT_NEAR(aq[axis], 1.0f, 1e-5f);
+    EXPECT_NEAR(s->n[axis], q[axis] > 0 ? 1.0f : -1.0f, 1e-6f);
+    ++perAxis[axis];
+  }
+  // x faces 2 x 1 each, y faces 4 x 1, z faces 4 x 2: shares 4/28, 8/28, 16/28.
+  EXPECT_NEAR(perAxis[0], n * 4 / 28, 2);
+  EXPECT_NEAR(perAxis[1], n * 8 / 28, 2);
+  EXPECT_NEAR(perAxis[2], n * 16 / 28, 2);
 }
 
 }  // namespace

@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <optional>
+
 namespace tray {
 namespace {
 
@@ -110,6 +113,28 @@ TEST(Sphere, RefineProjectsOntoSurface) {
   Sphere s(3.0f);
   Vec3 p = s.refine({0, 3.001f, 0});
   EXPECT_FLOAT_EQ(p.y, 3.0f);
+}
+
+TEST(Sphere, ConeSamplesHitTheSphereWithThePdfThatPdfReturns) {
+  // pbrt-v4 6.2.4: from outside, directions uniform in the subtended cone; each sample is the
+  // nearest point of the sphere along its direction, facing the reference point.
+  Sphere sphere(0.5f);
+  const Transform t(Mat4::translate({0, 3, 0}) * Mat4::scale(Vec3(2.0f)));  // world radius 1
+  EXPECT_NEAR(sphere.area(t), 4.0f * kPi, 1e-5f);
+  const Vec3 ref(0.5f, 0, 0.2f), center(0, 3, 0);
+  const float d2 = lengthSquared(center - ref), cone = 2 * kPi * (1 - std::sqrt(1 - 1 / d2));
+  const ShapeSampleContext ctx{t, ref};
+  for (int i = 0; i < 100; ++i) {
+    const Vec2 u{(float(i) + 0.5f) / 100, float((i * 37) % 100) / 100};
+    std::optional<ShapeSample> s = sphere.sample(ctx, u);
+    ASSERT_TRUE(s);
+    EXPECT_NEAR(length(s->p - center), 1.0f, 1e-5f);
+    EXPECT_NEAR(length(s->p - ref - dot(s->p - ref, s->wi) * s->wi), 0.0f, 1e-5f);
+    EXPECT_LE(dot(s->n, s->wi), 1e-5f);  // the near side
+    EXPECT_NEAR(s->pdf, 1 / cone, 1e-3f / cone);
+    EXPECT_EQ(sphere.pdf(ctx, s->p, s->n), s->pdf);
+  }
+  EXPECT_FALSE(sphere.sample({t, center}, {0.5f, 0.5f}));  // no samples from inside
 }
 
 }  // namespace

@@ -75,7 +75,7 @@ class FixedEpsilonDirect final : public Integrator {
     const Vec3 n = s.frontFace ? s.n : -s.n;
     const Color albedo = scene.material(s.material).baseColor;
     Color L(0.0f);
-    for (const Light& light : scene.lights) {
+    for (const PunctualLightDesc& light : scene.lights) {
       const Vec3 toLight = light.position - s.p;
       const float dist2 = lengthSquared(toLight);
       const Vec3 wi = toLight / std::sqrt(dist2);

@@ -1,8 +1,8 @@
-#include "core/light.h"
+#include "core/light_desc.h"
 
 namespace tray {
 
-float Light::spotFalloff(const Vec3& lightToPoint) const {
+float PunctualLightDesc::spotFalloff(const Vec3& lightToPoint) const {
   if (type != Type::kSpot) return 1.0f;
   // KHR_lights_punctual's reference implementation: linear in cos between the cone angles,
   // squared for a smooth edge.

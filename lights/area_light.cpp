@@ -1,0 +1,72 @@
+#include "lights/area_light.h"
+
+#include "core/front_face.h"
+#include "core/sampling.h"
+
+namespace tray {
+
+AreaLight AreaLight::triangle(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& front,
+                              const Color& Le, bool doubleSided) {
+  AreaLight l;
+  l.p0_ = p0;
+  l.e1_ = p1 - p0;
+  l.e2_ = p2 - p0;
+  l.area_ = 0.5f * length(cross(l.e1_, l.e2_));
+  l.n_ = length(front) > 0 ? normalize(front) : Vec3(0, 0, 1);
+  l.Le_ = Le;
+  l.doubleSided_ = doubleSided;
+  return l;
+}
+
+AreaLight AreaLight::shape(const Shape& shape, const Transform& toWorld, const Color& Le,
+                           bool doubleSided) {
+  AreaLight l;
+  l.shape_ = &shape;
+  l.toWorld_ = &toWorld;
+  l.area_ = shape.area(toWorld);
+  l.Le_ = Le;
+  l.doubleSided_ = doubleSided;
+  return l;
+}
+
+float AreaLight::power() const {
+  if (!(area_ > 0) || !std::isfinite(area_)) return 0.0f;  // degenerate: never chosen
+  const bool twoFaces = doubleSided_ && !shape_;
+  return luminance(Le_) * area_ * kPi * (twoFaces ? 2.0f : 1.0f);
+}
+
+LightSample AreaLight::sampleTriangle(const Vec3& ref, Vec2 u) const {
+  LightSample s;
+  Vec3 b = sampleUniformTriangle(u);
+  s.p = p0_ + b.y * e1_ + b.z * e2_;
+  Vec3 d = s.p - ref;
+  float dist2 = lengthSquared(d);
+  if (!(dist2 > 0)) return s;
+  s.wi = d / std::sqrt(dist2);
+  if (!emitsToward(n_, -s.wi, doubleSided_)) return s;
+  s.pdf = trianglePdf(dist2, -dot(n_, s.wi));
+  s.L = Le_;
+  return s;
+}
+
+LightSample AreaLight::sample(const LightSampleContext& ctx, Vec2 u) const {
+  if (!shape_) return sampleTriangle(ctx.p, u);
+  LightSample s;
+  std::optional<ShapeSample> ss = shape_->sample({*toWorld_, ctx.p}, u);
+  if (!ss || !emitsToward(ss->n, -ss->wi, doubleSided_)) return s;
+  s.p = ss->p;
+  s.wi = ss->wi;
+  s.pdf = ss->pdf;
+  s.L = Le_;
+  return s;
+}
+
+float AreaLight::pdf(const LightSampleContext& ctx, const Vec3&, const Vec3& p,
+                     const Vec3& n) const {
+  if (shape_) return shape_->pdf({*toWorld_, ctx.p}, p, n);
+  Vec3 d = p - ctx.p;
+  float dist2 = lengthSquared(d);
+  return trianglePdf(dist2, dot(n_, d) / std::sqrt(dist2));
+}
+
+}  // namespace tray

@@ -1,0 +1,50 @@
+#pragma once
+#include "core/light.h"
+#include "core/shape.h"
+
+namespace tray {
+
+/// A diffuse area light (pbrt-v4 12.5.1's DiffuseAreaLight): constant radiance Le leaving the
+/// front face of an emitter (both faces when doubleSided; core/front_face.h owns the rule),
+/// over one emissive mesh triangle or any analytic shape that can be sampled
+/// (Shape::area > 0). Triangles are sampled uniformly by area (kept inline: meshes bring
+/// many); shapes through Shape::sample(ctx, u), e.g. a sphere's cone of directions.
+class AreaLight final : public Light {
+ public:
+  /// One triangle in world space; `front` is its front-face normal (triangleFrontNormal).
+  static AreaLight triangle(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& front,
+                            const Color& Le, bool doubleSided);
+  /// An analytic shape placed by toWorld. Both are referenced, not copied: they must outlive
+  /// the light (they belong to the Scene).
+  static AreaLight shape(const Shape& shape, const Transform& toWorld, const Color& Le,
+                         bool doubleSided);
+
+  uint8_t flags() const override { return kLightArea; }
+  /// Le x area x pi per emitting face. A closed shape's inside never lights the scene, so a
+  /// shape counts one face even when doubleSided; a two-sided triangle counts two.
+  float power() const override;
+  LightSample sample(const LightSampleContext& ctx, Vec2 u) const override;
+  float pdf(const LightSampleContext& ctx, const Vec3& wi, const Vec3& p,
+            const Vec3& n) const override;
+  float area() const { return area_; }
+
+ private:
+  AreaLight() = default;
+  LightSample sampleTriangle(const Vec3& ref, Vec2 u) const;
+  /// Solid-angle pdf of a triangle point at squared distance dist2 whose normal makes cosine
+  /// cosL with the direction: area pdf 1/A times dA/dw = d^2 / |cos|.
+  float trianglePdf(float dist2, float cosL) const {
+    float c = std::fabs(cosL);
+    return c > 0 ? dist2 / (c * area_) : 0.0f;
+  }
+
+  const Shape* shape_ = nullptr;  ///< null: a triangle
+  const Transform* toWorld_ = nullptr;
+  Vec3 p0_, e1_, e2_;  ///< triangle: vertex 0 and the edges to vertices 1 and 2 (world)
+  Vec3 n_;             ///< triangle: unit front-face normal
+  float area_ = 0;     ///< world area
+  Color Le_;
+  bool doubleSided_ = false;
+};
+
+}  // namespace tray
