@@ -34,8 +34,9 @@ inline Vec2 sampleUniformDiskPolar(Vec2 u) {
 /// 0.03 degrees above the horizon) instead; the rim has measure zero, so nothing is biased.
 inline Vec3 sampleCosineHemisphere(Vec2 u) {
   Vec2 d = sampleUniformDiskConcentric(u);
-  constexpr float kMaxR2 = 1.0f - 0x1p-22f;  // 1 - kMaxR2 is exact: z >= 2^-11
-  float z = std::sqrt(1.0f - std::min(d.x * d.x + d.y * d.y, kMaxR2));
+  // The same arithmetic as an unclamped map inside (images stay bit for bit), floored at
+  // 2^-22 under the square root: z >= 2^-11.
+  float z = std::sqrt(std::max(0x1p-22f, 1.0f - d.x * d.x - d.y * d.y));
   return {d.x, d.y, z};
 }
 inline float cosineHemispherePdf(float cosTheta) {
