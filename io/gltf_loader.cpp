@@ -11,6 +11,7 @@
 #include "io/gltf_meshes.h"
 #include "io/gltf_scene_graph.h"
 #include "io/gltf_textures.h"
+#include "io/gltf_unsupported.h"
 #include "io/gltf_validate.h"
 
 // The loader in stages, each in its own file:
@@ -105,6 +106,7 @@ Scene convert(const tinygltf::Model& model, const std::string& path, const LoadO
               LoadReport* report, const ImageBytes& images) {
   GltfContext ctx{model, path, report};
   validateDocument(ctx);
+  warnUnsupported(ctx);
   // Cameras, lights, nodes and environments converted once, placed or not.
   const ObjectTable objects = convertObjects(ctx);
   const int sceneIndex = chooseScene(ctx, options.scene);
