@@ -99,7 +99,7 @@ void reportMeshStats(const GltfContext& ctx, const MeshStats& s) {
     ctx.warn("dropped " + std::to_string(s.degenerateTriangles) + " degenerate triangle(s)");
   if (s.repairedAttributes)
     ctx.warn("replaced " + std::to_string(s.repairedAttributes) +
-             " non-finite normal(s), tangent(s) or texture coordinate(s) with zero");
+             " non-finite normal(s), tangent(s), texture coordinate(s) or colour(s) with zero");
 }
 
 Scene convert(const tinygltf::Model& model, const std::string& path, const LoadOptions& options,
