@@ -12,6 +12,7 @@
 
 #include "accel/bvh4_traversal.h"
 #include "accel/bvh_mesh.h"
+#include "core/alpha.h"
 #include "core/scene.h"
 
 namespace tray {
@@ -60,6 +61,9 @@ class TwoLevelAccelerator final : public Accelerator {
       if (p.kind == Primitive::Kind::kMesh && !isUsed[p.mesh])
         isUsed[p.mesh] = 1, used.push_back(p.mesh);
     meshes_.resize(scene.meshes.size());
+    alphaTested_.resize(scene.meshes.size());
+    for (size_t m = 0; m < scene.meshes.size(); ++m)
+      alphaTested_[m] = needsAlphaTest(scene.material(scene.meshes[m].material));
     tbb::parallel_for(size_t(0), used.size(), [&](size_t k) {
       uint32_t m = used[k];
       meshes_[m] = std::make_unique<MeshBvh>(scene.meshes[m], options.build, options.hierarchy);
@@ -200,6 +204,13 @@ class TwoLevelAccelerator final : public Accelerator {
     const Primitive& p = scene_.primitives[i];
     if (p.kind == Primitive::Kind::kMesh) {
       Hit h;
+      if (alphaTested_[p.mesh]) {
+        const AlphaQuery q{scene_, ray, i};
+        if (!meshes_[p.mesh]->intersect(toObject(p, ray, tmax), tmax, h, q.filter())) return false;
+        h.primitive = i;
+        hit = h;
+        return true;
+      }
       if (!meshes_[p.mesh]->intersect(toObject(p, ray, tmax), tmax, h)) return false;
       h.primitive = i;
       hit = h;
@@ -215,6 +226,11 @@ class TwoLevelAccelerator final : public Accelerator {
   bool occludedPrimitive(uint32_t i, const Ray& ray, uint32_t& block) const {
     const Primitive& p = scene_.primitives[i];
     block = 0;
+    if (p.kind == Primitive::Kind::kMesh && alphaTested_[p.mesh]) {
+      // block stays 0 and occludedBy refuses alpha-tested meshes: the cache never skips the test.
+      const AlphaQuery q{scene_, ray, i};
+      return meshes_[p.mesh]->occluded(toObject(p, ray, ray.tmax), q.filter());
+    }
     if (p.kind == Primitive::Kind::kMesh)
       return meshes_[p.mesh]->occluded(toObject(p, ray, ray.tmax), block);
     Hit h;
@@ -224,12 +240,27 @@ class TwoLevelAccelerator final : public Accelerator {
   bool occludedBy(uint32_t i, uint32_t block, const Ray& ray) const {
     const Primitive& p = scene_.primitives[i];
     if (p.kind == Primitive::Kind::kMesh)
-      return meshes_[p.mesh] && meshes_[p.mesh]->occludedBy(toObject(p, ray, ray.tmax), block);
+      return meshes_[p.mesh] && !alphaTested_[p.mesh] &&
+             meshes_[p.mesh]->occludedBy(toObject(p, ray, ray.tmax), block);
     Hit h;
     return scene_.intersectShape(i, ray, h);
   }
 
+  /// The any-hit test of core/alpha.h for one mesh primitive, on the world-space ray (the hash
+  /// of stochastic transparency reads it, as Embree's filter does).
+  struct AlphaQuery {
+    const Scene& scene;
+    const Ray& worldRay;
+    uint32_t primitive;
+    static bool accept(const void* self, uint32_t triangle, float b1, float b2) {
+      auto* q = static_cast<const AlphaQuery*>(self);
+      return alphaAccepts(q->scene, q->worldRay, q->primitive, triangle, b1, b2);
+    }
+    TriangleFilter filter() const { return {&AlphaQuery::accept, this}; }
+  };
+
   const Scene& scene_;
+  std::vector<char> alphaTested_;  ///< by mesh index: its material is not OPAQUE
   TwoLevelOptions options_;
   uint64_t id_;
   std::vector<std::unique_ptr<MeshBvh>> meshes_;  ///< by mesh index; null when not placed

@@ -136,6 +136,40 @@ bool MeshBvh::forEachBlock(const Ray& ray, const float& tmax, OnBlock&& onBlock)
       });
 }
 
+bool MeshBvh::intersect(const Ray& ray, float& tmax, Hit& hit, const TriangleFilter& filter) const {
+  bool found = false;
+  forEachBlock<true>(
+      ray, tmax,
+      [&](const Triangle4& block, int mask, const float* t, const float* b1, const float* b2) {
+        for (; mask; mask &= mask - 1) {
+          int i = __builtin_ctz(unsigned(mask));
+          if (!(t[i] < tmax) || !filter.accept(filter.data, block.index[i], b1[i], b2[i]))
+            continue;
+          tmax = t[i];
+          hit = Hit{};
+          hit.t = t[i];
+          hit.triangle = block.index[i];
+          hit.b1 = b1[i];
+          hit.b2 = b2[i];
+          found = true;
+        }
+        return false;
+      });
+  return found;
+}
+
+bool MeshBvh::occluded(const Ray& ray, const TriangleFilter& filter) const {
+  return forEachBlock<false>(
+      ray, ray.tmax,
+      [&](const Triangle4& block, int mask, const float*, const float* b1, const float* b2) {
+        for (; mask; mask &= mask - 1) {
+          int i = __builtin_ctz(unsigned(mask));
+          if (filter.accept(filter.data, block.index[i], b1[i], b2[i])) return true;
+        }
+        return false;
+      });
+}
+
 void MeshBvh::allHits(const Ray& ray, uint32_t primitive, std::vector<Hit>& hits) const {
   forEachBlock<true>(
       ray, ray.tmax,

@@ -14,6 +14,14 @@
 
 namespace tray {
 
+/// An any-hit test on a mesh's triangles (alpha cut-outs, core/alpha.h): false = the ray passes
+/// through triangle `triangle` at barycentrics (b1, b2). A function pointer and its data rather
+/// than a template, so that opaque meshes keep their own, unfiltered loops.
+struct TriangleFilter {
+  bool (*accept)(const void* data, uint32_t triangle, float b1, float b2);
+  const void* data;
+};
+
 class MeshBvh {
  public:
   /// hierarchy = false: no tree, every query tests every triangle (the naive accelerator).
@@ -25,6 +33,9 @@ class MeshBvh {
   bool intersect(const Ray& ray, float& tmax, Hit& hit) const;
   /// Any triangle with t in (ray.tmin, ray.tmax); the index of its block goes to `block`.
   bool occluded(const Ray& ray, uint32_t& block) const;
+  /// The same two queries with an any-hit test: rejected triangles neither end nor shorten them.
+  bool intersect(const Ray& ray, float& tmax, Hit& hit, const TriangleFilter& filter) const;
+  bool occluded(const Ray& ray, const TriangleFilter& filter) const;
   /// Appends every triangle hit in (ray.tmin, ray.tmax), tagged with `primitive`.
   void allHits(const Ray& ray, uint32_t primitive, std::vector<Hit>& hits) const;
   /// Tests one block of four triangles (the last-occluder cache). The block, not the mesh's own

@@ -10,6 +10,7 @@
 #include <string>
 #include <unordered_map>
 
+#include "accel/embree_alpha_filter.h"
 #include "core/error.h"
 #include "core/scene.h"
 
@@ -163,21 +164,19 @@ class EmbreeAccelerator final : public Accelerator {
   }
 
   bool intersect(const Ray& ray, Hit& hit) const override {
-    RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
+    AlphaRayContext ctx(scene_, ray);  // alpha-tested meshes' filters read it
     RTCRayHit rh = toEmbree(ray);
-    rtcIntersect1(top_, &ctx, &rh);
+    rtcIntersect1(top_, &ctx.base, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
     hit = hitFromEmbree(rh.hit, rh.ray.tfar);
     return true;
   }
 
   bool occluded(const Ray& ray) const override {
-    RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
+    AlphaRayContext ctx(scene_, ray);
     RTCRay r;
     toEmbree(ray, r);
-    rtcOccluded1(top_, &ctx, &r);
+    rtcOccluded1(top_, &ctx.base, &r);
     return r.tfar < 0;
   }
 
@@ -269,6 +268,7 @@ class EmbreeAccelerator final : public Accelerator {
                  m.positions.size());
     copyToEmbree(g, RTC_BUFFER_TYPE_INDEX, RTC_FORMAT_UINT3, m.indices.data(),
                  3 * sizeof(uint32_t), m.triangleCount());
+    attachAlphaFilter(g, scene_, m);
     rtcCommitGeometry(g);
     rtcAttachGeometryByID(s, g, 0);
     rtcReleaseGeometry(g);

@@ -10,6 +10,7 @@ ShadingMaterial ShadingMaterial::of(const Material& m, const Vec3& n) {
   s.emissive = m.emissive;
   s.transmission = m.transmission;
   s.ior = m.ior;
+  s.unlit = m.unlit;
   s.phong = m.phong;
   s.n = n;
   return s;

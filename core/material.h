@@ -35,6 +35,9 @@ struct TextureRef {
   bool valid() const { return image >= 0; }
 };
 
+/// glTF 2.0 §3.9.4 "Alpha Coverage": how base-colour alpha is read (docs/scene-format.md, "Alpha").
+enum class AlphaMode { kOpaque, kMask, kBlend };
+
 /// The seed's Phong model, stated by TRAY_materials_phong or derived from the PBR factors
 /// (see docs/scene-format.md for the mapping).
 struct PhongParams {
@@ -58,6 +61,10 @@ struct Material {
   float ior = 1.5f;
   bool doubleSided = false;
   int priority = 0;  ///< nested-dielectric priority (TRAY_materials_priority)
+  AlphaMode alphaMode = AlphaMode::kOpaque;
+  float alpha = 1.0f;        ///< baseColorFactor's alpha (read only when not kOpaque)
+  float alphaCutoff = 0.5f;  ///< kMask: alpha below it is cut out
+  bool unlit = false;        ///< KHR_materials_unlit: shows base colour, no lighting
   PhongParams phong;
   bool hasPhong = false;  ///< phong came from TRAY_materials_phong rather than the mapping
   TextureRef baseColorTexture, metallicRoughnessTexture, emissiveTexture, normalTexture;
@@ -73,6 +80,8 @@ struct ShadingMaterial {
   float metallic = 1.0f, roughness = 1.0f;
   Color emissive{0.0f};
   float transmission = 0.0f, ior = 1.5f;
+  float alpha = 1.0f;  ///< coverage of an alphaMode BLEND surface (1 otherwise)
+  bool unlit = false;  ///< KHR_materials_unlit: baseColor is the outgoing radiance
   PhongParams phong;
   Vec3 n;  ///< shading normal, normal map applied; on the same side as SurfacePoint::n
 

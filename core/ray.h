@@ -6,10 +6,18 @@
 
 namespace tray {
 
+/// How an accelerator treats surfaces of alphaMode BLEND (docs/scene-format.md, "Alpha"). MASK
+/// surfaces are cut out the same way in both modes.
+enum class BlendRays : uint8_t {
+  kStochastic,  ///< pass through with probability 1 - alpha (hash of ray and triangle)
+  kHit,         ///< report them as hits: the integrator blends (Whitted)
+};
+
 struct Ray {
   Vec3 o, d;  ///< origin and direction (direction need not be unit length)
   float tmin = 0.0f;
   float tmax = kInfinity;
+  BlendRays blend = BlendRays::kStochastic;
 };
 
 /// Offsets a surface point along its geometric normal by a few float ULPs scaled with the

@@ -32,6 +32,7 @@ struct TextureImage {
   std::string name;  ///< for messages: the file's path, or "image N" for embedded images
   int width = 0, height = 0;
   std::vector<float> pixels;  ///< width * height * 3
+  std::vector<float> alpha;   ///< width * height, linear; empty = opaque or not needed
   bool srgb = false;          ///< the file's values were sRGB-decoded
 };
 

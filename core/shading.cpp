@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "core/alpha.h"
+
 namespace tray {
 
 UvFootprint pixelFootprint(const UvFrame& f, const Vec3& p, const Vec3& ng, const Camera& camera,
@@ -67,7 +69,19 @@ Vec3 MaterialEvaluator::normalMapped(const ShadingMaterial& out, const UvFrame& 
 ShadingMaterial MaterialEvaluator::evaluate(const Hit& hit, const SurfacePoint& s) const {
   const Material& m = scene_.material(s.material);
   ShadingMaterial out = ShadingMaterial::of(m, s.n);
-  if (!sampler_ || !m.hasTextures()) return out;
+  // COLOR_0 multiplies the base colour (glTF 2.0 §3.9.2); a CSG override material has none.
+  const TriangleMesh* mesh = nullptr;
+  if (const Primitive& p = scene_.primitives[hit.primitive];
+      p.kind == Primitive::Kind::kMesh && hit.material < 0)
+    mesh = &scene_.meshes[p.mesh];
+  const bool vertexColored = mesh && !mesh->colors.empty();
+  const Color vertex = vertexColored ? vertexColor(*mesh, hit.triangle, hit.b1, hit.b2) : Color(1.0f);
+  if (vertexColored) out.baseColor *= vertex;
+  if (mesh && m.alphaMode == AlphaMode::kBlend) out.alpha = coverage(scene_, hit);
+  if (!sampler_ || !m.hasTextures()) {
+    if (vertexColored) finishPhong(m, out, vertex);
+    return out;
+  }
 
   // One uv frame per uv set in use (glTF allows TEXCOORD_0 and _1 to differ per texture).
   UvFrame frames[2];
@@ -94,14 +108,19 @@ ShadingMaterial MaterialEvaluator::evaluate(const Hit& hit, const SurfacePoint& 
     out.n = normalMapped(out, frameOf(m.normalTexture.texCoord), lookup(m.normalTexture),
                          m.normalTexture.scale, s);
   }
+  finishPhong(m, out, base * vertex);
+  return out;
+}
+
+void MaterialEvaluator::finishPhong(const Material& m, ShadingMaterial& out, const Color& base) {
   if (m.hasPhong) {
-    // Stated Phong colours are modulated by the base colour texture (OpenGL's MODULATE).
+    // Stated Phong colours are modulated by the base colour texture and vertex colour (OpenGL's
+    // MODULATE).
     out.phong.diffuse *= base;
     out.phong.ambient *= base;
   } else {
     out.phong = phongFromPbr(out.baseColor, out.metallic, out.roughness, out.transmission);
   }
-  return out;
 }
 
 }  // namespace tray

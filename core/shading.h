@@ -29,6 +29,8 @@ class MaterialEvaluator {
   ShadingMaterial evaluate(const Hit& hit, const SurfacePoint& s) const;
 
  private:
+  /// Phong parameters after the base colour was modulated by `base` (texture x vertex colour).
+  static void finishPhong(const Material& m, ShadingMaterial& out, const Color& base);
   Vec3 normalMapped(const ShadingMaterial& out, const UvFrame& f, const Color& texel, float scale,
                     const SurfacePoint& s) const;
   const Scene& scene_;

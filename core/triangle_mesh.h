@@ -18,6 +18,8 @@ struct TriangleMesh {
   std::vector<Vec2> uvs1;           ///< per vertex (TEXCOORD_1); may be empty
   std::vector<Vec3> tangents;       ///< per vertex, xyz (glTF TANGENT or computeTangents())
   std::vector<float> tangentSigns;  ///< per vertex: bitangent = sign * cross(normal, tangent)
+  std::vector<Color> colors;        ///< per vertex (COLOR_0, linear RGB); may be empty
+  std::vector<float> colorAlphas;   ///< per vertex (COLOR_0's alpha); empty = 1
   std::vector<uint32_t> indices;    ///< 3 per triangle
   int material = 0;
   size_t triangleCount() const { return indices.size() / 3; }

@@ -130,6 +130,12 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats
       primary->objectId = scene.primitives[s.primitive].objectId;
       primary->materialId = s.material;
     }
+    // KHR_materials_unlit: the base colour leaves the surface as is and nothing scatters, as
+    // from an emitter that is not in the light set (docs/scene-format.md, "Unlit").
+    if (sm.unlit) {
+      add(beta * sm.baseColor, "unlit surface", indirectEmission);
+      break;
+    }
 
     // Emission found by BSDF sampling (or seen directly), MIS-weighted against the chance
     // that light sampling would have picked the same point.

@@ -1,5 +1,6 @@
 #include "integrators/whitted.h"
 
+#include "core/alpha.h"
 #include "core/shading.h"
 #include "lights/light_set.h"
 
@@ -26,17 +27,59 @@ class WhittedIntegrator final : public Integrator {
       : Integrator(ctx),
         maxDepth_(ctx.settings.getInt("max-depth")),
         lights_(ctx.scene),
-        materials_(ctx.scene, ctx.camera, ctx.settings.getInt("spp")) {}
+        materials_(ctx.scene, ctx.camera, ctx.settings.getInt("spp")) {
+    for (const Material& m : ctx.scene.materials) hasBlend_ |= m.alphaMode == AlphaMode::kBlend;
+  }
 
   Color Li(const Ray& ray, Sampler&, RayStats& stats, PrimaryHit* primary) const override {
     return trace(ray, 0, stats, primary);
   }
 
  private:
-  Color trace(const Ray& ray, int depth, RayStats& stats, PrimaryHit* primary) const {
-    const Scene& scene = ctx_.scene;
+  /// alphaMode BLEND surfaces are hits here (BlendRays::kHit), blended straight: alpha x the
+  /// surface + (1 - alpha) x what the ray finds behind it, passing on without a bounce.
+  Color trace(const Ray& ray, int depth, RayStats& stats, PrimaryHit* primary,
+              int crossings = 0) const {
+    Ray r = ray;
+    r.blend = BlendRays::kHit;
     Hit hit;
-    if (!ctx_.accel.intersect(ray, hit)) return background(ray.d);
+    if (!ctx_.accel.intersect(r, hit)) return background(ray.d);
+    Color L = shade(r, hit, depth, stats, primary);
+    if (!hasBlend_) return L;
+    const float alpha = coverage(ctx_.scene, hit);
+    if (alpha >= 1 || crossings >= kMaxBlendCrossings) return L;
+    const SurfacePoint s = ctx_.scene.surface(r, hit);
+    ++stats.secondaryRays;
+    return alpha * L +
+           (1 - alpha) * trace(spawnRay(s.p, s.ng, ray.d), depth, stats, nullptr, crossings + 1);
+  }
+
+  /// Fraction of light that reaches the end of a shadow ray: 0 or 1, or through BLEND surfaces
+  /// the product of their (1 - alpha).
+  float transmittance(const Ray& shadow) const {
+    if (!hasBlend_) return ctx_.accel.occluded(shadow) ? 0.0f : 1.0f;
+    Ray r = shadow;
+    r.blend = BlendRays::kHit;
+    float T = 1.0f;
+    for (int k = 0; k <= kMaxBlendCrossings; ++k) {
+      Hit hit;
+      if (!ctx_.accel.intersect(r, hit)) return T;
+      const float alpha = coverage(ctx_.scene, hit);
+      if (alpha >= 1 || k == kMaxBlendCrossings) return 0.0f;
+      T *= 1 - alpha;
+      // Continue with the same direction and what is left of the parameter range.
+      const SurfacePoint s = ctx_.scene.surface(r, hit);
+      const float left = r.tmax - hit.t;
+      r = spawnRay(s.p, s.ng, r.d);
+      r.blend = BlendRays::kHit;
+      r.tmax = left;
+    }
+    return T;
+  }
+
+  Color shade(const Ray& ray, const Hit& hit, int depth, RayStats& stats,
+              PrimaryHit* primary) const {
+    const Scene& scene = ctx_.scene;
     SurfacePoint s = scene.surface(ray, hit);
     const Material& mat = scene.material(s.material);
     const ShadingMaterial sm = materials_.evaluate(hit, s);  // textures applied
@@ -54,6 +97,7 @@ class WhittedIntegrator final : public Integrator {
       primary->objectId = scene.primitives[s.primitive].objectId;
       primary->materialId = s.material;
     }
+    if (sm.unlit) return sm.baseColor;  // KHR_materials_unlit: no lighting, no bounces
 
     Color L = ph.ambient * scene.environment.ambient + sm.emissive;
     // Whitted's direct light: the delta lights only (area lights are seen by reflection).
@@ -90,13 +134,18 @@ class WhittedIntegrator final : public Integrator {
     if (!ls.valid() || dot(ls.wi, n) <= 0) return Color(0.0f);
     const Ray shadow = ls.infinite ? spawnRay(p, ng, ls.wi) : spawnRayTo(p, ng, ls.p);
     ++stats.shadowRays;
-    if (ctx_.accel.occluded(shadow)) return Color(0.0f);
-    return phongDirect(ph, n, wo, ls.wi, ls.L);
+    const float T = transmittance(shadow);
+    if (T == 0) return Color(0.0f);
+    const Color direct = phongDirect(ph, n, wo, ls.wi, ls.L);
+    return T < 1 ? direct * T : direct;
   }
 
+  /// Layers of BLEND surfaces one ray passes before the rest is taken as black.
+  static constexpr int kMaxBlendCrossings = 32;
   int maxDepth_;
   LightSet lights_;
   MaterialEvaluator materials_;
+  bool hasBlend_ = false;  ///< some material is alphaMode BLEND
 };
 
 }  // namespace

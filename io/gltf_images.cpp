@@ -94,7 +94,7 @@ ImageInfo inspectImage(const GltfContext& ctx, const ImageBytes& bytes, int inde
 }
 
 void decodeImage(const GltfContext& ctx, const ImageInfo& info, bool srgb, bool linear,
-                 TextureImage out[2]) {
+                 TextureImage out[2], bool alpha) {
   OIIO::Filesystem::IOMemReader memory(info.data, info.size);
   OIIO::ImageSpec spec;
   auto in = openImage(ctx, info, memory, spec);
@@ -130,10 +130,17 @@ void decodeImage(const GltfContext& ctx, const ImageInfo& info, bool srgb, bool 
     t.height = info.height;
     t.srgb = e == 0;
     t.pixels.resize(pixels * 3);
-    // Grey (and grey + alpha) fills all three channels; alpha is not used (opaque rendering).
+    // Grey (and grey + alpha) fills all three channels.
     for (size_t p = 0; p < pixels; ++p)
       for (int c = 0; c < 3; ++c)
         t.pixels[3 * p + size_t(c)] = table[code(p * size_t(nc) + size_t(nc >= 3 ? c : 0))];
+    // Alpha (the last of 2 or 4 channels) is linear in PNG whatever the colour encoding.
+    if (e == 0 && alpha && (nc == 2 || nc == 4)) {
+      t.alpha.resize(pixels);
+      const float scale = 1.0f / float(levels - 1);
+      for (size_t p = 0; p < pixels; ++p)
+        t.alpha[p] = float(code(p * size_t(nc) + size_t(nc - 1))) * scale;
+    }
   }
 }
 

@@ -42,9 +42,10 @@ struct ImageInfo {
 ImageInfo inspectImage(const GltfContext& ctx, const ImageBytes& bytes, int index);
 
 /// Decodes an inspected image to linear float RGB: out[0] sRGB-decoded (the sRGB EOTF applied)
-/// if `srgb`, out[1] as stored if `linear` (entries not asked for stay empty). Thread-safe.
+/// if `srgb`, out[1] as stored if `linear` (entries not asked for stay empty). `alpha`: out[0]
+/// also keeps the file's alpha channel, linear (for alpha-tested base colours). Thread-safe.
 void decodeImage(const GltfContext& ctx, const ImageInfo& info, bool srgb, bool linear,
-                 TextureImage out[2]);
+                 TextureImage out[2], bool alpha = false);
 
 /// The exact sRGB EOTF (IEC 61966-2-1): encoded [0, 1] -> linear.
 float srgbToLinear(float encoded);

@@ -12,6 +12,7 @@
 #include "io/gltf_meshes.h"
 #include "io/gltf_scene_graph.h"
 #include "io/gltf_textures.h"
+#include "io/gltf_unsupported.h"
 #include "io/gltf_validate.h"
 
 // The loader in stages, each in its own file:
@@ -101,13 +102,14 @@ void reportMeshStats(const GltfContext& ctx, const MeshStats& s) {
     ctx.warn("dropped " + std::to_string(s.degenerateTriangles) + " degenerate triangle(s)");
   if (s.repairedAttributes)
     ctx.warn("replaced " + std::to_string(s.repairedAttributes) +
-             " non-finite normal(s), tangent(s) or texture coordinate(s) with zero");
+             " non-finite normal(s), tangent(s), texture coordinate(s) or colour(s) with zero");
 }
 
 Scene convert(const tinygltf::Model& model, const std::string& path, const LoadOptions& options,
               LoadReport* report, const ImageBytes& images) {
   GltfContext ctx{model, path, report};
   validateDocument(ctx);
+  warnUnsupported(ctx);
   // Cameras, lights, nodes and environments converted once, placed or not.
   const ObjectTable objects = convertObjects(ctx);
   const int sceneIndex = chooseScene(ctx, options.scene);

@@ -59,6 +59,25 @@ PhongParams readPhong(const GltfContext& ctx, const tinygltf::Value& ext,
   return p;
 }
 
+/// alphaMode, alphaCutoff and baseColorFactor's alpha (glTF 2.0 §3.9.4, §5.19): OPAQUE ignores
+/// alpha altogether; alphaCutoff matters for MASK only.
+void readAlpha(const GltfContext& ctx, const tinygltf::Material& g, const std::string& where,
+               Material& m) {
+  if (g.alphaMode == "OPAQUE") {
+    m.alphaMode = AlphaMode::kOpaque;
+  } else if (g.alphaMode == "MASK") {
+    m.alphaMode = AlphaMode::kMask;
+  } else if (g.alphaMode == "BLEND") {
+    m.alphaMode = AlphaMode::kBlend;
+  } else {
+    ctx.fail(where + " alphaMode '" + g.alphaMode + "' is not OPAQUE, MASK or BLEND");
+  }
+  if (!(g.alphaCutoff >= 0) || !std::isfinite(g.alphaCutoff))
+    ctx.fail(where + " alphaCutoff is negative or not finite");
+  m.alphaCutoff = float(g.alphaCutoff);
+  m.alpha = float(g.pbrMetallicRoughness.baseColorFactor[3]);
+}
+
 }  // namespace
 
 Material defaultGltfMaterial() {
@@ -77,9 +96,9 @@ Material convertMaterial(const GltfContext& ctx, int index) {
   if (pbr.baseColorFactor.size() != 4) ctx.fail(where + " baseColorFactor needs 4 numbers");
   for (double v : pbr.baseColorFactor)
     if (!finiteIn(v, 0, 1)) ctx.fail(where + " baseColorFactor is outside [0, 1]");
-  // Alpha is ignored: TRay renders every surface opaque (or transmissive by extension).
   m.baseColor = {float(pbr.baseColorFactor[0]), float(pbr.baseColorFactor[1]),
                  float(pbr.baseColorFactor[2])};
+  readAlpha(ctx, g, where, m);
   if (!finiteIn(pbr.metallicFactor, 0, 1)) ctx.fail(where + " metallicFactor is outside [0, 1]");
   if (!finiteIn(pbr.roughnessFactor, 0, 1)) ctx.fail(where + " roughnessFactor is outside [0, 1]");
   m.metallic = float(pbr.metallicFactor);
@@ -114,6 +133,8 @@ Material convertMaterial(const GltfContext& ctx, int index) {
     ExtensionReader r(ctx, *e, where + " KHR_materials_ior");
     m.ior = float(r.number("ior", 1.5, 1.0));
   }
+  // KHR_materials_unlit has no properties: its presence is the whole statement.
+  if (findExtension(ext, "KHR_materials_unlit")) m.unlit = true;
   if (const auto* e = findExtension(ext, "TRAY_materials_priority")) {
     ExtensionReader r(ctx, *e, where + " TRAY_materials_priority");
     m.priority = r.integer("priority", 0);

@@ -1,5 +1,6 @@
 #include "io/gltf_meshes.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "io/gltf_accessors.h"
@@ -61,6 +62,17 @@ void readPositions(const GltfContext& ctx, int accessor, TriangleMesh& mesh) {
   }
 }
 
+/// COLOR_0 (glTF 2.0 §3.7.2.1): VEC3 or VEC4 of float or normalized unsigned byte / short,
+/// linear; readFloats maps the integers to [0, 1]. Alpha only for VEC4.
+void readColors(const GltfContext& ctx, int accessor, TriangleMesh& mesh, MeshStats& stats) {
+  const int n = ctx.model.accessors[size_t(accessor)].type == TINYGLTF_TYPE_VEC4 ? 4 : 3;
+  std::vector<float> f = repaired(readFloats(ctx, accessor), n, stats.repairedAttributes);
+  for (size_t i = 0; i + size_t(n) <= f.size(); i += size_t(n)) {
+    mesh.colors.push_back({f[i], f[i + 1], f[i + 2]});
+    if (n == 4) mesh.colorAlphas.push_back(std::clamp(f[i + 3], 0.0f, 1.0f));
+  }
+}
+
 void readOtherAttributes(const GltfContext& ctx, const tinygltf::Primitive& p, TriangleMesh& mesh,
                          MeshStats& stats) {
   if (int a = attribute(p, "NORMAL"); a >= 0) {
@@ -76,6 +88,7 @@ void readOtherAttributes(const GltfContext& ctx, const tinygltf::Primitive& p, T
     std::vector<float> f = repaired(readFloats(ctx, a), 2, stats.repairedAttributes);
     for (size_t i = 0; i + 2 <= f.size(); i += 2) mesh.uvs1.push_back({f[i], f[i + 1]});
   }
+  if (int a = attribute(p, "COLOR_0"); a >= 0) readColors(ctx, a, mesh, stats);
   if (int a = attribute(p, "TANGENT"); a >= 0) {
     std::vector<float> f = repaired(readFloats(ctx, a), 4, stats.repairedAttributes);
     for (size_t i = 0; i + 4 <= f.size(); i += 4) {

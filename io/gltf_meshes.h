@@ -18,7 +18,7 @@ struct MeshStats {
 };
 
 /// Converts glTF mesh `index`: triangle lists, strips and fans become indexed triangle lists;
-/// POSITION, NORMAL, TANGENT and TEXCOORD_0 are read. Fails on out-of-range indices and on
+/// POSITION, NORMAL, TANGENT, TEXCOORD_0/1 and COLOR_0 are read. Fails on out-of-range indices and on
 /// NaN or infinite positions. A primitive without material gets `defaultMaterial`.
 std::vector<TriangleMesh> convertMesh(const GltfContext& ctx, int index, int defaultMaterial,
                                       MeshStats& stats);

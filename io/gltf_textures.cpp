@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <map>
 #include <new>
+#include <set>
 #include <utility>
 
 #include "core/error.h"
@@ -63,7 +64,8 @@ class Binder {
  public:
   Binder(const GltfContext& ctx, Scene& scene) : ctx_(ctx), scene_(scene) {}
 
-  void bind(TextureRef& ref, bool srgb) {
+  /// alpha: the image's alpha channel is needed too (an alpha-tested base colour).
+  void bind(TextureRef& ref, bool srgb, bool alpha = false) {
     if (ref.image < 0) return;
     // convertMaterial checked the texture index is in range.
     const int textureIndex = ref.image;
@@ -83,6 +85,7 @@ class Binder {
       if (std::find(sources_.begin(), sources_.end(), t.source) == sources_.end())
         sources_.push_back(t.source);
     }
+    if (alpha) withAlpha_.insert(t.source);
     ref.image = it->second;
   }
 
@@ -104,7 +107,8 @@ class Binder {
       auto srgb = slots_.find({source, true}), linear = slots_.find({source, false});
       TextureImage out[2];
       try {
-        decodeImage(ctx_, infos[i], srgb != slots_.end(), linear != slots_.end(), out);
+        decodeImage(ctx_, infos[i], srgb != slots_.end(), linear != slots_.end(), out,
+                    withAlpha_.count(source) != 0);
       } catch (const std::bad_alloc&) {  // not a problem of the file: main reports it
         throw;
       } catch (const std::exception& e) {
@@ -123,6 +127,7 @@ class Binder {
   Scene& scene_;
   std::map<std::pair<int, bool>, int> slots_;  ///< (image, sRGB) -> Scene::textures index
   std::vector<int> sources_;                   ///< images in order of first use
+  std::set<int> withAlpha_;                    ///< images whose alpha is read
 };
 
 }  // namespace
@@ -130,7 +135,7 @@ class Binder {
 void bindTextures(const GltfContext& ctx, const ImageBytes& bytes, Scene& scene) {
   Binder binder(ctx, scene);
   for (Material& m : scene.materials) {
-    binder.bind(m.baseColorTexture, true);
+    binder.bind(m.baseColorTexture, true, m.alphaMode != AlphaMode::kOpaque);
     binder.bind(m.metallicRoughnessTexture, false);
     binder.bind(m.emissiveTexture, true);
     binder.bind(m.normalTexture, false);

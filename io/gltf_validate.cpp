@@ -195,6 +195,7 @@ bool isKnownExtension(const std::string& name) {
                                                "KHR_materials_emissive_strength",
                                                "KHR_materials_transmission",
                                                "KHR_materials_ior",
+                                               "KHR_materials_unlit",
                                                "KHR_texture_transform",
                                                "KHR_materials_volume",
                                                "KHR_mesh_quantization",

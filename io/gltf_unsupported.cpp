@@ -1,0 +1,65 @@
+#include "io/gltf_unsupported.h"
+
+#include <map>
+
+#include "io/gltf_value.h"
+
+namespace tray {
+
+namespace {
+
+/// Attribute semantics read by io/gltf_meshes.cpp; any other is ignored (application-specific
+/// ones, "_NAME", are not glTF features and pass without a word).
+bool isRead(const std::string& semantic) {
+  return semantic == "POSITION" || semantic == "NORMAL" || semantic == "TANGENT" ||
+         semantic == "TEXCOORD_0" || semantic == "TEXCOORD_1" || semantic == "COLOR_0";
+}
+
+std::string count(size_t n, const char* what) {
+  return std::to_string(n) + " " + what;
+}
+
+}  // namespace
+
+void warnUnsupported(const GltfContext& ctx) {
+  const auto& m = ctx.model;
+  if (!m.animations.empty())
+    ctx.warn(count(m.animations.size(), "animation(s) ignored: the static pose is rendered"));
+  if (!m.skins.empty())
+    ctx.warn(count(m.skins.size(), "skin(s) ignored: skinned meshes are rendered unskinned"));
+  size_t morphed = 0;
+  std::map<std::string, size_t> ignored;  // attribute semantic -> primitives
+  for (const auto& mesh : m.meshes)
+    for (const auto& p : mesh.primitives) {
+      if (!p.targets.empty()) ++morphed;
+      for (const auto& [semantic, accessor] : p.attributes)
+        if (!isRead(semantic) && semantic.rfind('_', 0) != 0) ++ignored[semantic];
+    }
+  if (morphed)
+    ctx.warn(count(morphed, "primitive(s) with morph targets: rendered without them"));
+  if (!ignored.empty()) {
+    std::string list;
+    for (const auto& [semantic, n] : ignored) list += (list.empty() ? "" : ", ") + semantic;
+    ctx.warn("vertex attribute(s) " + list + " ignored (TRay reads POSITION, NORMAL, TANGENT, " +
+             "TEXCOORD_0/1 and COLOR_0)");
+  }
+  size_t occlusion = 0, volume = 0, highUv = 0;
+  for (const auto& g : m.materials) {
+    if (g.occlusionTexture.index >= 0) ++occlusion;
+    if (findExtension(g.extensions, "KHR_materials_volume")) ++volume;
+    for (int texCoord : {g.pbrMetallicRoughness.baseColorTexture.texCoord,
+                         g.pbrMetallicRoughness.metallicRoughnessTexture.texCoord,
+                         g.emissiveTexture.texCoord, g.normalTexture.texCoord})
+      if (texCoord > 1) ++highUv;
+  }
+  if (occlusion)
+    ctx.warn(count(occlusion, "material(s) with an occlusionTexture: ignored (occlusion is "
+                              "traced)"));
+  if (volume)
+    ctx.warn(count(volume, "material(s) with KHR_materials_volume: thickness and attenuation "
+                           "ignored"));
+  if (highUv)
+    ctx.warn(count(highUv, "texture reference(s) to TEXCOORD_2 or above: TEXCOORD_0 is used"));
+}
+
+}  // namespace tray
