@@ -65,7 +65,10 @@ RenderSettings withIntegratorOptions(const RenderSettings& settings, const std::
 void validateOptions(const RenderSettings& settings) {
   withIntegratorOptions(settings).validate();
   // Options of integrators not chosen are checked too: a bad value is a mistake either way.
-  for (const auto& [name, value] : settings.given()) {
+  for (const auto& given : settings.given()) {
+    // Named, not structured bindings: clang 14 (the fuzz build) cannot capture those.
+    const auto& name = given.first;
+    const auto& value = given.second;
     bool known = false;
     auto check = [&](const std::vector<OptionSpec>& specs) {
       for (const OptionSpec& spec : specs)
