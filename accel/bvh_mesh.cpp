@@ -104,7 +104,11 @@ bool MeshBvh::forEachBlock(const Ray& ray, const float& tmax, OnBlock&& onBlock)
   return traverseBvh4<kOrdered>(bvh_, prepareBvh4Ray(ray.o, ray.d), ray.tmin, tmax, leaf);
 }
 
-[[gnu::flatten]] bool MeshBvh::intersect(const Ray& ray, float& tmax, Hit& hit) const {
+/// The closest accepted hit: `accept(triangle, b1, b2)` is inlined, so the opaque loop (accept
+/// always true) costs what it did before alpha testing existed.
+template <class Accept>
+[[gnu::always_inline]] inline bool MeshBvh::closestHit(const Ray& ray, float& tmax, Hit& hit,
+                                                       const Accept& accept) const {
   bool found = false;
   forEachBlock<true>(
       ray, tmax,
@@ -113,7 +117,7 @@ bool MeshBvh::forEachBlock(const Ray& ray, const float& tmax, OnBlock&& onBlock)
         // they are tested one by one.
         for (; mask; mask &= mask - 1) {
           int i = __builtin_ctz(unsigned(mask));
-          if (!(t[i] < tmax)) continue;
+          if (!(t[i] < tmax) || !accept(block.index[i], b1[i], b2[i])) continue;
           tmax = t[i];
           hit = Hit{};
           hit.t = t[i];
@@ -125,6 +129,10 @@ bool MeshBvh::forEachBlock(const Ray& ray, const float& tmax, OnBlock&& onBlock)
         return false;
       });
   return found;
+}
+
+[[gnu::flatten]] bool MeshBvh::intersect(const Ray& ray, float& tmax, Hit& hit) const {
+  return closestHit(ray, tmax, hit, [](uint32_t, float, float) { return true; });
 }
 
 [[gnu::flatten]] bool MeshBvh::occluded(const Ray& ray, uint32_t& block) const {
@@ -137,25 +145,9 @@ bool MeshBvh::forEachBlock(const Ray& ray, const float& tmax, OnBlock&& onBlock)
 }
 
 bool MeshBvh::intersect(const Ray& ray, float& tmax, Hit& hit, const TriangleFilter& filter) const {
-  bool found = false;
-  forEachBlock<true>(
-      ray, tmax,
-      [&](const Triangle4& block, int mask, const float* t, const float* b1, const float* b2) {
-        for (; mask; mask &= mask - 1) {
-          int i = __builtin_ctz(unsigned(mask));
-          if (!(t[i] < tmax) || !filter.accept(filter.data, block.index[i], b1[i], b2[i]))
-            continue;
-          tmax = t[i];
-          hit = Hit{};
-          hit.t = t[i];
-          hit.triangle = block.index[i];
-          hit.b1 = b1[i];
-          hit.b2 = b2[i];
-          found = true;
-        }
-        return false;
-      });
-  return found;
+  return closestHit(ray, tmax, hit, [&](uint32_t triangle, float b1, float b2) {
+    return filter.accept(filter.data, triangle, b1, b2);
+  });
 }
 
 bool MeshBvh::occluded(const Ray& ray, const TriangleFilter& filter) const {

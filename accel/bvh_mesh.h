@@ -52,6 +52,8 @@ class MeshBvh {
   size_t memoryBytes() const { return bvh_.memoryBytes() + blocks_.capacity() * sizeof(Triangle4); }
 
  private:
+  template <class Accept>
+  bool closestHit(const Ray& ray, float& tmax, Hit& hit, const Accept& accept) const;
   template <bool kOrdered, class OnBlock>
   bool forEachBlock(const Ray& ray, const float& tmax, OnBlock&& onBlock) const;
 
