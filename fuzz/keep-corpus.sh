@@ -10,7 +10,10 @@ keep="$here/corpus/$name"
 small=$(mktemp -d)
 trap 'rm -rf "$small"' EXIT
 mkdir -p "$keep"
-find "$work/corpus" -type f -size -9k -exec cp -t "$small" {} +
+# Only what libFuzzer generated (named by their SHA-1): seeds copied from ../shared keep their
+# names and stay out, as they are not ours to commit.
+find "$work/corpus" -type f -size -9k -regextype posix-extended -regex ".*/[0-9a-f]{40}" \
+  -exec cp -t "$small" {} +
 export ASAN_OPTIONS=detect_leaks=0
 export LSAN_OPTIONS=suppressions=$here/../tools/lsan.supp:print_suppressions=0
 "$fuzzer" -merge=1 -timeout=10 -rss_limit_mb=2048 "$keep" "$small" 2>&1 | grep -E "MERGE-OUTER: [0-9]+ new files" || true
