@@ -37,7 +37,9 @@ SampleRange parseSampleRange(const std::string& text, int samplesPerPixel,
 /// What a job renders besides its option values.
 struct JobFrame {
   std::string scenePath;
-  int scene = -1, camera = -1, width = 0, height = 0;
+  int scene = -1;
+  int camera = -1;  ///< the placed camera (index into Scene::cameras); -1: framing the scene
+  int width = 0, height = 0;
   std::string accelerator, aovs;
 };
 

@@ -32,7 +32,7 @@ struct CliOptions {
   std::string scenePath;
   std::vector<std::string> outputs{"out.exr"};
   std::string resolution;
-  int camera = -1;
+  std::string camera;  ///< --camera: a glTF camera index or a node/camera name; "" default
   int scene = -1;
   int threads = 0;
   std::string accel = "embree";
@@ -91,11 +91,15 @@ int run(const CliOptions& o) {
   scene.sourcePath = o.scenePath;
   for (const auto& w : report.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
 
+  const int placedCamera = tray::findCamera(scene, o.camera);
   tray::CameraDesc cam = tray::chooseCamera(scene, o.camera);
-  if (tray::addDefaultLightingIfUnlit(scene, cam))
+  tray::applyLensOptions(cam, o.settings);
+  if (o.settings.getBool("no-default-light")) {
+    // Nothing added: an unlit asset renders black (or lit by emitters too weak to count).
+  } else if (tray::addDefaultLightingIfUnlit(scene, cam))
     std::fprintf(stderr,
                  "warning: %s has no lights of meaningful power: using TRay's default headlight and a 0.1 "
-                 "environment (docs/scene-format.md)\n",
+                 "environment (docs/scene-format.md; --no-default-light turns it off)\n",
                  o.scenePath.c_str());
   const tray::ImageSize size = tray::resolveImageSize(o.resolution, cam);
   const int width = size.width, height = size.height;
@@ -121,7 +125,7 @@ int run(const CliOptions& o) {
   if ((o.checkpointSeconds > 0 || o.resume) && checkpointPath.empty())
     throw tray::Error("--checkpoint and --resume need an .exr output (-o NAME.exr)");
   const std::string job =
-      tray::jobSignature(o.settings, {o.scenePath, o.scene, o.camera, width, height, o.accel,
+      tray::jobSignature(o.settings, {o.scenePath, o.scene, placedCamera, width, height, o.accel,
                                       o.aovs + (o.aaHeatmap.empty() ? "" : "+samples")});
 
   tray::Film film(region.width(), region.height());
@@ -248,8 +252,10 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--resolution", o.resolution,
                  "image size WxH (default 640 wide, height from the camera)");
-  app.add_option("--camera", o.camera, "index of the scene camera to render (default: the first)")
-      ->check(nonNegative("a camera index >= 0 (omit --camera for the first camera)"));
+  app.add_option("--camera", o.camera,
+                 "the glTF camera to render: N for the file's cameras[N], or a node or camera "
+                 "name (default: the placed camera of lowest index)")
+      ->check(nonNegative("a camera index >= 0 or a name (omit --camera for the default)"));
   app.add_option("--scene", o.scene, "index of the glTF scene (default: the file's default scene)")
       ->check(nonNegative("a scene index >= 0 (omit --scene for the file's default scene)"));
   app.add_option("--accel", o.accel, "accelerator: " + joined(tray::acceleratorNames()))

@@ -11,20 +11,39 @@ namespace tray {
 /// glTF cameras look down their local -Z with +Y up.
 struct CameraDesc {
   enum class Type { kPerspective, kOrthographic };
-  std::string name;
+  std::string name;      ///< the glTF camera's name, or its node's when the camera has none
+  std::string nodeName;  ///< the node that places it ("" for cameras not from a file)
+  int gltfIndex = -1;    ///< its index in the file's `cameras` (-1: not from a file)
   Type type = Type::kPerspective;
   float yfov = 0.8f;         ///< vertical field of view, radians
   float aspectRatio = 0.0f;  ///< width / height; 0 = not stated
   float znear = 0.0f;        ///< rays start at this distance along the view axis
   float xmag = 1.0f, ymag = 1.0f;  ///< orthographic half extents
+  /// Thin lens (TRAY_camera, --lens-radius, --focus-distance, --aperture-blades; pbrt-v4
+  /// 4th ed. §5.2.3): lensRadius 0 is a pinhole.
+  float lensRadius = 0.0f;     ///< aperture radius in scene units (a polygon's circumradius)
+  float focusDistance = 0.0f;  ///< view depth of the plane in focus (> 0 when lensRadius > 0)
+  int apertureBlades = 0;      ///< 0: a round aperture; N >= 3: a regular N-gon (bokeh shape)
   Transform toWorld;
 };
+
+/// A uniform point on the aperture of unit circumradius from u in [0,1)^2: the unit disk
+/// (blades 0, Shirley-Chiu concentric map) or a regular `blades`-gon with a vertex straight up.
+Vec2 sampleAperture(const Vec2& u, int blades);
 
 /// Generates primary rays for raster positions (x right, y down, in pixels).
 class Camera {
  public:
   virtual ~Camera() = default;
   virtual Ray generateRay(float rasterX, float rasterY) const = 0;
+  /// Whether the camera has a lens of non-zero radius. Pixel estimators draw a lens sample (one
+  /// more 2D point after the pixel position) only then, so pinhole renders keep their numbers.
+  virtual bool hasLens() const { return false; }
+  /// The ray through the lens point that `lens` (in [0,1)^2) picks; a pinhole ignores it.
+  virtual Ray generateLensRay(float rasterX, float rasterY, const Vec2& lens) const {
+    (void)lens;
+    return generateRay(rasterX, rasterY);
+  }
   /// A pixel's footprint at world point p, for texture filtering: the world offsets `dx`, `dy`
   /// between the points that rays through neighbouring pixels (one raster step in x, in y)
   /// reach in the plane through p perpendicular to the view axis, and the unit direction `dir`

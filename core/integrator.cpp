@@ -26,7 +26,17 @@ Integrator::Integrator(const RenderContext& ctx)
       filter_(Filter::make(ctx.settings.getString("filter"))),
       sequence_(Sampler::parse(ctx.settings.getString("sampler"))),
       pixelSampler_(pixelSamplerOf(ctx.settings, sequence_, filter_.radius())),
-      seed_(uint64_t(ctx.settings.getInt64("seed"))) {}
+      seed_(uint64_t(ctx.settings.getInt64("seed"))),
+      transparent_(ctx.settings.getBool("transparent") || ctx.scene.environment.transparent) {}
+
+Color Integrator::cameraLi(const Ray& ray, Sampler& sampler, RayStats& stats,
+                           PrimaryHit* primary) const {
+  const Color L = Li(ray, sampler, stats, primary);
+  // The environment still lit every surface the ray met (reflections, light); only what the
+  // camera sees of it directly is left out, as a compositor's "over" expects (Porter & Duff
+  // 1984: premultiplied colour, alpha = coverage).
+  return transparent_ && !primary->hit ? Color(0.0f) : L;
+}
 
 RenderContext declaring(const RenderContext& ctx, const std::vector<OptionSpec>& specs) {
   RenderContext bound = ctx;
@@ -52,11 +62,15 @@ uint32_t Integrator::accumulate(int x, int y, int begin, int end, PixelSums& sum
   for (int i = begin; i < end; ++i) {
     Sampler sampler(pixelIndex, uint32_t(i), seed_, sequence_);
     const Vec2 d = pixelSampler.offset(i, sampler.next2D());
-    Ray ray = ctx_.camera.generateRay(cx + d.x, cy + d.y);
+    // A thin lens takes the next 2D point of the camera-ray group; a pinhole draws nothing
+    // more, so its images keep every bit.
+    Ray ray = ctx_.camera.hasLens()
+                  ? ctx_.camera.generateLensRay(cx + d.x, cy + d.y, sampler.next2D())
+                  : ctx_.camera.generateRay(cx + d.x, cy + d.y);
     ++stats.cameraRays;
     PrimaryHit primary;
     PrimaryHit& seen = i == begin ? first : primary;
-    Color L = Li(ray, sampler, stats, &seen);
+    Color L = cameraLi(ray, sampler, stats, &seen);
     if (!isFinite(L)) {
       ++stats.nanSamples;
       L = Color(0.0f);

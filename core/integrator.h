@@ -75,6 +75,10 @@ class Integrator {
   /// first surface hit.
   virtual Color Li(const Ray& ray, Sampler& sampler, RayStats& stats,
                    PrimaryHit* primary) const = 0;
+  /// Li for a camera ray, as every pixel estimator calls it: with a transparent background
+  /// (--transparent, TRAY_environment "transparent") a ray that hits nothing gives 0, so that
+  /// the film holds premultiplied RGB beside the coverage alpha. `primary` must not be null.
+  Color cameraLi(const Ray& ray, Sampler& sampler, RayStats& stats, PrimaryHit* primary) const;
   /// One pixel's value. `coverage`, when not null (Cryptomatte), receives every camera sample's
   /// object and material ids with the weight the sample has in the pixel.
   virtual PixelValue renderPixel(int x, int y, RayStats& stats,
@@ -98,6 +102,7 @@ class Integrator {
   Sampler::Sequence sequence_;
   PixelSampler pixelSampler_;
   uint64_t seed_;
+  bool transparent_;  ///< escaped camera rays give 0 (cameraLi)
 };
 
 }  // namespace tray

@@ -25,6 +25,7 @@ struct PunctualLightDesc {
 struct Environment {
   Color ambient{0.0f};
   Color background{0.0f};
+  bool transparent = false;  ///< camera rays that escape give RGBA 0 (as --transparent)
 };
 
 }  // namespace tray

@@ -34,6 +34,9 @@ PhongParams phongFromPbr(const Color& baseColor, float metallic, float roughness
   p.specular = Color(0.04f) * dielectric + baseColor * metallic;
   float smooth = 1.0f - roughness;
   p.reflectance = metallic * smooth * smooth;
+  // The mirror term is the metal's: a metal's Fresnel reflectance at normal incidence is its
+  // base colour (glTF 2.0 appendix B, conductor_fresnel), so a red metal reflects red.
+  p.mirrorF0 = baseColor;
   p.transmittance = transmission * dielectric;
   p.ambient = p.diffuse;  // ambient light is reflected like diffuse light
   return p;

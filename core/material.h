@@ -46,6 +46,9 @@ struct PhongParams {
   Color specular{0.0f};
   float shininess = 32.0f;
   float reflectance = 0.0f;    ///< kr
+  /// Normal-incidence colour of the mirror term, Fresnel-Schlick weighted by Whitted: the base
+  /// colour of a metal (derived mapping), white for a stated TRAY_materials_phong kr.
+  Color mirrorF0{1.0f};
   float transmittance = 0.0f;  ///< kt
 };
 

@@ -14,6 +14,23 @@ const std::vector<OptionSpec>& renderOptions() {
       Sampler::option(),
       PixelSampler::option(),
       Filter::option(),
+      // Compositing: camera rays that escape give RGBA 0 while the environment still lights
+      // the scene (Integrator::cameraLi); also TRAY_environment "transparent".
+      flagOption("transparent",
+                 "transparent background: escaped camera rays give RGBA 0 (premultiplied), the "
+                 "environment still lights the scene"),
+      // Read by the front end (render_setup.h addDefaultLightingIfUnlit), not the integrator.
+      flagOption("no-default-light",
+                 "never add TRay's default headlight and 0.1 environment to an unlit scene"),
+      // Depth of field: set values override the camera's TRAY_camera (applyLensOptions).
+      floatOption("lens-radius", 0.0f, 0.0f, 1e30f,
+                  "thin-lens aperture radius in scene units (0: pinhole; unset: the camera's "
+                  "TRAY_camera lensRadius)"),
+      floatOption("focus-distance", 0.0f, 0.0f, 1e30f,
+                  "view depth of the plane in focus (unset: the camera's TRAY_camera "
+                  "focusDistance)"),
+      intOption("aperture-blades", 0, 0, 64,
+                "aperture shape: 0 round, N >= 3 a regular N-gon (bokeh)"),
   };
   return specs;
 }

@@ -8,15 +8,75 @@
 
 namespace tray {
 
-CameraDesc chooseCamera(const Scene& scene, int index) {
-  if (index >= 0) {
-    if (size_t(index) >= scene.cameras.size())
-      throw Error(scene.sourcePath + ": --camera " + std::to_string(index) + " but the scene has " +
-                  std::to_string(scene.cameras.size()) + " camera(s)");
-    return scene.cameras[size_t(index)];
+namespace {
+
+/// "0 \"Front\" (node \"FrontCam\"), 1 ..." for the error message.
+std::string cameraList(const Scene& scene) {
+  if (scene.cameras.empty()) return "the scene places no camera";
+  std::string list = "the scene places:";
+  for (size_t i = 0; i < scene.cameras.size(); ++i) {
+    const CameraDesc& c = scene.cameras[i];
+    list += (i ? ", " : " ") + std::to_string(c.gltfIndex >= 0 ? c.gltfIndex : int(i));
+    // A camera without a name of its own carries its node's (gltf_scene_graph.cpp).
+    if (!c.name.empty() && c.name != c.nodeName) list += " \"" + c.name + "\"";
+    if (!c.nodeName.empty()) list += " (node \"" + c.nodeName + "\")";
   }
-  if (!scene.cameras.empty()) return scene.cameras.front();
+  return list;
+}
+
+bool allDigits(const std::string& s) {
+  return !s.empty() && s.size() < 10 &&
+         s.find_first_not_of("0123456789") == std::string::npos;
+}
+
+}  // namespace
+
+int findCamera(const Scene& scene, const std::string& which) {
+  const auto& cams = scene.cameras;
+  if (which.empty()) {
+    if (cams.empty()) return -1;
+    int best = 0;
+    for (size_t i = 1; i < cams.size(); ++i)
+      if (cams[i].gltfIndex >= 0 &&
+          (cams[size_t(best)].gltfIndex < 0 || cams[i].gltfIndex < cams[size_t(best)].gltfIndex))
+        best = int(i);
+    return best;
+  }
+  if (allDigits(which)) {
+    const int n = std::stoi(which);
+    for (size_t i = 0; i < cams.size(); ++i)
+      if (cams[i].gltfIndex == n || (cams[i].gltfIndex < 0 && size_t(n) == i)) return int(i);
+    throw Error(scene.sourcePath + ": --camera " + which + ": no such camera; " +
+                cameraList(scene));
+  }
+  for (size_t i = 0; i < cams.size(); ++i)
+    if (cams[i].nodeName == which || cams[i].name == which) return int(i);
+  throw Error(scene.sourcePath + ": --camera '" + which + "': no camera or camera node has "
+              "that name; " + cameraList(scene));
+}
+
+CameraDesc chooseCamera(const Scene& scene, const std::string& which) {
+  const int i = findCamera(scene, which);
+  if (i >= 0) return scene.cameras[size_t(i)];
   return Camera::framing(scene.bounds(), 4.0f / 3.0f);
+}
+
+CameraDesc chooseCamera(const Scene& scene, int index) {
+  return chooseCamera(scene, index < 0 ? std::string() : std::to_string(index));
+}
+
+void applyLensOptions(CameraDesc& camera, const RenderSettings& settings) {
+  if (settings.isSet("lens-radius")) camera.lensRadius = settings.getFloat("lens-radius");
+  if (settings.isSet("focus-distance")) camera.focusDistance = settings.getFloat("focus-distance");
+  if (settings.isSet("aperture-blades")) {
+    const int blades = settings.getInt("aperture-blades");
+    if (blades == 1 || blades == 2)
+      throw Error("--aperture-blades " + std::to_string(blades) + ": expected 0 (round) or 3..64");
+    camera.apertureBlades = blades;
+  }
+  if (camera.lensRadius > 0 && !(camera.focusDistance > 0))
+    throw Error("--lens-radius " + formatOptionValue(camera.lensRadius) +
+                " needs --focus-distance > 0 (or TRAY_camera focusDistance on the camera)");
 }
 
 namespace {

@@ -2,13 +2,29 @@
 // Choices every front end makes the same way: which camera and what image size.
 #include <string>
 
+#include "core/render_options.h"
 #include "core/scene.h"
 
 namespace tray {
 
-/// Camera `index` of the scene (throws tray::Error if out of range); -1: the first camera, or
-/// one framing the scene's bounds when it has none.
+/// The placed camera (an index into scene.cameras, which follow node order) that `which`
+/// names: "" the default, the one with the lowest glTF camera index (so that it is `--camera
+/// 0` whenever the file's cameras[0] is placed; scenes built in code: the first); digits N
+/// the file's cameras[N]; anything else a node name or a camera name. A camera placed by
+/// several nodes, or a name several share: the first in node order. -1 when `which` is empty
+/// and the scene has no camera. Throws tray::Error (one line listing the scene's cameras) for
+/// an index or name the scene does not place.
+int findCamera(const Scene& scene, const std::string& which);
+
+/// scene.cameras[findCamera(scene, which)], or a camera framing the scene's bounds when it
+/// has none.
+CameraDesc chooseCamera(const Scene& scene, const std::string& which);
+/// The same with an index: -1 the default, N >= 0 the file's cameras[N].
 CameraDesc chooseCamera(const Scene& scene, int index);
+
+/// The thin-lens options that were set (--lens-radius, --focus-distance, --aperture-blades)
+/// over the camera's own (TRAY_camera); throws tray::Error for 1 or 2 blades.
+void applyLensOptions(CameraDesc& camera, const RenderSettings& settings);
 
 struct ImageSize {
   int width = 640, height = 480;

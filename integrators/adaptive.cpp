@@ -143,10 +143,12 @@ class Adaptive final : public Integrator {
       const float spacing = float(1u << trailing);
       x += (u.x - 0.5f) * spacing, y += (u.y - 0.5f) * spacing;
     }
-    Ray ray = ctx_.camera.generateRay(x / float(scale_), y / float(scale_));
+    const float rx = x / float(scale_), ry = y / float(scale_);
+    Ray ray = ctx_.camera.hasLens() ? ctx_.camera.generateLensRay(rx, ry, sampler.next2D())
+                                    : ctx_.camera.generateRay(rx, ry);
     ++stats.cameraRays;
     LatticeSample s;
-    s.L = inner_->Li(ray, sampler, stats, &s.primary);
+    s.L = cameraLi(ray, sampler, stats, &s.primary);  // Li is the inner integrator's
     if (!isFinite(s.L)) {
       ++stats.nanSamples;
       s.L = Color(0.0f);

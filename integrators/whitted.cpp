@@ -3,6 +3,7 @@
 #include "core/alpha.h"
 #include "core/shading.h"
 #include "lights/light_set.h"
+#include "materials/fresnel.h"
 
 namespace tray {
 
@@ -107,7 +108,10 @@ class WhittedIntegrator final : public Integrator {
     if (depth >= maxDepth_) return L;
     if (ph.reflectance > 0) {
       ++stats.secondaryRays;
-      L += ph.reflectance * trace(spawnRay(s.p, ng, reflect(ray.d, n)), depth + 1, stats, nullptr);
+      // Fresnel-Schlick with F0 = mirrorF0: tinted by a metal's base colour, rising to white at
+      // grazing angles; exactly 1 for white F0 (stated Phong kr), so those images keep their bits.
+      const Color kr = ph.reflectance * fresnelSchlick(ph.mirrorF0, dot(n, wo));
+      L += kr * trace(spawnRay(s.p, ng, reflect(ray.d, n)), depth + 1, stats, nullptr);
     }
     if (ph.transmittance > 0) {
       // Snell's law with eta = n_from / n_to; total internal reflection sends the light back.

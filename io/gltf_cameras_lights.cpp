@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "io/gltf_value.h"
+
 namespace tray {
 
 namespace {
@@ -44,6 +46,20 @@ CameraDesc convertCamera(const GltfContext& ctx, int index) {
     c.znear = float(o.znear);
   } else {
     ctx.fail(where + " has unknown type '" + g.type + "'");
+  }
+  if (const tinygltf::Value* ext = findExtension(g.extensions, "TRAY_camera")) {
+    // The thin lens (docs/scene-format.md, "Depth of field"); --lens-radius, --focus-distance
+    // and --aperture-blades override it.
+    ExtensionReader r(ctx, *ext, where + " TRAY_camera");
+    c.lensRadius = float(r.number("lensRadius", 0.0, 0.0, 1e30));
+    c.focusDistance = float(r.number("focusDistance", 0.0, 0.0, 1e30));
+    c.apertureBlades = r.integer("apertureBlades", 0);
+    if (c.apertureBlades != 0 && (c.apertureBlades < 3 || c.apertureBlades > 64))
+      r.fail("apertureBlades " + std::to_string(c.apertureBlades) +
+             ": expected 0 (round) or 3..64");
+    if (c.lensRadius > 0 && !(c.focusDistance > 0))
+      r.fail("lensRadius > 0 needs a focusDistance > 0");
+    r.finish();
   }
   return c;
 }

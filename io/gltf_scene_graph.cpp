@@ -39,6 +39,7 @@ Environment sceneEnvironment(const GltfContext& ctx, int sceneIndex) {
   ExtensionReader r(ctx, *ext, nameOf("scene", sceneIndex, s.name) + " TRAY_environment");
   env.ambient = r.vec3("ambient", env.ambient, 0.0);
   env.background = r.vec3("background", env.background, 0.0);
+  env.transparent = r.boolean("transparent", env.transparent);
   r.finish();
   return env;
 }
@@ -98,6 +99,8 @@ struct Walker {
       if (!invertible) ctx.fail(where + " places a camera with a singular transform");
       CameraDesc c = objects.cameras[size_t(node.camera)];
       if (c.name.empty()) c.name = node.name;
+      c.nodeName = node.name;
+      c.gltfIndex = node.camera;  // --camera N means the file's cameras[N] (docs/scene-format.md)
       c.toWorld = toWorld;
       scene.cameras.push_back(c);
     }

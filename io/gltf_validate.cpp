@@ -202,7 +202,8 @@ bool isKnownExtension(const std::string& name) {
                                                "TRAY_shape",
                                                "TRAY_materials_phong",
                                                "TRAY_materials_priority",
-                                               "TRAY_environment"};
+                                               "TRAY_environment",
+                                               "TRAY_camera"};
   return kKnown.count(name) != 0;
 }
 

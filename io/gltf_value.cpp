@@ -50,6 +50,13 @@ std::string ExtensionReader::string(const std::string& key, const std::string& f
   return v->Get<std::string>();
 }
 
+bool ExtensionReader::boolean(const std::string& key, bool fallback) {
+  const tinygltf::Value* v = value(key);
+  if (!v) return fallback;
+  if (!v->IsBool()) fail("'" + key + "' is not true or false");
+  return v->Get<bool>();
+}
+
 void ExtensionReader::numbers(const std::string& key, float* out, int size, double lo, double hi) {
   const tinygltf::Value* v = value(key);
   if (!v) return;

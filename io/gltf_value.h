@@ -23,6 +23,7 @@ class ExtensionReader {
   /// An integer (a real with an integral value is accepted).
   int integer(const std::string& key, int fallback);
   std::string string(const std::string& key, const std::string& fallback);
+  bool boolean(const std::string& key, bool fallback);
   /// An array of `size` finite numbers, each in [lo, hi].
   void numbers(const std::string& key, float* out, int size, double lo = -kInfinity,
                double hi = kInfinity);

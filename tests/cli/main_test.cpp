@@ -126,5 +126,44 @@ TEST(CliFurnace, TheLostSampleIsNotBlack) {
   for (const char* c : {"R", "G", "B"}) EXPECT_NEAR(e.at(0, 0, c), 0.8f, 1e-4f) << c;
 }
 
+TEST(CliCamera, UnknownCameraIsOneLineListingTheCameras) {
+  const fs::path dir = tempFolder("cli_main");
+  for (const std::string value : {"1", "NoSuchNode"}) {
+    CliResult r = runCli(TRAY_RENDER_BIN,
+                         kScene + " --resolution 8x6 --camera " + value + " -o " +
+                             quoted(dir / "x.exr"),
+                         dir);
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_EQ(lines(r.err), 1u) << r.err;
+    EXPECT_NE(r.err.find("--camera"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("the scene places: 0"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "x.exr"));
+  }
+}
+
+TEST(CliDefaultLight, NoDefaultLightLeavesAnUnlitAssetBlack) {
+  const fs::path dir = tempFolder("cli_main");
+  const fs::path scene = fs::path(TRAY_SHARED_DIR) / "gltf-samples" / "Box.glb";
+  if (!fs::exists(scene)) GTEST_SKIP() << scene << " is missing";
+  const std::string args = quoted(scene) + " -q --resolution 8x6 --float -o ";
+  CliResult lit = runCli(TRAY_RENDER_BIN, args + quoted(dir / "lit.exr"), dir);
+  ASSERT_EQ(lit.exitCode, 0) << lit.err;
+  EXPECT_NE(lit.err.find("default headlight"), std::string::npos) << lit.err;
+  CliResult dark =
+      runCli(TRAY_RENDER_BIN, args + quoted(dir / "dark.exr") + " --no-default-light", dir);
+  ASSERT_EQ(dark.exitCode, 0) << dark.err;
+  EXPECT_EQ(dark.err, "");
+  const Exr a = readExrFile(dir / "lit.exr"), b = readExrFile(dir / "dark.exr");
+  float litSum = 0;
+  for (int y = 0; y < 6; ++y)
+    for (int x = 0; x < 8; ++x)
+      for (const char* c : {"R", "G", "B"}) {
+        litSum += a.at(x, y, c);
+        EXPECT_EQ(b.at(x, y, c), 0.0f) << x << "," << y;
+      }
+  EXPECT_GT(litSum, 1.0f);
+  EXPECT_EQ(b.at(4, 3, "A"), 1.0f);  // the box is still there, unlit
+}
+
 }  // namespace
 }  // namespace tray::test
