@@ -9,6 +9,8 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "core/render_options.h"
+#include "io/gltf_loader.h"
 #include "tests/cli/cli_run.h"
 
 namespace tray {
@@ -139,6 +141,60 @@ TEST(EnvironmentMap, CommandLineRefusesBadMapsBeforeRendering) {
   EXPECT_EQ(e.spec.get_string_attribute("tray:env"), good);
   EXPECT_EQ(e.spec.get_string_attribute("tray:envRotate"), "90");
   EXPECT_EQ(e.spec.get_string_attribute("tray:envIntensity"), "2");
+}
+
+/// A one-sphere glTF beside `map.exr` whose TRAY_environment is `env` (JSON).
+std::string writeScene(const fs::path& dir, const std::string& env) {
+  writeMap(dir / "map.exr", 16, 8);
+  const std::string path = (dir / "scene.gltf").string();
+  std::ofstream(path) << R"({"asset": {"version": "2.0"}, "images": [{"uri": "map.exr"}],
+    "scenes": [{"nodes": [0], "extensions": {"TRAY_environment": )"
+                      << env << R"(}}], "scene": 0, "nodes": [{"extensions":
+    {"TRAY_shape": {"type": "sphere", "radius": 1}}}]})";
+  return path;
+}
+
+TEST(EnvironmentMap, TrayEnvironmentNamesAnImageByPathOrIndex) {
+  const fs::path dir = tempFolder("envmap");
+  for (const char* image : {R"("map.exr")", "0"}) {
+    const Scene s = loadGltf(
+        writeScene(dir, std::string(R"({"image": )") + image + R"(, "rotation": 30, "intensity": 2})"),
+        {});
+    ASSERT_TRUE(s.environment.map) << image;
+    EXPECT_EQ(s.environment.map->width, 16);
+    EXPECT_EQ(s.environment.map->rgb[3], 0.1f);  // pixel (1, 0) red: 1 / 10
+    EXPECT_EQ(s.environment.rotation, 30.0f);
+    EXPECT_EQ(s.environment.intensity, 2.0f);
+  }
+  // The command line overrides the scene: a new map resets rotation and intensity, which
+  // belonged to the scene's image; --env-rotate and --env-intensity override what is there.
+  Scene s = loadGltf(writeScene(dir, R"({"image": "map.exr", "rotation": 30, "intensity": 2})"), {});
+  RenderSettings settings;
+  settings.set("env-rotate", 45.0f);
+  applyEnvironmentOptions(s, settings, nullptr);
+  EXPECT_EQ(s.environment.rotation, 45.0f);
+  EXPECT_EQ(s.environment.intensity, 2.0f);
+  settings.set("env", writeMap(dir / "other.exr", 32, 16));
+  applyEnvironmentOptions(s, settings, nullptr);
+  EXPECT_EQ(s.environment.map->width, 32);
+  EXPECT_EQ(s.environment.intensity, 1.0f);
+  EXPECT_EQ(s.environment.rotation, 45.0f);
+}
+
+TEST(EnvironmentMap, TrayEnvironmentImageFollowsTheUriRules) {
+  const fs::path dir = tempFolder("envmap");
+  for (const auto& [env, message] : std::vector<std::pair<std::string, std::string>>{
+           {R"({"image": "../map.exr"})", "TRAY_environment image: URI '../map.exr' contains '..'"},
+           {R"({"image": "nothere.exr"})", "URI 'nothere.exr': file not found"},
+           {R"({"image": 3})", "image must be a file path or the index of one of the document's images"},
+           {R"({"image": "map.exr", "intensity": -1})", "intensity"}}) {
+    try {
+      loadGltf(writeScene(dir, env), {});
+      ADD_FAILURE() << env;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+    }
+  }
 }
 
 }  // namespace
