@@ -12,8 +12,9 @@ Color pixel(const EnvironmentMap& m, int x, int y) {
   return {p[0], p[1], p[2]};
 }
 
-/// Sampling weights: luminance x sin(theta), the Jacobian of the lat-long map (pbrt-v3
-/// 14.2.4). Le is bilinear, so a point in pixel (i, j) can see the 3 x 3 pixels around it:
+/// Sampling weights over cells of u in [i, i+1) / W, v in [j, j+1) / H: luminance x
+/// sin(theta), the Jacobian of the lat-long map (pbrt-v3 14.2.4). Le is bilinear between texels
+/// (rows at v = j / (H - 1)), so a point in cell (i, j) can see the 3 x 3 texels around it:
 /// each cell takes the largest luminance there, and wherever Le > 0 the pdf is > 0 (light
 /// sampling alone is unbiased; the cost is a slightly wider distribution around a sun).
 std::vector<float> samplingWeights(const EnvironmentMap& m, bool uniform) {
@@ -80,8 +81,9 @@ Vec3 ImageEnvironmentLight::uvToDirection(Vec2 uv) const {
 
 Color ImageEnvironmentLight::lookup(Vec2 uv) const {
   const int w = map_->width, h = map_->height;
-  // Pixel centres at (i + 0.5) / W: wrap in u (the seam), clamp in v (the poles).
-  const float x = uv.x * float(w) - 0.5f, y = uv.y * float(h) - 0.5f;
+  // Mitsuba 3's texel placement: columns centred at u = (i + 0.5) / W, wrapping across the
+  // seam; rows from pole to pole, row j at v = j / (H - 1).
+  const float x = uv.x * float(w) - 0.5f, y = uv.y * float(std::max(h - 1, 1));
   const float fx = std::floor(x), fy = std::floor(y);
   const float tx = x - fx, ty = y - fy;
   const int x0 = ((int(fx) % w) + w) % w, x1 = (x0 + 1) % w;

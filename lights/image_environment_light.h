@@ -8,8 +8,10 @@
 // so v = 0 (row 0, the image's top) is +Y, u = 0 (the left edge) faces -Z, u = 0.25 faces +X,
 // and u = 0.5 (the image's centre column) faces +Z. `rotation` turns the map by that many
 // degrees about +Y (right-handed: +X goes towards -Z), like Mitsuba's
-// to_world = rotate([0, 1, 0], angle). Pixel (i, j) covers u in [i, i+1) / W, v in [j, j+1) / H;
-// Le interpolates bilinearly between pixel centres (wrapping in u, clamped in v).
+// to_world = rotate([0, 1, 0], angle). Texels are placed as Mitsuba 3 places them: column i at
+// u = (i + 0.5) / W (wrapping across the seam), row j at v = j / (H - 1) (the first and last
+// rows lie on the poles); Le interpolates bilinearly between them. Importance sampling uses
+// cells u in [i, i+1) / W, v in [j, j+1) / H.
 #include <memory>
 
 #include "core/light.h"
