@@ -66,9 +66,8 @@ def main():
     tmp = tempfile.mkdtemp(prefix="envcheck_")
     subprocess.run([os.path.join(args.build, "env_bench"), "--write-maps", tmp], check=True,
                    stdout=subprocess.DEVNULL)
-    env_map = os.path.join(tmp, "windows.exr")
-    # The windows map is smooth but for its window edges; a sky of the sun-sky map has a gradient
-    # everywhere. Both are checked.
+    # The windows map is flat but for its sharp window edges; the sun sky has a gradient
+    # everywhere and a 2-degree sun. Both are checked.
     for name in ("windows.exr", "sky.exr"):
         env_map = os.path.join(tmp, name)
         emitter = mi.load_dict({"type": "envmap", "filename": env_map,
