@@ -23,6 +23,7 @@
 #include "core/renderer.h"
 #include "integrators/adaptive.h"
 #include "integrators/registry.h"
+#include "io/environment_map.h"
 #include "io/gltf_loader.h"
 #include "io/image_output.h"
 
@@ -89,6 +90,7 @@ int run(const CliOptions& o) {
   tray::LoadReport report;
   tray::Scene scene = tray::loadGltf(o.scenePath, loadOptions, &report);
   scene.sourcePath = o.scenePath;
+  tray::applyEnvironmentOptions(scene, o.settings, &report.warnings);  // --env: read and checked
   for (const auto& w : report.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
 
   const int placedCamera = tray::findCamera(scene, o.camera);

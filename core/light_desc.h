@@ -1,6 +1,10 @@
 #pragma once
 // Lights as a scene describes them (plain data, filled by io/ or by tests). The renderer's
 // light objects (core/light.h, lights/) are built from these by LightSet.
+#include <memory>
+#include <string>
+#include <vector>
+
 #include "core/math.h"
 
 namespace tray {
@@ -20,12 +24,32 @@ struct PunctualLightDesc {
   float spotFalloff(const Vec3& lightToPoint) const;
 };
 
+/// An equirectangular (latitude-longitude) radiance map in TRay's working space (linear
+/// Rec.709), loaded by io/environment_map.h or made by tests. Row 0 is the top (+Y, v = 0);
+/// the direction convention is Mitsuba 3's envmap (lights/image_environment_light.h).
+struct EnvironmentMap {
+  std::string name;  ///< for messages: the file's path
+  int width = 0, height = 0;
+  std::vector<float> rgb;  ///< width * height * 3, finite and >= 0
+};
+
 /// TRAY_environment: constant ambient term (Whitted) and background radiance (the
-/// environment light, lights/environment_light.h).
+/// environment light, lights/environment_light.h); or, when `map` is set, an image-based
+/// environment (lights/image_environment_light.h) that replaces `background`.
 struct Environment {
   Color ambient{0.0f};
   Color background{0.0f};
   bool transparent = false;  ///< camera rays that escape give RGBA 0 (as --transparent)
+  std::shared_ptr<const EnvironmentMap> map;  ///< null: the constant background
+  float rotation = 0.0f;   ///< degrees about +Y (right-handed), applied to the map
+  float intensity = 1.0f;  ///< scales the map's radiance
+  /// Benches and tests only (no scene field or option sets it): sample the map's directions
+  /// uniformly over the sphere instead of by its luminance, the baseline of bench/env_bench.
+  bool uniformSampling = false;
+  /// TRAY_environment "image" before io/ loads it: a path (relative to the glTF file) or a
+  /// glTF image index (>= 0).
+  std::string imagePath;
+  int imageIndex = -1;
 };
 
 }  // namespace tray

@@ -31,6 +31,14 @@ const std::vector<OptionSpec>& renderOptions() {
                   "focusDistance)"),
       intOption("aperture-blades", 0, 0, 64,
                 "aperture shape: 0 round, N >= 3 a regular N-gon (bokeh)"),
+      // Read by io/environment_map.cpp (applyEnvironmentOptions) before the render starts.
+      choiceOption("env", "", {},
+                   "equirectangular HDR environment map (.exr, .hdr): replaces the scene's "
+                   "TRAY_environment image or background"),
+      floatOption("env-rotate", 0, -36000, 36000,
+                  "environment rotation in degrees about +Y (overrides TRAY_environment)"),
+      floatOption("env-intensity", 1, 0, 1e30f,
+                  "environment radiance scale (overrides TRAY_environment)"),
   };
   return specs;
 }

@@ -133,7 +133,7 @@ bool EmissionSummary::meaningful() const {
 
 bool addDefaultLightingIfUnlit(Scene& scene, const CameraDesc& camera) {
   if (!scene.lights.empty() || !isBlack(scene.environment.ambient) ||
-      !isBlack(scene.environment.background))
+      !isBlack(scene.environment.background) || scene.environment.map)
     return false;
   if (summarizeEmission(scene).meaningful()) return false;
   // glTF cameras look down -Z with +Y up; the key light travels forward, down and right.

@@ -195,6 +195,21 @@ void ColorPipeline::convertFromWorking(float* rgb, size_t n, int stride,
   }
 }
 
+void ColorPipeline::convertToWorking(float* rgb, size_t n, int stride,
+                                     const std::string& colorspace) const {
+  const std::string source = canonicalName(colorspace);
+  if (stride < 3) throw Error("colour conversion needs at least 3 floats per pixel");
+  if (source == working_) return;
+  if (working_.empty() && !impl_->bridge) throw Error(noBridge());
+  try {
+    auto t = impl_->fromWorking(working_, bridge_, source);
+    auto processor = impl_->config->getProcessor(t, OCIO::TRANSFORM_DIR_INVERSE);
+    applyPacked(processor->getDefaultCPUProcessor(), rgb, n, stride);
+  } catch (const OCIO::Exception& e) {
+    throw Error("OpenColorIO: converting from '" + source + "': " + oneLine(e.what()));
+  }
+}
+
 void ColorPipeline::toDisplay(float* rgb, size_t n, int stride, const std::string& display,
                               const std::string& view) const {
   const auto& cfg = impl_->config;

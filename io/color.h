@@ -30,6 +30,9 @@ class ColorPipeline {
   /// tray::Error for unknown names, listing the known ones, and for a config that TRay's
   /// linear Rec.709 cannot be converted into.
   void convertFromWorking(float* rgb, size_t n, int stride, const std::string& colorspace) const;
+  /// The inverse: converts n pixels of `colorspace` RGB in place to the working space (an
+  /// environment map tagged with its colorspace). Throws tray::Error like convertFromWorking.
+  void convertToWorking(float* rgb, size_t n, int stride, const std::string& colorspace) const;
   /// Applies a display/view transform to working-space RGB in place, giving display-referred
   /// values in [0, 1] for 8-bit output. Empty names: the config's default display / its
   /// default view ("sRGB" / "Standard" in TRay's config).

@@ -6,6 +6,7 @@
 #include "io/gltf_cameras_lights.h"
 #include "io/gltf_container.h"
 #include "io/gltf_context.h"
+#include "io/gltf_environment.h"
 #include "io/gltf_file_access.h"
 #include "io/gltf_images.h"
 #include "io/gltf_materials.h"
@@ -106,7 +107,7 @@ void reportMeshStats(const GltfContext& ctx, const MeshStats& s) {
 }
 
 Scene convert(const tinygltf::Model& model, const std::string& path, const LoadOptions& options,
-              LoadReport* report, const ImageBytes& images) {
+              LoadReport* report, const ImageBytes& images, const UriPolicy& policy) {
   GltfContext ctx{model, path, report};
   validateDocument(ctx);
   warnUnsupported(ctx);
@@ -137,6 +138,7 @@ Scene convert(const tinygltf::Model& model, const std::string& path, const LoadO
   for (const auto& p : scene.primitives) defaultUsed = defaultUsed || p.material == defaultMaterial;
   if (defaultUsed) scene.materials.push_back(defaultGltfMaterial());
   bindTextures(ctx, images, scene);
+  loadEnvironmentImage(ctx, images, policy, scene);
   scene.finalize();
   return scene;
 }
@@ -151,15 +153,16 @@ Scene loadGltf(const std::string& path, const LoadOptions& options, LoadReport* 
   const UriPolicy policy(folder.empty() ? "." : folder, options.allowAnyPath);
   ImageBytes images;
   tinygltf::Model model = parse(bytes, path, policy, report, images);
-  return convert(model, path, options, report, images);
+  return convert(model, path, options, report, images, policy);
 }
 
 Scene loadGltfFromMemory(const unsigned char* data, size_t size, const std::string& name,
                          const LoadOptions& options, LoadReport* report) {
   const std::vector<unsigned char> bytes(data, data + size);
   ImageBytes images;
-  tinygltf::Model model = parse(bytes, name, UriPolicy::noFiles(), report, images);
-  return convert(model, name, options, report, images);
+  const UriPolicy policy = UriPolicy::noFiles();
+  tinygltf::Model model = parse(bytes, name, policy, report, images);
+  return convert(model, name, options, report, images, policy);
 }
 
 }  // namespace tray

@@ -40,6 +40,19 @@ Environment sceneEnvironment(const GltfContext& ctx, int sceneIndex) {
   env.ambient = r.vec3("ambient", env.ambient, 0.0);
   env.background = r.vec3("background", env.background, 0.0);
   env.transparent = r.boolean("transparent", env.transparent);
+  // "image": a path relative to the glTF file, or a glTF image index; loaded for the chosen
+  // scene only (io/gltf_environment.cpp).
+  if (const tinygltf::Value* image = r.value("image")) {
+    if (image->IsString() && !image->Get<std::string>().empty())
+      env.imagePath = image->Get<std::string>();
+    else if (image->IsInt() && image->Get<int>() >= 0 &&
+             size_t(image->Get<int>()) < ctx.model.images.size())
+      env.imageIndex = image->Get<int>();
+    else
+      r.fail("image must be a file path or the index of one of the document's images");
+  }
+  env.rotation = float(r.number("rotation", 0.0, -36000, 36000));
+  env.intensity = float(r.number("intensity", 1.0, 0, 1e30));
   r.finish();
   return env;
 }

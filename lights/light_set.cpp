@@ -59,8 +59,16 @@ LightSet::LightSet(const Scene& scene) {
     delta_.push_back(int(power.size()));
     power.push_back(punctual_.back().power());
   }
-  const Color& bg = scene.environment.background;
-  if (!isBlack(bg) && isFinite(bg)) {
+  const Environment& env = scene.environment;
+  const Color& bg = env.background;
+  if (env.map) {  // an image replaces the constant background
+    if (env.intensity > 0 && std::isfinite(env.intensity)) {
+      imageEnvironment_.emplace_back(env.map, env.rotation, env.intensity, radius,
+                                     env.uniformSampling);
+      infinite_.push_back(int(power.size()));
+      power.push_back(imageEnvironment_.back().power());
+    }
+  } else if (!isBlack(bg) && isFinite(bg)) {
     environment_.emplace_back(bg, radius);
     infinite_.push_back(int(power.size()));
     power.push_back(environment_.back().power());
@@ -68,6 +76,7 @@ LightSet::LightSet(const Scene& scene) {
   for (const AreaLight& l : area_) lights_.push_back(&l);
   for (const PunctualLight& l : punctual_) lights_.push_back(&l);
   for (const EnvironmentLight& l : environment_) lights_.push_back(&l);
+  for (const ImageEnvironmentLight& l : imageEnvironment_) lights_.push_back(&l);
   for (float& p : power)
     if (!std::isfinite(p) || p < 0) p = 0;
   table_ = AliasTable(power);

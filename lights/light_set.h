@@ -7,6 +7,7 @@
 #include "lights/alias_table.h"
 #include "lights/area_light.h"
 #include "lights/environment_light.h"
+#include "lights/image_environment_light.h"
 #include "lights/punctual_light.h"
 
 namespace tray {
@@ -14,7 +15,7 @@ namespace tray {
 /// Every light of a scene behind the Light interface, chosen in proportion to power with an
 /// alias table (pbrt-v4 12.6.3's PowerLightSampler): emissive mesh triangles and samplable
 /// emissive analytic shapes (AreaLight, in primitive order), KHR_lights_punctual lights, and
-/// the environment. Built once per render; queries are const and allocation-free. Refers to
+/// the environment (a constant or an image). Built once per render; queries are const and allocation-free. Refers to
 /// the scene's shapes and transforms: the scene must outlive it, unchanged.
 class LightSet {
  public:
@@ -55,6 +56,7 @@ class LightSet {
   std::vector<AreaLight> area_;
   std::vector<PunctualLight> punctual_;
   std::vector<EnvironmentLight> environment_;
+  std::vector<ImageEnvironmentLight> imageEnvironment_;  ///< TRAY_environment image, --env
   std::vector<const Light*> lights_;  ///< in alias-table order
   std::vector<int> firstLight_;       ///< per primitive: its first light index, or -1
   std::vector<bool> isTriangles_;     ///< per primitive: lights are per triangle
