@@ -8,7 +8,8 @@
 namespace tray {
 
 /// --integrator, --spp, --seed, --sampler, --pixel-sampler, --filter (the last three declared in
-/// core/sampler.cpp, core/pixel_sampler.cpp and core/filter.cpp). --integrator has no choices
+/// core/sampler.cpp, core/pixel_sampler.cpp and core/filter.cpp), --time, --fps, --animation
+/// (core/animation_time.cpp). --integrator has no choices
 /// here: core does not know the registry (integrators/registry.h checks the name).
 const std::vector<OptionSpec>& renderOptions();
 
