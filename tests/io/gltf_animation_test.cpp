@@ -353,6 +353,14 @@ TEST(GltfSamplesAnimated, RiggedSimpleBoundsMatchAnIndependentReading) {
   expectBounds(loadGltf(file, at(1)), {-1, -4.5750771f, -1}, {2.8664947f, 4.1005095f, 1}, 1e-4f);
 }
 
+TEST(GltfSamplesAnimated, WalkingFiguresMatchAnIndependentReading) {
+  // 19 joints each; CesiumMan mid-stride: its feet 0.97 apart along z (the walking direction).
+  expectBounds(loadGltf((kFeatures / "CesiumMan.glb").string(), at(1)),
+               {-0.2021819f, -0.0014262f, -0.5075166f}, {0.1668429f, 1.4572350f, 0.4623297f}, 1e-4f);
+  expectBounds(loadGltf((kFeatures / "RiggedFigure.glb").string(), at(0.5f)),
+               {-0.4232015f, 0, -0.1208366f}, {0.4127010f, 1.4695586f, 0.2220496f}, 1e-4f);
+}
+
 TEST(GltfSamplesAnimated, SimpleMorphVerticesAtTheirWeights) {
   const std::string file = (kFeatures / "SimpleMorph.gltf").string();
   // Vertex 2 = (0.5, 0.5) + w0 (-1, 1) + w1 (1, 1); mesh.weights (0.5, 0.5) without a time.
