@@ -142,7 +142,8 @@ Animation readAnimation(const GltfContext& ctx, int index) {
     const auto& node = ctx.model.nodes[size_t(ch.target_node)];
     const std::string nodeName = nameOf("node", ch.target_node, node.name);
     if (path != AnimatedPath::kWeights && !node.matrix.empty())
-      ctx.fail(cw + " animates " + nodeName + ", which has a matrix (glTF 2.0 §3.11 allows TRS only)");
+      ctx.fail(cw + " animates " + nodeName +
+               ", which has a matrix (glTF 2.0 §3.11 allows TRS only)");
     const size_t weights = targetCount(ctx, ch.target_node);
     if (path == AnimatedPath::kWeights && weights == 0)
       ctx.fail(cw + " animates the morph weights of " + nodeName + ", which has no morph targets");
@@ -174,7 +175,8 @@ std::vector<float> sampleKeyframes(const Keyframes& k, float t) {
   };
   if (!(t > k.times.front())) return copy(value(0, 1));  // also catches NaN
   if (t >= k.times.back()) return copy(value(n - 1, 1));
-  const size_t i = size_t(std::upper_bound(k.times.begin(), k.times.end(), t) - k.times.begin()) - 1;
+  const auto next = std::upper_bound(k.times.begin(), k.times.end(), t);
+  const size_t i = size_t(next - k.times.begin()) - 1;
   const double td = double(k.times[i + 1]) - k.times[i];
   const double u = (double(t) - k.times[i]) / td;
   if (k.mode == Interpolation::kStep) return copy(value(i, 1));
@@ -199,7 +201,8 @@ std::vector<float> sampleKeyframes(const Keyframes& k, float t) {
 
 std::vector<Animation> readAnimations(const GltfContext& ctx) {
   std::vector<Animation> out;
-  for (size_t i = 0; i < ctx.model.animations.size(); ++i) out.push_back(readAnimation(ctx, int(i)));
+  for (size_t i = 0; i < ctx.model.animations.size(); ++i)
+    out.push_back(readAnimation(ctx, int(i)));
   return out;
 }
 

@@ -75,9 +75,10 @@ std::vector<Mat4> worldMatrices(const GltfContext& ctx, const std::vector<Mat4>&
     if (parent[i] < 0) order.push_back(int(i));
   for (size_t k = 0; k < order.size(); ++k)
     for (int c : nodes[size_t(order[k])].children) order.push_back(c);
-  for (int n : order)
-    world[size_t(n)] = parent[size_t(n)] < 0 ? local[size_t(n)]
-                                               : world[size_t(parent[size_t(n)])] * local[size_t(n)];
+  for (int n : order) {
+    const int up = parent[size_t(n)];
+    world[size_t(n)] = up < 0 ? local[size_t(n)] : world[size_t(up)] * local[size_t(n)];
+  }
   return world;
 }
 
@@ -94,7 +95,8 @@ Deformer::Deformer(const GltfContext& ctx, const std::vector<NodePose>& poses,
     const std::string where = nameOf("mesh", node.mesh, mesh.name);
     for (size_t p = 1; p < mesh.primitives.size(); ++p)
       if (mesh.primitives[p].targets.size() != targets)
-        ctx.fail(where + " primitives have different numbers of morph targets (glTF 2.0 §3.7.2.2)");
+        ctx.fail(where +
+                 " primitives have different numbers of morph targets (glTF 2.0 §3.7.2.2)");
     if (targets == 0) continue;
     // glTF 2.0 §3.7.2.2: node.weights override mesh.weights; the animation overrides both.
     std::vector<float> w(targets, 0.0f);
@@ -169,7 +171,8 @@ void Deformer::apply(int node, size_t primitive, TriangleMesh& mesh) const {
 /// glTF 2.0 §3.7.2.2: each attribute becomes base + sum_i w_i * target_i.
 void Deformer::morph(int node, size_t primitive, TriangleMesh& mesh) const {
   const std::vector<float>& w = weights_[size_t(node)];
-  const auto& prim = ctx_.model.meshes[size_t(ctx_.model.nodes[size_t(node)].mesh)].primitives[primitive];
+  const int meshIndex = ctx_.model.nodes[size_t(node)].mesh;
+  const auto& prim = ctx_.model.meshes[size_t(meshIndex)].primitives[primitive];
   const size_t n = mesh.positions.size();
   for (size_t t = 0; t < prim.targets.size() && t < w.size(); ++t) {
     if (w[t] == 0) continue;
@@ -186,80 +189,91 @@ void Deformer::morph(int node, size_t primitive, TriangleMesh& mesh) const {
   }
 }
 
-/// Linear blend skinning (glTF 2.0 §3.7.3.3): each vertex by sum_k w_k * joint matrix k, with up
-/// to two sets of four influences (JOINTS_0/WEIGHTS_0, JOINTS_1/WEIGHTS_1).
-void Deformer::skin(int node, size_t primitive, TriangleMesh& mesh) const {
-  const auto& model = ctx_.model;
-  const auto& gnode = model.nodes[size_t(node)];
-  const auto& prim = model.meshes[size_t(gnode.mesh)].primitives[primitive];
-  const std::vector<Mat4>& joints = joints_[size_t(gnode.skin)];
-  const size_t n = mesh.positions.size();
-  std::vector<int> index(8 * n, 0);
-  std::vector<float> weight(8 * n, 0.0f);
-  int sets = 0;
+namespace {
+
+/// Up to two sets of four influences per vertex (JOINTS_0/WEIGHTS_0, JOINTS_1/WEIGHTS_1), eight
+/// slots each in `index` / `weight`; joints checked against the skin's `jointCount`.
+void readInfluences(const GltfContext& ctx, int node, size_t primitive, size_t jointCount,
+                    size_t n, std::vector<int>& index, std::vector<float>& weight) {
+  const auto& gnode = ctx.model.nodes[size_t(node)];
+  const auto& prim = ctx.model.meshes[size_t(gnode.mesh)].primitives[primitive];
+  const std::string where =
+      nameOf("node", node, gnode.name) + " skinned primitive " + std::to_string(primitive);
+  index.assign(8 * n, 0);
+  weight.assign(8 * n, 0.0f);
   for (int s = 0; s < 2; ++s) {
-    const int j = attribute(prim, s == 0 ? "JOINTS_0" : "JOINTS_1");
-    const int w = attribute(prim, s == 0 ? "WEIGHTS_0" : "WEIGHTS_1");
-    if (j < 0 && w < 0) break;
-    if (j < 0 || w < 0)
-      ctx_.fail(nameOf("node", node, gnode.name) + " skinned primitive " + std::to_string(primitive) +
-                " has JOINTS_" + std::to_string(s) + " and WEIGHTS_" + std::to_string(s) +
-                " unpaired");
-    const std::vector<float> jf = readFloats(ctx_, j), wf = readFloats(ctx_, w);
-    for (size_t v = 0; v < n; ++v)
-      for (int k = 0; k < 4; ++k) {
-        const float ji = jf[4 * v + size_t(k)], wi = wf[4 * v + size_t(k)];
-        if (!(wi >= 0) || !std::isfinite(wi))
-          ctx_.fail(nameOf("accessor", w) + " (WEIGHTS_" + std::to_string(s) +
-                    ") has a negative or non-finite weight at vertex " + std::to_string(v));
-        if (wi > 0 && ji >= float(joints.size()))
-          ctx_.fail(nameOf("accessor", j) + " (JOINTS_" + std::to_string(s) + ") joint " +
-                    std::to_string(int(ji)) + " at vertex " + std::to_string(v) +
-                    " is out of range (the skin has " + std::to_string(joints.size()) + ")");
-        index[8 * v + size_t(4 * s + k)] = wi > 0 ? int(ji) : 0;
-        weight[8 * v + size_t(4 * s + k)] = wi;
-      }
-    ++sets;
-  }
-  if (sets == 0)
-    ctx_.fail(nameOf("node", node, gnode.name) + " has a skin but its mesh primitive " +
-              std::to_string(primitive) + " has no JOINTS_0 / WEIGHTS_0");
-  for (size_t v = 0; v < n; ++v) {
-    float* w = &weight[8 * v];
-    double sum = 0;
-    int nonZero = 0;
-    for (int k = 0; k < 8; ++k) sum += w[k], nonZero += w[k] > 0;
-    // The spec asks for sums "as close as reasonably possible to 1" without a number; the
-    // Khronos glTF-Validator (ACCESSOR_WEIGHTS_NON_NORMALIZED) allows 0.0039216, just over one
-    // unsigned-byte step, per pair of non-zero weights beyond the first two. Plus float rounding.
-    const double tolerance = 1e-6 + 0.0039216 * ((std::max(nonZero, 1) - 1) / 2);
-    if (std::fabs(sum - 1) > tolerance) {
-      ++renormalised_;
-      if (sum > 0)
-        for (int k = 0; k < 8; ++k) w[k] = float(w[k] / sum);
-      else
-        w[0] = 1;  // no influence at all: follow the first joint listed
+    const std::string set = std::to_string(s);
+    const int j = attribute(prim, ("JOINTS_" + set).c_str());
+    const int w = attribute(prim, ("WEIGHTS_" + set).c_str());
+    if (j < 0 && w < 0) {
+      if (s == 0) ctx.fail(where + " has no JOINTS_0 / WEIGHTS_0");
+      break;
     }
-    const Mat4 m = blend(joints, &index[8 * v], w, 8);
-    const Vec3 p = mesh.positions[v];
-    mesh.positions[v] = {m.m[0][0] * p.x + m.m[0][1] * p.y + m.m[0][2] * p.z + m.m[0][3],
-                         m.m[1][0] * p.x + m.m[1][1] * p.y + m.m[1][2] * p.z + m.m[1][3],
-                         m.m[2][0] * p.x + m.m[2][1] * p.y + m.m[2][2] * p.z + m.m[2][3]};
+    if (j < 0 || w < 0)
+      ctx.fail(where + " has JOINTS_" + set + " and WEIGHTS_" + set + " unpaired");
+    const std::vector<float> jf = readFloats(ctx, j), wf = readFloats(ctx, w);
+    for (size_t v = 0; v < n; ++v)
+      for (size_t k = 0; k < 4; ++k) {
+        const float ji = jf[4 * v + k], wi = wf[4 * v + k];
+        if (!(wi >= 0) || !std::isfinite(wi))
+          ctx.fail(nameOf("accessor", w) + " (WEIGHTS_" + set +
+                   ") has a negative or non-finite weight at vertex " + std::to_string(v));
+        if (wi > 0 && ji >= float(jointCount))
+          ctx.fail(nameOf("accessor", j) + " (JOINTS_" + set + ") joint " +
+                   std::to_string(int(ji)) + " at vertex " + std::to_string(v) +
+                   " is out of range (the skin has " + std::to_string(jointCount) + ")");
+        index[8 * v + 4 * size_t(s) + k] = wi > 0 ? int(ji) : 0;
+        weight[8 * v + 4 * size_t(s) + k] = wi;
+      }
+  }
+}
+
+/// Rescales weights whose sum is off 1 (counted in `rescaled`).
+void normaliseWeights(float* w, size_t& rescaled) {
+  double sum = 0;
+  int nonZero = 0;
+  for (int k = 0; k < 8; ++k) sum += w[k], nonZero += w[k] > 0;
+  // The spec asks for sums "as close as reasonably possible to 1" without a number; the
+  // Khronos glTF-Validator (ACCESSOR_WEIGHTS_NON_NORMALIZED) allows 0.0039216, just over one
+  // unsigned-byte step, per pair of non-zero weights beyond the first two. Plus float rounding.
+  const double tolerance = 1e-6 + 0.0039216 * ((std::max(nonZero, 1) - 1) / 2);
+  if (std::fabs(sum - 1) <= tolerance) return;
+  ++rescaled;
+  if (sum > 0)
+    for (int k = 0; k < 8; ++k) w[k] = float(w[k] / sum);
+  else
+    w[0] = 1;  // no influence at all: follow the first joint listed
+}
+
+Vec3 mul3(const float a[3][3], const Vec3& v) {
+  return {a[0][0] * v.x + a[0][1] * v.y + a[0][2] * v.z,
+          a[1][0] * v.x + a[1][1] * v.y + a[1][2] * v.z,
+          a[2][0] * v.x + a[2][1] * v.y + a[2][2] * v.z};
+}
+
+}  // namespace
+
+/// Linear blend skinning (glTF 2.0 §3.7.3.3): each vertex by sum_k w_k * joint matrix k.
+void Deformer::skin(int node, size_t primitive, TriangleMesh& mesh) const {
+  const std::vector<Mat4>& joints = joints_[size_t(ctx_.model.nodes[size_t(node)].skin)];
+  const size_t n = mesh.positions.size();
+  std::vector<int> index;
+  std::vector<float> weight;
+  readInfluences(ctx_, node, primitive, joints.size(), n, index, weight);
+  for (size_t v = 0; v < n; ++v) {
+    normaliseWeights(&weight[8 * v], renormalised_);
+    const Mat4 m = blend(joints, &index[8 * v], &weight[8 * v], 8);
+    const float linear[3][3] = {{m.m[0][0], m.m[0][1], m.m[0][2]},
+                                {m.m[1][0], m.m[1][1], m.m[1][2]},
+                                {m.m[2][0], m.m[2][1], m.m[2][2]}};
+    mesh.positions[v] = mul3(linear, mesh.positions[v]) + Vec3{m.m[0][3], m.m[1][3], m.m[2][3]};
     float c[3][3];
     cofactor(m, c);
     const float det = m.m[0][0] * c[0][0] + m.m[0][1] * c[0][1] + m.m[0][2] * c[0][2];
-    const float flip = det < 0 ? -1.0f : 1.0f;
-    if (v < mesh.normals.size()) {
-      const Vec3 q = mesh.normals[v];
-      mesh.normals[v] = flip * Vec3{c[0][0] * q.x + c[0][1] * q.y + c[0][2] * q.z,
-                                    c[1][0] * q.x + c[1][1] * q.y + c[1][2] * q.z,
-                                    c[2][0] * q.x + c[2][1] * q.y + c[2][2] * q.z};
-    }
+    if (v < mesh.normals.size())
+      mesh.normals[v] = (det < 0 ? -1.0f : 1.0f) * mul3(c, mesh.normals[v]);
     if (v < mesh.tangents.size()) {
-      const Vec3 q = mesh.tangents[v];
-      mesh.tangents[v] = {m.m[0][0] * q.x + m.m[0][1] * q.y + m.m[0][2] * q.z,
-                          m.m[1][0] * q.x + m.m[1][1] * q.y + m.m[1][2] * q.z,
-                          m.m[2][0] * q.x + m.m[2][1] * q.y + m.m[2][2] * q.z};
+      mesh.tangents[v] = mul3(linear, mesh.tangents[v]);
       // A mirroring blend flips the bitangent's handedness relative to the mapped frame.
       if (det < 0 && v < mesh.tangentSigns.size()) mesh.tangentSigns[v] = -mesh.tangentSigns[v];
     }
