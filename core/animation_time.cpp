@@ -20,6 +20,12 @@ const std::vector<OptionSpec>& animationOptions() {
   return specs;
 }
 
+std::vector<OptionSpec> withAnimationOptions(std::vector<OptionSpec> specs) {
+  const auto& animation = animationOptions();
+  specs.insert(specs.end(), animation.begin(), animation.end());
+  return specs;
+}
+
 std::optional<float> animationTime(const OptionValues& values) {
   const std::string text = values.getString("time");
   if (text == "static") return std::nullopt;

@@ -14,6 +14,9 @@ namespace tray {
 /// --frames), --animation (all, an index or a name).
 const std::vector<OptionSpec>& animationOptions();
 
+/// `specs` followed by animationOptions(): the render-wide table (core/render_options.cpp).
+std::vector<OptionSpec> withAnimationOptions(std::vector<OptionSpec> specs);
+
 /// The time --time asks for; empty for "static". Throws tray::Error "--time TEXT: expected ..."
 /// for anything but "static" or a finite number.
 std::optional<float> animationTime(const OptionValues& values);
