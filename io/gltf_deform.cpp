@@ -11,6 +11,10 @@ namespace {
 
 /// Embree silently drops primitives with coordinates beyond about 1.8e18 (as gltf_meshes.cpp).
 constexpr float kMaxCoordinate = 1e18f;
+/// Morph target vertices read over the whole file (each non-zero weight of each morphed node
+/// reads its target again): a few seconds of work, so that many targets on many nodes cannot
+/// keep a hostile file loading for hours. 4x the vertex cap of gltf_context.h.
+constexpr size_t kMaxDisplacements = 4 * kMaxVertices;
 
 int attribute(const tinygltf::Primitive& p, const char* semantic) {
   auto it = p.attributes.find(semantic);
@@ -180,6 +184,9 @@ void Deformer::morph(int node, size_t primitive, TriangleMesh& mesh) const {
     auto add = [&](const char* semantic, std::vector<Vec3>& v) {
       auto it = target.find(semantic);
       if (it == target.end() || v.size() != n) return;  // absent here or in the base
+      if ((displacements_ += n) > kMaxDisplacements)
+        ctx_.fail("morph targets applied exceed " + std::to_string(kMaxDisplacements) +
+                  " vertex displacements (too many targets on too many nodes)");
       const std::vector<Vec3> d = readVec3(ctx_, it->second, n, std::string("morph ") + semantic);
       for (size_t i = 0; i < n; ++i) v[i] += w[t] * d[i];
     };

@@ -38,6 +38,7 @@ class Deformer {
   std::vector<std::vector<float>> weights_;  ///< per node: morph weights (empty: no targets)
   std::vector<std::vector<Mat4>> joints_;    ///< per skin: joint world x inverse bind matrix
   mutable size_t renormalised_ = 0;
+  mutable size_t displacements_ = 0;  ///< morph target vertices read, against kMaxDisplacements
 };
 
 /// Every node's world matrix from its local one, parents first (the graph is a checked forest).
