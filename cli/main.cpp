@@ -12,9 +12,11 @@
 
 #include "accel/registry.h"
 #include "cli/farm.h"
+#include "cli/frames.h"
 #include "cli/option_cli.h"
 #include "cli/progress_bar.h"
 #include "core/accelerator.h"
+#include "core/animation_time.h"
 #include "core/aov.h"
 #include "core/camera_matrices.h"
 #include "core/cryptomatte.h"
@@ -49,6 +51,7 @@ struct CliOptions {
   double checkpointSeconds = 0;
   bool resume = false;
   int testInterruptAfterTiles = 0;
+  std::string frames;  ///< --frames A-B; empty: one image
   tray::RenderSettings settings;
 };
 
@@ -87,6 +90,8 @@ int run(const CliOptions& o) {
   tray::LoadOptions loadOptions;
   loadOptions.scene = o.scene;
   loadOptions.allowAnyPath = o.allowAnyPath;
+  loadOptions.time = tray::animationTime(o.settings);
+  loadOptions.animation = o.settings.getString("animation");
   tray::LoadReport report;
   tray::Scene scene = tray::loadGltf(o.scenePath, loadOptions, &report);
   scene.sourcePath = o.scenePath;
@@ -234,6 +239,25 @@ int run(const CliOptions& o) {
   return 0;
 }
 
+/// --frames: each frame rendered in turn, from the file loaded again (nothing that depends on
+/// the time is kept), with --time set to frame / fps so that its job signature and EXR metadata
+/// say which time it shows. Stops at the first frame that fails or is interrupted.
+int runFrames(const CliOptions& o) {
+  const tray::FrameRange range = tray::parseFrameRange(o.frames);
+  const float fps = o.settings.getFloat("fps");
+  for (int64_t f = range.first; f <= range.last; ++f) {
+    CliOptions frame = o;
+    for (auto& path : frame.outputs) path = tray::framePath(path, f);
+    if (!frame.aaHeatmap.empty()) frame.aaHeatmap = tray::framePath(frame.aaHeatmap, f);
+    frame.settings.set("time", tray::frameTime(f, fps));
+    if (!o.quiet)
+      std::printf("frame %lld (time %s s): %s\n", (long long)f,
+                  frame.settings.getString("time").c_str(), frame.outputs.front().c_str());
+    if (const int rc = run(frame); rc != 0) return rc;
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -286,6 +310,9 @@ int main(int argc, char** argv) {
   app.add_flag("--resume", o.resume, "continue the render saved in the first .exr output");
   app.add_option("--test-interrupt-after-tiles", o.testInterruptAfterTiles)->group("");
   app.add_flag("-q,--quiet", o.quiet, "no progress bar or summary");
+  app.add_option("--frames", o.frames,
+                 "render frames FIRST-LAST of the animation at --fps, each at time frame / fps, "
+                 "to outputs named by a pattern: -o out.####.exr (or out.%04d.exr)");
 
   // One line, in the form of every other error (CLI11 adds a second "Run with --help" line).
   app.failure_message([](const CLI::App*, const CLI::Error& e) {
@@ -294,6 +321,13 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
     tray::validateOptions(o.settings);  // ranges and choices, before any loading
+    tray::animationTime(o.settings);     // --time: "static" or seconds
+    if (!o.frames.empty()) {
+      tray::parseFrameRange(o.frames);
+      if (o.settings.isSet("time"))
+        throw tray::Error("--frames sets the time of each frame (frame / fps): drop --time");
+    }
+    tray::checkFramePatterns(o.outputs, !o.frames.empty());
   } catch (const CLI::ParseError& e) {
     int code = app.exit(e);
     return code == 0 ? 0 : 2;
@@ -302,7 +336,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    return run(o);
+    return o.frames.empty() ? run(o) : runFrames(o);
   } catch (const tray::Error& e) {
     std::fprintf(stderr, "tray-render: error: %s\n", e.what());
     return e.kind() == tray::Error::Kind::kInput ? 2 : 1;

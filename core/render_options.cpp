@@ -1,5 +1,6 @@
 #include "core/render_options.h"
 
+#include "core/animation_time.h"
 #include "core/filter.h"
 #include "core/pixel_sampler.h"
 #include "core/sampler.h"
@@ -40,7 +41,8 @@ const std::vector<OptionSpec>& renderOptions() {
       floatOption("env-intensity", 1, 0, 1e30f,
                   "environment radiance scale (overrides TRAY_environment)"),
   };
-  return specs;
+  static const std::vector<OptionSpec> all = withAnimationOptions(specs);  // --time, --fps, ...
+  return all;
 }
 
 }  // namespace tray

@@ -9,7 +9,8 @@ namespace tray {
 
 /// --integrator, --spp, --seed, --sampler, --pixel-sampler, --filter (the last three declared in
 /// core/sampler.cpp, core/pixel_sampler.cpp and core/filter.cpp), --env, --env-rotate,
-/// --env-intensity (applied by io/environment_map.h). --integrator has no choices
+/// --env-intensity (applied by io/environment_map.h), --time, --fps, --animation
+/// (core/animation_time.cpp). --integrator has no choices
 /// here: core does not know the registry (integrators/registry.h checks the name).
 const std::vector<OptionSpec>& renderOptions();
 

@@ -3,9 +3,11 @@
 #include <filesystem>
 #include <new>
 
+#include "io/gltf_animation.h"
 #include "io/gltf_cameras_lights.h"
 #include "io/gltf_container.h"
 #include "io/gltf_context.h"
+#include "io/gltf_deform.h"
 #include "io/gltf_environment.h"
 #include "io/gltf_file_access.h"
 #include "io/gltf_images.h"
@@ -106,13 +108,29 @@ void reportMeshStats(const GltfContext& ctx, const MeshStats& s) {
              " non-finite normal(s), tangent(s), texture coordinate(s) or colour(s) with zero");
 }
 
+/// The pose at options.time: animated nodes get new local matrices (the others keep theirs
+/// exactly, so unanimated files render bit for bit as without a time). Empty without a time.
+std::vector<NodePose> animate(const GltfContext& ctx, const LoadOptions& options,
+                              ObjectTable& objects) {
+  const std::vector<Animation> animations = readAnimations(ctx);  // checked, used or not
+  const int which = chooseAnimation(ctx, animations, options.animation);
+  if (!options.time) return {};
+  std::vector<NodePose> poses = poseAt(ctx, animations, which, *options.time);
+  for (size_t i = 0; i < poses.size(); ++i)
+    if (poses[i].animatesTransform())
+      objects.localMatrices[i] = animatedMatrix(ctx, int(i), poses[i]);
+  return poses;
+}
+
 Scene convert(const tinygltf::Model& model, const std::string& path, const LoadOptions& options,
               LoadReport* report, const ImageBytes& images, const UriPolicy& policy) {
   GltfContext ctx{model, path, report};
   validateDocument(ctx);
   warnUnsupported(ctx);
   // Cameras, lights, nodes and environments converted once, placed or not.
-  const ObjectTable objects = convertObjects(ctx);
+  ObjectTable objects = convertObjects(ctx);
+  const std::vector<NodePose> poses = animate(ctx, options, objects);
+  const Deformer deformer(ctx, poses, worldMatrices(ctx, objects.localMatrices));
   const int sceneIndex = chooseScene(ctx, options.scene);
 
   Scene scene;
@@ -131,7 +149,11 @@ Scene convert(const tinygltf::Model& model, const std::string& path, const LoadO
   meshes.moved.assign(model.meshes.size(), false);
   reportMeshStats(ctx, stats);
 
-  if (sceneIndex >= 0) addSceneNodes(ctx, objects, sceneIndex, defaultMaterial, meshes, scene);
+  if (sceneIndex >= 0)
+    addSceneNodes(ctx, objects, sceneIndex, defaultMaterial, meshes, deformer, stats, scene);
+  if (deformer.renormalisedVertices())
+    ctx.warn(std::to_string(deformer.renormalisedVertices()) +
+             " skinned vertex(es) with weights not summing to 1: rescaled to 1");
 
   bool defaultUsed = false;
   for (const auto& m : scene.meshes) defaultUsed = defaultUsed || m.material == defaultMaterial;

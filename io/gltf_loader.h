@@ -1,5 +1,6 @@
 #pragma once
 // glTF 2.0 scene loading: the only entry point from the file system into a tray::Scene.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,11 @@ struct LoadOptions {
   /// Let buffer and image URIs leave the scene's folder (absolute paths, `..`). Off by default
   /// because scene files come from untrusted sources (docs/scene-format.md, "Validation").
   bool allowAnyPath = false;
+  /// Animation time in seconds (glTF 2.0 §3.11): animated values replace the nodes' own. Absent:
+  /// the static pose (node TRS, default morph weights, skins at rest), as files render unanimated.
+  std::optional<float> time;
+  /// Which animation plays at `time`: "all" (together), an index or a name.
+  std::string animation = "all";
 };
 
 struct LoadReport {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "io/gltf_accessors.h"
 
@@ -101,7 +102,8 @@ void readOtherAttributes(const GltfContext& ctx, const tinygltf::Primitive& p, T
 
 /// Builds one primitive's mesh; false if it has no triangle left.
 bool convertPrimitive(const GltfContext& ctx, const tinygltf::Primitive& p,
-                      const std::string& where, MeshStats& stats, TriangleMesh& mesh) {
+                      const std::string& where, MeshStats& stats, TriangleMesh& mesh,
+                      const std::function<void(TriangleMesh&)>& deform) {
   const int mode = p.mode == -1 ? TINYGLTF_MODE_TRIANGLES : p.mode;
   const int position = attribute(p, "POSITION");
   const size_t vertexCount = ctx.model.accessors[size_t(position)].count;
@@ -136,6 +138,7 @@ bool convertPrimitive(const GltfContext& ctx, const tinygltf::Primitive& p,
   }
   readPositions(ctx, position, mesh);
   readOtherAttributes(ctx, p, mesh, stats);
+  if (deform) deform(mesh);  // before triangles are tested for zero area
 
   mesh.indices.reserve(3 * triangles);
   for (size_t t = 0; t < triangles; ++t) {
@@ -156,7 +159,7 @@ bool convertPrimitive(const GltfContext& ctx, const tinygltf::Primitive& p,
 }  // namespace
 
 std::vector<TriangleMesh> convertMesh(const GltfContext& ctx, int index, int defaultMaterial,
-                                      MeshStats& stats) {
+                                      MeshStats& stats, const VertexHook& deform) {
   const tinygltf::Mesh& g = ctx.model.meshes[size_t(index)];
   std::vector<TriangleMesh> out;
   for (size_t i = 0; i < g.primitives.size(); ++i) {
@@ -176,7 +179,9 @@ std::vector<TriangleMesh> convertMesh(const GltfContext& ctx, int index, int def
     if (g.primitives.size() > 1) mesh.name.append("/").append(std::to_string(i));
     mesh.material = p.material >= 0 ? p.material : defaultMaterial;
     std::string where = nameOf("mesh", index, g.name) + " primitive " + std::to_string(i);
-    if (convertPrimitive(ctx, p, where, stats, mesh)) out.push_back(std::move(mesh));
+    std::function<void(TriangleMesh&)> hook;
+    if (deform) hook = [&deform, i](TriangleMesh& m) { deform(i, m); };
+    if (convertPrimitive(ctx, p, where, stats, mesh, hook)) out.push_back(std::move(mesh));
   }
   return out;
 }

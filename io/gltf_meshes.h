@@ -1,5 +1,6 @@
 #pragma once
 // glTF mesh primitives (glTF 2.0 §3.7.2) into tray::TriangleMesh, one per triangle primitive.
+#include <functional>
 #include <vector>
 
 #include "io/gltf_context.h"
@@ -17,10 +18,14 @@ struct MeshStats {
   size_t repairedAttributes = 0;         ///< non-finite normals, tangents or uvs set to zero
 };
 
+/// Called per primitive with its vertices as read, before triangles are built: morph targets and
+/// skinning (io/gltf_deform.h) change positions, normals and tangents here.
+using VertexHook = std::function<void(size_t primitive, TriangleMesh& mesh)>;
+
 /// Converts glTF mesh `index`: triangle lists, strips and fans become indexed triangle lists;
 /// POSITION, NORMAL, TANGENT, TEXCOORD_0/1 and COLOR_0 are read. Fails on out-of-range indices and on
 /// NaN or infinite positions. A primitive without material gets `defaultMaterial`.
 std::vector<TriangleMesh> convertMesh(const GltfContext& ctx, int index, int defaultMaterial,
-                                      MeshStats& stats);
+                                      MeshStats& stats, const VertexHook& deform = {});
 
 }  // namespace tray

@@ -73,10 +73,32 @@ struct Walker {
   const ObjectTable& objects;
   int defaultMaterial;
   MeshTable& meshes;
+  const Deformer& deformer;
+  MeshStats& stats;
   Scene& scene;
   size_t hiddenNodes = 0;
 
+  /// A deformed mesh is converted again for this node alone: its vertices depend on the node's
+  /// weights and skin. Skinned ones are already in world space.
+  void placeDeformed(int node, int mesh, const Transform& toWorld) {
+    MeshStats copy = stats;  // the caps count the copies; the warnings counted the file once
+    std::vector<TriangleMesh> converted = convertMesh(
+        ctx, mesh, defaultMaterial, copy,
+        [&](size_t primitive, TriangleMesh& m) { deformer.apply(node, primitive, m); });
+    stats.triangles = copy.triangles, stats.vertices = copy.vertices;
+    const Transform placement = deformer.skinned(node) ? Transform() : toWorld;
+    for (auto& m : converted) {
+      Primitive p;
+      p.kind = Primitive::Kind::kMesh;
+      p.mesh = uint32_t(scene.meshes.size());
+      p.material = m.material;
+      scene.meshes.push_back(std::move(m));
+      addPrimitive(node, placement, p);
+    }
+  }
+
   void placeMesh(int node, int mesh, const Transform& toWorld) {
+    if (deformer.deforms(node)) return placeDeformed(node, mesh, toWorld);
     if (!meshes.moved[size_t(mesh)]) {
       meshes.moved[size_t(mesh)] = true;
       for (auto& m : meshes.converted[size_t(mesh)]) {
@@ -127,7 +149,9 @@ struct Walker {
       scene.lights.push_back(light);
     }
     const std::optional<TrayShape>& shape = objects.shapes[size_t(index)];
-    if ((shape || node.mesh >= 0) && !invertible) {
+    // A skinned mesh ignores its node's transform (glTF 2.0 §3.7.3.3), singular or not.
+    const bool skinned = !shape && deformer.skinned(index);
+    if ((shape || node.mesh >= 0) && !invertible && !skinned) {
       ++hiddenNodes;
     } else if (shape) {  // a shape replaces the node's mesh, if any
       const TrayShape& s = *shape;
@@ -199,8 +223,9 @@ ObjectTable convertObjects(const GltfContext& ctx) {
 }
 
 void addSceneNodes(const GltfContext& ctx, const ObjectTable& objects, int sceneIndex,
-                   int defaultMaterial, MeshTable& meshes, Scene& scene) {
-  Walker walker{ctx, objects, defaultMaterial, meshes, scene, 0};
+                   int defaultMaterial, MeshTable& meshes, const Deformer& deformer,
+                   MeshStats& stats, Scene& scene) {
+  Walker walker{ctx, objects, defaultMaterial, meshes, deformer, stats, scene, 0};
   scene.environment = objects.environments[size_t(sceneIndex)];
   // Explicit stack of (node, parent's world matrix); children pushed in reverse so nodes are
   // visited in the order a recursive pre-order walk would (cameras keep the file's order).

@@ -6,6 +6,8 @@
 
 #include "core/scene.h"
 #include "io/gltf_context.h"
+#include "io/gltf_deform.h"
+#include "io/gltf_meshes.h"
 #include "io/tray_shape.h"
 
 namespace tray {
@@ -38,8 +40,11 @@ ObjectTable convertObjects(const GltfContext& ctx);
 
 /// Walks glTF scene `sceneIndex` depth first (iteratively: no recursion depth to exhaust) and
 /// appends primitives, cameras (in traversal order) and lights to `scene`, and sets its
-/// environment. Shapes and meshes without material get `defaultMaterial`.
+/// environment. Shapes and meshes without material get `defaultMaterial`. A node whose mesh
+/// `deformer` deforms (skin, non-zero morph weights) gets geometry of its own, converted again
+/// through the deformer; `stats` counts it against the vertex and triangle caps.
 void addSceneNodes(const GltfContext& ctx, const ObjectTable& objects, int sceneIndex,
-                   int defaultMaterial, MeshTable& meshes, Scene& scene);
+                   int defaultMaterial, MeshTable& meshes, const Deformer& deformer,
+                   MeshStats& stats, Scene& scene);
 
 }  // namespace tray

@@ -12,7 +12,9 @@ namespace {
 /// ones, "_NAME", are not glTF features and pass without a word).
 bool isRead(const std::string& semantic) {
   return semantic == "POSITION" || semantic == "NORMAL" || semantic == "TANGENT" ||
-         semantic == "TEXCOORD_0" || semantic == "TEXCOORD_1" || semantic == "COLOR_0";
+         semantic == "TEXCOORD_0" || semantic == "TEXCOORD_1" || semantic == "COLOR_0" ||
+         semantic == "JOINTS_0" || semantic == "JOINTS_1" || semantic == "WEIGHTS_0" ||
+         semantic == "WEIGHTS_1";
 }
 
 std::string count(size_t n, const char* what) {
@@ -23,25 +25,18 @@ std::string count(size_t n, const char* what) {
 
 void warnUnsupported(const GltfContext& ctx) {
   const auto& m = ctx.model;
-  if (!m.animations.empty())
-    ctx.warn(count(m.animations.size(), "animation(s) ignored: the static pose is rendered"));
-  if (!m.skins.empty())
-    ctx.warn(count(m.skins.size(), "skin(s) ignored: skinned meshes are rendered unskinned"));
-  size_t morphed = 0;
+  // Animations, skins and morph targets are read (io/gltf_animation.h, io/gltf_deform.h).
   std::map<std::string, size_t> ignored;  // attribute semantic -> primitives
   for (const auto& mesh : m.meshes)
     for (const auto& p : mesh.primitives) {
-      if (!p.targets.empty()) ++morphed;
       for (const auto& [semantic, accessor] : p.attributes)
         if (!isRead(semantic) && semantic.rfind('_', 0) != 0) ++ignored[semantic];
     }
-  if (morphed)
-    ctx.warn(count(morphed, "primitive(s) with morph targets: rendered without them"));
   if (!ignored.empty()) {
     std::string list;
     for (const auto& [semantic, n] : ignored) list += (list.empty() ? "" : ", ") + semantic;
     ctx.warn("vertex attribute(s) " + list + " ignored (TRay reads POSITION, NORMAL, TANGENT, " +
-             "TEXCOORD_0/1 and COLOR_0)");
+             "TEXCOORD_0/1, COLOR_0, JOINTS_0/1 and WEIGHTS_0/1)");
   }
   size_t occlusion = 0, volume = 0, highUv = 0;
   for (const auto& g : m.materials) {

@@ -112,7 +112,8 @@ void checkPrimitive(const GltfContext& ctx, const std::string& where, const tiny
       ctx.fail(nameOf("accessor", p.indices) +
                " (indices) must be SCALAR unsigned byte, short or int");
   }
-  for (const auto& target : p.targets)  // morph targets are not rendered, only checked
+  // Morph target accessors are checked where they are applied (io/gltf_deform.cpp).
+  for (const auto& target : p.targets)
     for (const auto& [semantic, index] : target)
       if (!inRange(index, m.accessors.size()))
         ctx.fail(where + " morph target " + semantic + " refers to missing accessor " +
