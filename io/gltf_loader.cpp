@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <new>
 
+#include "io/gltf_buffer_plan.h"
 #include "io/gltf_cameras_lights.h"
 #include "io/gltf_container.h"
 #include "io/gltf_context.h"
@@ -37,7 +38,8 @@ std::string firstLine(const std::string& text) {
 /// Parses a document's bytes; `policy` decides which URIs may be read. Images are decoded later
 /// (OIIO, after validation): tinygltf only hands over their bytes.
 tinygltf::Model parse(const std::vector<unsigned char>& bytes, const std::string& path,
-                      const UriPolicy& policy, LoadReport* report, ImageBytes& images) {
+                      const UriPolicy& policy, const LoadOptions& options, LoadReport* report,
+                      ImageBytes& images, MemoryEstimate& memory) {
   if (bytes.empty()) failFile(path, "file is empty");
   if (bytes.size() > kMaxFileBytes) failFile(path, "file is larger than the 2 GiB limit");
   const bool binary = isGlb(bytes);
@@ -45,6 +47,12 @@ tinygltf::Model parse(const std::vector<unsigned char>& bytes, const std::string
       binary ? glbJson(path, bytes)
              : std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
   checkJsonRoot(path, json);
+  // Buffers before tinygltf reads them: the --max-memory check, and one read per file.
+  const BufferPlan plan = planBuffers(json, policy);
+  memory.buffers = plan.bytes + (binary ? plan.mergedBytes : 0);  // .glb: not merged (below)
+  checkMemory(path, memory, options.maxMemoryBytes);
+  // A .glb keeps its JSON: rebuilding the container would copy its BIN chunk.
+  if (!binary && plan.merged > 0) json = plan.json;
 
   FileAccess access(policy);
   tinygltf::TinyGLTF gltf;
@@ -106,7 +114,7 @@ void reportMeshStats(const GltfContext& ctx, const MeshStats& s) {
 }
 
 Scene convert(const tinygltf::Model& model, const std::string& path, const LoadOptions& options,
-              LoadReport* report, const ImageBytes& images) {
+              LoadReport* report, const ImageBytes& images, MemoryEstimate& memory) {
   GltfContext ctx{model, path, report};
   validateDocument(ctx);
   warnUnsupported(ctx);
@@ -136,7 +144,9 @@ Scene convert(const tinygltf::Model& model, const std::string& path, const LoadO
   for (const auto& m : scene.meshes) defaultUsed = defaultUsed || m.material == defaultMaterial;
   for (const auto& p : scene.primitives) defaultUsed = defaultUsed || p.material == defaultMaterial;
   if (defaultUsed) scene.materials.push_back(defaultGltfMaterial());
-  bindTextures(ctx, images, scene);
+  bindTextures(ctx, images, scene, memory, options.maxMemoryBytes);
+  scene.textureCacheMB = options.textureCacheMB;
+  if (report) report->memory = memory;
   scene.finalize();
   return scene;
 }
@@ -150,16 +160,19 @@ Scene loadGltf(const std::string& path, const LoadOptions& options, LoadReport* 
   const std::string folder = std::filesystem::path(path).parent_path().string();
   const UriPolicy policy(folder.empty() ? "." : folder, options.allowAnyPath);
   ImageBytes images;
-  tinygltf::Model model = parse(bytes, path, policy, report, images);
-  return convert(model, path, options, report, images);
+  MemoryEstimate memory;
+  tinygltf::Model model = parse(bytes, path, policy, options, report, images, memory);
+  return convert(model, path, options, report, images, memory);
 }
 
 Scene loadGltfFromMemory(const unsigned char* data, size_t size, const std::string& name,
                          const LoadOptions& options, LoadReport* report) {
   const std::vector<unsigned char> bytes(data, data + size);
   ImageBytes images;
-  tinygltf::Model model = parse(bytes, name, UriPolicy::noFiles(), report, images);
-  return convert(model, name, options, report, images);
+  MemoryEstimate memory;
+  tinygltf::Model model =
+      parse(bytes, name, UriPolicy::noFiles(), options, report, images, memory);
+  return convert(model, name, options, report, images, memory);
 }
 
 }  // namespace tray

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/scene.h"
+#include "io/memory_estimate.h"
 
 namespace tray {
 
@@ -12,10 +13,16 @@ struct LoadOptions {
   /// Let buffer and image URIs leave the scene's folder (absolute paths, `..`). Off by default
   /// because scene files come from untrusted sources (docs/scene-format.md, "Validation").
   bool allowAnyPath = false;
+  /// tray-render --max-memory in bytes (0: no limit): a scene whose buffers, textures and
+  /// geometry need more is refused before they are allocated (io/memory_estimate.h).
+  uint64_t maxMemoryBytes = 0;
+  /// OIIO's texture cache budget, stored in Scene::textureCacheMB (0: TRay's default).
+  double textureCacheMB = 0;
 };
 
 struct LoadReport {
   std::vector<std::string> warnings;  ///< one line each, "PATH: message"
+  MemoryEstimate memory;              ///< buffers and textures; geometry is main's to add
 };
 
 /// Loads a .gltf (with embedded data: URIs or external files) or .glb into a finalized Scene.
