@@ -43,12 +43,15 @@ void writeQuadScene(const fs::path& path, const std::string& image) {
 "materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":0},"metallicFactor":0},
   "emissiveTexture":{"index":0},"emissiveFactor":[1,1,1]}],
 "textures":[{"source":0}],"images":[{"uri":")" + image + R"("}],
-"accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3","min":[-1,-1,0],"max":[1,1,0]},
+"accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3",
+  "min":[-1,-1,0],"max":[1,1,0]},
   {"bufferView":1,"componentType":5126,"count":4,"type":"VEC2"},
   {"bufferView":2,"componentType":5123,"count":6,"type":"SCALAR"}],
 "bufferViews":[{"buffer":0,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":32},
   {"buffer":0,"byteOffset":80,"byteLength":12}],
-"buffers":[{"byteLength":94,"uri":"data:application/octet-stream;base64,AACAvwAAgL8AAAAAAACAPwAAgL8AAAAAAACAPwAAgD8AAAAAAACAvwAAgD8AAAAAAAAAAAAAgD8AAIA/AACAPwAAgD8AAAAAAAAAAAAAAAAAAAEAAgAAAAIAAwAAAA=="}]})";
+"buffers":[{"byteLength":94,"uri":"data:application/octet-stream;base64,)"
+                      R"(AACAvwAAgL8AAAAAAACAPwAAgL8AAAAAAACAPwAAgD8AAAAAAACAvwAAgD8AAAAAAAAAAAAAgD8AAIA/)"
+                      R"(AACAPwAAgD8AAAAAAAAAAAAAAAAAAAEAAgAAAAIAAwAAAA=="}]})";
 }
 
 TEST(CliMemory, An8192TextureRendersInBoundedMemoryWhateverTheCacheBudget) {
