@@ -52,6 +52,8 @@ struct CliOptions {
   bool resume = false;
   int testInterruptAfterTiles = 0;
   std::string frames;  ///< --frames A-B; empty: one image
+  double maxMemoryMB = -1;     ///< -1: 80% of physical memory; 0: no limit
+  double textureMemoryMB = 0;  ///< 0: TextureSampler::kDefaultCacheMB
   tray::RenderSettings settings;
 };
 
@@ -63,6 +65,18 @@ std::string joined(const std::vector<std::string>& names) {
 
 /// What run() is doing, for the out-of-memory message (std::bad_alloc says nothing itself).
 const char* gPhase = "starting";
+
+/// --max-memory's default: 80% of MemTotal (0, no limit, when /proc/meminfo cannot tell).
+double defaultMaxMemoryMB() {
+  FILE* f = std::fopen("/proc/meminfo", "r");
+  if (!f) return 0;
+  unsigned long long kB = 0;
+  char line[256];
+  while (std::fgets(line, sizeof line, f))
+    if (std::sscanf(line, "MemTotal: %llu kB", &kB) == 1) break;
+  std::fclose(f);
+  return double(kB) / 1024.0 * 0.8;
+}
 
 /// Rejects a leading minus before CLI11 converts: it would store --seed -1 as 2^64 - 1, and an
 /// index of -1 would mean "absent" (the default camera or scene) instead of an error.
@@ -92,6 +106,9 @@ int run(const CliOptions& o) {
   loadOptions.allowAnyPath = o.allowAnyPath;
   loadOptions.time = tray::animationTime(o.settings);
   loadOptions.animation = o.settings.getString("animation");
+  const double maxMemoryMB = o.maxMemoryMB < 0 ? defaultMaxMemoryMB() : o.maxMemoryMB;
+  loadOptions.maxMemoryBytes = uint64_t(maxMemoryMB * 1048576.0);
+  loadOptions.textureCacheMB = o.textureMemoryMB;
   tray::LoadReport report;
   tray::Scene scene = tray::loadGltf(o.scenePath, loadOptions, &report);
   scene.sourcePath = o.scenePath;
@@ -111,6 +128,12 @@ int run(const CliOptions& o) {
   const tray::ImageSize size = tray::resolveImageSize(o.resolution, cam);
   const int width = size.width, height = size.height;
   auto camera = tray::Camera::create(cam, width, height);
+  {  // The accelerator's estimate, with what the loader counted, before it is built.
+    tray::MemoryEstimate need = report.memory;
+    for (const auto& m : scene.meshes) need.geometry += m.triangleCount();
+    need.geometry *= tray::kGeometryBytesPerTriangle;
+    tray::checkMemory(o.scenePath, need, loadOptions.maxMemoryBytes);
+  }
   gPhase = "building the accelerator";
   auto accel = tray::makeAccelerator(o.accel, scene);
   gPhase = "rendering";
@@ -309,6 +332,13 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   app.add_flag("--resume", o.resume, "continue the render saved in the first .exr output");
   app.add_option("--test-interrupt-after-tiles", o.testInterruptAfterTiles)->group("");
+  app.add_option("--max-memory", o.maxMemoryMB,
+                 "refuse a scene whose buffers, textures and geometry need more than MB "
+                 "(default: 80% of physical memory; 0: no limit)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--texture-memory", o.textureMemoryMB,
+                 "texture cache budget in MB (default 128; never changes pixels)")
+      ->check(CLI::NonNegativeNumber);
   app.add_flag("-q,--quiet", o.quiet, "no progress bar or summary");
   app.add_option("--frames", o.frames,
                  "render frames FIRST-LAST of the animation at --fps, each at time frame / fps, "

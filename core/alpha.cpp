@@ -36,7 +36,7 @@ uint32_t mix(uint32_t x) {
 }  // namespace
 
 float textureAlpha(const TextureImage& image, const TextureRef& ref, Vec2 uv) {
-  if (image.alpha.empty() || image.width <= 0 || image.height <= 0) return 1.0f;
+  if (!image.hasAlpha() || image.width <= 0 || image.height <= 0) return 1.0f;
   const Vec2 t = transformUv(ref, uv);
   // Texel centres at (i + 0.5) / width; row 0 at v = 0, as the colour lookup.
   const float x = t.x * float(image.width) - 0.5f, y = t.y * float(image.height) - 0.5f;
@@ -49,7 +49,7 @@ float textureAlpha(const TextureImage& image, const TextureRef& ref, Vec2 uv) {
   const float wx = x - fx, wy = y - fy;
   auto at = [&](int i, int j) {
     const int u = wrapTexel(i, image.width, ref.wrapS), v = wrapTexel(j, image.height, ref.wrapT);
-    return image.alpha[size_t(v) * size_t(image.width) + size_t(u)];
+    return image.alphaAt(size_t(v) * size_t(image.width) + size_t(u));
   };
   if (ref.magFilter == TextureFilter::kNearest)
     return at(wx < 0.5f ? x0 : x0 + 1, wy < 0.5f ? y0 : y0 + 1);
@@ -77,7 +77,7 @@ float meshAlpha(const Scene& scene, const TriangleMesh& mesh, uint32_t tri, floa
   const TextureRef& ref = mat.baseColorTexture;
   if (ref.valid() && size_t(ref.image) < scene.textures.size()) {
     const TextureImage& image = scene.textures[size_t(ref.image)];
-    if (!image.alpha.empty()) {
+    if (image.hasAlpha()) {
       const uint32_t* v = &mesh.indices[3 * size_t(tri)];
       const auto& uvs = ref.texCoord == 1 ? mesh.uvs1 : mesh.uvs;
       // No uv set: the barycentric fallback of Scene::surface.

@@ -85,11 +85,15 @@ namespace {
 Color meanOf(const Scene& scene, const TextureRef& ref) {
   if (!ref.valid() || size_t(ref.image) >= scene.textures.size()) return Color(1.0f);
   const TextureImage& im = scene.textures[size_t(ref.image)];
-  const size_t n = im.pixels.size() / 3;
-  if (n == 0) return Color(1.0f);
+  if (!im.valid()) return Color(1.0f);
+  const size_t n = size_t(im.width) * size_t(im.height);
   double sum[3] = {0, 0, 0};
-  for (size_t p = 0; p < n; ++p)
-    for (int c = 0; c < 3; ++c) sum[c] += im.pixels[3 * p + size_t(c)];
+  std::vector<float> row(size_t(im.width) * 3);
+  for (int y = 0; y < im.height; ++y) {  // row by row: the texels may be compact codes
+    im.row(y, row.data());
+    for (size_t x = 0; x < size_t(im.width); ++x)
+      for (int c = 0; c < 3; ++c) sum[c] += row[3 * x + size_t(c)];
+  }
   return Color(float(sum[0] / n), float(sum[1] / n), float(sum[2] / n));
 }
 

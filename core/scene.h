@@ -9,6 +9,7 @@
 #include "core/material.h"
 #include "core/transform.h"
 #include "core/shape.h"
+#include "core/texture_image.h"
 #include "core/triangle_mesh.h"
 
 namespace tray {
@@ -25,17 +26,6 @@ struct Primitive {
   std::string name;
 };
 
-/// A decoded texture image: linear float RGB, row 0 at the top (glTF's uv origin), filled by
-/// the texture loader (io/gltf_images) or by tests. Colour textures are linearised from sRGB
-/// when decoded, so that filtering happens on linear values.
-struct TextureImage {
-  std::string name;  ///< for messages: the file's path, or "image N" for embedded images
-  int width = 0, height = 0;
-  std::vector<float> pixels;  ///< width * height * 3
-  std::vector<float> alpha;   ///< width * height, linear; empty = opaque or not needed
-  bool srgb = false;          ///< the file's values were sRGB-decoded
-};
-
 /// Everything a render needs, as plain data. Filled by io/ (glTF) or by tests in code; the
 /// accelerator is built from it separately (core/accelerator.h).
 struct Scene {
@@ -46,6 +36,7 @@ struct Scene {
   std::vector<PunctualLightDesc> lights;
   std::vector<CameraDesc> cameras;
   std::vector<TextureImage> textures;
+  double textureCacheMB = 0;  ///< OIIO's texture tile cache (--texture-memory); 0: default
   Environment environment;
 
   /// Adds the default material if none, checks indices; call after filling.

@@ -36,7 +36,8 @@ MaterialEvaluator::MaterialEvaluator(const Scene& scene, const Camera& camera, i
     : scene_(scene),
       camera_(camera),
       footprintScale_(std::max(0.125f, 1.0f / std::sqrt(float(std::max(spp, 1))))) {
-  if (!scene.textures.empty()) sampler_ = std::make_unique<TextureSampler>(scene.textures);
+  if (!scene.textures.empty())
+    sampler_ = std::make_unique<TextureSampler>(scene.textures, scene.textureCacheMB);
 }
 
 MaterialEvaluator::~MaterialEvaluator() = default;

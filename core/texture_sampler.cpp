@@ -4,10 +4,12 @@
 #include <OpenImageIO/imageio.h>
 #include <OpenImageIO/texture.h>
 
+#include <algorithm>
 #include <cstring>
 #include <string>
 
 #include "core/error.h"
+#include "core/texture_pyramid.h"
 
 namespace tray {
 
@@ -15,12 +17,14 @@ namespace {
 
 using OIIO::TextureOpt;
 
-/// Serves one TextureImage to OIIO's ImageCache as a float RGB scanline image. The image
-/// arrives as a pointer in the open() configuration (ImageCache::add_file passes it through),
-/// since an ImageInput::Creator is a plain function without state.
+/// Serves one TextureImage's MIP pyramid to OIIO's ImageCache as a float RGB scanline image with
+/// one MIP level per pyramid level, made from the compact codes as OIIO asks for rows. The
+/// pyramid arrives as a pointer in the open() configuration (ImageCache::add_file passes it
+/// through), since an ImageInput::Creator is a plain function without state.
 class MemoryTextureInput final : public OIIO::ImageInput {
  public:
-  static constexpr const char* kImageAttribute = "tray:textureImage";
+  static constexpr const char* kImageAttribute = "tray:texturePyramid";
+  static constexpr const char* kLevelsAttribute = "tray:levels";  ///< 1: level 0 only
   static OIIO::ImageInput* create() { return new MemoryTextureInput; }
 
   const char* format_name() const override { return "tray-memory"; }
@@ -28,22 +32,32 @@ class MemoryTextureInput final : public OIIO::ImageInput {
   bool open(const std::string&, OIIO::ImageSpec& spec, const OIIO::ImageSpec& config) override {
     void* ptr = nullptr;
     config.getattribute(kImageAttribute, OIIO::TypeDesc::PTR, &ptr);
-    image_ = static_cast<const TextureImage*>(ptr);
-    if (!image_ || image_->width <= 0 || image_->height <= 0) return false;
-    m_spec = OIIO::ImageSpec(image_->width, image_->height, 3, OIIO::TypeDesc::FLOAT);
+    pyramid_ = static_cast<const TexturePyramid*>(ptr);
+    levels_ = pyramid_ ? config.get_int_attribute(kLevelsAttribute, pyramid_->levels()) : 0;
+    if (!pyramid_ || !seek_subimage(0, 0)) return false;
     spec = m_spec;
     return true;
   }
   bool close() override { return true; }
+  int current_miplevel() const override { return level_; }
+  bool seek_subimage(int subimage, int miplevel) override {
+    if (subimage != 0 || miplevel < 0 || miplevel >= levels_) return false;
+    level_ = miplevel;
+    m_spec = OIIO::ImageSpec(pyramid_->width(miplevel), pyramid_->height(miplevel), 3,
+                             OIIO::TypeDesc::FLOAT);
+    return true;
+  }
   bool read_native_scanline(int subimage, int miplevel, int y, int, void* data) override {
-    if (subimage != 0 || miplevel != 0 || y < 0 || y >= image_->height) return false;
-    const size_t row = size_t(image_->width) * 3;
-    std::memcpy(data, image_->pixels.data() + size_t(y) * row, row * sizeof(float));
+    if (subimage != 0 || miplevel < 0 || miplevel >= levels_ || y < 0 ||
+        y >= pyramid_->height(miplevel))
+      return false;
+    pyramid_->row(miplevel, y, static_cast<float*>(data));
     return true;
   }
 
  private:
-  const TextureImage* image_ = nullptr;
+  const TexturePyramid* pyramid_ = nullptr;
+  int levels_ = 0, level_ = 0;
 };
 
 TextureOpt::Wrap wrapOf(TextureWrap w) {
@@ -97,32 +111,35 @@ Vec2 transformUv(const TextureRef& ref, Vec2 uv, bool vector) {
 struct TextureSampler::Impl {
   OIIO::TextureSystem* ts = nullptr;
   std::vector<OIIO::TextureSystem::TextureHandle*> handles;
+  std::vector<std::unique_ptr<TexturePyramid>> pyramids;
   const std::vector<TextureImage>& images;
   explicit Impl(const std::vector<TextureImage>& im) : images(im) {}
 };
 
-TextureSampler::TextureSampler(const std::vector<TextureImage>& images)
+TextureSampler::TextureSampler(const std::vector<TextureImage>& images, double cacheMB,
+                               bool oiioAutomip)
     : impl_(std::make_unique<Impl>(images)) {
   // A private TextureSystem (shared = false): its cache settings are TRay's alone.
   OIIO::TextureSystem* ts = OIIO::TextureSystem::create(false);
   impl_->ts = ts;
-  double bytes = 0;
-  for (const auto& im : images) bytes += double(im.pixels.size()) * sizeof(float);
-  // automip: OIIO builds the MIP pyramid of each (untiled, single-level) image itself; the
-  // cache may hold every level of every image (4/3 of the pixels) plus slack.
+  // Each image arrives MIP-mapped (TexturePyramid, OIIO's own automip arithmetic), read in
+  // 64-row strips (autotile); the cache holds tiles only, at most max_memory_MB. Which tiles
+  // are resident never changes a texel's value, so the budget does not change pixels.
+  // automip stays on for oiioAutomip (tests): OIIO then makes the levels itself.
   ts->attribute("automip", 1);
   ts->attribute("autotile", 64);
   ts->attribute("deduplicate", 0);
-  ts->attribute("max_memory_MB", float(std::max(256.0, bytes * 1.5 / (1 << 20) + 64)));
+  ts->attribute("max_memory_MB", float(cacheMB > 0 ? cacheMB : kDefaultCacheMB));
   OIIO::ImageCache* cache = ts->imagecache();
   for (size_t i = 0; i < images.size(); ++i) {
     const TextureImage& im = images[i];
-    if (im.width <= 0 || im.height <= 0 ||
-        im.pixels.size() != size_t(im.width) * size_t(im.height) * 3)
+    if (!im.valid())
       throw Error("texture '" + im.name + "' has no pixels or a wrong pixel count");
     OIIO::ImageSpec config;
-    const void* ptr = &im;
+    impl_->pyramids.push_back(std::make_unique<TexturePyramid>(im));
+    const void* ptr = impl_->pyramids.back().get();
     config.attribute(MemoryTextureInput::kImageAttribute, OIIO::TypeDesc::PTR, &ptr);
+    if (oiioAutomip) config.attribute(MemoryTextureInput::kLevelsAttribute, 1);
     OIIO::ustring name("tray:texture/" + std::to_string(i));
     if (!cache->add_file(name, &MemoryTextureInput::create, &config))
       throw Error("texture '" + im.name + "': OpenImageIO: " + cache->geterror());

@@ -21,11 +21,15 @@ struct UvFootprint {
 Vec2 transformUv(const TextureRef& ref, Vec2 uv, bool vector = false);
 
 /// Owns a TextureSystem whose images are the scene's decoded TextureImages, served from memory
-/// by a custom ImageInput; OIIO builds the MIP pyramid (automip) and filters. Thread-safe.
+/// by a custom ImageInput with their MIP pyramids (TexturePyramid); OIIO filters. Thread-safe.
 class TextureSampler {
  public:
   /// `images` must outlive the sampler (they are read in place, never copied by TRay).
-  explicit TextureSampler(const std::vector<TextureImage>& images);
+  /// `cacheMB`: OIIO's tile cache budget (tray-render --texture-memory); 0: kDefaultCacheMB.
+  /// `oiioAutomip` (tests only): hand OIIO the finest level alone and let it make the others,
+  /// the way TRay did before TexturePyramid (it then pins twice the finest level in memory).
+  explicit TextureSampler(const std::vector<TextureImage>& images, double cacheMB = 0,
+                          bool oiioAutomip = false);
   ~TextureSampler();
   TextureSampler(const TextureSampler&) = delete;
   TextureSampler& operator=(const TextureSampler&) = delete;
@@ -34,6 +38,11 @@ class TextureSampler {
   /// its sampler's wrap modes. A footprint under one texel magnifies (magFilter); a larger one
   /// minifies with minFilter: nearest/linear texels in the finest level, or one/two MIP levels.
   Color sample(const TextureRef& ref, const UvFootprint& f) const;
+
+  /// The budget when none is given. OIIO allocates tiles as they are used, so a small scene
+  /// costs what it touches; a large one is bounded (an 8192^2 texture's levels as floats would
+  /// take 1 GiB).
+  static constexpr int kDefaultCacheMB = 128;
 
  private:
   struct Impl;

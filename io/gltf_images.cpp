@@ -86,6 +86,8 @@ ImageInfo inspectImage(const GltfContext& ctx, const ImageBytes& bytes, int inde
     ctx.fail(info.where + ": the " + info.format + " header states no pixels");
   info.width = spec.width;
   info.height = spec.height;
+  info.channels = spec.nchannels;
+  info.wide = spec.format.size() > 1;
   if (info.pixels() > kMaxTexturePixels)
     ctx.fail(info.where + ": " + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
              " pixels exceeds the limit of " + std::to_string(kMaxTexturePixels) +
@@ -101,46 +103,36 @@ void decodeImage(const GltfContext& ctx, const ImageInfo& info, bool srgb, bool 
   if (spec.width != info.width || spec.height != info.height)
     ctx.fail(info.where + ": the image header changed between reads");
   const size_t pixels = size_t(info.pixels());
-  // Decode at the file's own depth (8 or 16 bits) and convert through a table: one pow per
-  // code value instead of one per pixel channel.
+  // Keep the file's own 8- or 16-bit codes, shared by both views (decoded once); each view
+  // maps them to linear floats through a table, one pow per code value instead of one per
+  // texel, when the texture cache asks for a row (TextureImage::row).
   const int nc = spec.nchannels;
   const bool wide = spec.format.size() > 1;
   const OIIO::TypeDesc type = wide ? OIIO::TypeDesc::UINT16 : OIIO::TypeDesc::UINT8;
-  std::vector<unsigned char> raw(pixels * size_t(nc) * type.size());
-  if (!in->read_image(0, 0, 0, nc, type, raw.data()))
+  auto codes = std::make_shared<TexelCodes>();
+  codes->channels = nc;
+  codes->wide = wide;
+  codes->bytes.resize(pixels * size_t(nc) * type.size());
+  if (!in->read_image(0, 0, 0, nc, type, codes->bytes.data()))
     ctx.fail(info.where + ": cannot decode " + info.format + ": " + in->geterror());
   in->close();
-  auto code = [&](size_t k) -> size_t {
-    if (!wide) return raw[k];
-    uint16_t v;
-    std::memcpy(&v, &raw[2 * k], 2);
-    return v;
-  };
   const size_t levels = wide ? 65536 : 256;
   for (int e = 0; e < 2; ++e) {
     if (!(e == 0 ? srgb : linear)) continue;
-    std::vector<float> table(levels);
+    auto table = std::make_shared<std::vector<float>>(levels);
     for (size_t i = 0; i < levels; ++i) {
       const float v = float(i) / float(levels - 1);
-      table[i] = e == 0 ? srgbToLinear(v) : v;
+      (*table)[i] = e == 0 ? srgbToLinear(v) : v;
     }
     TextureImage& t = out[e];
     t.name = info.where;
     t.width = info.width;
     t.height = info.height;
     t.srgb = e == 0;
-    t.pixels.resize(pixels * 3);
-    // Grey (and grey + alpha) fills all three channels.
-    for (size_t p = 0; p < pixels; ++p)
-      for (int c = 0; c < 3; ++c)
-        t.pixels[3 * p + size_t(c)] = table[code(p * size_t(nc) + size_t(nc >= 3 ? c : 0))];
+    t.codes = codes;
+    t.table = std::move(table);
     // Alpha (the last of 2 or 4 channels) is linear in PNG whatever the colour encoding.
-    if (e == 0 && alpha && (nc == 2 || nc == 4)) {
-      t.alpha.resize(pixels);
-      const float scale = 1.0f / float(levels - 1);
-      for (size_t p = 0; p < pixels; ++p)
-        t.alpha[p] = float(code(p * size_t(nc) + size_t(nc - 1))) * scale;
-    }
+    t.codesAlpha = e == 0 && alpha && (nc == 2 || nc == 4);
   }
 }
 

@@ -34,7 +34,11 @@ struct ImageInfo {
   size_t size = 0;
   const char* format = "";  ///< "png" or "jpeg"
   int width = 0, height = 0;
+  int channels = 0;   ///< as stored (1 to 4)
+  bool wide = false;  ///< 16-bit codes
   uint64_t pixels() const { return uint64_t(width) * uint64_t(height); }
+  /// What decodeImage keeps: the file's codes, shared by the sRGB and the linear view.
+  uint64_t codeBytes() const { return pixels() * uint64_t(channels) * (wide ? 2 : 1); }
 };
 
 /// Finds glTF image `index`'s bytes and reads its header. Throws the one-line "PATH: image N

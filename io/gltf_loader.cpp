@@ -4,6 +4,7 @@
 #include <new>
 
 #include "io/gltf_animation.h"
+#include "io/gltf_buffer_plan.h"
 #include "io/gltf_cameras_lights.h"
 #include "io/gltf_container.h"
 #include "io/gltf_context.h"
@@ -40,7 +41,8 @@ std::string firstLine(const std::string& text) {
 /// Parses a document's bytes; `policy` decides which URIs may be read. Images are decoded later
 /// (OIIO, after validation): tinygltf only hands over their bytes.
 tinygltf::Model parse(const std::vector<unsigned char>& bytes, const std::string& path,
-                      const UriPolicy& policy, LoadReport* report, ImageBytes& images) {
+                      const UriPolicy& policy, const LoadOptions& options, LoadReport* report,
+                      ImageBytes& images, MemoryEstimate& memory) {
   if (bytes.empty()) failFile(path, "file is empty");
   if (bytes.size() > kMaxFileBytes) failFile(path, "file is larger than the 2 GiB limit");
   const bool binary = isGlb(bytes);
@@ -48,6 +50,12 @@ tinygltf::Model parse(const std::vector<unsigned char>& bytes, const std::string
       binary ? glbJson(path, bytes)
              : std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
   checkJsonRoot(path, json);
+  // Buffers before tinygltf reads them: the --max-memory check, and one read per file.
+  const BufferPlan plan = planBuffers(json, policy);
+  memory.buffers = plan.bytes + (binary ? plan.mergedBytes : 0);  // .glb: not merged (below)
+  checkMemory(path, memory, options.maxMemoryBytes);
+  // A .glb keeps its JSON: rebuilding the container would copy its BIN chunk.
+  if (!binary && plan.merged > 0) json = plan.json;
 
   FileAccess access(policy);
   tinygltf::TinyGLTF gltf;
@@ -123,7 +131,8 @@ std::vector<NodePose> animate(const GltfContext& ctx, const LoadOptions& options
 }
 
 Scene convert(const tinygltf::Model& model, const std::string& path, const LoadOptions& options,
-              LoadReport* report, const ImageBytes& images, const UriPolicy& policy) {
+              LoadReport* report, const ImageBytes& images, const UriPolicy& policy,
+              MemoryEstimate& memory) {
   GltfContext ctx{model, path, report};
   validateDocument(ctx);
   warnUnsupported(ctx);
@@ -159,8 +168,10 @@ Scene convert(const tinygltf::Model& model, const std::string& path, const LoadO
   for (const auto& m : scene.meshes) defaultUsed = defaultUsed || m.material == defaultMaterial;
   for (const auto& p : scene.primitives) defaultUsed = defaultUsed || p.material == defaultMaterial;
   if (defaultUsed) scene.materials.push_back(defaultGltfMaterial());
-  bindTextures(ctx, images, scene);
+  bindTextures(ctx, images, scene, memory, options.maxMemoryBytes);
   loadEnvironmentImage(ctx, images, policy, scene);
+  scene.textureCacheMB = options.textureCacheMB;
+  if (report) report->memory = memory;
   scene.finalize();
   return scene;
 }
@@ -174,8 +185,9 @@ Scene loadGltf(const std::string& path, const LoadOptions& options, LoadReport* 
   const std::string folder = std::filesystem::path(path).parent_path().string();
   const UriPolicy policy(folder.empty() ? "." : folder, options.allowAnyPath);
   ImageBytes images;
-  tinygltf::Model model = parse(bytes, path, policy, report, images);
-  return convert(model, path, options, report, images, policy);
+  MemoryEstimate memory;
+  tinygltf::Model model = parse(bytes, path, policy, options, report, images, memory);
+  return convert(model, path, options, report, images, policy, memory);
 }
 
 Scene loadGltfFromMemory(const unsigned char* data, size_t size, const std::string& name,
@@ -183,8 +195,9 @@ Scene loadGltfFromMemory(const unsigned char* data, size_t size, const std::stri
   const std::vector<unsigned char> bytes(data, data + size);
   ImageBytes images;
   const UriPolicy policy = UriPolicy::noFiles();
-  tinygltf::Model model = parse(bytes, name, policy, report, images);
-  return convert(model, name, options, report, images, policy);
+  MemoryEstimate memory;
+  tinygltf::Model model = parse(bytes, name, policy, options, report, images, memory);
+  return convert(model, name, options, report, images, policy, memory);
 }
 
 }  // namespace tray

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/scene.h"
+#include "io/memory_estimate.h"
 
 namespace tray {
 
@@ -18,10 +19,16 @@ struct LoadOptions {
   std::optional<float> time;
   /// Which animation plays at `time`: "all" (together), an index or a name.
   std::string animation = "all";
+  /// tray-render --max-memory in bytes (0: no limit): a scene whose buffers, textures and
+  /// geometry need more is refused before they are allocated (io/memory_estimate.h).
+  uint64_t maxMemoryBytes = 0;
+  /// OIIO's texture cache budget, stored in Scene::textureCacheMB (0: TRay's default).
+  double textureCacheMB = 0;
 };
 
 struct LoadReport {
   std::vector<std::string> warnings;  ///< one line each, "PATH: message"
+  MemoryEstimate memory;              ///< buffers and textures; geometry is main's to add
 };
 
 /// Loads a .gltf (with embedded data: URIs or external files) or .glb into a finalized Scene.

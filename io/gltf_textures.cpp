@@ -89,7 +89,7 @@ class Binder {
     ref.image = it->second;
   }
 
-  void decode(const ImageBytes& bytes) {
+  void decode(const ImageBytes& bytes, MemoryEstimate& memory, uint64_t maxMemoryBytes) {
     std::vector<ImageInfo> infos;
     uint64_t total = 0;
     for (int source : sources_) {
@@ -99,7 +99,9 @@ class Binder {
       if (total > kMaxSceneTexturePixels)
         ctx_.fail(infos.back().where + ": the scene's textures exceed the limit of " +
                   std::to_string(kMaxSceneTexturePixels) + " pixels in all");
+      memory.textures += infos.back().codeBytes();
     }
+    checkMemory(ctx_.path, memory, maxMemoryBytes);
     scene_.textures.resize(slots_.size());
     std::vector<std::string> problems(infos.size());
     tbb::parallel_for(size_t(0), infos.size(), [&](size_t i) {
@@ -132,7 +134,8 @@ class Binder {
 
 }  // namespace
 
-void bindTextures(const GltfContext& ctx, const ImageBytes& bytes, Scene& scene) {
+void bindTextures(const GltfContext& ctx, const ImageBytes& bytes, Scene& scene,
+                  MemoryEstimate& memory, uint64_t maxMemoryBytes) {
   Binder binder(ctx, scene);
   for (Material& m : scene.materials) {
     binder.bind(m.baseColorTexture, true, m.alphaMode != AlphaMode::kOpaque);
@@ -140,7 +143,7 @@ void bindTextures(const GltfContext& ctx, const ImageBytes& bytes, Scene& scene)
     binder.bind(m.emissiveTexture, true);
     binder.bind(m.normalTexture, false);
   }
-  binder.decode(bytes);
+  binder.decode(bytes, memory, maxMemoryBytes);
   for (TriangleMesh& mesh : scene.meshes) {
     const Material& m = scene.materials[size_t(mesh.material)];
     if (m.normalTexture.valid() && mesh.tangents.empty())

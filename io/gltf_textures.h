@@ -3,6 +3,7 @@
 #include "core/scene.h"
 #include "io/gltf_context.h"
 #include "io/gltf_images.h"
+#include "io/memory_estimate.h"
 
 namespace tray {
 
@@ -11,7 +12,9 @@ namespace tray {
 /// filters into the reference, and points it at a Scene::textures entry, decoding each
 /// (image, sRGB or linear) pair once. baseColor and emissive textures are sRGB-encoded (glTF
 /// 2.0 §3.9.2, §3.9.5), metallicRoughness and normal textures linear. Then gives meshes whose
-/// material has a normal texture but no TANGENT computed tangents.
-void bindTextures(const GltfContext& ctx, const ImageBytes& bytes, Scene& scene);
+/// material has a normal texture but no TANGENT computed tangents. Before decoding, adds the
+/// images' compact size to memory.textures and checks it against maxMemoryBytes (0: none).
+void bindTextures(const GltfContext& ctx, const ImageBytes& bytes, Scene& scene,
+                  MemoryEstimate& memory, uint64_t maxMemoryBytes = 0);
 
 }  // namespace tray

@@ -605,7 +605,7 @@ TEST(GltfFeatures, SampleAssetsKeepColoursAlphaAndUnlit) {
   bool alphaTexture = false;  // the alpha-tested base colour textures keep their alpha
   for (const auto& m : ab.materials)
     if (m.alphaMode != AlphaMode::kOpaque && m.baseColorTexture.valid())
-      alphaTexture = alphaTexture || !ab.textures[size_t(m.baseColorTexture.image)].alpha.empty();
+      alphaTexture = alphaTexture || ab.textures[size_t(m.baseColorTexture.image)].hasAlpha();
   EXPECT_TRUE(alphaTexture);
   Scene unlit = loadGltf((kFeatures / "UnlitTest.glb").string());
   for (const auto& m : unlit.materials) EXPECT_TRUE(m.unlit) << m.name;

@@ -93,6 +93,73 @@ TEST(GltfMemory, PlacedObjectsAreCapped) {
   }
 }
 
+/// A folder of its own under the test temp dir.
+fs::path freshFolder(const std::string& name) {
+  const fs::path dir = fs::path(::testing::TempDir()) / ("gltf_memory_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+/// `copies` buffers naming the same file `uri` of `length` bytes, one bufferView and one mesh
+/// (a triangle of 3 VEC3 floats at the view's start) per buffer.
+std::string sharedBufferScene(int copies, uint64_t length) {
+  std::string buffers, views, accessors, meshes, nodes, roots;
+  for (int i = 0; i < copies; ++i) {
+    const std::string c = i ? "," : "", n = std::to_string(i);
+    buffers += c + R"({"uri":"shared.bin","byteLength":)" + std::to_string(length) + "}";
+    views += c + R"({"buffer":)" + n + R"(,"byteLength":36})";
+    accessors += c + R"({"bufferView":)" + n +
+                 R"(,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]})";
+    meshes += c + R"({"primitives":[{"attributes":{"POSITION":)" + n + "}}]}";
+    nodes += c + R"({"mesh":)" + n + "}";
+    roots += c + n;
+  }
+  return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[)" + roots +
+         R"(]}],"nodes":[)" + nodes + R"(],"meshes":[)" + meshes + R"(],"accessors":[)" +
+         accessors + R"(],"bufferViews":[)" + views + R"(],"buffers":[)" + buffers + "]}";
+}
+
+TEST(GltfMemory, BuffersNamingOneFileAreReadOnceAndSeeItsBytes) {
+  const fs::path dir = freshFolder("shared");
+  const float triangle[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  std::ofstream(dir / "shared.bin", std::ios::binary)
+      .write(reinterpret_cast<const char*>(triangle), sizeof triangle);
+  std::ofstream(dir / "shared.gltf") << sharedBufferScene(3, 36);
+  LoadReport report;
+  const Scene s = loadGltf((dir / "shared.gltf").string(), {}, &report);
+  ASSERT_EQ(s.meshes.size(), 3u);
+  for (const auto& m : s.meshes) {
+    ASSERT_EQ(m.triangleCount(), 1u);
+    EXPECT_EQ(m.positions[1].x, 1.0f);
+    EXPECT_EQ(m.positions[2].y, 1.0f);
+  }
+  EXPECT_EQ(report.memory.buffers, 36u);  // the file once, not three times
+}
+
+TEST(GltfMemory, MaxMemoryRefusesHugeBuffersBeforeReadingThem) {
+  // Issue 18: a 700-byte file naming one 1.5 GiB buffer four times read it into four vectors
+  // and peaked at 3.3 GB before the 4 GiB cap on URI bytes refused it. A sparse file costs no
+  // disk; the refusal comes from the JSON alone, before any byte is read.
+  const fs::path dir = freshFolder("huge");
+  const uint64_t length = uint64_t(1536) << 20;
+  std::ofstream(dir / "shared.bin").close();
+  fs::resize_file(dir / "shared.bin", length);
+  std::ofstream(dir / "huge.gltf") << sharedBufferScene(4, length);
+  LoadOptions options;
+  options.maxMemoryBytes = uint64_t(1000) << 20;
+  try {
+    loadGltf((dir / "huge.gltf").string(), options);
+    FAIL() << "1.5 GiB of buffers loaded under --max-memory 1000";
+  } catch (const Error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("huge.gltf: needs about 1536 MB (buffers 1536 MB, textures 0 MB"),
+              std::string::npos)
+        << m;
+    EXPECT_NE(m.find("more than --max-memory 1000 MB"), std::string::npos) << m;
+  }
+}
+
 /// Every input the fuzzer ever crashed on (docs/fuzzing.md): refused or loaded, nothing else.
 TEST(GltfMemory, FuzzerReproducersAreHandled) {
   const fs::path dir = fs::path(TRAY_SOURCE_DIR) / "fuzz" / "regressions";

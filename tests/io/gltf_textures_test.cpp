@@ -70,6 +70,13 @@ std::string materialDoc(const std::string& uri, const std::string& sampler = "{}
 
 const std::vector<unsigned char> kPixels = {128, 64, 255, 0, 10, 200};  // 2 x 1 RGB
 
+/// A loaded texture's linear float RGB, row by row (the loader keeps the file's codes).
+std::vector<float> floats(const TextureImage& im) {
+  std::vector<float> out(size_t(im.width) * size_t(im.height) * 3);
+  for (int y = 0; y < im.height; ++y) im.row(y, out.data() + size_t(y) * size_t(im.width) * 3);
+  return out;
+}
+
 TEST(GltfTextures, BaseColorIsSrgbDecodedAndMetallicRoughnessIsNot) {
   fs::path dir = freshFolder();
   writeImage(dir / "tex.png", 2, 1, kPixels);
@@ -87,10 +94,15 @@ TEST(GltfTextures, BaseColorIsSrgbDecodedAndMetallicRoughnessIsNot) {
   ASSERT_EQ(srgb.height, 1);
   // IEC 61966-2-1 values: 128 -> 0.21586, 64 -> 0.05127, 10 -> 0.003035, 200 -> 0.57758.
   const float want[6] = {0.2158605f, 0.0512695f, 1.0f, 0.0f, 0.0030353f, 0.5775804f};
+  const std::vector<float> srgbFloats = floats(srgb), linearFloats = floats(linear);
   for (int i = 0; i < 6; ++i) {
-    EXPECT_NEAR(srgb.pixels[size_t(i)], want[i], 1e-5f) << i;
-    EXPECT_NEAR(linear.pixels[size_t(i)], kPixels[size_t(i)] / 255.0f, 1e-6f) << i;
+    EXPECT_NEAR(srgbFloats[size_t(i)], want[i], 1e-5f) << i;
+    EXPECT_NEAR(linearFloats[size_t(i)], kPixels[size_t(i)] / 255.0f, 1e-6f) << i;
   }
+  // Decoded once: both views read the same codes.
+  EXPECT_EQ(srgb.codes, linear.codes);
+  ASSERT_TRUE(srgb.codes);
+  EXPECT_EQ(srgb.codes->bytes, kPixels);
   EXPECT_EQ(m.baseColorTexture.wrapS, TextureWrap::kClampToEdge);
   EXPECT_EQ(m.baseColorTexture.wrapT, TextureWrap::kMirroredRepeat);
   EXPECT_EQ(m.baseColorTexture.magFilter, TextureFilter::kNearest);
@@ -104,7 +116,7 @@ TEST(GltfTextures, DataUriImagesDecodeLikeFiles) {
             materialDoc("data:image/png;base64," + base64(readBytes(dir / "tex.png"))));
   Scene s = loadGltf((dir / "scene.gltf").string());
   ASSERT_EQ(s.textures.size(), 2u);
-  EXPECT_NEAR(s.textures[0].pixels[0], 0.2158605f, 1e-5f);
+  EXPECT_NEAR(floats(s.textures[0])[0], 0.2158605f, 1e-5f);
   EXPECT_EQ(s.textures[0].name, "image 0");
 }
 
@@ -114,7 +126,7 @@ TEST(GltfTextures, JpegIsAccepted) {
   writeText(dir / "scene.gltf", materialDoc("tex.jpg"));
   Scene s = loadGltf((dir / "scene.gltf").string());
   ASSERT_EQ(s.textures.size(), 2u);
-  EXPECT_NEAR(s.textures[1].pixels[0], 200 / 255.0f, 2.0f / 255);  // JPEG is lossy
+  EXPECT_NEAR(floats(s.textures[1])[0], 200 / 255.0f, 2.0f / 255);  // JPEG is lossy
 }
 
 /// Loads dir/scene.gltf expecting a one-line input error that names `mention`.

@@ -1,0 +1,28 @@
+#pragma once
+// tray-render --max-memory: what a scene will allocate, estimated from what the file states
+// before the big allocations happen, and the one-line refusal when it is more than allowed.
+#include <cstdint>
+#include <string>
+
+namespace tray {
+
+/// Bytes a scene needs, by kind; each filled as soon as it is known (buffers from the JSON
+/// before any is read, textures from the image headers before decoding, geometry from the
+/// triangle count before the accelerator is built).
+struct MemoryEstimate {
+  uint64_t buffers = 0;   ///< sum of the distinct buffers' byteLength
+  uint64_t textures = 0;  ///< width x height x channels x bytes per code, per decoded image
+  uint64_t geometry = 0;  ///< triangles x kGeometryBytesPerTriangle
+  uint64_t total() const { return buffers + textures + geometry; }
+};
+
+/// Mesh arrays plus the accelerator, per triangle, an estimate: an indexed mesh holds 12 bytes
+/// of indices and 0.5 to 1 vertex of 48 bytes (position, normal, uv, tangent) per triangle;
+/// Embree's BVH with its triangle leaves about as much again.
+constexpr uint64_t kGeometryBytesPerTriangle = 160;
+
+/// Throws tray::Error (input) "SCENE: needs about N MB (buffers a MB, textures b MB, geometry
+/// c MB), more than --max-memory M MB" when e.total() > limitBytes; limitBytes 0: no limit.
+void checkMemory(const std::string& scene, const MemoryEstimate& e, uint64_t limitBytes);
+
+}  // namespace tray

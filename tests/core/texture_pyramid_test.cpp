@@ -1,0 +1,113 @@
+// TexturePyramid and the compact texel store: OIIO filters exactly the values it filtered when
+// it made the MIP levels itself (automip) from float images, for odd sizes, every glTF filter
+// and footprints from magnification down to the 1x1 level; and a TextureImage of 8- or 16-bit
+// codes gives, row by row, the floats the loader used to store.
+#include "core/texture_pyramid.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+
+#include "core/texture_sampler.h"
+
+namespace tray {
+namespace {
+
+TextureImage randomImage(int w, int h, uint32_t seed) {
+  TextureImage im;
+  im.name = std::to_string(w) + "x" + std::to_string(h);
+  im.width = w, im.height = h;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  im.pixels.resize(size_t(w) * size_t(h) * 3);
+  for (float& p : im.pixels) p = u(rng);
+  return im;
+}
+
+bool sameBits(const Color& a, const Color& b) {
+  return std::memcmp(&a, &b, sizeof(Color)) == 0;
+}
+
+TEST(TexturePyramid, LevelSizesAreOiiosAutomipSizes) {
+  const TextureImage im = randomImage(37, 5, 1);
+  const TexturePyramid p(im);
+  // 37x5 -> 18x2 -> 9x1 -> 4x1 -> 2x1 -> 1x1
+  ASSERT_EQ(p.levels(), 6);
+  EXPECT_EQ(p.width(1), 18);
+  EXPECT_EQ(p.height(1), 2);
+  EXPECT_EQ(p.width(2), 9);
+  EXPECT_EQ(p.height(2), 1);
+  EXPECT_EQ(p.width(5), 1);
+  EXPECT_EQ(p.height(5), 1);
+}
+
+TEST(TexturePyramid, FilteredLookupsMatchOiioAutomipBitForBit) {
+  // Odd, tall, wide and power-of-two sizes; levels past kComputed are stored, the others made
+  // on demand, so both paths are compared.
+  std::vector<TextureImage> images{randomImage(37, 5, 1), randomImage(1, 19, 2),
+                                   randomImage(64, 64, 3), randomImage(131, 67, 4),
+                                   randomImage(300, 200, 5)};
+  const TextureSampler ours(images), oiio(images, 0, true);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> uv(-0.5f, 1.5f), logScale(-12.0f, 1.0f);
+  const TextureFilter filters[] = {TextureFilter::kNearest,
+                                   TextureFilter::kLinear,
+                                   TextureFilter::kNearestMipmapNearest,
+                                   TextureFilter::kLinearMipmapNearest,
+                                   TextureFilter::kNearestMipmapLinear,
+                                   TextureFilter::kLinearMipmapLinear};
+  size_t compared = 0, differ = 0;
+  for (int image = 0; image < int(images.size()); ++image)
+    for (TextureFilter f : filters)
+      for (int i = 0; i < 400; ++i) {
+        TextureRef r;
+        r.image = image;
+        r.minFilter = f;
+        r.wrapS = i % 3 == 0 ? TextureWrap::kClampToEdge : TextureWrap::kRepeat;
+        r.wrapT = i % 5 == 0 ? TextureWrap::kMirroredRepeat : TextureWrap::kRepeat;
+        const float s = std::exp2(logScale(rng));  // footprint: 1/4096 to 2 in uv
+        const UvFootprint fp{{uv(rng), uv(rng)}, {s, 0.3f * s}, {-0.2f * s, 0.7f * s}};
+        ++compared;
+        differ += !sameBits(ours.sample(r, fp), oiio.sample(r, fp));
+      }
+  EXPECT_EQ(differ, 0u) << "of " << compared << " lookups";
+}
+
+TEST(TextureImage, CodeRowsAreTheTableValues) {
+  for (int channels : {1, 2, 3, 4})
+    for (bool wide : {false, true}) {
+      auto codes = std::make_shared<TexelCodes>();
+      codes->channels = channels;
+      codes->wide = wide;
+      const int w = 5, h = 3;
+      codes->bytes.resize(size_t(w * h * channels) * (wide ? 2 : 1));
+      std::mt19937 rng(uint32_t(channels * 2 + wide));
+      for (auto& b : codes->bytes) b = (unsigned char)(rng() & 0xff);
+      auto table = std::make_shared<std::vector<float>>(wide ? 65536 : 256);
+      for (size_t i = 0; i < table->size(); ++i) (*table)[i] = float(i) * 0.001f + 0.5f;
+      TextureImage im;
+      im.width = w, im.height = h;
+      im.codes = codes;
+      im.table = table;
+      im.codesAlpha = channels == 2 || channels == 4;
+      ASSERT_TRUE(im.valid());
+      std::vector<float> row(size_t(w) * 3);
+      for (int y = 0; y < h; ++y) {
+        im.row(y, row.data());
+        for (int x = 0; x < w; ++x)
+          for (int c = 0; c < 3; ++c) {
+            const size_t k = size_t((y * w + x) * channels + (channels >= 3 ? c : 0));
+            EXPECT_EQ(row[size_t(3 * x + c)], (*table)[codes->code(k)]);
+          }
+        if (im.codesAlpha) {
+          EXPECT_EQ(im.alphaAt(size_t(y * w)),
+                    float(codes->code(size_t(y * w * channels + channels - 1))) *
+                        (1.0f / float(wide ? 65535 : 255)));
+        }
+      }
+    }
+}
+
+}  // namespace
+}  // namespace tray
