@@ -40,6 +40,7 @@ struct CliOptions {
   std::string outputColorspace;  ///< empty: the config's linear Rec.709, else scene_linear
   std::string display, view;
   bool allowAnyPath = false;
+  bool ignoreRequiredExtensions = false;
   bool quiet = false;
   std::string aovs;
   int cryptomatteRanks = 6;
@@ -86,6 +87,7 @@ int run(const CliOptions& o) {
   tray::LoadOptions loadOptions;
   loadOptions.scene = o.scene;
   loadOptions.allowAnyPath = o.allowAnyPath;
+  loadOptions.ignoreRequiredExtensions = o.ignoreRequiredExtensions;
   tray::LoadReport report;
   tray::Scene scene = tray::loadGltf(o.scenePath, loadOptions, &report);
   scene.sourcePath = o.scenePath;
@@ -261,6 +263,8 @@ int main(int argc, char** argv) {
   app.add_option("--display", o.display, "OCIO display for PNG/JPG output (default: sRGB)");
   app.add_option("--view", o.view, "OCIO view for PNG/JPG output (default: the display's first)");
   app.add_flag("--allow-any-path", o.allowAnyPath, "let scene URIs leave the scene's folder");
+  app.add_flag("--ignore-required-extensions", o.ignoreRequiredExtensions,
+               "render a glTF whose required extensions TRay lacks (with a warning)");
   app.add_option("--aov", o.aovs,
                  "extra EXR layers: comma-separated from " + joined(tray::AovSet::known()) +
                      ", cryptomatte (= crypto_object,crypto_material), or all");

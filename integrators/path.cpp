@@ -15,6 +15,18 @@
 namespace tray {
 namespace {
 
+/// Beer-Lambert transmittance exp(-sigma_a d) per channel (KHR_materials_volume).
+Color transmittance(const Color& sigmaA, float d) {
+  return {std::exp(-sigmaA.x * d), std::exp(-sigmaA.y * d), std::exp(-sigmaA.z * d)};
+}
+
+/// Absorption of the medium beyond a refractive surface: the one in effect once crossed.
+Color farSideAbsorption(const MediumStack& media, int id, const Material& m, bool entering) {
+  MediumStack far = media;
+  far.cross(id, m, entering);
+  return far.currentAbsorption();
+}
+
 /// The pixel being rendered on this thread, for --debug-nan reports (Li does not know it).
 thread_local int tlsPixelX = -1, tlsPixelY = -1;
 
@@ -90,7 +102,11 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats
 
   for (;;) {
     Hit hit;
+    // KHR_materials_volume: the segment crosses the medium in effect, which absorbs.
+    const Color sigmaA = media.currentAbsorption();
+    const bool absorbing = !isBlack(sigmaA);
     if (!ctx_.accel.intersect(ray, hit)) {
+      if (absorbing) break;  // lost inside an open absorbing mesh: transmittance exp(-inf) = 0
       // Escaped: the infinite lights' radiance, weighted against their light-sampling pdfs.
       for (int i : lights_.infinite()) {
         const Vec3 dir = normalize(ray.d);
@@ -100,6 +116,10 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats
         add(beta * Le * w, "environment", indirectEmission);
       }
       break;
+    }
+    if (absorbing) {
+      beta *= transmittance(sigmaA, hit.t * length(ray.d));
+      if (isBlack(beta)) break;
     }
     SurfacePoint s = scene.surface(ray, hit);
     const Material& m = scene.material(s.material);
@@ -120,7 +140,9 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats
       eta = iface.etaT / iface.etaI;
     }
     // Textures are evaluated only at surfaces that scatter or emit (not at null interfaces).
-    const ShadingMaterial sm = materials_.evaluate(hit, s);
+    ShadingMaterial sm = materials_.evaluate(hit, s);
+    // The clearcoat is on the outside of a transmissive solid: not seen from within.
+    if (refractive && !s.frontFace) sm.clearcoat = 0;
     if (primary && !primary->hit) {
       primary->hit = true;
       primary->depth = length(s.p - cameraRay.o);
@@ -165,6 +187,12 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats
           ++stats.shadowRays;
           if (!ctx_.accel.occluded(shadow)) {
             float w = ls.delta ? 1.0f : powerHeuristic(ls.pdf, bsdfPdf);
+            // An unoccluded shadow ray crossed one medium: the one on its side of s.
+            const Color sigma = refractive && dot(ls.wi, n) < 0
+                                    ? farSideAbsorption(media, s.material, m, s.frontFace)
+                                    : sigmaA;
+            if (!isBlack(sigma))
+              f *= ls.infinite ? Color(0.0f) : transmittance(sigma, length(ls.p - s.p));
             add(beta * f * ls.L * (w / ls.pdf), "light sample", indirectNee);
           }
         }

@@ -107,7 +107,7 @@ void reportMeshStats(const GltfContext& ctx, const MeshStats& s) {
 
 Scene convert(const tinygltf::Model& model, const std::string& path, const LoadOptions& options,
               LoadReport* report, const ImageBytes& images) {
-  GltfContext ctx{model, path, report};
+  GltfContext ctx{model, path, report, options.ignoreRequiredExtensions};
   validateDocument(ctx);
   warnUnsupported(ctx);
   // Cameras, lights, nodes and environments converted once, placed or not.

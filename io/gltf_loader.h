@@ -12,6 +12,9 @@ struct LoadOptions {
   /// Let buffer and image URIs leave the scene's folder (absolute paths, `..`). Off by default
   /// because scene files come from untrusted sources (docs/scene-format.md, "Validation").
   bool allowAnyPath = false;
+  /// Render even if extensionsRequired names an extension TRay lacks (a warning instead of the
+  /// error): the picture may then be wrong, e.g. missing geometry or materials.
+  bool ignoreRequiredExtensions = false;
 };
 
 struct LoadReport {

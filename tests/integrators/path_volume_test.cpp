@@ -1,0 +1,102 @@
+// KHR_materials_volume through the path tracer's Li: Beer-Lambert absorption inside a smooth
+// glass slab, against the closed form at normal incidence. Each face reflects
+// R = ((n - 1) / (n + 1))^2; one pass through thickness d transmits tau = exp(-sigma_a d) with
+// sigma_a = -ln(attenuationColor) / attenuationDistance; summing the incoherent multiple
+// reflections (a geometric series in R^2 tau^2):
+//   T = (1 - R)^2 tau / (1 - R^2 tau^2)     (per channel).
+// A lower-priority medium inside the slab is a false interface (path_nested_test.cpp): the
+// glass stays the medium in effect and keeps absorbing across it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "shapes/box.h"
+#include "tests/integrators/path_probe.h"
+#include "tests/scene_builder.h"
+
+namespace tray {
+namespace {
+
+using namespace tray::test;
+
+Material absorbingGlass(const Color& attenuation, float distance, int priority) {
+  Material m;
+  m.baseColor = Color(1.0f), m.metallic = 0, m.roughness = 0, m.transmission = 1, m.ior = 1.5f;
+  m.priority = priority;
+  m.layers.attenuationColor = attenuation;
+  m.layers.attenuationDistance = distance;
+  return m;
+}
+
+double slabTransmittance(double ior, double tau) {
+  const double R = (ior - 1) * (ior - 1) / ((ior + 1) * (ior + 1));
+  return (1 - R) * (1 - R) * tau / (1 - R * R * tau * tau);
+}
+
+/// Mean radiance looking straight down through a slab y in [0, 3] of absorbing glass (with,
+/// optionally, a non-absorbing lower-priority water slab y in [1, 2] inside it) onto an
+/// emitter of radiance 1 facing up.
+Color radianceThroughSlab(const Material& glass, bool water, int samples) {
+  Scene s;
+  addShape(s, std::make_shared<Box>(Vec3(-20, 0, -20), Vec3(20, 3, 20)), Mat4::identity(),
+           addMaterial(s, glass));
+  if (water) {
+    Material w = absorbingGlass(Color(1.0f), kInfinity, glass.priority - 1);
+    w.ior = 1.33f;
+    addShape(s, std::make_shared<Box>(Vec3(-20, 1, -20), Vec3(20, 2, 20)), Mat4::identity(),
+             addMaterial(s, w));
+  }
+  Material emitter = diffuse(Color(0.0f));
+  emitter.emissive = Color(1.0f);
+  addMeshInstance(s, addMesh(s, quadMesh(50.0f, addMaterial(s, emitter))),
+                  Mat4::translate({0, -1, 0}));
+  s.finalize();
+  PathProbe probe(s, 256);
+  double sum[3] = {0, 0, 0};
+  for (int i = 0; i < samples; ++i) {
+    Sampler sampler(7, uint32_t(i), 11, Sampler::Sequence::kIndependent);
+    const Color L = probe.Li(Ray{{0.1234f, 5, 0.0567f}, {0, -1, 0}}, sampler);
+    for (int k = 0; k < 3; ++k) sum[k] += L[k];
+  }
+  return {float(sum[0] / samples), float(sum[1] / samples), float(sum[2] / samples)};
+}
+
+constexpr int kSamples = 100000;
+// A sample is 0 (reflected away) or tau^k (k odd passes): the standard deviation of the mean
+// is below sqrt(T (1 - T) / N) = 1.6e-3 at T ~ 0.5; 4 of them.
+constexpr double kTolerance = 6.5e-3;
+
+TEST(PathVolume, BeerLambertThroughAGlassSlab) {
+  // attenuationColor at distance 2: over the slab's 3 units tau = colour^(3/2).
+  const Color colour(0.5f, 0.8f, 1.0f);
+  const Color L = radianceThroughSlab(absorbingGlass(colour, 2.0f, 0), false, kSamples);
+  for (int k = 0; k < 3; ++k) {
+    const double tau = std::pow(double(colour[k]), 1.5);
+    EXPECT_NEAR(L[k], slabTransmittance(1.5, tau), kTolerance) << "channel " << k;
+  }
+  // Blue is not absorbed: the plain slab (0.923), distinct from red's 0.33.
+  EXPECT_GT(L.z - L.x, 0.5f);
+}
+
+TEST(PathVolume, FalseInterfacesInsideKeepTheGlassAbsorbing) {
+  // The water (priority below the glass) is not in effect anywhere: the path crosses 3 units
+  // of glass and two interfaces, as without it.
+  const Color colour(0.3f, 0.6f, 0.9f);
+  const Color L = radianceThroughSlab(absorbingGlass(colour, 3.0f, 2), true, kSamples);
+  for (int k = 0; k < 3; ++k)
+    EXPECT_NEAR(L[k], slabTransmittance(1.5, colour[k]), kTolerance) << "channel " << k;
+}
+
+TEST(PathVolume, AbsorptionCoefficientFromTheExtensionFields) {
+  MaterialLayers l;
+  EXPECT_TRUE(isBlack(l.absorption()));  // the extension's default distance is infinite
+  l.attenuationColor = Color(std::exp(-1.0f), 1.0f, 0.0f);
+  l.attenuationDistance = 0.5f;
+  const Color s = l.absorption();
+  EXPECT_NEAR(s.x, 2.0f, 1e-5f);
+  EXPECT_EQ(s.y, 0.0f);
+  EXPECT_TRUE(std::isfinite(s.z) && s.z > 100.0f);  // black: finite, absorbs everything
+}
+
+}  // namespace
+}  // namespace tray
