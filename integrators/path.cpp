@@ -126,7 +126,10 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats
     const Vec3 wo = -normalize(ray.d);
 
     // Nested dielectrics: a surface of a medium that is not in effect is passed straight by.
-    const bool refractive = m.transmission > 0 && m.metallic < 1;
+    // A metallicRoughnessTexture can lower metallic below a factor of 1 (glTF's default factor,
+    // which the Khronos transmission samples keep): such a surface may transmit too.
+    const bool refractive =
+        m.transmission > 0 && (m.metallic < 1 || m.metallicRoughnessTexture.valid());
     float eta = m.ior / media.currentIor();
     if (refractive) {
       MediumStack::Interface iface = media.interface(s.material, m, s.frontFace);
