@@ -15,6 +15,8 @@ ShadingMaterial ShadingMaterial::of(const Material& m, const Vec3& n) {
   s.specularColor = m.layers.specularColor;
   s.clearcoat = m.layers.clearcoat;
   s.clearcoatRoughness = m.layers.clearcoatRoughness;
+  s.sheenColor = m.layers.sheenColor;
+  s.sheenRoughness = m.layers.sheenRoughness;
   s.phong = m.phong;
   s.n = n;
   s.clearcoatN = n;

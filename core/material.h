@@ -65,13 +65,18 @@ struct MaterialLayers {
   // KHR_materials_clearcoat: a GGX dielectric coat (IOR 1.5) over the whole material.
   float clearcoat = 0.0f;
   float clearcoatRoughness = 0.0f;
+  // KHR_materials_sheen: Charlie sheen over the base; black = off.
+  Color sheenColor{0.0f};
+  float sheenRoughness = 0.0f;
   /// specularTexture (A), specularColorTexture (RGB, sRGB), clearcoatTexture (R),
   /// clearcoatRoughnessTexture (G), clearcoatNormalTexture: multiplied into the factors.
+  /// sheenColorTexture (RGB, sRGB), sheenRoughnessTexture (A).
   TextureRef specularTexture, specularColorTexture, clearcoatTexture, clearcoatRoughnessTexture,
-      clearcoatNormalTexture;
+      clearcoatNormalTexture, sheenColorTexture, sheenRoughnessTexture;
   bool hasTextures() const {
     return specularTexture.valid() || specularColorTexture.valid() || clearcoatTexture.valid() ||
-           clearcoatRoughnessTexture.valid() || clearcoatNormalTexture.valid();
+           clearcoatRoughnessTexture.valid() || clearcoatNormalTexture.valid() ||
+           sheenColorTexture.valid() || sheenRoughnessTexture.valid();
   }
 
   /// Beer-Lambert absorption coefficient sigma_a = -ln(attenuationColor) / attenuationDistance
@@ -101,7 +106,7 @@ struct Material {
   float alpha = 1.0f;        ///< baseColorFactor's alpha (read only when not kOpaque)
   float alphaCutoff = 0.5f;  ///< kMask: alpha below it is cut out
   bool unlit = false;        ///< KHR_materials_unlit: shows base colour, no lighting
-  MaterialLayers layers;  ///< KHR_materials_volume / specular / clearcoat
+  MaterialLayers layers;  ///< KHR_materials_volume / specular / clearcoat / sheen
   PhongParams phong;
   bool hasPhong = false;  ///< phong came from TRAY_materials_phong rather than the mapping
   TextureRef baseColorTexture, metallicRoughnessTexture, emissiveTexture, normalTexture;
@@ -124,6 +129,8 @@ struct ShadingMaterial {
   /// The coat's normal: the interpolated normal, or clearcoatNormalTexture's; never the base's
   /// normalTexture (KHR_materials_clearcoat, "Clearcoat normal").
   Vec3 clearcoatN;
+  Color sheenColor{0.0f};  ///< KHR_materials_sheen
+  float sheenRoughness = 0.0f;
   bool unlit = false;  ///< KHR_materials_unlit: baseColor is the outgoing radiance
   PhongParams phong;
   Vec3 n;  ///< shading normal, normal map applied; on the same side as SurfacePoint::n

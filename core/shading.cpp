@@ -119,6 +119,13 @@ ShadingMaterial MaterialEvaluator::evaluate(const Hit& hit, const SurfacePoint& 
     if (l.clearcoatTexture.valid()) out.clearcoat *= lookup(l.clearcoatTexture).x;
     if (l.clearcoatRoughnessTexture.valid())
       out.clearcoatRoughness *= lookup(l.clearcoatRoughnessTexture).y;
+    // KHR_materials_sheen: colour in RGB, roughness in alpha.
+    if (l.sheenColorTexture.valid()) out.sheenColor *= lookup(l.sheenColorTexture);
+    if (l.sheenRoughnessTexture.valid()) {
+      out.sheenRoughness *= textureAlpha(scene_.textures[size_t(l.sheenRoughnessTexture.image)],
+                                         l.sheenRoughnessTexture,
+                                         frameOf(l.sheenRoughnessTexture.texCoord).uv);
+    }
     if (l.clearcoatNormalTexture.valid()) {
       ShadingMaterial geometric = out;
       geometric.n = s.n;

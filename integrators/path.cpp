@@ -144,8 +144,8 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats
     }
     // Textures are evaluated only at surfaces that scatter or emit (not at null interfaces).
     ShadingMaterial sm = materials_.evaluate(hit, s);
-    // The clearcoat is on the outside of a transmissive solid: not seen from within.
-    if (refractive && !s.frontFace) sm.clearcoat = 0;
+    // The clearcoat and sheen are on the outside of a transmissive solid: not seen from within.
+    if (refractive && !s.frontFace) sm.clearcoat = 0, sm.sheenColor = Color(0.0f);
     if (primary && !primary->hit) {
       primary->hit = true;
       primary->depth = length(s.p - cameraRay.o);

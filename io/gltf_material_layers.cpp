@@ -67,6 +67,13 @@ void readMaterialLayers(const GltfContext& ctx, const tinygltf::Material& g,
     l.clearcoatRoughnessTexture = readTextureInfo(ctx, r, "clearcoatRoughnessTexture", r.where());
     l.clearcoatNormalTexture = readTextureInfo(ctx, r, "clearcoatNormalTexture", r.where());
   }
+  if (const auto* e = findExtension(ext, "KHR_materials_sheen")) {
+    ExtensionReader r(ctx, *e, where + " KHR_materials_sheen");
+    l.sheenColor = r.vec3("sheenColorFactor", l.sheenColor, 0.0, 1.0);
+    l.sheenRoughness = float(r.number("sheenRoughnessFactor", 0.0, 0.0, 1.0));
+    l.sheenColorTexture = readTextureInfo(ctx, r, "sheenColorTexture", r.where());
+    l.sheenRoughnessTexture = readTextureInfo(ctx, r, "sheenRoughnessTexture", r.where());
+  }
 }
 
 }  // namespace tray

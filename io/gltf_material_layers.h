@@ -1,6 +1,6 @@
 #pragma once
-// The layered-material extensions of a glTF material: KHR_materials_volume, _specular and
-// _clearcoat (docs/path-tracing.md, "Material layers").
+// The layered-material extensions of a glTF material: KHR_materials_volume, _specular,
+// _clearcoat and _sheen (docs/path-tracing.md, "Material layers").
 #include "core/material.h"
 #include "io/gltf_context.h"
 

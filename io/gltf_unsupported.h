@@ -6,8 +6,8 @@
 namespace tray {
 
 /// Warns about animations, skins, morph targets, ignored attributes (TEXCOORD_2+, COLOR_1+,
-/// JOINTS/WEIGHTS), texture references to uv sets above 1, occlusion textures and
-/// KHR_materials_volume on materials: one line each, with a count.
+/// JOINTS/WEIGHTS), texture references to uv sets above 1 and occlusion textures: one line
+/// each, with a count.
 void warnUnsupported(const GltfContext& ctx);
 
 }  // namespace tray

@@ -206,6 +206,7 @@ bool isKnownExtension(const std::string& name) {
                                                "KHR_materials_volume",
                                                "KHR_materials_specular",
                                                "KHR_materials_clearcoat",
+                                               "KHR_materials_sheen",
                                                "KHR_mesh_quantization",
                                                "TRAY_shape",
                                                "TRAY_materials_phong",

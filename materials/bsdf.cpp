@@ -20,6 +20,7 @@ Bsdf::Bsdf(const ShadingMaterial& m, const Frame& frame, float eta)
       coatEta_(eta),
       coatTinted_(m.specular != 1.0f || !(m.specularColor == Color(1.0f))) {
   if (m.clearcoat > 0) initClearcoat(m);
+  if (!isBlack(m.sheenColor)) initSheen(m);
   hasNonDelta_ = (wMetal_ > 0 && !metal_.isDelta()) || (wGlass_ > 0 && !glass_.isDelta()) ||
                  (wPlastic_ > 0 && (!isBlack(m.baseColor) || (coat_ > 0 && !coatLobe_.isDelta())));
   // Lobes that can scatter at all (probabilities() gives the others probability 0). The
@@ -153,22 +154,22 @@ BsdfSample Bsdf::sampleLocal(const Vec3& wo, float uc, Vec2 u) const {
 
 Color Bsdf::eval(const Vec3& wo, const Vec3& wi) const {
   float unused;
-  if (clearcoat_ > 0) return layeredEval(wo, wi, unused);
+  if (clearcoat_ > 0 || sheenOn_) return eval(wo, wi, unused);
   return evalLocal(frame_.toLocal(wo), frame_.toLocal(wi));
 }
 
 float Bsdf::pdf(const Vec3& wo, const Vec3& wi) const {
   float p;
-  if (clearcoat_ > 0) return layeredEval(wo, wi, p), p;
+  if (clearcoat_ > 0 || sheenOn_) return eval(wo, wi, p), p;
   return pdfLocal(frame_.toLocal(wo), frame_.toLocal(wi));
 }
 
 Color Bsdf::eval(const Vec3& wo, const Vec3& wi, float& pdf) const {
-  return clearcoat_ > 0 ? layeredEval(wo, wi, pdf) : baseEval(wo, wi, pdf);
+  return clearcoat_ > 0 ? layeredEval(wo, wi, pdf) : innerEval(wo, wi, pdf);
 }
 
 BsdfSample Bsdf::sample(const Vec3& wo, float uc, Vec2 u) const {
-  return clearcoat_ > 0 ? layeredSample(wo, uc, u) : baseSample(wo, uc, u);
+  return clearcoat_ > 0 ? layeredSample(wo, uc, u) : innerSample(wo, uc, u);
 }
 
 Color Bsdf::baseEval(const Vec3& wo, const Vec3& wi, float& pdf) const {

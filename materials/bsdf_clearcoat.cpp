@@ -56,7 +56,7 @@ Color Bsdf::layeredEval(const Vec3& wo, const Vec3& wi, float& pdf) const {
     coat *= cosBase > 0 ? absCosTheta(wiC) / cosBase : 0.0f;
   }
   float basePdf;
-  const Color base = baseEval(wo, wi, basePdf);
+  const Color base = innerEval(wo, wi, basePdf);
   pdf = pc * ccLobe_.pdf(woC, wiC) + (1.0f - pc) * basePdf;
   return coat + (1.0f - cFc) * base;
 }
@@ -79,7 +79,7 @@ BsdfSample Bsdf::layeredSample(const Vec3& wo, float uc, Vec2 u) const {
     }
   } else {
     const float ucBase = std::min((uc - pc) / (1.0f - pc), 0.99999994f);
-    s = baseSample(wo, ucBase, u);
+    s = innerSample(wo, ucBase, u);
     if (!s.valid()) return s;
     if (s.delta) {
       s.f *= 1.0f - cFc;

@@ -389,7 +389,9 @@ TEST(GltfTiny, MaterialLayerExtensions) {
       "KHR_materials_specular":{"specularFactor":0.5,"specularColorFactor":[1,0.5,2],
                                 "specularColorTexture":{"index":0}},
       "KHR_materials_clearcoat":{"clearcoatFactor":0.75,"clearcoatRoughnessFactor":0.25,
-          "clearcoatNormalTexture":{"index":0,"scale":0.5,"texCoord":1}}}},{}])");
+          "clearcoatNormalTexture":{"index":0,"scale":0.5,"texCoord":1}},
+      "KHR_materials_sheen":{"sheenColorFactor":[0.9,0.7,0.6],"sheenRoughnessFactor":0.6,
+                             "sheenRoughnessTexture":{"index":0}}}},{}])");
   const MaterialLayers& l = s.materials.at(0).layers;
   EXPECT_FLOAT_EQ(l.thickness, 0.5f);
   expectNear(l.attenuationColor, {0.5f, 0.25f, 1});
@@ -402,6 +404,9 @@ TEST(GltfTiny, MaterialLayerExtensions) {
   EXPECT_FLOAT_EQ(l.clearcoatRoughness, 0.25f);
   EXPECT_EQ(l.clearcoatNormalTexture.texCoord, 1);
   EXPECT_FLOAT_EQ(l.clearcoatNormalTexture.scale, 0.5f);
+  expectNear(l.sheenColor, {0.9f, 0.7f, 0.6f});
+  EXPECT_FLOAT_EQ(l.sheenRoughness, 0.6f);
+  EXPECT_TRUE(l.sheenRoughnessTexture.valid());
   EXPECT_TRUE(s.materials.at(0).hasTextures());
   // Without the extensions: the defaults, which change nothing.
   const MaterialLayers& none = s.materials.at(1).layers;
@@ -415,6 +420,8 @@ TEST(GltfTiny, MaterialLayerExtensions) {
   EXPECT_NE(e.find("KHR_materials_clearcoat 'clearcoatFactor'"), std::string::npos) << e;
   e = error(R"("KHR_materials_specular":{"specularFactor":-1})");
   EXPECT_NE(e.find("KHR_materials_specular 'specularFactor'"), std::string::npos) << e;
+  e = error(R"("KHR_materials_sheen":{"sheenRoughnessFactor":2})");
+  EXPECT_NE(e.find("KHR_materials_sheen 'sheenRoughnessFactor'"), std::string::npos) << e;
   e = error(R"("KHR_materials_volume":{"attenuationDistance":0})");
   EXPECT_NE(e.find("KHR_materials_volume 'attenuationDistance' must be positive"),
             std::string::npos) << e;
@@ -677,8 +684,9 @@ TEST(GltfFeatures, UnsupportedFeaturesAreWarned) {
   EXPECT_NE(skin.find("JOINTS_0, WEIGHTS_0 ignored"), std::string::npos) << skin;
   std::string morph = warningsOf("SimpleMorph.gltf");
   EXPECT_NE(morph.find("1 primitive(s) with morph targets"), std::string::npos) << morph;
-  std::string sheen = warningsOf("GlamVelvetSofa.glb");
-  EXPECT_NE(sheen.find("'KHR_materials_sheen' is not supported"), std::string::npos) << sheen;
+  std::string sofa = warningsOf("GlamVelvetSofa.glb");
+  EXPECT_NE(sofa.find("'KHR_materials_variants' is not supported"), std::string::npos) << sofa;
+  EXPECT_EQ(sofa.find("sheen"), std::string::npos) << sofa;
   // Implemented layers are no longer warned about.
   std::string clearcoat = warningsOf("ClearCoatTest.glb");
   EXPECT_EQ(clearcoat.find("clearcoat"), std::string::npos) << clearcoat;

@@ -1,11 +1,13 @@
 // KHR_materials_specular and KHR_materials_clearcoat in the Bsdf: sampling against the pdf (chi
 // square), sample/eval/pdf agreement, energy (one-bounce white furnace), and closed forms:
 // a smooth coat over Lambert reflects Fc + (1 - Fc) albedo; specular 0 leaves pure Lambert;
-// specularColor tints F0 exactly at normal incidence.
+// specularColor tints F0 exactly at normal incidence. KHR_materials_sheen likewise, and its
+// albedo table against Monte Carlo integration of the Charlie BRDF.
 #include <gtest/gtest.h>
 
 #include "materials/bsdf.h"
 #include "materials/fresnel.h"
+#include "materials/sheen.h"
 #include "tests/materials/chi2.h"
 
 namespace tray {
@@ -188,6 +190,130 @@ TEST(Specular, ColourTintsF0AndKeepsF90) {
   for (float angle : {10.0f, 60.0f, 85.0f}) {  // and never more than it receives
     const Color a = albedo(bsdf, direction(angle));
     EXPECT_LE(maxComponent(a), 1.0f) << angle;
+  }
+}
+
+struct SheenCase {
+  const char* name;
+  float metallic, roughness, transmission, sheenRoughness, clearcoat;
+};
+
+const SheenCase kSheens[] = {
+    {"OverLambert", 0, 1, 0, 0.5f, 0},
+    {"SharpOverPlastic", 0, 0.5f, 0, 0.2f, 0},
+    {"OverMetal", 1, 0.5f, 0, 0.8f, 0},
+    {"UnderClearcoat", 0, 0.7f, 0, 0.4f, 0.8f},
+};
+
+Bsdf sheened(const SheenCase& c, const Color& base, const Color& sheenColor) {
+  ShadingMaterial sm =
+      ShadingMaterial::of(material(c.metallic, c.roughness, c.transmission, base), {0, 0, 1});
+  sm.sheenColor = sheenColor;
+  sm.sheenRoughness = c.sheenRoughness;
+  sm.clearcoat = c.clearcoat;
+  sm.clearcoatRoughness = 0.3f;
+  return Bsdf(sm, Frame::fromNormal({0, 0, 1}), 1.5f);
+}
+
+class Sheen : public ::testing::TestWithParam<SheenCase> {};
+
+TEST_P(Sheen, SamplingMatchesPdfChiSquare) {
+  const SheenCase c = GetParam();
+  const Bsdf bsdf = sheened(c, Color(0.6f), Color(0.9f, 0.7f, 0.6f));
+  for (float angle : kAngles) {
+    const Vec3 wo = direction(angle);
+    auto sample = [&](Vec2 u, float uc, Vec3& wi) {
+      BsdfSample s = bsdf.sample(wo, uc, u);
+      if (!s.valid()) return false;
+      wi = s.wi;
+      return true;
+    };
+    auto pdf = [&](const Vec3& wi) { return bsdf.pdf(wo, wi); };
+    test::Chi2Result r = test::chi2Test(sample, pdf, 200000, 53 + uint64_t(angle));
+    const double alpha = 1 - std::pow(0.99, 1.0 / (std::size(kSheens) * std::size(kAngles)));
+    EXPECT_GT(r.pValue, alpha) << c.name << " theta_o " << angle << ": chi2 " << r.statistic;
+    EXPECT_NEAR(r.pdfIntegral, r.sampledFraction, 0.01) << c.name << " theta_o " << angle;
+  }
+}
+
+TEST_P(Sheen, SampleAgreesWithEvalAndPdf) {
+  const SheenCase c = GetParam();
+  const Bsdf bsdf = sheened(c, Color(0.8f, 0.5f, 0.3f), Color(0.2f, 0.5f, 0.9f));
+  for (float angle : kAngles) {
+    const Vec3 wo = direction(angle);
+    for (int i = 0; i < 2000; ++i) {
+      float a = (i * 0.618034f) - std::floor(i * 0.618034f);
+      float b = (i * 0.754878f) - std::floor(i * 0.754878f);
+      float uc = (i * 0.569840f) - std::floor(i * 0.569840f);
+      BsdfSample s = bsdf.sample(wo, uc, {a, b});
+      if (!s.valid()) continue;
+      const Color f = bsdf.eval(wo, s.wi);
+      const float pdf = bsdf.pdf(wo, s.wi);
+      ASSERT_TRUE(isFinite(s.f) && std::isfinite(s.pdf));
+      EXPECT_NEAR(s.pdf, pdf, 1e-3f * pdf + 1e-6f) << c.name << " " << angle;
+      for (int k = 0; k < 3; ++k) EXPECT_NEAR(s.f[k], f[k], 1e-3f * f[k] + 1e-6f) << c.name;
+    }
+  }
+}
+
+TEST_P(Sheen, ReflectsAtMostTheEnergyItReceives) {
+  const SheenCase c = GetParam();
+  const Bsdf bsdf = sheened(c, Color(1.0f), Color(1.0f));
+  for (float angle : {0.5f, 30.0f, 60.0f, 85.0f}) {
+    const Color a = albedo(bsdf, direction(angle));
+    EXPECT_LE(a.x, 1.01) << c.name << " theta_o " << angle;
+    EXPECT_GT(a.x, 0.3) << c.name << " theta_o " << angle;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Layers, Sheen, ::testing::ValuesIn(kSheens),
+                         [](const auto& info) { return std::string(info.param.name); });
+
+TEST(Sheen, AlbedoTableMatchesMonteCarlo) {
+  // E(cos_o) = integral f |cos_i| dwi, estimated with cosine-weighted directions (f pi / N).
+  for (float roughness : {0.1f, 0.3f, 0.6f, 1.0f}) {
+    const CharlieSheen sheen(roughness);
+    for (float angle : {5.0f, 40.0f, 70.0f, 85.0f}) {
+      const Vec3 wo = direction(angle);
+      const int n = 200000;
+      double sum = 0;
+      for (int i = 0; i < n; ++i) {
+        const float a = (i + 0.5f) / n, b = (i * 0.618034f) - std::floor(i * 0.618034f);
+        sum += sheen.eval(wo, sampleCosineHemisphere({a, b})) * kPi;
+      }
+      const double E = sum / n;
+      EXPECT_NEAR(sheen.albedo(wo.z), E, 0.01 + 0.02 * E) << roughness << " " << angle;
+      EXPECT_LE(sheen.albedo(wo.z), 1.0f);
+    }
+  }
+}
+
+TEST(Sheen, OverABlackBaseReflectsColourTimesAlbedo) {
+  const SheenCase c{"OverBlack", 0, 1, 0, 0.5f, 0};
+  const Color colour(1.0f, 0.5f, 0.25f);
+  const Bsdf bsdf = sheened(c, Color(0.0f), colour);
+  for (float angle : {20.0f, 60.0f, 80.0f}) {
+    const Vec3 wo = direction(angle);
+    const Color a = albedo(bsdf, wo);
+    const float E = CharlieSheen(0.5f).albedo(wo.z);
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(a[k], colour[k] * E, 0.01f + 0.02f * E) << angle;
+  }
+}
+
+TEST(Sheen, BlackSheenIsTheBaseBitForBit) {
+  const Material m = material(0, 0.5f, 0, Color(0.7f, 0.4f, 0.2f));
+  const Frame frame = Frame::fromNormal(normalize(Vec3(0.2f, 0.1f, 1)));
+  ShadingMaterial sm = ShadingMaterial::of(m, frame.n);
+  sm.sheenRoughness = 0.3f;  // sheenColor 0 disables the layer whatever the roughness
+  const Bsdf plain(m, frame, 1.5f), zero(sm, frame, 1.5f);
+  for (int i = 0; i < 100; ++i) {
+    const Vec3 wo = frame.toWorld(direction(3.0f + i * 0.8f, i * 1.3f));
+    const Vec3 wi = frame.toWorld(direction(5.0f + i * 0.7f, i * 2.4f));
+    float p1, p2;
+    const Color f1 = plain.eval(wo, wi, p1), f2 = zero.eval(wo, wi, p2);
+    EXPECT_TRUE(f1 == f2 && p1 == p2);
+    const BsdfSample s1 = plain.sample(wo, 0.37f, {0.2f, 0.9f}), s2 = zero.sample(wo, 0.37f, {0.2f, 0.9f});
+    EXPECT_TRUE(s1.wi == s2.wi && s1.f == s2.f && s1.pdf == s2.pdf);
   }
 }
 
