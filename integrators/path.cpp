@@ -1,5 +1,6 @@
 #include "integrators/path.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -37,6 +38,8 @@ class PathIntegrator final : public Integrator {
         maxDepth_(ctx.settings.getInt("max-depth")),
         clampIndirect_(ctx.settings.getFloat("clamp-indirect")),
         debugNan_(ctx.settings.getBool("debug-nan")),
+        absorbingMedia_(std::any_of(ctx.scene.materials.begin(), ctx.scene.materials.end(),
+                                    [](const Material& m) { return !isBlack(m.layers.absorption()); })),
         lights_(ctx.scene),
         materials_(ctx.scene, ctx.camera, ctx.settings.getInt("spp")) {}
 
@@ -65,6 +68,7 @@ class PathIntegrator final : public Integrator {
   int maxDepth_;
   float clampIndirect_;
   bool debugNan_;
+  bool absorbingMedia_;  ///< some material absorbs (KHR_materials_volume): NEE looks it up
   LightSet lights_;
   MaterialEvaluator materials_;
   mutable std::atomic<int> nanReports_{0};
@@ -191,7 +195,7 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats
           if (!ctx_.accel.occluded(shadow)) {
             float w = ls.delta ? 1.0f : powerHeuristic(ls.pdf, bsdfPdf);
             // An unoccluded shadow ray crossed one medium: the one on its side of s.
-            const Color sigma = refractive && dot(ls.wi, n) < 0
+            const Color sigma = absorbingMedia_ && refractive && dot(ls.wi, n) < 0
                                     ? farSideAbsorption(media, s.material, m, s.frontFace)
                                     : sigmaA;
             if (!isBlack(sigma))

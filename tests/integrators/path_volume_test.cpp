@@ -106,6 +106,32 @@ TEST(PathVolume, TexturedMetallicBelowAFactorOfOneStillRefracts) {
         << "channel " << k;
 }
 
+TEST(PathVolume, LightInsideTheGlassIsAbsorbedAlongTheShadowRay) {
+  // Index-matched absorbing "glass" (IOR 1: no refraction, no reflection) holds a Lambert
+  // floor and a point light. Seen from above, the floor point reflects
+  //   albedo / pi x I cos / r^2 x tau(r)  (the shadow segment, inside)  x tau(2)  (the view
+  // segment from the top face, y = 2, down to the floor); tau(d) = colour^d at distance 1.
+  const Color colour(0.5f, 0.8f, 1.0f);
+  Material glass = absorbingGlass(colour, 1.0f, 0);
+  glass.ior = 1.0f;
+  Scene s;
+  addShape(s, std::make_shared<Box>(Vec3(-20, -1, -20), Vec3(20, 2, 20)), Mat4::identity(),
+           addMaterial(s, glass));
+  addMeshInstance(s, addMesh(s, quadMesh(10.0f, addMaterial(s, diffuse(Color(0.6f))))),
+                  Mat4::identity());
+  const Vec3 light(0, 1, 0), at(0.5f, 0, 0.25f);
+  s.lights.push_back(pointLight(light, Color(5.0f)));
+  s.finalize();
+  PathProbe probe(s, 3);  // camera -> glass -> floor, and the light sample there
+  Sampler sampler(3, 0, 1);
+  const Color L = probe.Li(Ray{at + Vec3(0, 5, 0), {0, -1, 0}}, sampler);
+  const double r = length(light - at), E = 5.0 * (1.0 / r) / (r * r);
+  for (int k = 0; k < 3; ++k) {
+    const double expected = 0.6 / kPi * E * std::pow(double(colour[k]), r + 2.0);
+    EXPECT_NEAR(L[k], expected, 1e-4 * expected) << "channel " << k;
+  }
+}
+
 TEST(PathVolume, AbsorptionCoefficientFromTheExtensionFields) {
   MaterialLayers l;
   EXPECT_TRUE(isBlack(l.absorption()));  // the extension's default distance is infinite
