@@ -43,6 +43,7 @@ struct CliOptions {
   std::string outputColorspace;  ///< empty: the config's linear Rec.709, else scene_linear
   std::string display, view;
   bool allowAnyPath = false;
+  bool ignoreRequiredExtensions = false;
   bool quiet = false;
   std::string aovs;
   int cryptomatteRanks = 6;
@@ -109,6 +110,7 @@ int run(const CliOptions& o) {
   const double maxMemoryMB = o.maxMemoryMB < 0 ? defaultMaxMemoryMB() : o.maxMemoryMB;
   loadOptions.maxMemoryBytes = uint64_t(maxMemoryMB * 1048576.0);
   loadOptions.textureCacheMB = o.textureMemoryMB;
+  loadOptions.ignoreRequiredExtensions = o.ignoreRequiredExtensions;
   tray::LoadReport report;
   tray::Scene scene = tray::loadGltf(o.scenePath, loadOptions, &report);
   scene.sourcePath = o.scenePath;
@@ -316,6 +318,8 @@ int main(int argc, char** argv) {
   app.add_option("--display", o.display, "OCIO display for PNG/JPG output (default: sRGB)");
   app.add_option("--view", o.view, "OCIO view for PNG/JPG output (default: the display's first)");
   app.add_flag("--allow-any-path", o.allowAnyPath, "let scene URIs leave the scene's folder");
+  app.add_flag("--ignore-required-extensions", o.ignoreRequiredExtensions,
+               "render a glTF whose required extensions TRay lacks (with a warning)");
   app.add_option("--aov", o.aovs,
                  "extra EXR layers: comma-separated from " + joined(tray::AovSet::known()) +
                      ", cryptomatte (= crypto_object,crypto_material), or all");

@@ -11,13 +11,40 @@ ShadingMaterial ShadingMaterial::of(const Material& m, const Vec3& n) {
   s.transmission = m.transmission;
   s.ior = m.ior;
   s.unlit = m.unlit;
+  s.specular = m.layers.specular;
+  s.specularColor = m.layers.specularColor;
+  s.clearcoat = m.layers.clearcoat;
+  s.clearcoatRoughness = m.layers.clearcoatRoughness;
+  s.sheenColor = m.layers.sheenColor;
+  s.sheenRoughness = m.layers.sheenRoughness;
   s.phong = m.phong;
   s.n = n;
+  s.clearcoatN = n;
   return s;
 }
 
 PhongParams phongFromPbr(const Material& m) {
-  return phongFromPbr(m.baseColor, m.metallic, m.roughness, m.transmission);
+  PhongParams p = phongFromPbr(m.baseColor, m.metallic, m.roughness, m.transmission);
+  const MaterialLayers& l = m.layers;
+  phongLayers(p, m.baseColor, m.metallic, l.specular, l.specularColor, l.clearcoat,
+              l.clearcoatRoughness);
+  return p;
+}
+
+void phongLayers(PhongParams& p, const Color& baseColor, float metallic, float specular,
+                 const Color& specularColor, float clearcoat, float clearcoatRoughness) {
+  // KHR_materials_specular scales and tints the dielectric's 4% white specular; metals keep
+  // theirs. Untouched when the extension is at its defaults (bit-identical images).
+  if (specular != 1.0f || !(specularColor == Color(1.0f))) {
+    const Color dielectric = min(Color(0.04f) * specularColor, Color(1.0f)) * specular;
+    p.specular = dielectric * (1.0f - metallic) + baseColor * metallic;
+  }
+  // KHR_materials_clearcoat: the coat's 4% mirror reflection, faded by its roughness like the
+  // metal mirror term above, added to what the base already reflects.
+  if (clearcoat > 0) {
+    const float smooth = 1.0f - clearcoatRoughness;
+    p.reflectance += (1.0f - p.reflectance) * clearcoat * 0.04f * smooth * smooth;
+  }
 }
 
 PhongParams phongFromPbr(const Color& baseColor, float metallic, float roughness,

@@ -1,4 +1,6 @@
 #pragma once
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "core/math.h"
@@ -52,6 +54,45 @@ struct PhongParams {
   float transmittance = 0.0f;  ///< kt
 };
 
+/// The layered-material extensions (docs/path-tracing.md, "Material layers"). Defaults leave a
+/// material exactly as plain metallic-roughness renders it.
+struct MaterialLayers {
+  // KHR_materials_volume. thickness is stored but not used: TRay traces the real geometry, so
+  // the distance travelled inside is known (the extension offers thickness for rasterisers).
+  float thickness = 0.0f;
+  Color attenuationColor{1.0f};
+  float attenuationDistance = kInfinity;
+  // KHR_materials_specular: weight and F0 tint of the dielectric specular reflection.
+  float specular = 1.0f;
+  Color specularColor{1.0f};
+  // KHR_materials_clearcoat: a GGX dielectric coat (IOR 1.5) over the whole material.
+  float clearcoat = 0.0f;
+  float clearcoatRoughness = 0.0f;
+  // KHR_materials_sheen: Charlie sheen over the base; black = off.
+  Color sheenColor{0.0f};
+  float sheenRoughness = 0.0f;
+  /// specularTexture (A), specularColorTexture (RGB, sRGB), clearcoatTexture (R),
+  /// clearcoatRoughnessTexture (G), clearcoatNormalTexture: multiplied into the factors.
+  /// sheenColorTexture (RGB, sRGB), sheenRoughnessTexture (A).
+  TextureRef specularTexture, specularColorTexture, clearcoatTexture, clearcoatRoughnessTexture,
+      clearcoatNormalTexture, sheenColorTexture, sheenRoughnessTexture;
+  bool hasTextures() const {
+    return specularTexture.valid() || specularColorTexture.valid() || clearcoatTexture.valid() ||
+           clearcoatRoughnessTexture.valid() || clearcoatNormalTexture.valid() ||
+           sheenColorTexture.valid() || sheenRoughnessTexture.valid();
+  }
+
+  /// Beer-Lambert absorption coefficient sigma_a = -ln(attenuationColor) / attenuationDistance
+  /// per channel (KHR_materials_volume); 0 where nothing is absorbed. A zero colour channel is
+  /// read as 1e-30 so that sigma_a stays finite (exp(-sigma_a t) is then 0 for any t > 0).
+  Color absorption() const {
+    if (!(attenuationDistance < kInfinity)) return Color(0.0f);
+    auto one = [&](float c) { return -std::log(std::max(c, 1e-30f)) / attenuationDistance; };
+    return {one(attenuationColor.x), one(attenuationColor.y), one(attenuationColor.z)};
+  }
+  bool hasSpecular() const { return specular != 1.0f || !(specularColor == Color(1.0f)); }
+};
+
 /// One material, holding both the glTF metallic-roughness description (used by physically
 /// based integrators) and the Phong parameters (used by Whitted). Defaults are glTF's.
 struct Material {
@@ -68,12 +109,13 @@ struct Material {
   float alpha = 1.0f;        ///< baseColorFactor's alpha (read only when not kOpaque)
   float alphaCutoff = 0.5f;  ///< kMask: alpha below it is cut out
   bool unlit = false;        ///< KHR_materials_unlit: shows base colour, no lighting
+  MaterialLayers layers;  ///< KHR_materials_volume / specular / clearcoat / sheen
   PhongParams phong;
   bool hasPhong = false;  ///< phong came from TRAY_materials_phong rather than the mapping
   TextureRef baseColorTexture, metallicRoughnessTexture, emissiveTexture, normalTexture;
   bool hasTextures() const {
     return baseColorTexture.valid() || metallicRoughnessTexture.valid() ||
-           emissiveTexture.valid() || normalTexture.valid();
+           emissiveTexture.valid() || normalTexture.valid() || layers.hasTextures();
   }
 };
 
@@ -84,6 +126,14 @@ struct ShadingMaterial {
   Color emissive{0.0f};
   float transmission = 0.0f, ior = 1.5f;
   float alpha = 1.0f;  ///< coverage of an alphaMode BLEND surface (1 otherwise)
+  float specular = 1.0f;  ///< KHR_materials_specular (factor x texture alpha)
+  Color specularColor{1.0f};
+  float clearcoat = 0.0f, clearcoatRoughness = 0.0f;  ///< KHR_materials_clearcoat
+  /// The coat's normal: the interpolated normal, or clearcoatNormalTexture's; never the base's
+  /// normalTexture (KHR_materials_clearcoat, "Clearcoat normal").
+  Vec3 clearcoatN;
+  Color sheenColor{0.0f};  ///< KHR_materials_sheen
+  float sheenRoughness = 0.0f;
   bool unlit = false;  ///< KHR_materials_unlit: baseColor is the outgoing radiance
   PhongParams phong;
   Vec3 n;  ///< shading normal, normal map applied; on the same side as SurfacePoint::n
@@ -94,6 +144,10 @@ struct ShadingMaterial {
 
 /// Phong parameters derived from a PBR material (documented in docs/scene-format.md).
 PhongParams phongFromPbr(const Material& m);
+/// Whitted's share of KHR_materials_specular (ks of dielectrics scaled and tinted) and
+/// KHR_materials_clearcoat (a 4% mirror reflectance added); no change at their defaults.
+void phongLayers(PhongParams& p, const Color& baseColor, float metallic, float specular,
+                 const Color& specularColor, float clearcoat, float clearcoatRoughness);
 /// The same from the factors alone (for textured values at a surface point).
 PhongParams phongFromPbr(const Color& baseColor, float metallic, float roughness,
                          float transmission);

@@ -109,6 +109,32 @@ ShadingMaterial MaterialEvaluator::evaluate(const Hit& hit, const SurfacePoint& 
     out.n = normalMapped(out, frameOf(m.normalTexture.texCoord), lookup(m.normalTexture),
                          m.normalTexture.scale, s);
   }
+  if (m.layers.hasTextures()) {
+    const MaterialLayers& l = m.layers;
+    if (l.specularTexture.valid()) {  // KHR_materials_specular: the strength is in alpha
+      out.specular *= textureAlpha(scene_.textures[size_t(l.specularTexture.image)],
+                                   l.specularTexture, frameOf(l.specularTexture.texCoord).uv);
+    }
+    if (l.specularColorTexture.valid()) out.specularColor *= lookup(l.specularColorTexture);
+    // KHR_materials_clearcoat: strength in R, roughness in G; the coat's own normal map.
+    if (l.clearcoatTexture.valid()) out.clearcoat *= lookup(l.clearcoatTexture).x;
+    if (l.clearcoatRoughnessTexture.valid())
+      out.clearcoatRoughness *= lookup(l.clearcoatRoughnessTexture).y;
+    // KHR_materials_sheen: colour in RGB, roughness in alpha.
+    if (l.sheenColorTexture.valid()) out.sheenColor *= lookup(l.sheenColorTexture);
+    if (l.sheenRoughnessTexture.valid()) {
+      out.sheenRoughness *= textureAlpha(scene_.textures[size_t(l.sheenRoughnessTexture.image)],
+                                         l.sheenRoughnessTexture,
+                                         frameOf(l.sheenRoughnessTexture.texCoord).uv);
+    }
+    if (l.clearcoatNormalTexture.valid()) {
+      ShadingMaterial geometric = out;
+      geometric.n = s.n;
+      out.clearcoatN = normalMapped(geometric, frameOf(l.clearcoatNormalTexture.texCoord),
+                                    lookup(l.clearcoatNormalTexture),
+                                    l.clearcoatNormalTexture.scale, s);
+    }
+  }
   finishPhong(m, out, base * vertex);
   return out;
 }
@@ -121,6 +147,8 @@ void MaterialEvaluator::finishPhong(const Material& m, ShadingMaterial& out, con
     out.phong.ambient *= base;
   } else {
     out.phong = phongFromPbr(out.baseColor, out.metallic, out.roughness, out.transmission);
+    phongLayers(out.phong, out.baseColor, out.metallic, out.specular, out.specularColor,
+                out.clearcoat, out.clearcoatRoughness);
   }
 }
 

@@ -1,5 +1,6 @@
 #include "integrators/path.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -15,6 +16,18 @@
 namespace tray {
 namespace {
 
+/// Beer-Lambert transmittance exp(-sigma_a d) per channel (KHR_materials_volume).
+Color transmittance(const Color& sigmaA, float d) {
+  return {std::exp(-sigmaA.x * d), std::exp(-sigmaA.y * d), std::exp(-sigmaA.z * d)};
+}
+
+/// Absorption of the medium beyond a refractive surface: the one in effect once crossed.
+Color farSideAbsorption(const MediumStack& media, int id, const Material& m, bool entering) {
+  MediumStack far = media;
+  far.cross(id, m, entering);
+  return far.currentAbsorption();
+}
+
 /// The pixel being rendered on this thread, for --debug-nan reports (Li does not know it).
 thread_local int tlsPixelX = -1, tlsPixelY = -1;
 
@@ -25,6 +38,8 @@ class PathIntegrator final : public Integrator {
         maxDepth_(ctx.settings.getInt("max-depth")),
         clampIndirect_(ctx.settings.getFloat("clamp-indirect")),
         debugNan_(ctx.settings.getBool("debug-nan")),
+        absorbingMedia_(std::any_of(ctx.scene.materials.begin(), ctx.scene.materials.end(),
+                                    [](const Material& m) { return !isBlack(m.layers.absorption()); })),
         lights_(ctx.scene),
         materials_(ctx.scene, ctx.camera, ctx.settings.getInt("spp")) {}
 
@@ -53,6 +68,7 @@ class PathIntegrator final : public Integrator {
   int maxDepth_;
   float clampIndirect_;
   bool debugNan_;
+  bool absorbingMedia_;  ///< some material absorbs (KHR_materials_volume): NEE looks it up
   LightSet lights_;
   MaterialEvaluator materials_;
   mutable std::atomic<int> nanReports_{0};
@@ -90,7 +106,11 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats
 
   for (;;) {
     Hit hit;
+    // KHR_materials_volume: the segment crosses the medium in effect, which absorbs.
+    const Color sigmaA = media.currentAbsorption();
+    const bool absorbing = !isBlack(sigmaA);
     if (!ctx_.accel.intersect(ray, hit)) {
+      if (absorbing) break;  // lost inside an open absorbing mesh: transmittance exp(-inf) = 0
       // Escaped: the infinite lights' radiance, weighted against their light-sampling pdfs.
       for (int i : lights_.infinite()) {
         const Vec3 dir = normalize(ray.d);
@@ -101,12 +121,19 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats
       }
       break;
     }
+    if (absorbing) {
+      beta *= transmittance(sigmaA, hit.t * length(ray.d));
+      if (isBlack(beta)) break;
+    }
     SurfacePoint s = scene.surface(ray, hit);
     const Material& m = scene.material(s.material);
     const Vec3 wo = -normalize(ray.d);
 
     // Nested dielectrics: a surface of a medium that is not in effect is passed straight by.
-    const bool refractive = m.transmission > 0 && m.metallic < 1;
+    // A metallicRoughnessTexture can lower metallic below a factor of 1 (glTF's default factor,
+    // which the Khronos transmission samples keep): such a surface may transmit too.
+    const bool refractive =
+        m.transmission > 0 && (m.metallic < 1 || m.metallicRoughnessTexture.valid());
     float eta = m.ior / media.currentIor();
     if (refractive) {
       MediumStack::Interface iface = media.interface(s.material, m, s.frontFace);
@@ -120,7 +147,9 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats
       eta = iface.etaT / iface.etaI;
     }
     // Textures are evaluated only at surfaces that scatter or emit (not at null interfaces).
-    const ShadingMaterial sm = materials_.evaluate(hit, s);
+    ShadingMaterial sm = materials_.evaluate(hit, s);
+    // The clearcoat and sheen are on the outside of a transmissive solid: not seen from within.
+    if (refractive && !s.frontFace) sm.clearcoat = 0, sm.sheenColor = Color(0.0f);
     if (primary && !primary->hit) {
       primary->hit = true;
       primary->depth = length(s.p - cameraRay.o);
@@ -165,6 +194,12 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats
           ++stats.shadowRays;
           if (!ctx_.accel.occluded(shadow)) {
             float w = ls.delta ? 1.0f : powerHeuristic(ls.pdf, bsdfPdf);
+            // An unoccluded shadow ray crossed one medium: the one on its side of s.
+            const Color sigma = absorbingMedia_ && refractive && dot(ls.wi, n) < 0
+                                    ? farSideAbsorption(media, s.material, m, s.frontFace)
+                                    : sigmaA;
+            if (!isBlack(sigma))
+              f *= ls.infinite ? Color(0.0f) : transmittance(sigma, length(ls.p - s.p));
             add(beta * f * ls.L * (w / ls.pdf), "light sample", indirectNee);
           }
         }

@@ -23,6 +23,7 @@ struct GltfContext {
   const tinygltf::Model& model;
   std::string path;  ///< as the caller named the file; every message starts with it
   LoadReport* report = nullptr;
+  bool ignoreRequiredExtensions = false;  ///< LoadOptions::ignoreRequiredExtensions
 
   /// Throws tray::Error("PATH: problem") on one line.
   [[noreturn]] void fail(const std::string& problem) const;

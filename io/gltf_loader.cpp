@@ -133,7 +133,7 @@ std::vector<NodePose> animate(const GltfContext& ctx, const LoadOptions& options
 Scene convert(const tinygltf::Model& model, const std::string& path, const LoadOptions& options,
               LoadReport* report, const ImageBytes& images, const UriPolicy& policy,
               MemoryEstimate& memory) {
-  GltfContext ctx{model, path, report};
+  GltfContext ctx{model, path, report, options.ignoreRequiredExtensions};
   validateDocument(ctx);
   warnUnsupported(ctx);
   // Cameras, lights, nodes and environments converted once, placed or not.

@@ -24,6 +24,9 @@ struct LoadOptions {
   uint64_t maxMemoryBytes = 0;
   /// OIIO's texture cache budget, stored in Scene::textureCacheMB (0: TRay's default).
   double textureCacheMB = 0;
+  /// Render even if extensionsRequired names an extension TRay lacks (a warning instead of the
+  /// error): the picture may then be wrong, e.g. missing geometry or materials.
+  bool ignoreRequiredExtensions = false;
 };
 
 struct LoadReport {

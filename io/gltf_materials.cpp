@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "io/gltf_material_layers.h"
 #include "io/gltf_value.h"
 
 namespace tray {
@@ -133,6 +134,7 @@ Material convertMaterial(const GltfContext& ctx, int index) {
     ExtensionReader r(ctx, *e, where + " KHR_materials_ior");
     m.ior = float(r.number("ior", 1.5, 1.0));
   }
+  readMaterialLayers(ctx, g, where, m);
   // KHR_materials_unlit has no properties: its presence is the whole statement.
   if (findExtension(ext, "KHR_materials_unlit")) m.unlit = true;
   if (const auto* e = findExtension(ext, "TRAY_materials_priority")) {

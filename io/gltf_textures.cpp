@@ -142,6 +142,14 @@ void bindTextures(const GltfContext& ctx, const ImageBytes& bytes, Scene& scene,
     binder.bind(m.metallicRoughnessTexture, false);
     binder.bind(m.emissiveTexture, true);
     binder.bind(m.normalTexture, false);
+    MaterialLayers& l = m.layers;  // KHR_materials_specular, _clearcoat, _sheen (sRGB: colours)
+    binder.bind(l.specularTexture, false, true);
+    binder.bind(l.specularColorTexture, true);
+    binder.bind(l.clearcoatTexture, false);
+    binder.bind(l.clearcoatRoughnessTexture, false);
+    binder.bind(l.clearcoatNormalTexture, false);
+    binder.bind(l.sheenColorTexture, true);
+    binder.bind(l.sheenRoughnessTexture, false, true);
   }
   binder.decode(bytes, memory, maxMemoryBytes);
   for (TriangleMesh& mesh : scene.meshes) {

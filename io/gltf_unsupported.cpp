@@ -38,10 +38,9 @@ void warnUnsupported(const GltfContext& ctx) {
     ctx.warn("vertex attribute(s) " + list + " ignored (TRay reads POSITION, NORMAL, TANGENT, " +
              "TEXCOORD_0/1, COLOR_0, JOINTS_0/1 and WEIGHTS_0/1)");
   }
-  size_t occlusion = 0, volume = 0, highUv = 0;
+  size_t occlusion = 0, highUv = 0;
   for (const auto& g : m.materials) {
     if (g.occlusionTexture.index >= 0) ++occlusion;
-    if (findExtension(g.extensions, "KHR_materials_volume")) ++volume;
     for (int texCoord : {g.pbrMetallicRoughness.baseColorTexture.texCoord,
                          g.pbrMetallicRoughness.metallicRoughnessTexture.texCoord,
                          g.emissiveTexture.texCoord, g.normalTexture.texCoord})
@@ -50,9 +49,6 @@ void warnUnsupported(const GltfContext& ctx) {
   if (occlusion)
     ctx.warn(count(occlusion, "material(s) with an occlusionTexture: ignored (occlusion is "
                               "traced)"));
-  if (volume)
-    ctx.warn(count(volume, "material(s) with KHR_materials_volume: thickness and attenuation "
-                           "ignored"));
   if (highUv)
     ctx.warn(count(highUv, "texture reference(s) to TEXCOORD_2 or above: TEXCOORD_0 is used"));
 }

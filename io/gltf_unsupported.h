@@ -5,8 +5,8 @@
 
 namespace tray {
 
-/// Warns about ignored attributes (TEXCOORD_2+, COLOR_1+, JOINTS_2+ / WEIGHTS_2+), texture references to uv sets above 1, occlusion textures and
-/// KHR_materials_volume on materials: one line each, with a count.
+/// Warns about ignored attributes (TEXCOORD_2+, COLOR_1+, JOINTS_2+ / WEIGHTS_2+), texture
+/// references to uv sets above 1 and occlusion textures: one line each, with a count.
 void warnUnsupported(const GltfContext& ctx);
 
 }  // namespace tray

@@ -14,9 +14,15 @@ bool inRange(int index, size_t size) {
 }
 
 void checkExtensions(const GltfContext& ctx) {
-  for (const auto& e : ctx.model.extensionsRequired)
-    if (!isKnownExtension(e)) ctx.fail("required extension '" + e + "' is not supported");
   std::set<std::string> warned;
+  for (const auto& e : ctx.model.extensionsRequired) {
+    if (isKnownExtension(e)) continue;
+    if (!ctx.ignoreRequiredExtensions)
+      ctx.fail("required extension '" + e + "' is not supported");
+    if (warned.insert(e).second)
+      ctx.warn("required extension '" + e + "' is not supported: rendering without it " +
+               "(--ignore-required-extensions); the image may be wrong");
+  }
   for (const auto& e : ctx.model.extensionsUsed)
     if (!isKnownExtension(e) && warned.insert(e).second)
       ctx.warn("extension '" + e + "' is not supported and is ignored");
@@ -199,6 +205,9 @@ bool isKnownExtension(const std::string& name) {
                                                "KHR_materials_unlit",
                                                "KHR_texture_transform",
                                                "KHR_materials_volume",
+                                               "KHR_materials_specular",
+                                               "KHR_materials_clearcoat",
+                                               "KHR_materials_sheen",
                                                "KHR_mesh_quantization",
                                                "TRAY_shape",
                                                "TRAY_materials_phong",

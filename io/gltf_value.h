@@ -33,6 +33,7 @@ class ExtensionReader {
   /// Fails naming the first key none of the getters read.
   void finish() const;
   [[noreturn]] void fail(const std::string& problem) const;
+  const std::string& where() const { return where_; }
 
  private:
   const GltfContext& ctx_;

@@ -11,10 +11,16 @@ Bsdf::Bsdf(const ShadingMaterial& m, const Frame& frame, float eta)
       wPlastic_(1.0f - wMetal_ - wGlass_),
       coat_(std::clamp((1.0f - m.roughness) * 10.0f, 0.0f, 1.0f)),
       metal_(GgxReflectionLobe::metal(m.roughness * m.roughness, m.baseColor)),
-      coatLobe_(GgxReflectionLobe::dielectric(m.roughness * m.roughness, eta)),
+      coatLobe_(m.specular != 1.0f || !(m.specularColor == Color(1.0f))
+                    ? GgxReflectionLobe::dielectric(m.roughness * m.roughness, eta, m.specular,
+                                                    m.specularColor)
+                    : GgxReflectionLobe::dielectric(m.roughness * m.roughness, eta)),
       glass_(m.roughness * m.roughness, eta, m.baseColor),
       diffuse_{m.baseColor},
-      coatEta_(eta) {
+      coatEta_(eta),
+      coatTinted_(m.specular != 1.0f || !(m.specularColor == Color(1.0f))) {
+  if (m.clearcoat > 0) initClearcoat(m);
+  if (!isBlack(m.sheenColor)) initSheen(m);
   hasNonDelta_ = (wMetal_ > 0 && !metal_.isDelta()) || (wGlass_ > 0 && !glass_.isDelta()) ||
                  (wPlastic_ > 0 && (!isBlack(m.baseColor) || (coat_ > 0 && !coatLobe_.isDelta())));
   // Lobes that can scatter at all (probabilities() gives the others probability 0). The
@@ -36,6 +42,7 @@ Bsdf::Bsdf(const ShadingMaterial& m, const Frame& frame, float eta)
 }
 
 float Bsdf::coatFresnel(const Vec3& wo) const {
+  if (coatTinted_) return coat_ > 0 ? coat_ * maxComponent(coatLobe_.fresnel(wo.z)) : 0.0f;
   return coat_ > 0 ? coat_ * fresnelDielectric(absCosTheta(wo), coatEta_) : 0.0f;
 }
 
@@ -146,14 +153,26 @@ BsdfSample Bsdf::sampleLocal(const Vec3& wo, float uc, Vec2 u) const {
 }
 
 Color Bsdf::eval(const Vec3& wo, const Vec3& wi) const {
+  float unused;
+  if (clearcoat_ > 0 || sheenOn_) return eval(wo, wi, unused);
   return evalLocal(frame_.toLocal(wo), frame_.toLocal(wi));
 }
 
 float Bsdf::pdf(const Vec3& wo, const Vec3& wi) const {
+  float p;
+  if (clearcoat_ > 0 || sheenOn_) return eval(wo, wi, p), p;
   return pdfLocal(frame_.toLocal(wo), frame_.toLocal(wi));
 }
 
 Color Bsdf::eval(const Vec3& wo, const Vec3& wi, float& pdf) const {
+  return clearcoat_ > 0 ? layeredEval(wo, wi, pdf) : innerEval(wo, wi, pdf);
+}
+
+BsdfSample Bsdf::sample(const Vec3& wo, float uc, Vec2 u) const {
+  return clearcoat_ > 0 ? layeredSample(wo, uc, u) : innerSample(wo, uc, u);
+}
+
+Color Bsdf::baseEval(const Vec3& wo, const Vec3& wi, float& pdf) const {
   if (only_ == Only::kDiffuse) {  // Lambert needs only the cosines: skip the tangent axes
     const float cosO = dot(wo, frame_.n), cosI = dot(wi, frame_.n);
     const bool same = cosO * cosI > 0;
@@ -165,7 +184,7 @@ Color Bsdf::eval(const Vec3& wo, const Vec3& wi, float& pdf) const {
   return evalLocal(woLocal, wiLocal);
 }
 
-BsdfSample Bsdf::sample(const Vec3& wo, float uc, Vec2 u) const {
+BsdfSample Bsdf::baseSample(const Vec3& wo, float uc, Vec2 u) const {
   // Lambert reads only the side of wo (its local z): skip the tangent axes.
   const Vec3 woLocal =
       only_ == Only::kDiffuse ? Vec3(0.0f, 0.0f, dot(wo, frame_.n)) : frame_.toLocal(wo);

@@ -6,6 +6,7 @@
 #include "materials/dielectric.h"
 #include "materials/ggx_reflection.h"
 #include "materials/lambert.h"
+#include "materials/sheen.h"
 
 namespace tray {
 
@@ -18,6 +19,10 @@ namespace tray {
 /// alpha = roughness^2. The coat strength c fades from 1 to 0 as roughness goes 0.9 -> 1, so
 /// roughness 1 with metallic 0 is exactly Lambert: what exporters write for matte surfaces
 /// (Mitsuba's `diffuse`, the Cornell box) -- documented in docs/path-tracing.md.
+/// KHR_materials_specular weights and tints the plastic's coat Fresnel (GgxReflectionLobe);
+/// KHR_materials_clearcoat puts a GGX dielectric layer (IOR 1.5) with its own normal over all
+/// of it: f = c fc + (1 - c Fc(cos_o)) f_base (bsdf_clearcoat.cpp). KHR_materials_sheen goes
+/// between the two: f_base = f_sheen + f_pbr min(1 - s E(cos_o), 1 - s E(cos_i)) (bsdf_sheen.cpp).
 /// Built per shading point on the stack; directions are world-space, frame.n faces wo's side.
 class Bsdf {
  public:
@@ -35,12 +40,14 @@ class Bsdf {
   /// space; an invalid sample has pdf 0.
   BsdfSample sample(const Vec3& wo, float uc, Vec2 u) const;
   /// False when every lobe is a delta: light sampling cannot help and MIS is off.
-  bool hasNonDelta() const { return hasNonDelta_; }
+  bool hasNonDelta() const {
+    return hasNonDelta_ || sheenOn_ || (clearcoat_ > 0 && !ccLobe_.isDelta());
+  }
   /// True when light can also scatter to the far side of the surface.
   bool transmits() const { return wGlass_ > 0; }
   const Frame& frame() const { return frame_; }
 
-  /// The same, in the local frame (tests use these directly).
+  /// The same, in the local frame (tests use these directly), without clearcoat and sheen.
   Color evalLocal(const Vec3& wo, const Vec3& wi) const;
   float pdfLocal(const Vec3& wo, const Vec3& wi) const;
   BsdfSample sampleLocal(const Vec3& wo, float uc, Vec2 u) const;
@@ -55,12 +62,43 @@ class Bsdf {
   enum class Only : uint8_t { kMixture, kMetal, kGlass, kDiffuse, kNothing };
   Probabilities probabilities(const Vec3& wo) const;
   float coatFresnel(const Vec3& wo) const;
+  // The base material (everything below the clearcoat), in world space.
+  Color baseEval(const Vec3& wo, const Vec3& wi, float& pdf) const;
+  BsdfSample baseSample(const Vec3& wo, float uc, Vec2 u) const;
+  // KHR_materials_sheen over the base (bsdf_sheen.cpp): the layer under the clearcoat.
+  void initSheen(const ShadingMaterial& m);
+  float sheenProbability(float sE) const;
+  Color sheenEval(const Vec3& wo, const Vec3& wi, float& pdf) const;
+  BsdfSample sheenSample(const Vec3& wo, float uc, Vec2 u) const;
+  Color innerEval(const Vec3& wo, const Vec3& wi, float& pdf) const {
+    return sheenOn_ ? sheenEval(wo, wi, pdf) : baseEval(wo, wi, pdf);
+  }
+  BsdfSample innerSample(const Vec3& wo, float uc, Vec2 u) const {
+    return sheenOn_ ? sheenSample(wo, uc, u) : baseSample(wo, uc, u);
+  }
+  // KHR_materials_clearcoat over the base (bsdf_clearcoat.cpp).
+  void initClearcoat(const ShadingMaterial& m);
+  /// c Fc(wo): the coat's reflectance seen from wo, which the base is weighted down by.
+  float clearcoatFresnel(const Vec3& wo) const;
+  /// Probability of sampling the coat rather than the base.
+  float clearcoatProbability(float cFc) const;
+  Color layeredEval(const Vec3& wo, const Vec3& wi, float& pdf) const;
+  BsdfSample layeredSample(const Vec3& wo, float uc, Vec2 u) const;
   Frame frame_;
   float wMetal_, wGlass_, wPlastic_, coat_;
   GgxReflectionLobe metal_, coatLobe_;
   DielectricLobe glass_;
   LambertLobe diffuse_;
   float coatEta_;
+  bool coatTinted_;  ///< KHR_materials_specular changed the coat's Fresnel
+  float clearcoat_ = 0, baseEstimate_ = 1;
+  GgxReflectionLobe ccLobe_ = GgxReflectionLobe::dielectric(1.0f, 1.5f);
+  Frame ccFrame_;
+  bool ccOwnFrame_ = false;  ///< the coat's normal differs from the base's
+  bool sheenOn_ = false;
+  Color sheenColor_{0.0f};
+  float sheenMax_ = 0;  ///< max component of sheenColor_: the albedo scaling's weight
+  CharlieSheen sheen_{1.0f};
   bool hasNonDelta_;
   Only only_;
 };

@@ -14,8 +14,24 @@ class GgxReflectionLobe {
   static GgxReflectionLobe metal(float alpha, const Color& f0) { return {alpha, f0, 0.0f}; }
   /// A dielectric's reflection: exact Fresnel with eta = n_t / n_i.
   static GgxReflectionLobe dielectric(float alpha, float eta) { return {alpha, Color(0.0f), eta}; }
+  /// The same with KHR_materials_specular's weight and F0 colour: the exact Fresnel curve
+  /// remapped from [F0, 1] to [F0', 1] with F0' = min(F0 x colour, 1), then scaled by weight.
+  /// This keeps the extension's F0 and F90 (README, "Implementation": Schlick's
+  /// f0 + (1 - f0)(1 - cos)^5 with f0 = min(F0 x specularColor, 1), times specular) while the
+  /// shape between them stays the exact dielectric one; colour 1 and weight 1 give the plain
+  /// dielectric(). Per channel F <= weight <= 1: energy is never created.
+  static GgxReflectionLobe dielectric(float alpha, float eta, float weight, const Color& colour) {
+    GgxReflectionLobe l{alpha, Color(0.0f), eta};
+    const float r = (eta - 1.0f) / (eta + 1.0f);
+    l.f0Exact_ = std::min(r * r, 0.999f);
+    l.f0_ = min(Color(l.f0Exact_) * colour, Color(1.0f));
+    l.weight_ = weight;
+    l.tinted_ = true;
+    return l;
+  }
   bool isDelta() const { return dist_.effectivelySmooth(); }
   Color fresnel(float cosI) const {
+    if (eta_ > 0 && tinted_) return tintedFresnel(fresnelDielectricAbs(cosI));
     return eta_ > 0 ? Color(fresnelDielectricAbs(cosI)) : fresnelSchlick(f0_, cosI);
   }
   Color eval(const Vec3& wo, const Vec3& wi) const;
@@ -25,9 +41,15 @@ class GgxReflectionLobe {
  private:
   GgxReflectionLobe(float alpha, const Color& f0, float eta) : dist_(alpha), f0_(f0), eta_(eta) {}
   float fresnelDielectricAbs(float cosI) const;
+  Color tintedFresnel(float F) const {
+    const float t = std::max(0.0f, (F - f0Exact_) / (1.0f - f0Exact_));
+    return weight_ * (f0_ + (Color(1.0f) - f0_) * t);
+  }
   GgxDistribution dist_;
   Color f0_;
   float eta_;  ///< > 0: dielectric Fresnel with this eta; 0: Schlick with f0_
+  bool tinted_ = false;  ///< dielectric with KHR_materials_specular: f0_ is F0', weight_ applies
+  float f0Exact_ = 0, weight_ = 1;
 };
 
 }  // namespace tray

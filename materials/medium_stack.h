@@ -42,7 +42,7 @@ class MediumStack {
   /// Records that the path went through `id`'s surface.
   void cross(int id, const Material& m, bool entering) {
     if (entering) {
-      if (size_ < kCapacity) entries_[size_++] = {id, m.priority, m.ior};
+      if (size_ < kCapacity) entries_[size_++] = {id, m.priority, m.ior, m.layers.absorption()};
       return;
     }
     int at = find(id);
@@ -55,6 +55,12 @@ class MediumStack {
     int c = current();
     return c < 0 ? 1.0f : entries_[c].ior;
   }
+  /// Absorption coefficient sigma_a of the medium in effect (KHR_materials_volume; 0 outside
+  /// everything): the one that fills the space the path is crossing.
+  Color currentAbsorption() const {
+    int c = current();
+    return c < 0 ? Color(0.0f) : entries_[c].sigmaA;
+  }
   int size() const { return size_; }
 
  private:
@@ -62,6 +68,7 @@ class MediumStack {
     int id = -1;
     int priority = 0;
     float ior = 1;
+    Color sigmaA{0.0f};
   };
   /// Index of the medium in effect, ignoring entry `skip`; -1 if none.
   int current(int skip = -1) const {

@@ -54,6 +54,24 @@ TEST(CliOptions, NegativeSeedCameraOrSceneIsAnErrorNotADefault) {
   EXPECT_EQ(ok.exitCode, 0) << ok.err;
 }
 
+TEST(CliOptions, RequiredExtensionExits2UnlessIgnored) {
+  const fs::path dir = tempFolder("cli_main");
+  const fs::path scene = dir / "required.gltf";
+  std::ofstream(scene) << R"({"asset":{"version":"2.0"},"extensionsUsed":["EXT_magic"],
+      "extensionsRequired":["EXT_magic"],"scenes":[{"nodes":[]}]})";
+  const std::string args = quoted(scene) + " --resolution 8x6 -o " + quoted(dir / "x.exr");
+  CliResult refused = runCli(TRAY_RENDER_BIN, args, dir);
+  EXPECT_EQ(refused.exitCode, 2) << refused.err;
+  EXPECT_NE(refused.err.find("required extension 'EXT_magic' is not supported"),
+            std::string::npos) << refused.err;
+  EXPECT_FALSE(fs::exists(dir / "x.exr"));
+  CliResult anyway = runCli(TRAY_RENDER_BIN, args + " --ignore-required-extensions", dir);
+  EXPECT_EQ(anyway.exitCode, 0) << anyway.err;
+  EXPECT_NE(anyway.err.find("warning: " + scene.string() + ": required extension 'EXT_magic'"),
+            std::string::npos) << anyway.err;
+  EXPECT_TRUE(fs::exists(dir / "x.exr"));
+}
+
 TEST(CliOutOfMemory, ReportsThePhaseAndExits1) {
 #if defined(__SANITIZE_ADDRESS__)
   GTEST_SKIP() << "ASan reserves terabytes of address space: no address-space limit applies";

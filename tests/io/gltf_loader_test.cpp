@@ -380,6 +380,57 @@ TEST(GltfTiny, KhrMaterialExtensionsAndTextures) {
   EXPECT_EQ(m.emissiveTexture.image, -1);
 }
 
+TEST(GltfTiny, MaterialLayerExtensions) {
+  Scene s = TinyDoc().load(R"("images":[{"uri":"data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAIAAACQd1PeAAAADElEQVR4nGNoaGgAAAMEAYFL09IQAAAAAElFTkSuQmCC"}],
+      "textures":[{"source":0}],"materials":[{"extensions":{
+      "KHR_materials_transmission":{"transmissionFactor":1},
+      "KHR_materials_volume":{"thicknessFactor":0.5,"attenuationColor":[0.5,0.25,1],
+                              "attenuationDistance":2},
+      "KHR_materials_specular":{"specularFactor":0.5,"specularColorFactor":[1,0.5,2],
+                                "specularColorTexture":{"index":0}},
+      "KHR_materials_clearcoat":{"clearcoatFactor":0.75,"clearcoatRoughnessFactor":0.25,
+          "clearcoatNormalTexture":{"index":0,"scale":0.5,"texCoord":1}},
+      "KHR_materials_sheen":{"sheenColorFactor":[0.9,0.7,0.6],"sheenRoughnessFactor":0.6,
+                             "sheenRoughnessTexture":{"index":0}}}},{}])");
+  const MaterialLayers& l = s.materials.at(0).layers;
+  EXPECT_FLOAT_EQ(l.thickness, 0.5f);
+  expectNear(l.attenuationColor, {0.5f, 0.25f, 1});
+  EXPECT_FLOAT_EQ(l.attenuationDistance, 2.0f);
+  EXPECT_NEAR(l.absorption().x, std::log(2.0f) / 2, 1e-6f);
+  EXPECT_FLOAT_EQ(l.specular, 0.5f);
+  expectNear(l.specularColor, {1, 0.5f, 2});
+  EXPECT_TRUE(l.specularColorTexture.valid());
+  EXPECT_FLOAT_EQ(l.clearcoat, 0.75f);
+  EXPECT_FLOAT_EQ(l.clearcoatRoughness, 0.25f);
+  EXPECT_EQ(l.clearcoatNormalTexture.texCoord, 1);
+  EXPECT_FLOAT_EQ(l.clearcoatNormalTexture.scale, 0.5f);
+  expectNear(l.sheenColor, {0.9f, 0.7f, 0.6f});
+  EXPECT_FLOAT_EQ(l.sheenRoughness, 0.6f);
+  EXPECT_TRUE(l.sheenRoughnessTexture.valid());
+  EXPECT_TRUE(s.materials.at(0).hasTextures());
+  // Without the extensions: the defaults, which change nothing.
+  const MaterialLayers& none = s.materials.at(1).layers;
+  EXPECT_FALSE(none.hasSpecular() || none.hasTextures() || none.clearcoat > 0);
+  EXPECT_TRUE(isBlack(none.absorption()));
+
+  auto error = [](const std::string& ext) {
+    return errorOf([&] { TinyDoc().load(R"("materials":[{"extensions":{)" + ext + "}}]"); });
+  };
+  std::string e = error(R"("KHR_materials_clearcoat":{"clearcoatFactor":1.5})");
+  EXPECT_NE(e.find("KHR_materials_clearcoat 'clearcoatFactor'"), std::string::npos) << e;
+  e = error(R"("KHR_materials_specular":{"specularFactor":-1})");
+  EXPECT_NE(e.find("KHR_materials_specular 'specularFactor'"), std::string::npos) << e;
+  e = error(R"("KHR_materials_sheen":{"sheenRoughnessFactor":2})");
+  EXPECT_NE(e.find("KHR_materials_sheen 'sheenRoughnessFactor'"), std::string::npos) << e;
+  e = error(R"("KHR_materials_volume":{"attenuationDistance":0})");
+  EXPECT_NE(e.find("KHR_materials_volume 'attenuationDistance' must be positive"),
+            std::string::npos) << e;
+  e = error(R"("KHR_materials_volume":{"attenuationColor":[2,0,0]})");
+  EXPECT_NE(e.find("'attenuationColor'"), std::string::npos) << e;
+  e = error(R"("KHR_materials_clearcoat":{"clearcoatTexture":{"index":7}})");
+  EXPECT_NE(e.find("clearcoatTexture refers to missing texture 7"), std::string::npos) << e;
+}
+
 TEST(GltfTiny, TrayEnvironment) {
   Scene s = TinyDoc().load(R"("scene":0,"scenes":[{"extensions":{"TRAY_environment":
       {"ambient":[0.1,0.2,0.3],"background":[1,2,3]}}}])");
@@ -470,6 +521,14 @@ TEST(GltfTiny, UnknownExtensions) {
     TinyDoc().load(R"("extensionsUsed":["EXT_magic"],"extensionsRequired":["EXT_magic"])");
   });
   EXPECT_NE(e.find("required extension 'EXT_magic'"), std::string::npos) << e;
+  LoadOptions ignore;
+  ignore.ignoreRequiredExtensions = true;
+  LoadReport anyway;
+  TinyDoc().load(R"("extensionsUsed":["EXT_magic"],"extensionsRequired":["EXT_magic"])", ignore,
+                 &anyway);
+  ASSERT_EQ(anyway.warnings.size(), 1u);  // one line, not a second "not supported" one
+  EXPECT_NE(anyway.warnings[0].find("required extension 'EXT_magic' is not supported: rendering"),
+            std::string::npos);
   LoadReport report;
   TinyDoc().load(R"("extensionsUsed":["EXT_magic","KHR_materials_volume","EXT_other"])", {},
                  &report);
@@ -622,9 +681,14 @@ TEST(GltfFeatures, UnsupportedFeaturesAreWarned) {
   // Skins, animations and morph targets are read (tests/io/gltf_animation_test.cpp): no word.
   EXPECT_EQ(warningsOf("SimpleSkin.gltf"), "");
   EXPECT_EQ(warningsOf("SimpleMorph.gltf"), "");
+  std::string sofa = warningsOf("GlamVelvetSofa.glb");
+  EXPECT_NE(sofa.find("'KHR_materials_variants' is not supported"), std::string::npos) << sofa;
+  EXPECT_EQ(sofa.find("sheen"), std::string::npos) << sofa;
+  // Implemented layers are no longer warned about.
   std::string clearcoat = warningsOf("ClearCoatTest.glb");
-  EXPECT_NE(clearcoat.find("'KHR_materials_clearcoat' is not supported"), std::string::npos)
-      << clearcoat;
+  EXPECT_EQ(clearcoat.find("clearcoat"), std::string::npos) << clearcoat;
+  std::string specular = warningsOf("SpecularTest.glb");
+  EXPECT_EQ(specular.find("specular"), std::string::npos) << specular;
 }
 
 }  // namespace
