@@ -85,9 +85,9 @@ TEST_P(Clearcoat, SamplingMatchesPdfChiSquare) {
   }
 }
 
-TEST_P(Clearcoat, SampleAgreesWithEvalAndPdf) {
-  const CoatCase c = GetParam();
-  const Bsdf bsdf = coated(c, Color(0.8f, 0.5f, 0.3f), 0.7f);
+/// Every sample's value and pdf agree with eval() and pdf() in the sampled direction (a
+/// low-discrepancy sweep of 2000 samples at each of kAngles).
+void expectSamplesMatchEvalAndPdf(const Bsdf& bsdf, const std::string& name) {
   for (float angle : kAngles) {
     const Vec3 wo = direction(angle);
     for (int i = 0; i < 2000; ++i) {
@@ -99,10 +99,16 @@ TEST_P(Clearcoat, SampleAgreesWithEvalAndPdf) {
       const Color f = bsdf.eval(wo, s.wi);
       const float pdf = bsdf.pdf(wo, s.wi);
       ASSERT_TRUE(isFinite(s.f) && std::isfinite(s.pdf));
-      EXPECT_NEAR(s.pdf, pdf, 1e-3f * pdf + 1e-6f) << c.name << " " << angle;
-      for (int k = 0; k < 3; ++k) EXPECT_NEAR(s.f[k], f[k], 1e-3f * f[k] + 1e-6f) << c.name;
+      EXPECT_NEAR(s.pdf, pdf, 1e-3f * pdf + 1e-6f) << name << " " << angle;
+      for (int k = 0; k < 3; ++k) EXPECT_NEAR(s.f[k], f[k], 1e-3f * f[k] + 1e-6f) << name;
     }
   }
+}
+
+TEST_P(Clearcoat, SampleAgreesWithEvalAndPdf) {
+  const CoatCase c = GetParam();
+  const Bsdf bsdf = coated(c, Color(0.8f, 0.5f, 0.3f), 0.7f);
+  expectSamplesMatchEvalAndPdf(bsdf, c.name);
 }
 
 TEST_P(Clearcoat, ReflectsAtMostTheEnergyItReceives) {
@@ -239,21 +245,7 @@ TEST_P(Sheen, SamplingMatchesPdfChiSquare) {
 TEST_P(Sheen, SampleAgreesWithEvalAndPdf) {
   const SheenCase c = GetParam();
   const Bsdf bsdf = sheened(c, Color(0.8f, 0.5f, 0.3f), Color(0.2f, 0.5f, 0.9f));
-  for (float angle : kAngles) {
-    const Vec3 wo = direction(angle);
-    for (int i = 0; i < 2000; ++i) {
-      float a = (i * 0.618034f) - std::floor(i * 0.618034f);
-      float b = (i * 0.754878f) - std::floor(i * 0.754878f);
-      float uc = (i * 0.569840f) - std::floor(i * 0.569840f);
-      BsdfSample s = bsdf.sample(wo, uc, {a, b});
-      if (!s.valid()) continue;
-      const Color f = bsdf.eval(wo, s.wi);
-      const float pdf = bsdf.pdf(wo, s.wi);
-      ASSERT_TRUE(isFinite(s.f) && std::isfinite(s.pdf));
-      EXPECT_NEAR(s.pdf, pdf, 1e-3f * pdf + 1e-6f) << c.name << " " << angle;
-      for (int k = 0; k < 3; ++k) EXPECT_NEAR(s.f[k], f[k], 1e-3f * f[k] + 1e-6f) << c.name;
-    }
-  }
+  expectSamplesMatchEvalAndPdf(bsdf, c.name);
 }
 
 TEST_P(Sheen, ReflectsAtMostTheEnergyItReceives) {
