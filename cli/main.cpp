@@ -92,16 +92,15 @@ CLI::Validator nonNegative(const std::string& expected) {
       "", "non-negative");
 }
 
-int run(const CliOptions& o) {
-  // First: a signal while the scene loads also stops the render (at its first pixel).
-  const std::atomic<bool>& stop = tray::installInterruptHandlers();
-  {  // Output mistakes (format, folder, colorspace, display/view, $OCIO) before any work.
-    tray::ImageOutputOptions check;
-    check.colorspace = o.outputColorspace, check.display = o.display, check.view = o.view;
-    tray::checkOutputs(o.outputs, check);
-    if (!o.aaHeatmap.empty()) tray::checkOutputs({o.aaHeatmap}, check);
-  }
-  gPhase = "loading the scene";
+/// Output mistakes (format, folder, colorspace, display/view, $OCIO), before any work.
+void checkOutputsOf(const CliOptions& o) {
+  tray::ImageOutputOptions check;
+  check.colorspace = o.outputColorspace, check.display = o.display, check.view = o.view;
+  tray::checkOutputs(o.outputs, check);
+  if (!o.aaHeatmap.empty()) tray::checkOutputs({o.aaHeatmap}, check);
+}
+
+tray::LoadOptions loadOptionsOf(const CliOptions& o) {
   tray::LoadOptions loadOptions;
   loadOptions.scene = o.scene;
   loadOptions.allowAnyPath = o.allowAnyPath;
@@ -111,8 +110,20 @@ int run(const CliOptions& o) {
   loadOptions.maxMemoryBytes = uint64_t(maxMemoryMB * 1048576.0);
   loadOptions.textureCacheMB = o.textureMemoryMB;
   loadOptions.ignoreRequiredExtensions = o.ignoreRequiredExtensions;
+  return loadOptions;
+}
+
+/// One image. `document`, when given (--frames), is the file parsed once: the frame's scene
+/// is converted from it at the frame's time instead of reading the file again.
+int run(const CliOptions& o, const tray::GltfDocument* document = nullptr) {
+  // First: a signal while the scene loads also stops the render (at its first pixel).
+  const std::atomic<bool>& stop = tray::installInterruptHandlers();
+  checkOutputsOf(o);
+  gPhase = "loading the scene";
+  const tray::LoadOptions loadOptions = loadOptionsOf(o);
   tray::LoadReport report;
-  tray::Scene scene = tray::loadGltf(o.scenePath, loadOptions, &report);
+  tray::Scene scene = document ? document->scene(loadOptions, &report)
+                               : tray::loadGltf(o.scenePath, loadOptions, &report);
   scene.sourcePath = o.scenePath;
   tray::applyEnvironmentOptions(scene, o.settings, &report.warnings);  // --env: read and checked
   for (const auto& w : report.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
@@ -264,12 +275,23 @@ int run(const CliOptions& o) {
   return 0;
 }
 
-/// --frames: each frame rendered in turn, from the file loaded again (nothing that depends on
-/// the time is kept), with --time set to frame / fps so that its job signature and EXR metadata
-/// say which time it shows. Stops at the first frame that fails or is interrupted.
+/// --frames: each frame rendered in turn from the file parsed once (tray::GltfDocument; the
+/// scene, posed at the frame's time, is converted anew for each frame), with --time set to
+/// frame / fps so that its job signature and EXR metadata say which time it shows. Stops at the
+/// first frame that fails or is interrupted.
 int runFrames(const CliOptions& o) {
   const tray::FrameRange range = tray::parseFrameRange(o.frames);
   const float fps = o.settings.getFloat("fps");
+  {  // the first frame's outputs, checked before the file is read
+    CliOptions first = o;
+    for (auto& path : first.outputs) path = tray::framePath(path, range.first);
+    if (!first.aaHeatmap.empty()) first.aaHeatmap = tray::framePath(first.aaHeatmap, range.first);
+    checkOutputsOf(first);
+  }
+  gPhase = "loading the scene";
+  tray::LoadReport parseReport;
+  const tray::GltfDocument document(o.scenePath, loadOptionsOf(o), &parseReport);
+  for (const auto& w : parseReport.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   for (int64_t f = range.first; f <= range.last; ++f) {
     CliOptions frame = o;
     for (auto& path : frame.outputs) path = tray::framePath(path, f);
@@ -278,7 +300,7 @@ int runFrames(const CliOptions& o) {
     if (!o.quiet)
       std::printf("frame %lld (time %s s): %s\n", (long long)f,
                   frame.settings.getString("time").c_str(), frame.outputs.front().c_str());
-    if (const int rc = run(frame); rc != 0) return rc;
+    if (const int rc = run(frame, &document); rc != 0) return rc;
   }
   return 0;
 }

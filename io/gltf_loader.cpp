@@ -179,15 +179,35 @@ Scene convert(const tinygltf::Model& model, const std::string& path, const LoadO
 }  // namespace
 
 Scene loadGltf(const std::string& path, const LoadOptions& options, LoadReport* report) {
+  return GltfDocument(path, options, report).scene(options, report);
+}
+
+struct GltfDocument::Parsed {
+  std::string path;
+  UriPolicy policy;
+  ImageBytes images;
+  MemoryEstimate memory;
+  tinygltf::Model model;
+};
+
+GltfDocument::GltfDocument(const std::string& path, const LoadOptions& options,
+                           LoadReport* report) {
   std::vector<unsigned char> bytes;
   std::string problem;
   if (!readRegularFile(path, bytes, problem)) failFile(path, problem);
   const std::string folder = std::filesystem::path(path).parent_path().string();
-  const UriPolicy policy(folder.empty() ? "." : folder, options.allowAnyPath);
-  ImageBytes images;
-  MemoryEstimate memory;
-  tinygltf::Model model = parse(bytes, path, policy, options, report, images, memory);
-  return convert(model, path, options, report, images, policy, memory);
+  parsed_.reset(new Parsed{path, UriPolicy(folder.empty() ? "." : folder, options.allowAnyPath),
+                           {}, {}, {}});
+  parsed_->model = parse(bytes, path, parsed_->policy, options, report, parsed_->images,
+                         parsed_->memory);
+}
+
+GltfDocument::~GltfDocument() = default;
+
+Scene GltfDocument::scene(const LoadOptions& options, LoadReport* report) const {
+  MemoryEstimate memory = parsed_->memory;  // each conversion counts its own textures
+  return convert(parsed_->model, parsed_->path, options, report, parsed_->images,
+                 parsed_->policy, memory);
 }
 
 Scene loadGltfFromMemory(const unsigned char* data, size_t size, const std::string& name,

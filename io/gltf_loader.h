@@ -1,5 +1,6 @@
 #pragma once
 // glTF 2.0 scene loading: the only entry point from the file system into a tray::Scene.
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -41,6 +42,24 @@ struct LoadReport {
 /// optional extensions) go to `report` when given.
 Scene loadGltf(const std::string& path, const LoadOptions& options = {},
                LoadReport* report = nullptr);
+
+/// A file parsed and checked once, converted into a Scene as often as asked: `--frames` poses
+/// each frame from it instead of reading the file again. Parsing reads and checks the file,
+/// its buffers and its image bytes (options.allowAnyPath, maxMemoryBytes and
+/// ignoreRequiredExtensions apply); scene(options) then converts it with options.time,
+/// animation and scene, exactly as loadGltf would.
+class GltfDocument {
+ public:
+  GltfDocument(const std::string& path, const LoadOptions& options, LoadReport* report = nullptr);
+  ~GltfDocument();
+  GltfDocument(const GltfDocument&) = delete;
+  GltfDocument& operator=(const GltfDocument&) = delete;
+  Scene scene(const LoadOptions& options, LoadReport* report = nullptr) const;
+
+ private:
+  struct Parsed;
+  std::unique_ptr<Parsed> parsed_;
+};
 
 /// The same for a document already in memory (.gltf JSON or .glb, told apart by the GLB magic),
 /// e.g. for the fuzzer (fuzz/gltf_loader_fuzz.cpp). Only data: URIs and a GLB's BIN chunk can

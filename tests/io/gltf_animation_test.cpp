@@ -406,3 +406,35 @@ TEST(GltfSamplesAnimated, BoxAnimatedAndAnimatedCubeTransforms) {
 
 }  // namespace
 }  // namespace tray
+
+namespace tray {
+namespace {
+
+TEST(GltfDocument, ParsedOnceConvertsEachTimeAsLoadGltfDoes) {
+  // --frames parses the file once and converts a scene per frame: every frame must be the
+  // scene loadGltf makes at that time, vertex for vertex.
+  const std::string file = (fs::path(TRAY_SHARED_DIR) / "gltf-features" / "CesiumMan.glb").string();
+  LoadOptions parseOptions;
+  const GltfDocument document(file, parseOptions);
+  for (float t : {0.0f, 0.7f, 1.3f}) {
+    LoadOptions o;
+    o.time = t;
+    const Scene once = document.scene(o), again = loadGltf(file, o);
+    ASSERT_EQ(once.meshes.size(), again.meshes.size());
+    for (size_t m = 0; m < once.meshes.size(); ++m) {
+      ASSERT_EQ(once.meshes[m].positions.size(), again.meshes[m].positions.size());
+      for (size_t v = 0; v < once.meshes[m].positions.size(); ++v) {
+        EXPECT_EQ(once.meshes[m].positions[v].x, again.meshes[m].positions[v].x);
+        EXPECT_EQ(once.meshes[m].positions[v].y, again.meshes[m].positions[v].y);
+        EXPECT_EQ(once.meshes[m].positions[v].z, again.meshes[m].positions[v].z);
+      }
+    }
+  }
+  // And the document's frames differ from each other (the figure walks).
+  LoadOptions a, b;
+  a.time = 0.2f, b.time = 0.9f;
+  EXPECT_NE(document.scene(a).bounds().diagonal().x, document.scene(b).bounds().diagonal().x);
+}
+
+}  // namespace
+}  // namespace tray
