@@ -35,6 +35,8 @@ std::vector<std::string> sceneFiles() {
   };
   add(fs::path(TRAY_SOURCE_DIR) / "scenes", false);
   add(fs::path(TRAY_SHARED_DIR) / "gltf-samples", true);
+  // alphaMode MASK and BLEND (issue 15): Embree's filter callbacks against the BVH's own test.
+  files.push_back((fs::path(TRAY_SHARED_DIR) / "gltf-features" / "AlphaBlendModeTest.glb").string());
   std::sort(files.begin(), files.end());
   return files;
 }
