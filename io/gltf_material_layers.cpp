@@ -1,5 +1,6 @@
 #include "io/gltf_material_layers.h"
 
+#include "io/gltf_materials.h"
 #include "io/gltf_value.h"
 
 namespace tray {
@@ -22,17 +23,8 @@ TextureRef readTextureInfo(const GltfContext& ctx, ExtensionReader& parent, cons
   ref.texCoord = r.integer("texCoord", 0);
   if (ref.texCoord < 0) r.fail("has a negative texCoord");
   ref.scale = float(r.number("scale", 1.0));
-  if (const tinygltf::Value* ext = r.value("extensions"); ext && ext->Has("KHR_texture_transform")) {
-    ExtensionReader t(ctx, ext->Get("KHR_texture_transform"), here + " KHR_texture_transform");
-    float offset[2] = {0, 0}, scale[2] = {1, 1};
-    t.numbers("offset", offset, 2);
-    t.numbers("scale", scale, 2);
-    ref.offset = {offset[0], offset[1]};
-    ref.scaleUV = {scale[0], scale[1]};
-    ref.rotation = float(t.number("rotation", 0.0));
-    ref.texCoord = t.integer("texCoord", ref.texCoord);
-    if (ref.texCoord < 0) t.fail("'texCoord' is negative");
-  }
+  if (const tinygltf::Value* ext = r.value("extensions"); ext && ext->Has("KHR_texture_transform"))
+    readTextureTransform(ctx, ext->Get("KHR_texture_transform"), here, ref);
   return ref;
 }
 

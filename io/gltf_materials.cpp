@@ -13,23 +13,6 @@ bool finiteIn(double v, double lo, double hi) {
   return std::isfinite(v) && v >= lo && v <= hi;
 }
 
-/// KHR_texture_transform on a texture reference: offset, rotation (radians), scale, and a
-/// texCoord that overrides the reference's own.
-void readTextureTransform(const GltfContext& ctx, const tinygltf::ExtensionMap& extensions,
-                          const std::string& where, TextureRef& ref) {
-  const tinygltf::Value* ext = findExtension(extensions, "KHR_texture_transform");
-  if (!ext) return;
-  ExtensionReader r(ctx, *ext, where + " KHR_texture_transform");
-  float offset[2] = {0, 0}, scale[2] = {1, 1};
-  r.numbers("offset", offset, 2);
-  r.numbers("scale", scale, 2);
-  ref.offset = {offset[0], offset[1]};
-  ref.scaleUV = {scale[0], scale[1]};
-  ref.rotation = float(r.number("rotation", 0.0));
-  ref.texCoord = r.integer("texCoord", ref.texCoord);
-  if (ref.texCoord < 0) r.fail("'texCoord' is negative");
-}
-
 template <typename Info>
 TextureRef readTexture(const GltfContext& ctx, const Info& info, const std::string& where) {
   TextureRef ref;
@@ -40,7 +23,8 @@ TextureRef readTexture(const GltfContext& ctx, const Info& info, const std::stri
   // Image decoding comes later (textures work): the reference keeps the glTF texture index.
   ref.image = info.index;
   ref.texCoord = info.texCoord;
-  readTextureTransform(ctx, info.extensions, where, ref);
+  if (const tinygltf::Value* t = findExtension(info.extensions, "KHR_texture_transform"))
+    readTextureTransform(ctx, *t, where, ref);
   return ref;
 }
 
@@ -80,6 +64,19 @@ void readAlpha(const GltfContext& ctx, const tinygltf::Material& g, const std::s
 }
 
 }  // namespace
+
+void readTextureTransform(const GltfContext& ctx, const tinygltf::Value& transform,
+                          const std::string& where, TextureRef& ref) {
+  ExtensionReader r(ctx, transform, where + " KHR_texture_transform");
+  float offset[2] = {0, 0}, scale[2] = {1, 1};
+  r.numbers("offset", offset, 2);
+  r.numbers("scale", scale, 2);
+  ref.offset = {offset[0], offset[1]};
+  ref.scaleUV = {scale[0], scale[1]};
+  ref.rotation = float(r.number("rotation", 0.0));
+  ref.texCoord = r.integer("texCoord", ref.texCoord);
+  if (ref.texCoord < 0) r.fail("'texCoord' is negative");
+}
 
 Material defaultGltfMaterial() {
   Material m;  // Material's defaults are glTF's

@@ -12,4 +12,10 @@ Material convertMaterial(const GltfContext& ctx, int index);
 /// default (white base color, metallic 1, roughness 1).
 Material defaultGltfMaterial();
 
+/// KHR_texture_transform (the extension's object) on a texture reference: offset, rotation
+/// (radians), scale, and a texCoord that overrides the reference's own. Shared by core glTF
+/// textures and those inside material extensions (io/gltf_material_layers.cpp).
+void readTextureTransform(const GltfContext& ctx, const tinygltf::Value& transform,
+                          const std::string& where, TextureRef& ref);
+
 }  // namespace tray
