@@ -72,6 +72,23 @@ std::string camelCase(const std::string& name) {
   return out;
 }
 
+/// CLI11 2.1 sums a flag's values with std::stoll, so `--debug-nan=xyz` threw
+/// std::invalid_argument past its own ParseError (found by fuzz/options_fuzz). This check runs
+/// first and turns any value it would not understand into the usual one-line usage error.
+CLI::Validator flagValueCheck() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        static const char* kWords[] = {"true", "false", "on", "off", "yes", "no", "enable",
+                                       "disable", "1", "0", "-1", "+1"};
+        for (const char* word : kWords)
+          if (text == word) return {};
+        if (text.size() == 1 && std::string("tfynTFYN+-").find(text[0]) != std::string::npos)
+          return {};
+        return "expected true/false, on/off, yes/no or 1/0, got '" + text + "'";
+      },
+      "", "flag value");
+}
+
 }  // namespace
 
 void addRenderOptions(CLI::App& app, RenderSettings& settings) {
@@ -80,7 +97,8 @@ void addRenderOptions(CLI::App& app, RenderSettings& settings) {
     const std::string flag = "--" + spec.name;
     if (spec.type == OptionType::kBool) {
       app.add_flag_function(
-          flag, [&settings, spec](int64_t count) { settings.set(spec.name, count > 0); }, o.help);
+          flag, [&settings, spec](int64_t count) { settings.set(spec.name, count > 0); }, o.help)
+          ->check(flagValueCheck());
       continue;
     }
     app.add_option_function<std::string>(

@@ -54,6 +54,30 @@ TEST(CliOptions, NegativeSeedCameraOrSceneIsAnErrorNotADefault) {
   EXPECT_EQ(ok.exitCode, 0) << ok.err;
 }
 
+// CLI11 2.1 parsed `--debug-nan=xyz` with std::stoll and the exception escaped: tray-render
+// died with "terminate called" (found by fuzz/options_fuzz). Every declared flag now refuses a
+// value it does not understand in one line, and still takes the spellings CLI11 documents.
+TEST(CliOptions, AFlagWithAnUnknownValueIsOneLineNotACrash) {
+  const fs::path dir = tempFolder("cli_main");
+  for (const std::string flag : {"--debug-nan", "--transparent", "--aa-robust"}) {
+    const fs::path out = dir / "flag.exr";
+    CliResult r = runCli(TRAY_RENDER_BIN,
+                         kScene + " --resolution 8x6 " + flag + "=xyz -o " + quoted(out), dir);
+    EXPECT_EQ(r.exitCode, 2) << flag << ": " << r.err;
+    EXPECT_EQ(lines(r.err), 1u) << r.err;
+    EXPECT_NE(r.err.find(flag), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("'xyz'"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out)) << flag;
+  }
+  for (const std::string value : {"true", "false", "on", "0"}) {
+    CliResult ok = runCli(TRAY_RENDER_BIN,
+                          kScene + " --resolution 8x6 --transparent=" + value + " -o " +
+                              quoted(dir / "ok.exr"),
+                          dir);
+    EXPECT_EQ(ok.exitCode, 0) << value << ": " << ok.err;
+  }
+}
+
 TEST(CliOptions, RequiredExtensionExits2UnlessIgnored) {
   const fs::path dir = tempFolder("cli_main");
   const fs::path scene = dir / "required.gltf";
