@@ -1,5 +1,6 @@
 #include "core/render_setup.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -97,6 +98,13 @@ Color meanOf(const Scene& scene, const TextureRef& ref) {
   return Color(float(sum[0] / n), float(sum[1] / n), float(sum[2] / n));
 }
 
+/// glTF 2.0's core emission is emissiveFactor (each in [0, 1]) x an 8-bit texture: radiance
+/// at most 1, what assets use for labels, screens and LEDs that glow in any light. Only
+/// KHR_materials_emissive_strength (or TRay's own extensions) can say more, as a light needs.
+bool brighterThanCoreGltf(const Material& m) {
+  return maxComponent(m.emissive) > 1.0f;
+}
+
 }  // namespace
 
 EmissionSummary summarizeEmission(const Scene& scene) {
@@ -110,6 +118,7 @@ EmissionSummary summarizeEmission(const Scene& scene) {
     if (M < 0) {  // radiant exitance pi L of a Lambertian emitter, L = factor x mean texel
       const Color L = m.emissive * meanOf(scene, m.emissiveTexture);
       M = isFinite(L) ? kPi * luminance(L) * (m.doubleSided ? 2.0f : 1.0f) : 0.0f;
+      if (prim.kind == Primitive::Kind::kMesh && !brighterThanCoreGltf(m)) M = 0.0f;
     }
     if (prim.kind == Primitive::Kind::kShape) {
       // No area for analytic shapes here: any emissive one counts as a light.

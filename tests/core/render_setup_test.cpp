@@ -77,15 +77,28 @@ TEST(DefaultLighting, DecidesByEmittedPowerNotByAnEmissiveTexture) {
   // A car whose emissive texture is black but for its lamps counted as lit and rendered black.
   // Threshold: 1% of 2.5 x 101 / 4 = 0.63 W; the quad gives pi x factor x lit/4096.
   const CameraDesc cam = lookAt(Vec3(0, 5, 5), Vec3(0.0f));
-  Scene lamps = floorWithTexturedEmitter(1.0f, 40);  // 0.031 W
+  Scene lamps = floorWithTexturedEmitter(4.0f, 10);  // 0.031 W (bright lamps, mostly black)
   EXPECT_FALSE(summarizeEmission(lamps).meaningful());
-  EXPECT_NEAR(summarizeEmission(lamps).meshPower, kPi * 40 / 4096, 1e-6);
+  EXPECT_NEAR(summarizeEmission(lamps).meshPower, kPi * 4 * 10 / 4096, 1e-6);
   EXPECT_NEAR(summarizeEmission(lamps).surfaceArea, 101.0, 1e-3);
   EXPECT_TRUE(addDefaultLightingIfUnlit(lamps, cam));
 
   Scene panel = floorWithTexturedEmitter(5.0f, 4096);  // 15.7 W: a real light panel
   EXPECT_TRUE(summarizeEmission(panel).meaningful());
   EXPECT_FALSE(addDefaultLightingIfUnlit(panel, cam));
+}
+
+TEST(DefaultLighting, CoreGltfGlowIsNotTheScenesLight) {
+  // ClearCoatTest, TextureEncodingTest, TextureTransformMultiTest: white emissive labels
+  // (factor 1, radiance 1) passed the power rule, so no default light came, and the spheres
+  // and cubes they label rendered black. Core glTF emission cannot exceed radiance 1: such
+  // surfaces glow like screens; only a stronger emitter (emissive_strength) is a light.
+  const CameraDesc cam = lookAt(Vec3(0, 5, 5), Vec3(0.0f));
+  Scene labels = floorWithTexturedEmitter(1.0f, 4096);  // pi W: past the 0.63 W power rule
+  EXPECT_FALSE(summarizeEmission(labels).meaningful());
+  EXPECT_TRUE(addDefaultLightingIfUnlit(labels, cam));
+  Scene bright = floorWithTexturedEmitter(1.001f, 4096);
+  EXPECT_TRUE(summarizeEmission(bright).meaningful());
 }
 
 TEST(DefaultLighting, UnusedEmissiveMaterialsDoNotCount) {
