@@ -207,7 +207,8 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats
               f *= ls.infinite ? Color(0.0f) : transmittance(sigma, length(ls.p - s.p));
             const Color c = add(beta * f * ls.L * (w / ls.pdf), "light sample", indirectNee);
             if (paths.active())
-              paths.addLightSample(c, paths.atFirstVertex() ? bsdf.evalLobes(wo, ls.wi) : LobeSplit{});
+              paths.addLightSample(c, paths.atFirstVertex() ? bsdf.evalLobes(wo, ls.wi)
+                                                            : LobeSplit{});
           }
         }
       }
