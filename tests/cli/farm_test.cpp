@@ -119,8 +119,9 @@ TEST(Farm, FourSampleRangesMergeWithinFloatRounding) {
                    c.rfind("emission", 0) == 0 || c.rfind("transmission", 0) == 0 ||
                    c.rfind("background", 0) == 0) {
           // Averaged over every sample: the parts' means weighted by their filter-weight sums.
-          if (a != b)
+          if (a != b) {
             EXPECT_NEAR(a, b, 1e-6f + 1e-5f * std::fabs(a)) << c << " at " << x << "," << y;
+          }
           averaged += a != 0;
         } else {  // AOVs of sample 0, and the summed sample count
           EXPECT_EQ(std::memcmp(&a, &b, 4), 0) << c << " at " << x << "," << y;
