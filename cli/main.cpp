@@ -344,7 +344,8 @@ int main(int argc, char** argv) {
                "render a glTF whose required extensions TRay lacks (with a warning)");
   app.add_option("--aov", o.aovs,
                  "extra EXR layers: comma-separated from " + joined(tray::AovSet::known()) +
-                     ", cryptomatte (= crypto_object,crypto_material), or all");
+                     ", cryptomatte (= crypto_object,crypto_material), lightpaths (the path "
+                     "tracer's 7 light-path layers), or all (all but the light paths)");
   app.add_option("--cryptomatte-ranks", o.cryptomatteRanks,
                  "Cryptomatte: ids kept per pixel and type (2 per EXR layer)")
       ->check(CLI::Range(1, 32))

@@ -4,6 +4,7 @@
 #include <numeric>
 
 #include "core/error.h"
+#include "core/light_paths.h"
 #include "core/render_state.h"
 
 namespace tray {
@@ -23,6 +24,20 @@ std::vector<std::pair<std::string, std::vector<std::string>>> layout(const Film&
     if (layer.name != kStateLayer) l.emplace_back(layer.name, layer.channels);
   return l;
 }
+
+/// Layers the renderer averages over every sample (core/aov.h): sample-range parts merge into
+/// their mean weighted by each part's filter-weight sum (depth: by its hit weight, the alpha
+/// sum), as one machine would have averaged them (to the parts' float or half precision).
+bool averagedLayer(const std::string& name) {
+  const auto& paths = lightPathNames();
+  return name == "albedo" || name == "N" || name == "Z" ||
+         std::find(paths.begin(), paths.end(), name) != paths.end();
+}
+
+/// Filter-weighted sums of one averaged layer over the sample-range parts of each pixel.
+struct LayerMean {
+  std::vector<double> sum, weight;
+};
 
 bool overlap(int a0, int a1, int b0, int b1) {
   return a0 < b1 && b0 < a1;
@@ -98,6 +113,13 @@ ExrImage mergeParts(const std::vector<std::string>& paths) {
   for (const auto& [name, channels] : layout(ref.image.film))
     if (!name.empty()) out.film.addLayer(name, channels);
   std::vector<PixelSums> total(size_t(width) * height);
+  std::vector<LayerMean> means(out.film.layers().size());
+  for (size_t l = 1; l < means.size(); ++l)
+    if (averagedLayer(out.film.layers()[l].name)) {
+      means[l].sum.assign(size_t(width) * height * out.film.layers()[l].channels.size(), 0.0);
+      means[l].weight.assign(size_t(width) * height, 0.0);
+    }
+  std::vector<uint8_t> ranged(size_t(width) * height, 0);  // covered by sample-range parts
   std::vector<float> seconds;
   for (const Part& p : parts) {
     const Film& f = p.image.film;
@@ -107,12 +129,23 @@ ExrImage mergeParts(const std::vector<std::string>& paths) {
     for (int y = p.y0; y < p.y1; ++y)
       for (int x = p.x0; x < p.x1; ++x) {
         const int px = x - p.x0, py = y - p.y0;
-        total[size_t(y) * width + x] += p.state.sums[size_t(py) * f.width() + px];
+        const size_t at = size_t(y) * width + x;
+        const PixelSums& sums = p.state.sums[size_t(py) * f.width() + px];
+        total[at] += sums;
+        ranged[at] = p.end - p.begin != samples;
         for (size_t l = 1; l < out.film.layers().size(); ++l) {
           const FilmLayer& layer = out.film.layers()[l];
           const float* src = f.pixel(from[l], px, py);
           float* dst = out.film.pixel(int(l), x, y);
-          for (size_t c = 0; c < layer.channels.size(); ++c)
+          const size_t nc = layer.channels.size();
+          if (!means[l].weight.empty() && p.end - p.begin != samples) {  // a sample range
+            const double w = layer.name == "Z" ? sums.alpha : sums.weight;
+            if (w == 0) continue;  // no samples (or no hit) here: nothing to average
+            for (size_t c = 0; c < nc; ++c) means[l].sum[at * nc + c] += w * src[c];
+            means[l].weight[at] += w;
+            continue;
+          }
+          for (size_t c = 0; c < nc; ++c)
             if (layer.name == "samples")
               dst[c] += src[c];  // camera rays: every part's count
             else if (p.begin == 0)
@@ -127,6 +160,17 @@ ExrImage mergeParts(const std::vector<std::string>& paths) {
       float* px = out.film.pixel(Film::kBeauty, x, y);
       px[0] = c.x, px[1] = c.y, px[2] = c.z, px[3] = s.coverage();
     }
+  for (size_t l = 1; l < means.size(); ++l) {
+    const LayerMean& m = means[l];
+    const size_t nc = out.film.layers()[l].channels.size();
+    for (size_t at = 0; !m.weight.empty() && at < size_t(width) * height; ++at) {
+      if (!ranged[at]) continue;  // one part held all its samples: copied as it is
+      float* dst = out.film.pixel(int(l), int(at % width), int(at / width));
+      for (size_t c = 0; c < nc; ++c)
+        dst[c] = m.weight[at] != 0 ? float(m.sum[at * nc + c] / m.weight[at])
+                 : out.film.layers()[l].name == "Z" ? kInfinity : 0.0f;
+    }
+  }
 
   out.options = ref.image.options;
   out.options.xOffset = out.options.yOffset = 0;

@@ -35,7 +35,9 @@ Color Integrator::cameraLi(const Ray& ray, Sampler& sampler, RayStats& stats,
   // The environment still lit every surface the ray met (reflections, light); only what the
   // camera sees of it directly is left out, as a compositor's "over" expects (Porter & Duff
   // 1984: premultiplied colour, alpha = coverage).
-  return transparent_ && !primary->hit ? Color(0.0f) : L;
+  if (!(transparent_ && !primary->hit)) return L;
+  if (primary->lightPaths) primary->lightPaths->clear();
+  return Color(0.0f);
 }
 
 RenderContext declaring(const RenderContext& ctx, const std::vector<OptionSpec>& specs) {
@@ -50,7 +52,8 @@ int Integrator::samplesPerPixel() const {
 }
 
 uint32_t Integrator::accumulate(int x, int y, int begin, int end, PixelSums& sums,
-                                PrimaryHit& first, RayStats& stats, IdCoverage* coverage) const {
+                                PrimaryHit& first, RayStats& stats, IdCoverage* coverage,
+                                AovSums* aovSums) const {
   const Filter& filter = filter_;
   const PixelSampler& pixelSampler = pixelSampler_;
   const uint32_t pixelIndex = uint32_t(y) * uint32_t(ctx_.width) + uint32_t(x);
@@ -59,6 +62,8 @@ uint32_t Integrator::accumulate(int x, int y, int begin, int end, PixelSums& sum
   // estimator): each pixel owns its samples, so tiles never share film writes. Doubles keep the
   // mean accurate at very high sample counts and let sums of sample ranges be combined.
   end = std::min(end, pixelSampler.count());
+  LightPathRadiance paths;
+  LightPathRadiance* splitInto = aovSums && aovSums->lightPaths ? &paths : nullptr;
   for (int i = begin; i < end; ++i) {
     Sampler sampler(pixelIndex, uint32_t(i), seed_, sequence_);
     const Vec2 d = pixelSampler.offset(i, sampler.next2D());
@@ -70,16 +75,25 @@ uint32_t Integrator::accumulate(int x, int y, int begin, int end, PixelSums& sum
     ++stats.cameraRays;
     PrimaryHit primary;
     PrimaryHit& seen = i == begin ? first : primary;
+    if (splitInto) paths.clear();
+    seen.lightPaths = splitInto;
     Color L = cameraLi(ray, sampler, stats, &seen);
+    seen.lightPaths = nullptr;
     if (!isFinite(L)) {
       ++stats.nanSamples;
       L = Color(0.0f);
+      paths.clear();
     }
     const double w = filter.evaluate(d);
     sums.rgb[0] += w * L.x, sums.rgb[1] += w * L.y, sums.rgb[2] += w * L.z;
     sums.alpha += seen.hit ? w : 0.0;
     sums.weight += w;
     if (coverage) coverage->add(seen.hit ? seen.objectId : -1, seen.hit ? seen.materialId : -1, w);
+    if (aovSums) {
+      aovSums->addWeight(w);
+      if (splitInto) aovSums->addLightPaths(paths, w);
+      if (aovSums->surface) aovSums->addSurface(seen.hit, seen.albedo, seen.normal, seen.depth, w);
+    }
   }
   return uint32_t(std::max(0, end - begin));
 }

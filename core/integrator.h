@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/accelerator.h"
+#include "core/aov_sums.h"
 #include "core/camera.h"
 #include "core/id_coverage.h"
 #include "core/math.h"
@@ -38,6 +39,9 @@ struct PrimaryHit {
   Vec3 position, normal;
   Color albedo;
   int objectId = -1, materialId = -1;
+  /// Light-path AOVs: when not null, Li also adds each contribution to its path's category
+  /// there (core/light_paths.h). Set by accumulate for the duration of one sample.
+  LightPathRadiance* lightPaths = nullptr;
 };
 
 /// The averaged result of one pixel.
@@ -79,6 +83,8 @@ class Integrator {
   /// (--transparent, TRAY_environment "transparent") a ray that hits nothing gives 0, so that
   /// the film holds premultiplied RGB beside the coverage alpha. `primary` must not be null.
   Color cameraLi(const Ray& ray, Sampler& sampler, RayStats& stats, PrimaryHit* primary) const;
+  /// True when Li fills PrimaryHit::lightPaths (the path tracer): light-path AOVs need it.
+  virtual bool splitsLightPaths() const { return false; }
   /// One pixel's value. `coverage`, when not null (Cryptomatte), receives every camera sample's
   /// object and material ids with the weight the sample has in the pixel.
   virtual PixelValue renderPixel(int x, int y, RayStats& stats,
@@ -88,10 +94,12 @@ class Integrator {
   virtual int samplesPerPixel() const;
   /// Adds samples [begin, end) of pixel (x, y) to `sums`, each from its own counter-based
   /// Sampler(pixel, sample, seed): sums over consecutive ranges add up to renderPixel's. Fills
-  /// `first` with what sample `begin` hit, and `coverage` (when not null) as renderPixel does;
-  /// returns the camera rays traced.
+  /// `first` with what sample `begin` hit, `coverage` (when not null) as renderPixel does, and
+  /// `aovSums` (when not null) with what it asks for of every sample; returns the camera rays
+  /// traced.
   virtual uint32_t accumulate(int x, int y, int begin, int end, PixelSums& sums, PrimaryHit& first,
-                              RayStats& stats, IdCoverage* coverage = nullptr) const;
+                              RayStats& stats, IdCoverage* coverage = nullptr,
+                              AovSums* aovSums = nullptr) const;
   const RenderContext& context() const { return ctx_; }
 
  protected:

@@ -68,6 +68,9 @@ RenderStats renderImage(const Integrator& integrator, Film& film, RenderState& s
   if (state.done.empty()) state = RenderState::empty(pixels);
   if (state.sums.size() != pixels || state.done.size() != pixels)
     throw Error("the render state does not match the film", Error::Kind::kRender);
+  if (AovSet::wantsLightPaths(options.aovs) && !integrator.splitsLightPaths())
+    throw Error("--aov: the light-path layers (lightpaths, diffuse_direct, ...) need "
+                "--integrator path");
   const AovSet aovs(film, options.aovs);
   std::unique_ptr<std::atomic<uint8_t>[]> done(new std::atomic<uint8_t>[pixels]);
   for (size_t p = 0; p < pixels; ++p) {
@@ -88,16 +91,19 @@ RenderStats renderImage(const Integrator& integrator, Film& film, RenderState& s
   auto lastCheckpoint = start;
 
   auto stopped = [&] { return options.stop && options.stop->load(std::memory_order_relaxed); };
-  auto renderPixel = [&](int x, int y, RayStats& stats, IdCoverage& coverage) {
+  auto renderPixel = [&](int x, int y, RayStats& stats, IdCoverage& coverage, AovSums& aovSums) {
     coverage.clear();
     IdCoverage* ids = crypto.active() ? &coverage : nullptr;
+    aovSums.clear();
+    // Averaged AOVs need every sample: only where accumulate() places them.
+    AovSums* averaged = aovs.averaged() && spp > 0 ? &aovSums : nullptr;
     const size_t p = size_t(y) * film.width() + x;
     const int ix = x + options.x0, iy = y + options.y0;  // image coordinates
     PixelSums sums;
     PixelValue v;
     if (spp > 0) {
       v.samples = integrator.accumulate(ix, iy, options.sampleBegin, sampleEnd, sums, v.primary,
-                                        stats, ids);
+                                        stats, ids, averaged);
     } else {  // the integrator places its own samples: its mean, weight 1 (exact in double)
       v = integrator.renderPixel(ix, iy, stats, ids);
       sums.rgb[0] = v.radiance.x, sums.rgb[1] = v.radiance.y, sums.rgb[2] = v.radiance.z;
@@ -105,7 +111,7 @@ RenderStats renderImage(const Integrator& integrator, Film& film, RenderState& s
     }
     state.sums[p] = sums;
     writeBeauty(film, x, y, sums);
-    aovs.write(film, x, y, v);
+    aovs.write(film, x, y, v, averaged);
     if (ids) crypto.write(film, x, y, coverage);
     done[p].store(1, std::memory_order_release);
   };
@@ -113,13 +119,15 @@ RenderStats renderImage(const Integrator& integrator, Film& film, RenderState& s
   auto renderTile = [&](int tile) {
     RayStats local;
     IdCoverage coverage;  // reused across the tile's pixels; only filled for Cryptomatte
+    AovSums aovSums;      // likewise, for the AOVs averaged over all samples
+    aovs.configure(aovSums);
     const int x0 = (tile % tilesX) * ts, y0 = (tile / tilesX) * ts;
     const int x1 = std::min(x0 + ts, film.width()), y1 = std::min(y0 + ts, film.height());
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x) {
         if (stopped()) break;
         if (!done[size_t(y) * film.width() + x].load(std::memory_order_relaxed))
-          renderPixel(x, y, local, coverage);
+          renderPixel(x, y, local, coverage, aovSums);
       }
     bool checkpointNow = false;
     {

@@ -44,10 +44,11 @@ class PathIntegrator final : public Integrator {
         materials_(ctx.scene, ctx.camera, ctx.settings.getInt("spp")) {}
 
   uint32_t accumulate(int x, int y, int begin, int end, PixelSums& sums, PrimaryHit& first,
-                      RayStats& stats, IdCoverage* coverage) const override {
+                      RayStats& stats, IdCoverage* coverage, AovSums* aovSums) const override {
     tlsPixelX = x, tlsPixelY = y;
-    return Integrator::accumulate(x, y, begin, end, sums, first, stats, coverage);
+    return Integrator::accumulate(x, y, begin, end, sums, first, stats, coverage, aovSums);
   }
+  bool splitsLightPaths() const override { return true; }
 
   Color Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats,
            PrimaryHit* primary) const override;
@@ -102,7 +103,11 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats
       if (peak > clampIndirect_) c *= clampIndirect_ / peak;
     }
     L += c;
+    return c;
   };
+  // Light-path AOVs (core/light_paths.h), only when asked for: each contribution also goes to
+  // the category of its path.
+  LightPathSplitter paths(primary ? primary->lightPaths : nullptr);
 
   for (;;) {
     Hit hit;
@@ -117,7 +122,7 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats
         const Color Le = lights_.light(size_t(i)).Le(dir);
         if (isBlack(Le)) continue;
         float w = specular ? 1.0f : powerHeuristic(prevPdf, lights_.pdf(i, prev, dir, {}, {}));
-        add(beta * Le * w, "environment", indirectEmission);
+        paths.addFound(add(beta * Le * w, "environment", indirectEmission), true);
       }
       break;
     }
@@ -162,7 +167,7 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats
     // KHR_materials_unlit: the base colour leaves the surface as is and nothing scatters, as
     // from an emitter that is not in the light set (docs/scene-format.md, "Unlit").
     if (sm.unlit) {
-      add(beta * sm.baseColor, "unlit surface", indirectEmission);
+      paths.addFound(add(beta * sm.baseColor, "unlit surface", indirectEmission), false);
       break;
     }
 
@@ -173,7 +178,7 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats
       int light = lights_.lightAt(hit.primitive, hit.triangle);
       if (!specular && light >= 0)
         w = powerHeuristic(prevPdf, lights_.pdf(light, prev, -wo, s.p, s.ng));
-      add(beta * sm.emissive * w, "emission", indirectEmission);
+      paths.addFound(add(beta * sm.emissive * w, "emission", indirectEmission), false);
     }
     if (depth + 1 > maxDepth_) break;
 
@@ -200,7 +205,10 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats
                                     : sigmaA;
             if (!isBlack(sigma))
               f *= ls.infinite ? Color(0.0f) : transmittance(sigma, length(ls.p - s.p));
-            add(beta * f * ls.L * (w / ls.pdf), "light sample", indirectNee);
+            const Color c = add(beta * f * ls.L * (w / ls.pdf), "light sample", indirectNee);
+            if (paths.active())
+              paths.addLightSample(c, paths.atFirstVertex() ? bsdf.evalLobes(wo, ls.wi)
+                                                            : LobeSplit{});
           }
         }
       }
@@ -225,6 +233,10 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats
       media.cross(s.material, m, s.frontFace);
       etaFactor /= bs.etaScale;
     }
+    if (paths.active())
+      paths.scattered(!paths.atFirstVertex() ? LobeSplit{}
+                      : bs.delta             ? LightPathSplitter::deltaLobe(bs.transmission)
+                                             : bsdf.evalLobes(wo, bs.wi));
     ray = spawnRay(s.p, s.ng, bs.wi);
     ++stats.secondaryRays;
     ++depth;
