@@ -206,7 +206,7 @@ int run(const CliOptions& o, const tray::GltfDocument* document = nullptr) {
   renderOptions.stop = &stop;
   int tiles = 0;  // --test-interrupt-after-tiles: a real SIGINT at a chosen point
   renderOptions.onProgress = [&](double f) {
-    progress.update(f);
+    if (!stop.load()) progress.update(f);  // tiles cut short by a stop are not progress
     if (++tiles == o.testInterruptAfterTiles) std::raise(SIGINT);
   };
 
