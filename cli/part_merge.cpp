@@ -104,7 +104,8 @@ void addPart(const Part& p, Film& out, std::vector<PixelSums>& total) {
     return size_t(std::find(names.begin(), names.end(), name) - names.begin());
   };
   std::vector<size_t> state;  // file channel of each state word, then of `done`
-  for (const std::string& c : stateChannels()) state.push_back(channel(std::string(kStateLayer) + "." + c));
+  for (const std::string& c : stateChannels())
+    state.push_back(channel(std::string(kStateLayer) + "." + c));
   struct Copy {
     size_t from;
     int layer, channel;

@@ -69,8 +69,8 @@ std::string sceneContentHash(const std::string& scenePath, bool allowAnyPath) {
     throw Error(scenePath + ": cannot read the scene file");
   std::vector<std::string> uris;
   try {  // a document that does not parse has no URIs here; the loader reports it
-    const std::string json =
-        isGlb(bytes) ? std::string(glbJson(scenePath, bytes)) : std::string(bytes.begin(), bytes.end());
+    const std::string json = isGlb(bytes) ? std::string(glbJson(scenePath, bytes))
+                                          : std::string(bytes.begin(), bytes.end());
     collectUris(nlohmann::json::parse(json), uris);
   } catch (const std::exception&) {
   }

@@ -153,9 +153,10 @@ TEST(Farm, MergeRefusesIncompleteOrForeignParts) {
                 .exitCode,
             0);
   // The output's precision is the job's: a float part does not merge with half ones.
-  ASSERT_EQ(runCli(TRAY_RENDER_BIN, job + " --float --sample-range 4,8 " + out(dir, "float.exr"), dir)
-                .exitCode,
-            0);
+  ASSERT_EQ(
+      runCli(TRAY_RENDER_BIN, job + " --float --sample-range 4,8 " + out(dir, "float.exr"), dir)
+          .exitCode,
+      0);
   // The same scene file name with other bytes (one space added) is another scene.
   fs::create_directories(dir / "edited");
   const fs::path edited = dir / "edited" / fs::path(kCornell).filename();
@@ -229,7 +230,8 @@ TEST(Farm, PlainProgressIsOneParseableLinePerStep) {
   }
   EXPECT_EQ(percents, (std::vector<double>{25, 50, 75, 100}));
   // A bad mode is a usage error before any work.
-  CliResult bad = runTool(TRAY_RENDER_BIN, "'" + kWhitted + "' --progress fancy " + out(dir, "x.exr"), dir);
+  CliResult bad =
+      runTool(TRAY_RENDER_BIN, "'" + kWhitted + "' --progress fancy " + out(dir, "x.exr"), dir);
   EXPECT_EQ(bad.exitCode, 2);
   EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
 }
