@@ -32,7 +32,8 @@ live_pid() {
 install_missing() {
   local missing=() p
   for p in "${PACKAGES[@]}"; do
-    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" ||
+      missing+=("$p")
   done
   ((${#missing[@]})) || return 0
   [ "$(id -u)" -eq 0 ] || die "installing ${missing[*]} needs root (apt-get)"
@@ -85,7 +86,8 @@ start_daemons() {
   if ! live_pid "$DIR/munged.pid" munged >/dev/null; then
     munged --key-file="$DIR/munge/munge.key" --socket="$DIR/munge/munge.socket" \
       --pid-file="$DIR/munged.pid" --log-file="$DIR/log/munged.log" \
-      --seed-file="$DIR/munge/munge.seed" --force || die "munged did not start (log: $DIR/log/munged.log)"
+      --seed-file="$DIR/munge/munge.seed" --force ||
+      die "munged did not start (log: $DIR/log/munged.log)"
   fi
   if ! live_pid "$DIR/slurmctld.pid" slurmctld >/dev/null; then
     slurmctld -f "$CONF" || die "slurmctld did not start (log: $DIR/log/slurmctld.log)"
@@ -96,9 +98,15 @@ start_daemons() {
   local i state
   for i in $(seq 1 150); do
     state=$(SLURM_CONF=$CONF sinfo -h -n localhost -o %T 2>/dev/null || true)
-    case "$state" in idle* | mixed* | allocated*) say "up: node localhost $state ($CONF)"; return 0 ;; esac
-    # A node left down or drained by an earlier run: return it to service.
-    case "$state" in down* | drain*) SLURM_CONF=$CONF scontrol update NodeName=localhost State=RESUME 2>/dev/null || true ;; esac
+    case "$state" in
+      idle* | mixed* | allocated*)
+        say "up: node localhost $state ($CONF)"
+        return 0
+        ;;
+      down* | drain*)  # left down or drained by an earlier run: return it to service
+        SLURM_CONF=$CONF scontrol update NodeName=localhost State=RESUME 2>/dev/null || true
+        ;;
+    esac
     sleep 0.2
   done
   die "the node did not become idle in 30 s (state '${state:-none}'; logs: $DIR/log)"
@@ -138,7 +146,12 @@ case "${1:-}" in
   status)
     rc=0
     for d in munged slurmctld slurmd; do
-      if pid=$(live_pid "$DIR/$d.pid" "$d"); then echo "$d: running (pid $pid)"; else echo "$d: stopped"; rc=1; fi
+      if pid=$(live_pid "$DIR/$d.pid" "$d"); then
+        echo "$d: running (pid $pid)"
+      else
+        echo "$d: stopped"
+        rc=1
+      fi
     done
     exit $rc
     ;;

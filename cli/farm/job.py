@@ -58,7 +58,8 @@ def part_options(split, render_args):
             raise JobError("--split %s needs the image size: give --resolution WxH" % split)
         width, height = int(m.group(1)), int(m.group(2))
         if n > height:
-            raise JobError("--split %s: more regions than the %d rows of the image" % (split, height))
+            raise JobError("--split %s: more regions than the %d rows of the image"
+                           % (split, height))
         rows = [height * k // n for k in range(n + 1)]
         return [["--region", "0,%d,%d,%d" % (rows[k], width, rows[k + 1])] for k in range(n)]
     spp = render_option(render_args, "--spp")
@@ -157,7 +158,8 @@ class FarmJob:
     def part_script(self):
         """The array task script: task i execs tray-render for part i (SIGTERM reaches it)."""
         q = shlex.quote
-        frames = " ".join(str(self.frames[t // len(self.options)]) for t in range(self.task_count()))
+        tasks = range(self.task_count())
+        frames = " ".join(str(self.frames[t // len(self.options)]) for t in tasks)
         opts = " ".join(q(self.options[t % len(self.options)][0]) for t in range(self.task_count()))
         vals = " ".join(q(self.options[t % len(self.options)][1]) for t in range(self.task_count()))
         outs = []
