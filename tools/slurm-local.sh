@@ -86,14 +86,14 @@ start_daemons() {
   if ! live_pid "$DIR/munged.pid" munged >/dev/null; then
     munged --key-file="$DIR/munge/munge.key" --socket="$DIR/munge/munge.socket" \
       --pid-file="$DIR/munged.pid" --log-file="$DIR/log/munged.log" \
-      --seed-file="$DIR/munge/munge.seed" --force ||
+      --seed-file="$DIR/munge/munge.seed" --force 9>&- ||
       die "munged did not start (log: $DIR/log/munged.log)"
   fi
   if ! live_pid "$DIR/slurmctld.pid" slurmctld >/dev/null; then
-    slurmctld -f "$CONF" || die "slurmctld did not start (log: $DIR/log/slurmctld.log)"
+    slurmctld -f "$CONF" 9>&- || die "slurmctld did not start (log: $DIR/log/slurmctld.log)"
   fi
   if ! live_pid "$DIR/slurmd.pid" slurmd >/dev/null; then
-    slurmd -f "$CONF" || die "slurmd did not start (log: $DIR/log/slurmd.log)"
+    slurmd -f "$CONF" 9>&- || die "slurmd did not start (log: $DIR/log/slurmd.log)"
   fi
   local i state
   for i in $(seq 1 150); do
@@ -130,7 +130,9 @@ case "${1:-}" in
     install_missing
     [ "$(id -u)" -eq 0 ] || die "the daemons run as root here: run as root"
     mkdir -p "$DIR"
-    exec 9>"$DIR/start.lock" && flock 9  # two test runs starting at once start one cluster
+    # Two test runs starting at once start one cluster. The daemons must not inherit the lock's
+    # descriptor (9>&- below): they would hold it for as long as they run.
+    exec 9>"$DIR/start.lock" && flock 9
     write_config
     start_daemons
     ;;
