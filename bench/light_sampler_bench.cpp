@@ -13,6 +13,8 @@
 
 #include "bench/image_error.h"
 #include "io/gltf_loader.h"
+#include "lights/bvh_light_sampler.h"
+#include "lights/light_set.h"
 #include "tests/light_scenes.h"
 #include "tests/render_film.h"
 
@@ -53,6 +55,14 @@ Run render(const Scene& scene, const Setup& setup, int spp, const char* chooser,
 void measure(const char* name, const Scene& scene, const Setup& setup) {
   std::printf("\n%s (%dx%d, reference %d spp bvh)\n", name, setup.width, setup.height,
               setup.refSpp);
+  {
+    const LightSet lights(scene, LightSamplerKind::kPower);
+    std::vector<LightBounds> bounds;
+    for (size_t i = 0; i < lights.size(); ++i) bounds.push_back(lights.light(i).bounds());
+    const BvhLightSampler tree(bounds);
+    std::printf("%zu lights; light BVH: %zu nodes, depth %d\n", lights.size(), tree.nodeCount(),
+                tree.depth());
+  }
   const Film reference = render(scene, setup, setup.refSpp, "bvh", 99).film;
   std::printf("| spp | power RMSE | power s | bvh RMSE | bvh s | RMSE ratio |\n");
   std::printf("|---|---|---|---|---|---|\n");
