@@ -60,7 +60,7 @@ float finiteImportance(const LightBounds& l, const LightSampleContext& ctx) {
   const float cosW = dot(l.w, wi);
   const Angle toNormals = fromCos(l.twoSided ? std::fabs(cosW) : cosW);
   // The smallest angle between an emission normal and a direction to the receiver.
-  const Angle emit = minusClamped(minusClamped(toNormals, fromCos(l.cosTheta_o)), bound);
+  const Angle emit = minusClamped(minusClamped(toNormals, {l.cosTheta_o, l.sinTheta_o}), bound);
   if (emit.cos < l.cosTheta_e) return 0.0f;
   // The smallest angle between the receiver's normal and a direction to the box.
   const float cosI = -dot(wi, ctx.n);
@@ -120,6 +120,7 @@ LightBounds unite(const LightBounds& a, const LightBounds& b) {
   u.box.extend(b.box);
   u.phi = a.phi + b.phi;
   uniteCones(a.w, a.cosTheta_o, b.w, b.cosTheta_o, u.w, u.cosTheta_o);
+  u.sinTheta_o = fromCos(u.cosTheta_o).sin;
   u.cosTheta_e = std::min(a.cosTheta_e, b.cosTheta_e);
   u.twoSided = a.twoSided || b.twoSided;
   return u;

@@ -4,6 +4,9 @@
 // (Conty Estevez & Kulla 2018, "Importance Sampling of Many Lights with Adaptive Tree
 // Splitting", sec. 4; pbrt-v4 12.6.3's LightBounds). Lights return one (core/light.h);
 // lights/bvh_light_sampler.h builds a tree of them.
+#include <algorithm>
+#include <cmath>
+
 #include "core/bounds.h"
 #include "core/light.h"
 
@@ -22,12 +25,14 @@ struct LightBounds {
   /// intensity, e.g. luminance(Le) x area for a flat emitter), or the irradiance itself.
   float phi = 0;
   float cosTheta_o = 1;  ///< kFinite: normals lie within theta_o of w
+  float sinTheta_o = 0;  ///< its sine, kept: importance() runs twice per level of the tree
   float cosTheta_e = 0;  ///< kFinite: each normal emits within theta_e of itself
   bool twoSided = false;  ///< kFinite: emits along -w's cone too
 
   static LightBounds finite(const Bounds3& box, const Vec3& w, float phi, float cosTheta_o,
                             float cosTheta_e, bool twoSided) {
-    return {Kind::kFinite, box, w, phi, cosTheta_o, cosTheta_e, twoSided};
+    const float sinTheta_o = std::sqrt(std::max(0.0f, 1.0f - cosTheta_o * cosTheta_o));
+    return {Kind::kFinite, box, w, phi, cosTheta_o, sinTheta_o, cosTheta_e, twoSided};
   }
   static LightBounds directional(const Vec3& towardsLight, float irradiance) {
     LightBounds b;

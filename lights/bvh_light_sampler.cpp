@@ -37,6 +37,14 @@ float cost(const LightBounds& b) {
 
 float axisOf(const Vec3& v, int axis) { return axis == 0 ? v.x : axis == 1 ? v.y : v.z; }
 
+/// Whether two bounds differ at most in strength, so that their importances are in the ratio
+/// of their strengths wherever the receiver is.
+bool sameShape(const LightBounds& a, const LightBounds& b) {
+  auto same = [](const Vec3& x, const Vec3& y) { return x.x == y.x && x.y == y.y && x.z == y.z; };
+  return same(a.box.lo, b.box.lo) && same(a.box.hi, b.box.hi) && same(a.w, b.w) &&
+         a.cosTheta_o == b.cosTheta_o && a.cosTheta_e == b.cosTheta_e && a.twoSided == b.twoSided;
+}
+
 int ceilLog2(size_t n) {
   int k = 0;
   while ((size_t(1) << k) < n) ++k;
@@ -81,7 +89,9 @@ uint32_t BvhLightSampler::build(std::vector<Item>& items, size_t begin, size_t e
   const size_t mid = split(items, begin, end, balanced);
   const uint32_t left = build(items, begin, mid, depth + 1, trail);
   const uint32_t right = build(items, mid, end, depth + 1, trail | (uint64_t(1) << depth));
-  nodes_[index].bounds = unite(nodes_[left].bounds, nodes_[right].bounds);
+  const LightBounds &l = nodes_[left].bounds, &r = nodes_[right].bounds;
+  if (sameShape(l, r)) nodes_[index].fixedLeft = l.phi / (l.phi + r.phi);
+  nodes_[index].bounds = unite(l, r);
   nodes_[index].index = right;
   return index;
 }
@@ -146,14 +156,22 @@ size_t BvhLightSampler::split(std::vector<Item>& items, size_t begin, size_t end
   return m;
 }
 
-float BvhLightSampler::topTotal(const LightSampleContext& ctx) const {
+float BvhLightSampler::rootWeight(const LightSampleContext& ctx) const {
+  if (nodes_.empty()) return 0.0f;
+  // Alone at the top, the tree is taken whatever its weight (where it is 0, its leaves are
+  // too, and the sample is lost either way): one importance fewer per choice.
+  return infinite_.empty() ? 1.0f : nodes_[0].bounds.importance(ctx);
+}
+
+float BvhLightSampler::topTotal(const LightSampleContext& ctx, float& root) const {
   float total = 0;
   for (const LightBounds& b : infinite_) total += b.importance(ctx);
-  if (!nodes_.empty()) total += nodes_[0].bounds.importance(ctx);
-  return total;
+  root = rootWeight(ctx);
+  return total + root;
 }
 
 float BvhLightSampler::leftProbability(uint32_t node, const LightSampleContext& ctx) const {
+  if (nodes_[node].fixedLeft >= 0) return nodes_[node].fixedLeft;
   const float left = nodes_[node + 1].bounds.importance(ctx);
   const float right = nodes_[nodes_[node].index].bounds.importance(ctx);
   const float sum = left + right;
@@ -164,7 +182,8 @@ float BvhLightSampler::leftProbability(uint32_t node, const LightSampleContext& 
 
 int BvhLightSampler::sample(const LightSampleContext& ctx, float u, float& pmf) const {
   pmf = 0;
-  const float total = topTotal(ctx);
+  float root;
+  const float total = topTotal(ctx, root);
   if (!(total > 0) || !std::isfinite(total)) return -1;
   // The top level: the infinite lights, then the tree, by their weights.
   float target = u * total, before = 0;
@@ -177,10 +196,9 @@ int BvhLightSampler::sample(const LightSampleContext& ctx, float u, float& pmf) 
     before += w;
   }
   if (nodes_.empty()) return -1;
-  const float rootWeight = nodes_[0].bounds.importance(ctx);
-  if (!(rootWeight > 0)) return -1;
-  float p = rootWeight / total;
-  u = std::min((target - before) / rootWeight, kOneMinusEpsilon);
+  if (!(root > 0)) return -1;
+  float p = root / total;
+  u = std::min((target - before) / root, kOneMinusEpsilon);
   u = std::max(u, 0.0f);
   uint32_t n = 0;
   while (!nodes_[n].leaf) {
@@ -201,13 +219,13 @@ int BvhLightSampler::sample(const LightSampleContext& ctx, float u, float& pmf) 
 
 float BvhLightSampler::pmf(const LightSampleContext& ctx, int light) const {
   if (light < 0 || size_t(light) >= trail_.size()) return 0.0f;
-  const float total = topTotal(ctx);
+  float root;
+  const float total = topTotal(ctx, root);
   if (!(total > 0) || !std::isfinite(total)) return 0.0f;
   if (infiniteSlot_[size_t(light)] >= 0)
     return infinite_[size_t(infiniteSlot_[size_t(light)])].importance(ctx) / total;
   if (!inTree_[size_t(light)]) return 0.0f;
-  const float rootWeight = nodes_[0].bounds.importance(ctx);
-  float p = rootWeight / total;
+  float p = root / total;
   const uint64_t trail = trail_[size_t(light)];
   uint32_t n = 0;
   for (int level = 0; !nodes_[n].leaf; ++level) {

@@ -32,6 +32,9 @@ class BvhLightSampler final : public LightSampler {
     LightBounds bounds;
     uint32_t index = 0;  ///< interior: the right child (the left one follows); leaf: the light
     bool leaf = false;
+    /// Interior nodes whose children differ only in strength (a quad's two triangles): the
+    /// left child's probability, the same at every receiver; -1 otherwise.
+    float fixedLeft = -1;
   };
   struct Item {
     LightBounds bounds;
@@ -40,8 +43,10 @@ class BvhLightSampler final : public LightSampler {
   };
   uint32_t build(std::vector<Item>& items, size_t begin, size_t end, int depth, uint64_t trail);
   size_t split(std::vector<Item>& items, size_t begin, size_t end, bool balanced) const;
-  /// The top level's total weight: the infinite lights' importances and the tree root's.
-  float topTotal(const LightSampleContext& ctx) const;
+  /// The tree's weight at the top level.
+  float rootWeight(const LightSampleContext& ctx) const;
+  /// The top level's total weight: the infinite lights' importances and the tree's (root).
+  float topTotal(const LightSampleContext& ctx, float& root) const;
   /// The probability of taking an interior node's left child (1/2 when neither child can
   /// light the receiver).
   float leftProbability(uint32_t node, const LightSampleContext& ctx) const;
