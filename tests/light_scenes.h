@@ -8,8 +8,8 @@
 namespace tray::test {
 
 /// A ground, a box and three spheres lit by a low sun (irradiance 3) beside a constant sky of
-/// radiance 1 (the "one directional light plus a background"): the sun gives most of
-/// the light on surfaces facing it, yet by power it gets 20% of the light samples (the BVH:
+/// radiance 1 (the "one directional light plus a background"): the sun gives as much
+/// light as the whole sky to surfaces facing it, yet by power it gets 20% of the light samples (the BVH:
 /// up to 51% in front of it, none behind).
 inline Scene sunAndSkyScene() {
   Scene s;
