@@ -218,10 +218,8 @@ TEST(CliDefaultLight, ASkyBoxAroundTheCameraGetsAHeadlightNotABlackImage) {
       {"extensions": {"TRAY_shape": {"type": "sphere", "radius": 1}}},
       {"name": "sky", "extensions": {"TRAY_shape": {"type": "box", "min": [-20, -20, -20],
                                                     "max": [20, 20, 20]}}}]})";
-  CliResult r = runCli(TRAY_RENDER_BIN,
-                       quoted(scene) + " -q --integrator=path --spp 4 --resolution 8x6 --float -o " +
-                           quoted(dir / "sky.exr"),
-                       dir);
+  const std::string args = " -q --integrator=path --spp 4 --resolution 8x6 --float -o ";
+  CliResult r = runCli(TRAY_RENDER_BIN, quoted(scene) + args + quoted(dir / "sky.exr"), dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
   EXPECT_NE(r.err.find("default headlight"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("the camera is enclosed (a sky box?)"), std::string::npos) << r.err;
