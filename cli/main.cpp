@@ -138,9 +138,10 @@ int run(const CliOptions& o, const tray::GltfDocument* document = nullptr) {
   const int placedCamera = tray::findCamera(scene, o.camera);
   tray::CameraDesc cam = tray::chooseCamera(scene, o.camera);
   tray::applyLensOptions(cam, o.settings);
+  bool defaultLight = false;
   if (o.settings.getBool("no-default-light")) {
     // Nothing added: an unlit asset renders black (or lit by emitters too weak to count).
-  } else if (tray::addDefaultLightingIfUnlit(scene, cam))
+  } else if ((defaultLight = tray::addDefaultLightingIfUnlit(scene, cam)))
     std::fprintf(stderr,
                  "warning: %s has no lights of meaningful power: using TRay's default headlight and a 0.1 "
                  "environment (docs/scene-format.md; --no-default-light turns it off)\n",
@@ -156,6 +157,11 @@ int run(const CliOptions& o, const tray::GltfDocument* document = nullptr) {
   }
   gPhase = "building the accelerator";
   auto accel = tray::makeAccelerator(o.accel, scene);
+  if (defaultLight && tray::useHeadlightIfEnclosed(scene, cam, *accel))
+    std::fprintf(stderr,
+                 "warning: %s: the camera is enclosed (a sky box?) and the default key light "
+                 "cannot get in: a headlight at the camera replaces it\n",
+                 o.scenePath.c_str());
   gPhase = "rendering";
   tray::RenderContext ctx{scene, *accel, *camera, o.settings, width, height};
   auto integrator = tray::makeIntegrator(ctx);

@@ -40,7 +40,7 @@ class PathIntegrator final : public Integrator {
         debugNan_(ctx.settings.getBool("debug-nan")),
         absorbingMedia_(std::any_of(ctx.scene.materials.begin(), ctx.scene.materials.end(),
                                     [](const Material& m) { return !isBlack(m.layers.absorption()); })),
-        lights_(ctx.scene),
+        lights_(ctx.scene, lightSamplerKind(ctx.settings.getString("light-sampler"))),
         materials_(ctx.scene, ctx.camera, ctx.settings.getInt("spp")) {}
 
   uint32_t accumulate(int x, int y, int begin, int end, PixelSums& sums, PrimaryHit& first,
@@ -186,11 +186,16 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats
     const Vec3 n = s.frontFace ? sm.n : -sm.n;
     const Bsdf bsdf(sm, Frame::fromNormal(n), eta);
 
+    // What light sampling knows of the receiver; BSDF sampling's MIS weights use the same.
+    // A reflecting BSDF sees only light above n unless wo lies below it (shading normals) or
+    // a clearcoat brings a normal of its own.
+    const LightSampleContext here{s.p, n, bsdf.transmits(),
+                                  bsdf.transmits() || !(dot(wo, n) > 0) || sm.clearcoat > 0};
     // Next-event estimation: one light sample, MIS-weighted against BSDF sampling.
     if (bsdf.hasNonDelta() && !lights_.empty()) {
       // The light choice and the point on it as one 3D sample (stratified jointly by Sobol').
       const Vec3 u = sampler.next3D();
-      LightSample ls = lights_.sample({s.p, n, bsdf.transmits()}, u.x, {u.y, u.z});
+      LightSample ls = lights_.sample(here, u.x, {u.y, u.z});
       if (ls.valid() && !isBlack(ls.L)) {
         float bsdfPdf;
         Color f = bsdf.eval(wo, ls.wi, bsdfPdf) * std::fabs(dot(ls.wi, n));
@@ -228,7 +233,7 @@ Color PathIntegrator::Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats
     indirectEmission = indirectNee;
     indirectNee = indirectNee || !bs.delta;
     prevPdf = bs.pdf;
-    prev = {s.p, n, bsdf.transmits()};
+    prev = here;
     if (bs.transmission && refractive) {
       media.cross(s.material, m, s.frontFace);
       etaFactor /= bs.etaScale;
@@ -261,6 +266,9 @@ const std::vector<OptionSpec>& pathOptions() {
                   "clamp each indirect contribution to this value (fireflies; biased; 0 = off)"),
       // Prints only: the pixels are the same with or without it.
       diagnostic(flagOption("debug-nan", "print where NaN/Inf samples arise")),
+      choiceOption("light-sampler", "bvh", {"bvh", "power"},
+                   "how next-event estimation picks a light: bvh (by its estimated "
+                   "contribution at the shading point) or power (in proportion to power)"),
   };
   return specs;
 }
