@@ -62,6 +62,15 @@ struct CliOptions {
   tray::RenderSettings settings;
 };
 
+/// The job's content: the scene and every file it names, and the --env map, whose pixels are
+/// not in the option's value (its path).
+std::string contentHashOf(const CliOptions& o) {
+  const std::string env = o.settings.getString("env");
+  return tray::sceneContentHash(o.scenePath, o.allowAnyPath,
+                                env.empty() ? std::vector<std::string>{}
+                                            : std::vector<std::string>{env});
+}
+
 std::string joined(const std::vector<std::string>& names) {
   std::string s;
   for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
@@ -183,7 +192,7 @@ int run(const CliOptions& o, const tray::GltfDocument* document = nullptr) {
   const std::string job = tray::jobSignature(
       o.settings, {o.scenePath, o.scene, placedCamera, width, height, o.accel,
                    o.aovs + (o.aaHeatmap.empty() ? "" : "+samples"),
-                   o.sceneHash.empty() ? tray::sceneContentHash(o.scenePath, o.allowAnyPath)
+                   o.sceneHash.empty() ? contentHashOf(o)
                                        : o.sceneHash,
                    output});
 
@@ -310,7 +319,7 @@ int runFrames(const CliOptions& o) {
   const tray::GltfDocument document(o.scenePath, loadOptionsOf(o), &parseReport);
   for (const auto& w : parseReport.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   CliOptions hashed = o;  // the file's content, hashed once for every frame's job signature
-  hashed.sceneHash = tray::sceneContentHash(o.scenePath, o.allowAnyPath);
+  hashed.sceneHash = contentHashOf(o);
   for (int64_t f = range.first; f <= range.last; ++f) {
     CliOptions frame = hashed;
     for (auto& path : frame.outputs) path = tray::framePath(path, f);

@@ -61,7 +61,8 @@ void collectUris(const nlohmann::json& node, std::vector<std::string>& uris) {
 
 }  // namespace
 
-std::string sceneContentHash(const std::string& scenePath, bool allowAnyPath) {
+std::string sceneContentHash(const std::string& scenePath, bool allowAnyPath,
+                             const std::vector<std::string>& outsideFiles) {
   HashState state(XXH3_createState(), &XXH3_freeState);
   XXH3_128bits_reset(state.get());
   std::vector<unsigned char> bytes;
@@ -83,6 +84,12 @@ std::string sceneContentHash(const std::string& scenePath, bool allowAnyPath) {
     std::string problem;
     const std::string real = policy.resolve(percentDecoded(uri), problem);
     if (!real.empty()) hashFile(state.get(), real, nullptr);
+  }
+  for (const std::string& file : outsideFiles) {  // bytes only: mounts may differ by machine
+    static const char kMarker[] = "\0outside\0";
+    XXH3_128bits_update(state.get(), kMarker, sizeof kMarker);
+    if (!hashFile(state.get(), file, nullptr))
+      XXH3_128bits_update(state.get(), file.data(), file.size());
   }
   const XXH128_hash_t h = XXH3_128bits_digest(state.get());
   char hex[33];

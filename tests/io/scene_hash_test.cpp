@@ -57,5 +57,24 @@ TEST(SceneHash, FollowsTheSceneAndEveryFileItsUrisName) {
   EXPECT_THROW(sceneContentHash((dir / "missing.gltf").string(), false), std::exception);
 }
 
+// The --env map shapes the pixels but is no URI of the scene: an edited map under the same
+// path must change the job's content hash, a copy elsewhere must not.
+TEST(SceneHash, FollowsTheEnvironmentMapOutsideTheScene) {
+  const fs::path dir = fs::path(::testing::TempDir()) / "scene_hash_env";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  writeFile(dir / "scene.gltf", R"({"asset":{"version":"2.0"}})");
+  writeFile(dir / "sky.exr", "sky1");
+  const std::string scene = (dir / "scene.gltf").string(), sky = (dir / "sky.exr").string();
+  const std::string alone = sceneContentHash(scene, false);
+  const std::string lit = sceneContentHash(scene, false, {sky});
+  EXPECT_NE(lit, alone);
+  writeFile(dir / "sky.exr", "sky2");
+  EXPECT_NE(sceneContentHash(scene, false, {sky}), lit);
+  writeFile(dir / "copy.exr", "sky2");
+  EXPECT_EQ(sceneContentHash(scene, false, {(dir / "copy.exr").string()}),
+            sceneContentHash(scene, false, {sky}));
+}
+
 }  // namespace
 }  // namespace tray
