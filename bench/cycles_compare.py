@@ -4,13 +4,18 @@ measured in this run on this machine, one thread each.
 
 Scene per asset: the asset on a grey diffuse ground plane, a camera framing it, a glTF
 directional light (KHR_lights_punctual, irradiance --sun) and an HDR environment map
-(env_bench's sky with its small, very bright sun, scaled by --env-intensity). Blender builds
+(env_bench's sky, its sun disk clamped away by --sky-max, scaled by --env-intensity). Blender builds
 the scene once (its glTF importer, then its exporter writes merged.glb) and both renderers read
 that same file: TRay directly, Cycles through Blender's importer. Conventions (the lighting
 issue's, which make the Cornell box match Mitsuba within 0.02%): importer and exporter lighting
 mode COMPAT (a sun's strength in W/m² is the glTF intensity), sun angle 0 (a delta light, as
 glTF's directional), Cycles max_bounces = TRay --max-depth − 2, box filter of width 1, no
-adaptive sampling, no denoising, Standard view transform (EXR values scene-linear).
+adaptive sampling, no denoising, no glossy filter (Cycles' default "Filter Glossy"
+1.0 blurs caustic paths: biased) and no light threshold, Standard view transform (EXR values
+scene-linear). Indirect samples are clamped at --clamp-indirect (10) in both (TRay's
+--clamp-indirect, Cycles' "Clamp Indirect"): unclamped, the sun's caustics off the helmet's
+metal onto the ground keep even 2048-spp references noisy, and both renderers' RMSE stalls at
+the reference's own noise (measured: 0.031 at 64 and at 256 spp), deciding nothing.
 
 The environment map is lat-long in both, with TRay's orientation (u = 0.5 towards glTF +Z,
 u = 0.25 towards +X) reproduced in Blender by a Mapping node turning the lookup by +90° about Z
@@ -20,8 +25,10 @@ relative difference (the orientation is right when it is small).
 Error: each renderer's RMSE against its OWN converged render (--ref-spp); their material models
 differ slightly, so the images are compared by eye (side by side PNGs in --out), not pixel to
 pixel. Time: wall time of each render minus that renderer's 1-spp render (scene load, BVH and
-texture set-up excluded alike). Figure: the time TRay needs to reach the noise Cycles has at
---target-spp (RMSE ∝ spp^-1/2 between measured points), against Cycles' time at --target-spp.
+texture set-up excluded alike). Both estimators are unbiased, so MSE = c / spp and time =
+t x spp: c and t are fitted over every spp count (each the mean of --seeds renders, so that one
+firefly does not decide), and the figure is the time TRay needs to reach the MSE Cycles has at
+--target-spp against Cycles' time for --target-spp: (c_Cycles t_Cycles) / (c_TRay t_TRay).
 
 Usage (Debian's blender 3.4; tools/setup-blender.sh installs it):
   blender -b --factory-startup --python bench/cycles_compare.py -- [--build build] [--out DIR]
@@ -63,8 +70,12 @@ def parse_args():
     p.add_argument("--target-spp", type=int, default=64)
     p.add_argument("--spp", default="4,16,64,256")
     p.add_argument("--max-depth", type=int, default=8)
-    p.add_argument("--sun", type=float, default=2.0)
-    p.add_argument("--env-intensity", type=float, default=0.05)
+    p.add_argument("--seeds", type=int, default=2, help="renders per spp count, MSE averaged")
+    p.add_argument("--clamp-indirect", type=float, default=10.0,
+                   help="both renderers clamp indirect samples (0: off; see the docstring)")
+    p.add_argument("--sun", type=float, default=3.0)
+    p.add_argument("--env-intensity", type=float, default=1.0)
+    p.add_argument("--sky-max", type=float, default=2.0, help="clamp of the sky map (its sun)")
     p.add_argument("--assets", default="DamagedHelmet,WaterBottle")
     p.add_argument("--tray-args", default="", help="extra tray-render options")
     p.add_argument("--check-env", action="store_true")
@@ -146,7 +157,7 @@ def diffuse_for_rough_dielectrics():
                 links.new(d.outputs["BSDF"], link.to_socket)
 
 
-def setup_cycles(merged, env, env_intensity, size, spp, depth, seed=0):
+def setup_cycles(merged, env, env_intensity, size, spp, depth, seed=0, clamp=0.0):
     reset()
     if merged:
         bpy.ops.import_scene.gltf(filepath=merged, convert_lighting_mode="COMPAT")
@@ -185,7 +196,12 @@ def setup_cycles(merged, env, env_intensity, size, spp, depth, seed=0):
     c.transparent_max_bounces = c.max_bounces
     c.volume_bounces = 0
     c.caustics_reflective = c.caustics_refractive = True
-    c.sample_clamp_direct = c.sample_clamp_indirect = 0.0
+    c.sample_clamp_direct = 0.0
+    c.sample_clamp_indirect = clamp
+    # Unbiased like TRay: no glossy blur after diffuse bounces (Cycles' default 1.0 removes
+    # exactly the caustic fireflies the comparison is about), no light threshold.
+    c.blur_glossy = 0.0
+    c.light_sampling_threshold = 0.0
     c.pixel_filter_type = "BOX"
     c.filter_width = 1.0
     world.cycles.sampling_method = "AUTOMATIC"
@@ -207,9 +223,10 @@ def render_cycles(path):
     return time.perf_counter() - start
 
 
-def render_tray(args, merged, env, spp, path, threads=1):
+def render_tray(args, merged, env, spp, path, threads=1, seed=0):
     cmd = [os.path.join(args.build, "tray-render"), merged, "-q", "--integrator", "path",
-           "--spp", str(spp), "--max-depth", str(args.max_depth), "--threads", str(threads),
+           "--spp", str(spp), "--seed", str(seed), "--clamp-indirect", str(args.clamp_indirect),
+           "--max-depth", str(args.max_depth), "--threads", str(threads),
            "--env", env, "--env-intensity", str(args.env_intensity), "--resolution",
            f"{args.size}x{args.size}", "--float", "-o", path] + args.tray_args.split()
     start = time.perf_counter()
@@ -229,15 +246,13 @@ def rmse(a, b):
     return float(np.sqrt(np.mean((a - b) ** 2)))
 
 
-def time_to_reach(points, target):
-    """Time to RMSE `target` from (spp, seconds, rmse) points: the first point at or below it,
-    scaled along RMSE ∝ spp^-1/2 and time linear in spp."""
-    for spp, seconds, err in points:
-        if err <= target:
-            need = spp * (err / target) ** 2
-            return seconds * need / spp
-    spp, seconds, err = points[-1]
-    return seconds * (err / target) ** 2
+def efficiency(points):
+    """(MSE x spp, seconds per spp) fitted over (spp, seconds, mse) points: MSE = c / spp for an
+    unbiased estimator, time = t x spp once set-up is subtracted. Fitting all spp counts (each
+    averaged over seeds) keeps a single firefly from deciding the figure."""
+    c = sum(mse * spp for spp, _, mse in points) / len(points)
+    t = sum(seconds for _, seconds, _ in points) / sum(spp for spp, _, _ in points)
+    return c, t
 
 
 def compare(args, name, env):
@@ -246,33 +261,39 @@ def compare(args, name, env):
     merged = os.path.join(out, "merged.glb")
     build_scene(ASSETS[name], merged, args.sun)
     spps = [int(s) for s in args.spp.split(",")]
-    results = {}
+    fits = {}
     for renderer in ("tray", "cycles"):
-        def render(spp, path, threads=1):
+        def render(spp, path, threads=1, seed=0):
             if renderer == "tray":
-                return render_tray(args, merged, env, spp, path, threads)
-            setup_cycles(merged, env, args.env_intensity, args.size, spp, args.max_depth)
+                return render_tray(args, merged, env, spp, path, threads, seed)
+            setup_cycles(merged, env, args.env_intensity, args.size, spp, args.max_depth, seed,
+                         args.clamp_indirect)
             bpy.context.scene.render.threads = threads
             return render_cycles(path)
         ref_path = os.path.join(out, f"{renderer}-ref.exr")
-        render(args.ref_spp, ref_path, threads=os.cpu_count())
+        render(args.ref_spp, ref_path, threads=os.cpu_count(), seed=1000)
         ref = read_rgb(ref_path)
         setup = render(1, os.path.join(out, f"{renderer}-1.exr"))
         points = []
-        for spp in sorted(set(spps + [args.target_spp])):
-            path = os.path.join(out, f"{renderer}-{spp}.exr")
-            seconds = max(render(spp, path) - setup, 1e-6)
-            points.append((spp, seconds, rmse(read_rgb(path), ref)))
-            say(f"  {name:14s} {renderer:6s} {spp:5d} spp  {seconds:8.3f} s  RMSE {points[-1][2]:.5f}"
-                f"  (mean {float(ref.mean()):.4f})")
-        results[renderer] = points
-        subprocess.run(["oiiotool", ref_path, "--ch", "R,G,B", "--colorconvert", "linear", "sRGB", "-o",
-                        os.path.join(out, f"{renderer}-ref.png")], check=False)
-    target = next(e for s, _, e in results["cycles"] if s == args.target_spp)
-    cycles_time = next(t for s, t, _ in results["cycles"] if s == args.target_spp)
-    tray_time = time_to_reach(results["tray"], target)
-    say(f"  {name}: Cycles {args.target_spp} spp RMSE {target:.5f} in {cycles_time:.3f} s; "
-        f"TRay reaches it in {tray_time:.3f} s: TRay {cycles_time / tray_time:.2f}x faster")
+        for spp in spps:
+            seconds, mse = 0.0, 0.0
+            for seed in range(args.seeds):
+                path = os.path.join(out, f"{renderer}-{spp}-{seed}.exr")
+                seconds += max(render(spp, path, seed=seed) - setup, 1e-6) / args.seeds
+                mse += float(np.mean((read_rgb(path) - ref) ** 2)) / args.seeds
+            points.append((spp, seconds, mse))
+            say(f"  {name:14s} {renderer:6s} {spp:5d} spp  {seconds:8.3f} s  RMSE "
+                f"{math.sqrt(mse):.5f}  (image mean {float(ref.mean()):.4f})")
+        fits[renderer] = efficiency(points)
+        subprocess.run(["oiiotool", ref_path, "--ch", "R,G,B", "--colorconvert", "linear", "sRGB",
+                        "-o", os.path.join(out, f"{renderer}-ref.png")], check=False)
+    (c_cyc, t_cyc), (c_tray, t_tray) = fits["cycles"], fits["tray"]
+    target = c_cyc / args.target_spp  # Cycles' MSE at --target-spp (fitted)
+    cycles_time = t_cyc * args.target_spp
+    tray_time = t_tray * c_tray / target
+    say(f"  {name}: Cycles {args.target_spp} spp: RMSE {math.sqrt(target):.5f} in "
+        f"{cycles_time:.3f} s; TRay reaches it in {tray_time:.3f} s "
+        f"({c_tray / target:.0f} spp): TRay {cycles_time / tray_time:.2f}x faster")
     return cycles_time / tray_time
 
 
@@ -310,7 +331,11 @@ def main():
     maps = os.path.join(args.out, "maps")
     subprocess.run([os.path.join(args.build, "env_bench"), "--write-maps", maps], check=True,
                    stdout=subprocess.DEVNULL)
-    env = os.path.join(maps, "sky.exr")
+    # The sky without its sun disk (clamped to the sky's own brightness): the sun is the glTF
+    # directional light, as in the truck scene of the lighting issue (sun + background).
+    env = os.path.join(maps, "sky-soft.exr")
+    subprocess.run(["oiiotool", os.path.join(maps, "sky.exr"), "--clamp:max=" + str(args.sky_max),
+                    "-o", env], check=True)
     say(f"TRay vs Cycles ({bpy.app.version_string}), {args.size}x{args.size}, one thread each, "
         f"max depth {args.max_depth}, references {args.ref_spp} spp, sun {args.sun} + sky x "
         f"{args.env_intensity}")
