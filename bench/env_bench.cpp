@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "bench/cpu_time.h"
 #include "bench/image_error.h"
 #include "bench/sky_maps.h"
 #include "core/render_setup.h"
@@ -22,13 +23,6 @@
 using namespace tray;
 
 namespace {
-
-double cpuSeconds() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
-         1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-}
 
 Scene sunScene(bool uniform) {
   Scene s;

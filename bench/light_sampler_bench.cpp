@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "bench/cpu_time.h"
 #include "bench/image_error.h"
 #include "io/gltf_loader.h"
 #include "lights/bvh_light_sampler.h"
@@ -21,13 +22,6 @@
 using namespace tray;
 
 namespace {
-
-double cpuSeconds() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
-         1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-}
 
 struct Setup {
   int width = 96, height = 72, threads = 2, refSpp = 4096, spp = 64;
