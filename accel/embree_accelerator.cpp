@@ -9,6 +9,7 @@
 #include <new>
 #include <string>
 #include <unordered_map>
+#include <vector>
 
 #include "accel/embree_alpha_filter.h"
 #include "core/error.h"
@@ -150,7 +151,7 @@ void shapeOccluded(const RTCOccludedFunctionNArguments* args) {
 
 class EmbreeAccelerator final : public Accelerator {
  public:
-  explicit EmbreeAccelerator(const Scene& scene) : scene_(scene) {
+  EmbreeAccelerator(const Scene& scene, EmbreeBatch batch) : scene_(scene), batch_(batch) {
     device_ = rtcNewDevice(nullptr);
     if (!device_) throw Error("Embree: cannot create a device", Error::Kind::kRender);
     rtcSetDeviceErrorFunction(device_, onError, this);
@@ -178,6 +179,40 @@ class EmbreeAccelerator final : public Accelerator {
     toEmbree(ray, r);
     rtcOccluded1(top_, &ctx.base, &r);
     return r.tfar < 0;
+  }
+
+  // Batches through the stream API (rtcIntersect1M). User geometry's callbacks read one ray
+  // (N = 1), so scenes with analytic shapes, and EmbreeBatch::kLoop, trace ray by ray.
+  void intersectBatch(std::span<const Ray> rays, std::span<Hit> hits,
+                      std::span<uint8_t> found) const override {
+    if (!streamable()) return Accelerator::intersectBatch(rays, hits, found);
+    AlphaRayContext ctx(scene_, rays.data());
+    ctx.base.flags = streamFlags();
+    static thread_local std::vector<RTCRayHit> queue;
+    queue.resize(rays.size());
+    for (size_t i = 0; i < rays.size(); ++i) {
+      queue[i] = toEmbree(rays[i]);
+      queue[i].ray.id = uint32_t(i);  // the alpha filter's index into rays
+    }
+    rtcIntersect1M(top_, &ctx.base, queue.data(), unsigned(queue.size()), sizeof(RTCRayHit));
+    for (size_t i = 0; i < rays.size(); ++i) {
+      found[i] = queue[i].hit.geomID != RTC_INVALID_GEOMETRY_ID;
+      if (found[i]) hits[i] = hitFromEmbree(queue[i].hit, queue[i].ray.tfar);
+    }
+  }
+
+  void occludedBatch(std::span<const Ray> rays, std::span<uint8_t> blocked) const override {
+    if (!streamable()) return Accelerator::occludedBatch(rays, blocked);
+    AlphaRayContext ctx(scene_, rays.data());
+    ctx.base.flags = streamFlags();
+    static thread_local std::vector<RTCRay> queue;
+    queue.resize(rays.size());
+    for (size_t i = 0; i < rays.size(); ++i) {
+      toEmbree(rays[i], queue[i]);
+      queue[i].id = uint32_t(i);
+    }
+    rtcOccluded1M(top_, &ctx.base, queue.data(), unsigned(queue.size()), sizeof(RTCRay));
+    for (size_t i = 0; i < rays.size(); ++i) blocked[i] = queue[i].tfar < 0;
   }
 
   void allHits(const Ray& ray, std::vector<Hit>& hits) const override {
@@ -214,6 +249,12 @@ class EmbreeAccelerator final : public Accelerator {
     std::lock_guard<std::mutex> lock(errorMutex_);
     if (outOfMemory_) throw std::bad_alloc();  // main names the phase, as for any allocation
     if (!error_.empty()) throw Error("Embree: " + error_, Error::Kind::kRender);
+  }
+
+  bool streamable() const { return batch_ != EmbreeBatch::kLoop && !hasUserGeometry_; }
+  RTCIntersectContextFlags streamFlags() const {
+    return batch_ == EmbreeBatch::kStreamCoherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT
+                                                  : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
   }
 
   /// Only the fields Embree reads (rtcIntersect1 docs): zero-filling the whole 80-byte RTCRayHit
@@ -290,6 +331,7 @@ class EmbreeAccelerator final : public Accelerator {
         rtcSetGeometryInstancedScene(g, meshScene(p.mesh));
         rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, &p.toWorld.m.m[0][0]);
       } else {
+        hasUserGeometry_ = true;
         userData_[i] = {&scene_, i};
         g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_USER);
         rtcSetGeometryUserPrimitiveCount(g, 1);
@@ -307,6 +349,8 @@ class EmbreeAccelerator final : public Accelerator {
   }
 
   const Scene& scene_;
+  EmbreeBatch batch_;
+  bool hasUserGeometry_ = false;
   RTCDevice device_ = nullptr;
   RTCScene top_ = nullptr;
   std::unordered_map<uint32_t, RTCScene> meshScenes_;
@@ -320,7 +364,11 @@ class EmbreeAccelerator final : public Accelerator {
 }  // namespace
 
 std::unique_ptr<Accelerator> makeEmbreeAccelerator(const Scene& scene) {
-  return std::make_unique<EmbreeAccelerator>(scene);
+  return makeEmbreeAccelerator(scene, EmbreeBatch::kStreamIncoherent);
+}
+
+std::unique_ptr<Accelerator> makeEmbreeAccelerator(const Scene& scene, EmbreeBatch batch) {
+  return std::make_unique<EmbreeAccelerator>(scene, batch);
 }
 
 }  // namespace tray
