@@ -12,6 +12,8 @@
 #include <vector>
 
 #include "accel/embree_alpha_filter.h"
+#include "accel/embree_batch.h"
+#include "accel/embree_rays.h"
 #include "core/error.h"
 #include "core/scene.h"
 
@@ -33,25 +35,6 @@ struct AllHitsContext {
   RTCIntersectContext base;
   std::vector<Hit>* hits;
 };
-
-Hit hitFromEmbree(const RTCHit& h, float t) {
-  Hit hit;
-  hit.t = t;
-  if (h.instID[0] != RTC_INVALID_GEOMETRY_ID) {
-    hit.primitive = h.instID[0];
-    hit.triangle = h.primID;
-    hit.b1 = h.u;
-    hit.b2 = h.v;
-  } else {
-    // User geometry: primID carries the material override + 1 (0: none), Ng the object-space
-    // normal and u, v the shape's uv (see shapeIntersect).
-    hit.primitive = h.geomID;
-    hit.normal = {h.Ng_x, h.Ng_y, h.Ng_z};
-    hit.uv = {h.u, h.v};
-    hit.material = int(h.primID) - 1;
-  }
-  return hit;
-}
 
 void allHitsFilter(const RTCFilterFunctionNArguments* args) {
   auto* ctx = reinterpret_cast<const AllHitsContext*>(args->context);
@@ -181,38 +164,17 @@ class EmbreeAccelerator final : public Accelerator {
     return r.tfar < 0;
   }
 
-  // Batches through the stream API (rtcIntersect1M). User geometry's callbacks read one ray
-  // (N = 1), so scenes with analytic shapes, and EmbreeBatch::kLoop, trace ray by ray.
+  // Batches through the stream or packet API (accel/embree_batch.cpp). User geometry's
+  // callbacks read one ray (N = 1), so scenes with analytic shapes, and EmbreeBatch::kLoop,
+  // trace ray by ray.
   void intersectBatch(std::span<const Ray> rays, std::span<Hit> hits,
                       std::span<uint8_t> found) const override {
     if (!streamable()) return Accelerator::intersectBatch(rays, hits, found);
-    AlphaRayContext ctx(scene_, rays.data());
-    ctx.base.flags = streamFlags();
-    static thread_local std::vector<RTCRayHit> queue;
-    queue.resize(rays.size());
-    for (size_t i = 0; i < rays.size(); ++i) {
-      queue[i] = toEmbree(rays[i]);
-      queue[i].ray.id = uint32_t(i);  // the alpha filter's index into rays
-    }
-    rtcIntersect1M(top_, &ctx.base, queue.data(), unsigned(queue.size()), sizeof(RTCRayHit));
-    for (size_t i = 0; i < rays.size(); ++i) {
-      found[i] = queue[i].hit.geomID != RTC_INVALID_GEOMETRY_ID;
-      if (found[i]) hits[i] = hitFromEmbree(queue[i].hit, queue[i].ray.tfar);
-    }
+    embreeIntersectBatch(top_, scene_, batch_, rays, hits, found);
   }
-
   void occludedBatch(std::span<const Ray> rays, std::span<uint8_t> blocked) const override {
     if (!streamable()) return Accelerator::occludedBatch(rays, blocked);
-    AlphaRayContext ctx(scene_, rays.data());
-    ctx.base.flags = streamFlags();
-    static thread_local std::vector<RTCRay> queue;
-    queue.resize(rays.size());
-    for (size_t i = 0; i < rays.size(); ++i) {
-      toEmbree(rays[i], queue[i]);
-      queue[i].id = uint32_t(i);
-    }
-    rtcOccluded1M(top_, &ctx.base, queue.data(), unsigned(queue.size()), sizeof(RTCRay));
-    for (size_t i = 0; i < rays.size(); ++i) blocked[i] = queue[i].tfar < 0;
+    embreeOccludedBatch(top_, scene_, batch_, rays, blocked);
   }
 
   void allHits(const Ray& ray, std::vector<Hit>& hits) const override {
@@ -252,34 +214,6 @@ class EmbreeAccelerator final : public Accelerator {
   }
 
   bool streamable() const { return batch_ != EmbreeBatch::kLoop && !hasUserGeometry_; }
-  RTCIntersectContextFlags streamFlags() const {
-    return batch_ == EmbreeBatch::kStreamCoherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT
-                                                  : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
-  }
-
-  /// Only the fields Embree reads (rtcIntersect1 docs): zero-filling the whole 80-byte RTCRayHit
-  /// for each of a path's rays costs more than it seems.
-  static void toEmbree(const Ray& r, RTCRay& ray) {
-    ray.org_x = r.o.x;
-    ray.org_y = r.o.y;
-    ray.org_z = r.o.z;
-    ray.tnear = r.tmin;
-    ray.dir_x = r.d.x;
-    ray.dir_y = r.d.y;
-    ray.dir_z = r.d.z;
-    ray.time = 0.0f;
-    ray.tfar = r.tmax;
-    ray.mask = 0xffffffffu;
-    ray.id = 0;
-    ray.flags = 0;
-  }
-  static RTCRayHit toEmbree(const Ray& r) {
-    RTCRayHit rh;
-    toEmbree(r, rh.ray);
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    return rh;
-  }
 
   /// A new Embree-owned buffer of `count` items of `stride` bytes, filled from `data`.
   void copyToEmbree(RTCGeometry g, RTCBufferType type, RTCFormat format, const void* data,
@@ -364,7 +298,7 @@ class EmbreeAccelerator final : public Accelerator {
 }  // namespace
 
 std::unique_ptr<Accelerator> makeEmbreeAccelerator(const Scene& scene) {
-  return makeEmbreeAccelerator(scene, EmbreeBatch::kStreamIncoherent);
+  return makeEmbreeAccelerator(scene, EmbreeBatch::kStream);
 }
 
 std::unique_ptr<Accelerator> makeEmbreeAccelerator(const Scene& scene, EmbreeBatch batch) {

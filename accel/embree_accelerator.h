@@ -6,10 +6,12 @@
 namespace tray {
 
 /// How Accelerator::intersectBatch/occludedBatch reach Embree (bench/path_bench measures them).
+/// (The stream API's coherent flag is not offered: with Embree 3.13.5 it did not return on
+/// the Cornell box, even for 256 rays; docs/wavefront.md.)
 enum class EmbreeBatch {
-  kLoop,              ///< rtcIntersect1 per ray, as the default implementation
-  kStreamIncoherent,  ///< rtcIntersect1M, the rays flagged incoherent
-  kStreamCoherent,    ///< rtcIntersect1M, flagged coherent: Embree gathers them into packets
+  kLoop,     ///< rtcIntersect1 per ray, as the default implementation
+  kStream,   ///< rtcIntersect1M over the whole batch, flagged incoherent
+  kPacket8,  ///< rtcIntersect8 over consecutive groups of 8 rays
 };
 
 /// Embree 3 traversal: meshes as triangle geometry built once per mesh and placed by instances;

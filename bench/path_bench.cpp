@@ -268,8 +268,8 @@ int run(const std::string& path, const std::string& accelName, int threads, int 
     // How the wavefront's batches reach Embree: per ray, or the stream API either way.
     const std::pair<const char*, EmbreeBatch> modes[] = {
         {"rtcIntersect1 loop", EmbreeBatch::kLoop},
-        {"rtcIntersect1M incoherent", EmbreeBatch::kStreamIncoherent},
-        {"rtcIntersect1M coherent", EmbreeBatch::kStreamCoherent}};
+        {"rtcIntersect1M stream", EmbreeBatch::kStream},
+        {"rtcIntersect8 packets", EmbreeBatch::kPacket8}};
     for (const auto& [name, mode] : modes) {
       auto a = makeEmbreeAccelerator(scene, mode);
       const Measured m = measure(scene, *a, *camera, settings, "path-wavefront", size, threads);
