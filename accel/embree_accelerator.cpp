@@ -298,7 +298,7 @@ class EmbreeAccelerator final : public Accelerator {
 }  // namespace
 
 std::unique_ptr<Accelerator> makeEmbreeAccelerator(const Scene& scene) {
-  return makeEmbreeAccelerator(scene, EmbreeBatch::kStream);
+  return makeEmbreeAccelerator(scene, EmbreeBatch::kPacket8);
 }
 
 std::unique_ptr<Accelerator> makeEmbreeAccelerator(const Scene& scene, EmbreeBatch batch) {

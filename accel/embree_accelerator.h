@@ -16,6 +16,8 @@ enum class EmbreeBatch {
 
 /// Embree 3 traversal: meshes as triangle geometry built once per mesh and placed by instances;
 /// analytic shapes as user geometry calling Scene::intersectShape.
+/// Batches as 8-wide packets (EmbreeBatch::kPacket8: the fastest of the three in path_bench's
+/// --embree-modes on the Cornell box and MetalRoughSpheresNoTextures, docs/wavefront.md).
 std::unique_ptr<Accelerator> makeEmbreeAccelerator(const Scene& scene);
 /// Batches use `batch` where the scene has no user geometry (benchmarks compare them).
 std::unique_ptr<Accelerator> makeEmbreeAccelerator(const Scene& scene, EmbreeBatch batch);
