@@ -41,8 +41,9 @@ PathEstimator::PathEstimator(const RenderContext& ctx)
       maxDepth_(ctx.settings.getInt("max-depth")),
       clampIndirect_(ctx.settings.getFloat("clamp-indirect")),
       debugNan_(ctx.settings.getBool("debug-nan")),
-      absorbingMedia_(std::any_of(ctx.scene.materials.begin(), ctx.scene.materials.end(),
-                                  [](const Material& m) { return !isBlack(m.layers.absorption()); })),
+      absorbingMedia_(
+          std::any_of(ctx.scene.materials.begin(), ctx.scene.materials.end(),
+                      [](const Material& m) { return !isBlack(m.layers.absorption()); })),
       lights_(ctx.scene),
       materials_(ctx.scene, ctx.camera, ctx.settings.getInt("spp")) {}
 
@@ -78,7 +79,8 @@ void PathEstimator::escape(PathState& st) const {
     const Vec3 dir = normalize(st.ray.d);
     const Color Le = lights_.light(size_t(i)).Le(dir);
     if (isBlack(Le)) continue;
-    float w = st.specular ? 1.0f : powerHeuristic(st.prevPdf, lights_.pdf(i, st.prev, dir, {}, {}));
+    const float w =
+        st.specular ? 1.0f : powerHeuristic(st.prevPdf, lights_.pdf(i, st.prev, dir, {}, {}));
     add(st, st.beta * Le * w, "environment", st.indirectEmission, st.depth);
   }
 }

@@ -63,7 +63,8 @@ void expectSameAsSingleRays(const Accelerator& accel, const std::vector<Ray>& ra
 }
 
 TEST(EmbreeBatch, EveryModeEqualsSingleRayQueries) {
-  for (const char* file : {"/reference/cornell-box.gltf", "/gltf-features/AlphaBlendModeTest.glb"}) {
+  for (const char* file :
+       {"/reference/cornell-box.gltf", "/gltf-features/AlphaBlendModeTest.glb"}) {
     const Scene scene = loadGltf(std::string(TRAY_SHARED_DIR) + file);
     const std::vector<Ray> rays = randomRays(scene, 2000);
     for (EmbreeBatch mode : {EmbreeBatch::kLoop, EmbreeBatch::kStream, EmbreeBatch::kPacket8})

@@ -1,8 +1,8 @@
 #pragma once
 // Which path tracer the path-tracer tests run. ctest runs each of their executables twice:
 // as is ("path", the scalar reference) and with TRAY_TEST_PATH_INTEGRATOR=path-wavefront
-// (tests/CMakeLists.txt, prefix "wavefront."), so every closed form, reference image and
-// stability scene checks both integrators.
+// (tests/CMakeLists.txt, prefix "wavefront."), so their closed forms, references and
+// stability scenes check both integrators.
 #include <cstdlib>
 #include <string>
 
