@@ -2,7 +2,9 @@
 // registered method and setting, measures wall time, rays and error against a converged
 // reference, and writes CSV for tools/plot_bench.py (charts + Pareto report).
 #include <CLI/CLI.hpp>
+#include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -45,16 +47,32 @@ struct Bench {
     return *a;
   }
   std::pair<Film, RenderStats> render(const RenderSettings& s, const std::string& accelName,
-                                      int threads) {
+                                      int threads, const std::vector<std::string>& aovs = {}) {
     RenderContext ctx{scene, accel(accelName), camera, s, size.width, size.height};
     auto integrator = makeIntegrator(ctx);
     Film film(size.width, size.height);
     RenderOptions opt;
     opt.threads = threads;
+    opt.aovs = aovs;
     RenderStats st = renderImage(*integrator, film, opt);
     return {std::move(film), st};
   }
 };
+
+/// `film` (beauty, albedo, normal) denoised by tools/tray-denoise (docs/denoising.md), and the
+/// wall seconds the tool took, start-up included: what a user pays for it.
+std::pair<Film, double> denoise(const Film& film, const std::string& tool, const std::string& dir) {
+  const std::string in = dir + "/denoise-in.exr", out = dir + "/denoise-out.exr";
+  ImageOutputOptions o;
+  o.halfFloat = false;
+  writeImage(film, in, o);
+  const auto start = std::chrono::steady_clock::now();
+  const std::string command = "'" + tool + "' '" + in + "' -o '" + out + "'";
+  if (std::system(command.c_str()) != 0) throw Error("denoising failed: " + command);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return {readReference(out), seconds};
+}
 
 std::vector<std::string> splitList(const std::string& s) {
   std::vector<std::string> out;
@@ -66,7 +84,8 @@ std::vector<std::string> splitList(const std::string& s) {
 
 int sweep(const std::string& scenePath, const std::string& resolution, const std::string& outDir,
           const std::string& referencePath, int referenceSpp, int maxSpp,
-          const std::string& accelList, const std::string& threadList) {
+          const std::string& accelList, const std::string& threadList,
+          const std::string& denoiser) {
   Scene scene = loadGltf(scenePath);
   scene.sourcePath = scenePath;
   CameraDesc cd = chooseCamera(scene, -1);
@@ -105,20 +124,33 @@ int sweep(const std::string& scenePath, const std::string& resolution, const std
          "abs\n";
   std::printf("%-34s %-16s %9s %10s %10s %10s %10s\n", "method", "setting", "seconds", "Mrays",
               "RMSE", "relMSE", "bias");
+  auto record = [&](const SweepConfig& c, const std::string& method, const RenderStats& st,
+                    double seconds, const ImageError& e) {
+    std::printf("%-34s %-16s %9.3f %10.3f %10.3e %10.3e %+10.2e\n", method.c_str(),
+                c.setting.c_str(), seconds, st.rays.total() * 1e-6, e.rmse, e.relMse, e.bias);
+    std::fflush(stdout);
+    csv << stem << ',' << method << ',' << c.setting << ',' << c.settings.getString("integrator")
+        << ',' << c.accel << ',' << c.threads << ',' << c.settings.getInt("spp") << ','
+        << seconds << ',' << st.rays.total() << ',' << e.rmse << ',' << e.relMse << ','
+        << e.bias << ',' << e.maxAbs << '\n';
+  };
   for (const SweepConfig& c : standardSweep(splitList(accelList), threads, maxSpp)) {
     const std::string integrator = c.settings.getString("integrator");
     const Film& ref =
         reference(integrator == "adaptive" ? c.settings.getString("inner") : integrator);
     auto [film, st] = bench.render(c.settings, c.accel, c.threads);
-    ImageError e = compareBeauty(film, ref);
-    std::printf("%-34s %-16s %9.3f %10.3f %10.3e %10.3e %+10.2e\n", c.method.c_str(),
-                c.setting.c_str(), st.seconds, st.rays.total() * 1e-6, e.rmse, e.relMse, e.bias);
-    std::fflush(stdout);
-    csv << stem << ',' << c.method << ',' << c.setting << ',' << integrator << ',' << c.accel
-        << ',' << c.threads << ',' << c.settings.getInt("spp") << ',' << st.seconds << ','
-        << st.rays.total() << ',' << e.rmse << ',' << e.relMse << ',' << e.bias << ',' << e.maxAbs
-        << '\n';
+    record(c, c.method, st, st.seconds, compareBeauty(film, ref));
+    // --denoise: the Sobol' path tracer again with the all-sample albedo and normal, then Open
+    // Image Denoise; its time is the render's plus the tool's.
+    if (denoiser.empty() || c.method.rfind("path sobol", 0) != 0) continue;
+    auto [aux, auxStats] = bench.render(c.settings, c.accel, c.threads, {"albedo", "normal"});
+    auto [clean, denoiseSeconds] = denoise(aux, denoiser, outDir);
+    std::string method = c.method;
+    method.insert(std::string("path sobol").size(), " + OIDN");
+    record(c, method, auxStats, auxStats.seconds + denoiseSeconds, compareBeauty(clean, ref));
   }
+  if (!denoiser.empty())
+    for (const char* f : {"/denoise-in.exr", "/denoise-out.exr"}) fs::remove(outDir + f);
   std::printf("wrote %s (chart and Pareto report: tools/plot_bench.py %s)\n", csvPath.c_str(),
               csvPath.c_str());
   return 0;
@@ -145,13 +177,20 @@ int main(int argc, char** argv) {
   sw->add_option("--accels", accels, "comma-separated accelerators")->capture_default_str();
   sw->add_option("--threads", threads, "comma-separated thread counts (0 = all)")
       ->capture_default_str();
+  bool withDenoiser = false;
+  std::string denoiser = std::string(TRAY_SOURCE_DIR) + "/tools/tray-denoise";
+  sw->add_flag("--denoise", withDenoiser,
+               "also denoise the Sobol' path renders (lines 'path sobol + OIDN', "
+               "docs/denoising.md)");
+  sw->add_option("--denoiser", denoiser, "the tray-denoise to run")->capture_default_str();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
   }
   try {
-    return sweep(scene, resolution, out, reference, referenceSpp, maxSpp, accels, threads);
+    return sweep(scene, resolution, out, reference, referenceSpp, maxSpp, accels, threads,
+                 withDenoiser ? denoiser : "");
   } catch (const Error& e) {
     std::fprintf(stderr, "tray-bench: error: %s\n", e.what());
     return e.kind() == Error::Kind::kInput ? 2 : 1;

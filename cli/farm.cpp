@@ -8,6 +8,7 @@
 #include <sstream>
 #include <vector>
 
+#include "cli/job_diff.h"
 #include "core/error.h"
 #include "integrators/registry.h"
 #include "io/image_input.h"
@@ -50,6 +51,7 @@ extern "C" void onInterrupt(int sig) {
 
 std::string jobSignature(const RenderSettings& settings, const JobFrame& f) {
   std::string job = "scene=" + std::filesystem::path(f.scenePath).filename().string();
+  job += " content=" + f.contentHash;
   job += " scene#=" + std::to_string(f.scene) + " camera=" + std::to_string(f.camera);
   job += " size=" + std::to_string(f.width) + "x" + std::to_string(f.height);
   // Every declared option that decides the pixels, of this render's integrator and the one it
@@ -59,6 +61,7 @@ std::string jobSignature(const RenderSettings& settings, const JobFrame& f) {
     if (spec.affectsPixels)
       job += " " + spec.name + "=" + formatOptionValue(bound.value(spec.name));
   job += " accel=" + f.accelerator + " aov=" + f.aovs;
+  job += " output=" + f.output + " version=" + TRAY_VERSION;
   return job;
 }
 
@@ -116,9 +119,8 @@ bool loadCheckpoint(const std::string& path, const std::string& job, const Pixel
   ExrImage image = readExr(path);
   const ImageOutputOptions& o = image.options;
   const std::string theirs = metadataString(o, "tray:job");
-  if (theirs != job)
-    throw Error(path + ": the checkpoint is of another render (its job: '" + theirs +
-                "'; this one: '" + job + "')");
+  if (const std::string d = jobDifference(job, theirs); !d.empty())
+    throw Error(path + ": the checkpoint is of another render (tray:job: " + d + ")");
   if (o.fullWidth != width || o.fullHeight != height || o.xOffset != region.x0 ||
       o.yOffset != region.y0 || image.film.width() != region.width() ||
       image.film.height() != region.height())

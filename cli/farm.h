@@ -41,13 +41,16 @@ struct JobFrame {
   int camera = -1;  ///< the placed camera (index into Scene::cameras); -1: framing the scene
   int width = 0, height = 0;
   std::string accelerator, aovs;
+  std::string contentHash;  ///< sceneContentHash: the scene's bytes, its buffers' and images'
+  std::string output;       ///< EXR precision and colorspace: "half lin_rec709"
 };
 
 /// Everything that decides the pixels of a render but its region and sample range (written as
 /// "tray:job"): the frame, then "name=value" for every declared option that affects pixels
-/// (render-wide, the integrator's, the wrapped integrator's). Checkpoints resume and parts
-/// merge only with their own job. The scene is named by its file name, so that machines may
-/// mount it at different paths.
+/// (render-wide, the integrator's, the wrapped integrator's), the output's precision and
+/// colorspace and TRay's version. Checkpoints resume and parts merge only with their own job.
+/// The scene is named by its file name and its content hash, so that machines may mount it at
+/// different paths but an edited scene of the same name is another job.
 std::string jobSignature(const RenderSettings& settings, const JobFrame& frame);
 
 /// The first .exr of `outputs` (empty if none): where checkpoints go and --resume reads.

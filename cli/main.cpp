@@ -14,7 +14,7 @@
 #include "cli/farm.h"
 #include "cli/frames.h"
 #include "cli/option_cli.h"
-#include "cli/progress_bar.h"
+#include "cli/progress.h"
 #include "core/accelerator.h"
 #include "core/animation_time.h"
 #include "core/aov.h"
@@ -28,6 +28,7 @@
 #include "io/environment_map.h"
 #include "io/gltf_loader.h"
 #include "io/image_output.h"
+#include "io/scene_hash.h"
 
 namespace {
 
@@ -45,6 +46,9 @@ struct CliOptions {
   bool allowAnyPath = false;
   bool ignoreRequiredExtensions = false;
   bool quiet = false;
+  std::string progress = "bar";  ///< --progress bar|plain|none
+  tray::ProgressSettings progressSettings;
+  std::string sceneHash;  ///< sceneContentHash, computed once for all frames; empty: not yet
   std::string aovs;
   int cryptomatteRanks = 6;
   std::string aaHeatmap;
@@ -92,12 +96,15 @@ CLI::Validator nonNegative(const std::string& expected) {
       "", "non-negative");
 }
 
-/// Output mistakes (format, folder, colorspace, display/view, $OCIO), before any work.
+/// Output mistakes (format, folder, colorspace, display/view, $OCIO, checkpoints without an
+/// EXR), before any work: on a farm, a mistake found after the render costs hours.
 void checkOutputsOf(const CliOptions& o) {
   tray::ImageOutputOptions check;
   check.colorspace = o.outputColorspace, check.display = o.display, check.view = o.view;
   tray::checkOutputs(o.outputs, check);
   if (!o.aaHeatmap.empty()) tray::checkOutputs({o.aaHeatmap}, check);
+  if ((o.checkpointSeconds > 0 || o.resume) && tray::firstExr(o.outputs).empty())
+    throw tray::Error("--checkpoint and --resume need an .exr output (-o NAME.exr)");
 }
 
 tray::LoadOptions loadOptionsOf(const CliOptions& o) {
@@ -131,9 +138,10 @@ int run(const CliOptions& o, const tray::GltfDocument* document = nullptr) {
   const int placedCamera = tray::findCamera(scene, o.camera);
   tray::CameraDesc cam = tray::chooseCamera(scene, o.camera);
   tray::applyLensOptions(cam, o.settings);
+  bool defaultLight = false;
   if (o.settings.getBool("no-default-light")) {
     // Nothing added: an unlit asset renders black (or lit by emitters too weak to count).
-  } else if (tray::addDefaultLightingIfUnlit(scene, cam))
+  } else if ((defaultLight = tray::addDefaultLightingIfUnlit(scene, cam)))
     std::fprintf(stderr,
                  "warning: %s has no lights of meaningful power: using TRay's default headlight and a 0.1 "
                  "environment (docs/scene-format.md; --no-default-light turns it off)\n",
@@ -149,6 +157,11 @@ int run(const CliOptions& o, const tray::GltfDocument* document = nullptr) {
   }
   gPhase = "building the accelerator";
   auto accel = tray::makeAccelerator(o.accel, scene);
+  if (defaultLight && tray::useHeadlightIfEnclosed(scene, cam, *accel))
+    std::fprintf(stderr,
+                 "warning: %s: the camera is enclosed (a sky box?) and the default key light "
+                 "cannot get in: a headlight at the camera replaces it\n",
+                 o.scenePath.c_str());
   gPhase = "rendering";
   tray::RenderContext ctx{scene, *accel, *camera, o.settings, width, height};
   auto integrator = tray::makeIntegrator(ctx);
@@ -165,11 +178,14 @@ int run(const CliOptions& o, const tray::GltfDocument* document = nullptr) {
         "top-ranked ids, which cannot be merged exactly (split by --region instead)");
   const bool part = o.region.size() || o.sampleRange.size();
   const std::string checkpointPath = tray::firstExr(o.outputs);
-  if ((o.checkpointSeconds > 0 || o.resume) && checkpointPath.empty())
-    throw tray::Error("--checkpoint and --resume need an .exr output (-o NAME.exr)");
-  const std::string job =
-      tray::jobSignature(o.settings, {o.scenePath, o.scene, placedCamera, width, height, o.accel,
-                                      o.aovs + (o.aaHeatmap.empty() ? "" : "+samples")});
+  const std::string output = std::string(o.floatOutput ? "float," : "half,") +
+                             (o.outputColorspace.empty() ? "default" : o.outputColorspace);
+  const std::string job = tray::jobSignature(
+      o.settings, {o.scenePath, o.scene, placedCamera, width, height, o.accel,
+                   o.aovs + (o.aaHeatmap.empty() ? "" : "+samples"),
+                   o.sceneHash.empty() ? tray::sceneContentHash(o.scenePath, o.allowAnyPath)
+                                       : o.sceneHash,
+                   output});
 
   tray::Film film(region.width(), region.height());
   tray::RenderState state;
@@ -185,7 +201,7 @@ int run(const CliOptions& o, const tray::GltfDocument* document = nullptr) {
       return 0;
     }
   }
-  tray::ProgressBar progress;
+  tray::Progress progress(o.progressSettings);
   tray::RenderOptions renderOptions;
   renderOptions.threads = o.threads;
   renderOptions.aovs = aovNames;
@@ -196,7 +212,7 @@ int run(const CliOptions& o, const tray::GltfDocument* document = nullptr) {
   renderOptions.stop = &stop;
   int tiles = 0;  // --test-interrupt-after-tiles: a real SIGINT at a chosen point
   renderOptions.onProgress = [&](double f) {
-    if (!o.quiet) progress.update(f);
+    if (!stop.load()) progress.update(f);  // tiles cut short by a stop are not progress
     if (++tiles == o.testInterruptAfterTiles) std::raise(SIGINT);
   };
 
@@ -231,9 +247,10 @@ int run(const CliOptions& o, const tray::GltfDocument* document = nullptr) {
       w.floatMetadata.emplace_back("tray:samplesDone",
                                    float(done) * float(range.end - range.begin));
     if (part || done < all) tray::storeState(now, image);
-    for (const auto& path : paths)
-      if (const size_t clamped = tray::writeImage(image, path, w); clamped && final)
-        std::fprintf(stderr, "warning: %s\n", tray::halfClampWarning(path, clamped).c_str());
+    const std::vector<size_t> clamped = tray::writeImages(image, paths, w);  // all or nothing
+    for (size_t i = 0; i < paths.size(); ++i)
+      if (clamped[i] && final)
+        std::fprintf(stderr, "warning: %s\n", tray::halfClampWarning(paths[i], clamped[i]).c_str());
   };
   const auto started = std::chrono::steady_clock::now();
   if (o.checkpointSeconds > 0) {
@@ -250,7 +267,7 @@ int run(const CliOptions& o, const tray::GltfDocument* document = nullptr) {
     };
   }
   tray::RenderStats stats = tray::renderImage(*integrator, film, state, renderOptions);
-  progress.finish();
+  progress.finish(!stats.interrupted);
 
   gPhase = "writing images";
   write(film, state, previousSeconds + stats.seconds, o.outputs, true);
@@ -292,8 +309,10 @@ int runFrames(const CliOptions& o) {
   tray::LoadReport parseReport;
   const tray::GltfDocument document(o.scenePath, loadOptionsOf(o), &parseReport);
   for (const auto& w : parseReport.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  CliOptions hashed = o;  // the file's content, hashed once for every frame's job signature
+  hashed.sceneHash = tray::sceneContentHash(o.scenePath, o.allowAnyPath);
   for (int64_t f = range.first; f <= range.last; ++f) {
-    CliOptions frame = o;
+    CliOptions frame = hashed;
     for (auto& path : frame.outputs) path = tray::framePath(path, f);
     if (!frame.aaHeatmap.empty()) frame.aaHeatmap = tray::framePath(frame.aaHeatmap, f);
     frame.settings.set("time", tray::frameTime(f, fps));
@@ -344,7 +363,8 @@ int main(int argc, char** argv) {
                "render a glTF whose required extensions TRay lacks (with a warning)");
   app.add_option("--aov", o.aovs,
                  "extra EXR layers: comma-separated from " + joined(tray::AovSet::known()) +
-                     ", cryptomatte (= crypto_object,crypto_material), or all");
+                     ", cryptomatte (= crypto_object,crypto_material), lightpaths (the path "
+                     "tracer's 7 light-path layers), or all (all but the light paths)");
   app.add_option("--cryptomatte-ranks", o.cryptomatteRanks,
                  "Cryptomatte: ids kept per pixel and type (2 per EXR layer)")
       ->check(CLI::Range(1, 32))
@@ -365,7 +385,20 @@ int main(int argc, char** argv) {
   app.add_option("--texture-memory", o.textureMemoryMB,
                  "texture cache budget in MB (default 128; never changes pixels)")
       ->check(CLI::NonNegativeNumber);
-  app.add_flag("-q,--quiet", o.quiet, "no progress bar or summary");
+  app.add_flag("-q,--quiet", o.quiet, "no progress bar or summary (--progress none)");
+  app.add_option("--progress", o.progress,
+                 "bar (on a terminal), plain (one line 'progress P% elapsed S s eta S s' per "
+                 "--progress-step percent or --progress-seconds, for farm logs) or none")
+      ->check(CLI::IsMember({"bar", "plain", "none"}))
+      ->capture_default_str();
+  app.add_option("--progress-step", o.progressSettings.stepPercent,
+                 "--progress plain: a line each time progress passes a multiple of PERCENT")
+      ->check(CLI::Range(0.1, 100.0))
+      ->capture_default_str();
+  app.add_option("--progress-seconds", o.progressSettings.intervalSeconds,
+                 "--progress plain: a line at least every SECONDS (0: only by --progress-step)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   app.add_option("--frames", o.frames,
                  "render frames FIRST-LAST of the animation at --fps, each at time frame / fps, "
                  "to outputs named by a pattern: -o out.####.exr (or out.%04d.exr)");
@@ -384,6 +417,8 @@ int main(int argc, char** argv) {
         throw tray::Error("--frames sets the time of each frame (frame / fps): drop --time");
     }
     tray::checkFramePatterns(o.outputs, !o.frames.empty());
+    o.progressSettings.mode =
+        o.quiet ? tray::ProgressMode::kNone : tray::parseProgressMode(o.progress);
   } catch (const CLI::ParseError& e) {
     int code = app.exit(e);
     return code == 0 ? 0 : 2;

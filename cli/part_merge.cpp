@@ -3,73 +3,91 @@
 #include <algorithm>
 #include <numeric>
 
+#include "cli/job_diff.h"
 #include "core/error.h"
+#include "core/light_paths.h"
 #include "core/render_state.h"
 
 namespace tray {
 namespace {
 
+using Layout = std::vector<std::pair<std::string, std::vector<std::string>>>;
+
+/// What the merge needs of a part, from its header alone.
 struct Part {
   std::string path;
-  ExrImage image;
-  RenderState state;
+  ExrHeader header;
   int begin = 0, end = 0;  ///< sample range
   int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
 };
 
-std::vector<std::pair<std::string, std::vector<std::string>>> layout(const Film& f) {
-  std::vector<std::pair<std::string, std::vector<std::string>>> l;
-  for (const FilmLayer& layer : f.layers())
-    if (layer.name != kStateLayer) l.emplace_back(layer.name, layer.channels);
+Layout layout(const ExrHeader& h) {
+  Layout l = h.layers();
+  l.erase(std::remove_if(l.begin(), l.end(), [](auto& x) { return x.first == kStateLayer; }),
+          l.end());
   return l;
 }
+
+/// Layers the renderer averages over every sample (core/aov.h): sample-range parts merge into
+/// their mean weighted by each part's filter-weight sum (depth: by its hit weight, the alpha
+/// sum), as one machine would have averaged them (to the parts' float or half precision).
+bool averagedLayer(const std::string& name) {
+  const auto& paths = lightPathNames();
+  return name == "albedo" || name == "N" || name == "Z" ||
+         std::find(paths.begin(), paths.end(), name) != paths.end();
+}
+
+/// Filter-weighted sums of the averaged layers over the sample-range parts of each pixel.
+struct LayerMeans {
+  std::vector<std::vector<double>> sum, weight;  ///< per output layer; empty if not averaged
+  std::vector<uint8_t> ranged;                   ///< pixel covered by sample-range parts
+};
 
 bool overlap(int a0, int a1, int b0, int b1) {
   return a0 < b1 && b0 < a1;
 }
 
-Part load(const std::string& path, int samplesPerPixel) {
-  Part p{path, readExr(path), {}, 0, 0, 0, 0, 0, 0};
-  try {
-    p.state = loadState(p.image.film);
-  } catch (const Error& e) {
-    throw Error(path + ": " + e.what() +
-                ": not a part (render it with --region or --sample-range)");
-  }
-  if (p.state.pixelsDone() != p.state.done.size())
-    throw Error(path + ": unfinished part (" + std::to_string(p.state.pixelsDone()) + " of " +
-                std::to_string(p.state.done.size()) + " pixels): finish it with --resume");
-  const ImageOutputOptions& o = p.image.options;
+/// The header of a part, checked on its own: a complete part with a state layer.
+Part loadHeader(const std::string& path) {
+  Part p{path, readExrHeader(path)};
+  const ImageOutputOptions& o = p.header.options;
+  if (metadataFloat(o, "tray:samplesPerPixel", -1) < 0)
+    throw Error(path + ": not a TRay part (no tray:samplesPerPixel)");
+  const auto layers = p.header.layers();
+  if (std::none_of(layers.begin(), layers.end(), [](auto& l) { return l.first == kStateLayer; }))
+    throw Error(path + ": no render state (layer 'tray'): not a part (render it with --region or "
+                "--sample-range)");
+  const float done = metadataFloat(o, "tray:pixelsDone", -1);
+  const float total = metadataFloat(o, "tray:pixelsTotal", -2);
+  if (done != total || metadataString(o, "tray:status") != "complete")
+    throw Error(path + ": unfinished part (" + std::to_string(int64_t(done)) + " of " +
+                std::to_string(int64_t(total)) + " pixels): finish it with --resume");
   // Integrators that place their own samples (adaptive) have one whole "range" per pixel.
-  p.begin = samplesPerPixel ? int(metadataFloat(o, "tray:sampleBegin", 0)) : 0;
-  p.end = samplesPerPixel ? int(metadataFloat(o, "tray:sampleEnd", 0)) : 1;
+  const bool counted = metadataFloat(o, "tray:samplesPerPixel", 0) > 0;
+  p.begin = counted ? int(metadataFloat(o, "tray:sampleBegin", 0)) : 0;
+  p.end = counted ? int(metadataFloat(o, "tray:sampleEnd", 0)) : 1;
   p.x0 = o.xOffset, p.y0 = o.yOffset;
-  p.x1 = p.x0 + p.image.film.width(), p.y1 = p.y0 + p.image.film.height();
+  p.x1 = p.x0 + p.header.width, p.y1 = p.y0 + p.header.height;
   return p;
 }
 
-}  // namespace
-
-ExrImage mergeParts(const std::vector<std::string>& paths) {
-  if (paths.empty()) throw Error("no parts to merge");
-  const ExrImage first = readExr(paths.front());
-  const int n = int(metadataFloat(first.options, "tray:samplesPerPixel", -1));
-  if (n < 0) throw Error(paths.front() + ": not a TRay part (no tray:samplesPerPixel)");
-  std::vector<Part> parts;
-  for (const auto& path : paths) parts.push_back(load(path, n));
-
+/// Every check that needs no pixels: one job, one image, the same layers, each sample of each
+/// pixel in exactly one part.
+void checkParts(const std::vector<Part>& parts) {
   const Part& ref = parts.front();
-  const int width = ref.image.options.fullWidth, height = ref.image.options.fullHeight;
-  const std::string job = metadataString(ref.image.options, "tray:job");
-  const int samples = n ? n : 1;
+  const ImageOutputOptions& r = ref.header.options;
+  const int width = r.fullWidth, height = r.fullHeight;
+  const std::string job = metadataString(r, "tray:job");
   for (const Part& p : parts) {
-    if (metadataString(p.image.options, "tray:job") != job)
-      throw Error(p.path + ": a part of another render than " + ref.path + " (tray:job differs)");
-    if (p.image.options.fullWidth != width || p.image.options.fullHeight != height ||
+    const std::string theirs = metadataString(p.header.options, "tray:job");
+    if (const std::string d = jobDifference(job, theirs); !d.empty())
+      throw Error(p.path + ": a part of another render than " + ref.path + " (tray:job: " + d +
+                  ")");
+    if (p.header.options.fullWidth != width || p.header.options.fullHeight != height ||
         p.x1 > width || p.y1 > height || p.x0 < 0 || p.y0 < 0)
       throw Error(p.path + ": its window does not fit the " + std::to_string(width) + "x" +
                   std::to_string(height) + " image of " + ref.path);
-    if (layout(p.image.film) != layout(ref.image.film))
+    if (layout(p.header) != layout(ref.header))
       throw Error(p.path + ": its layers differ from those of " + ref.path);
   }
   for (size_t i = 0; i < parts.size(); ++i)
@@ -79,6 +97,8 @@ ExrImage mergeParts(const std::vector<std::string>& paths) {
           overlap(a.begin, a.end, b.begin, b.end))
         throw Error(b.path + ": renders pixels and samples that " + a.path + " renders too");
     }
+  const int n = int(metadataFloat(r, "tray:samplesPerPixel", 0));
+  const int samples = n ? n : 1;
   std::vector<int> covered(size_t(width) * height, 0);
   for (const Part& p : parts)
     for (int y = p.y0; y < p.y1; ++y)
@@ -89,37 +109,104 @@ ExrImage mergeParts(const std::vector<std::string>& paths) {
         throw Error("pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") has " +
                     std::to_string(covered[size_t(y) * width + x]) + " of its " +
                     std::to_string(samples) + " samples in the parts: a part is missing");
+}
+
+/// Adds part `p`'s sums to `total` and its AOVs to `out` (averaged layers of a sample-range part
+/// to `means`), reading it a band of rows at a time.
+void addPart(const Part& p, int samples, Film& out, std::vector<PixelSums>& total,
+             LayerMeans& means) {
+  const bool ranged = p.end - p.begin != samples;
+  constexpr int kBandRows = 16;
+  ExrRowReader reader(p.path);
+  const std::vector<std::string>& names = reader.header().channels;
+  auto channel = [&](const std::string& name) {
+    return size_t(std::find(names.begin(), names.end(), name) - names.begin());
+  };
+  std::vector<size_t> state;  // file channel of each state word, then of `done`
+  for (const std::string& c : stateChannels())
+    state.push_back(channel(std::string(kStateLayer) + "." + c));
+  enum class How { kCopy, kSum, kMean };
+  struct Copy {
+    size_t from;
+    int layer, channel;
+    How how;
+  };
+  // AOV channels: summed (samples), averaged over the parts (averaged layers of sample ranges)
+  // or of sample 0 (the others).
+  std::vector<Copy> copies;
+  for (size_t l = 1; l < out.layers().size(); ++l) {
+    const FilmLayer& layer = out.layers()[l];
+    const How how = layer.name == "samples"                      ? How::kSum
+                    : ranged && !means.weight[l].empty() ? How::kMean
+                                                                 : How::kCopy;
+    if (how == How::kCopy && p.begin != 0) continue;
+    for (size_t c = 0; c < layer.channels.size(); ++c)
+      copies.push_back({channel(exrChannelName(layer, layer.channels[c])), int(l), int(c), how});
+  }
+  const size_t nc = names.size();
+  const int width = out.width(), partWidth = p.x1 - p.x0;
+  std::vector<float> band;
+  for (int row = 0; row < p.y1 - p.y0; row += kBandRows) {
+    const int rows = std::min(kBandRows, p.y1 - p.y0 - row);
+    reader.read(row, rows, band);
+    for (int r = 0; r < rows; ++r)
+      for (int px = 0; px < partWidth; ++px) {
+        const float* src = &band[(size_t(r) * partWidth + px) * nc];
+        float words[11];
+        for (size_t w = 0; w < state.size(); ++w) words[w] = src[state[w]];
+        const int x = p.x0 + px, y = p.y0 + row + r;
+        if (words[10] == 0.0f)
+          throw Error(p.path + ": pixel (" + std::to_string(x) + ", " + std::to_string(y) +
+                      ") is not done although the part says it is complete");
+        const size_t at = size_t(y) * width + x;
+        const PixelSums sums = joinSums(words);
+        total[at] += sums;
+        if (ranged) means.ranged[at] = 1;
+        for (const Copy& c : copies) {
+          float& dst = out.pixel(c.layer, x, y)[c.channel];
+          if (c.how == How::kMean) {
+            const double w = out.layers()[size_t(c.layer)].name == "Z" ? sums.alpha : sums.weight;
+            if (w == 0) continue;  // no samples (or no hit) here: nothing to average
+            const size_t nc = out.layers()[size_t(c.layer)].channels.size();
+            means.sum[size_t(c.layer)][at * nc + size_t(c.channel)] += w * src[c.from];
+            if (c.channel == 0) means.weight[size_t(c.layer)][at] += w;
+          } else {
+            dst = c.how == How::kSum ? dst + src[c.from] : src[c.from];
+          }
+        }
+      }
+  }
+}
+
+}  // namespace
+
+ExrImage mergeParts(const std::vector<std::string>& paths) {
+  if (paths.empty()) throw Error("no parts to merge");
+  // Every header first: a wrong part is refused before any pixel is read.
+  std::vector<Part> parts;
+  for (const auto& path : paths) parts.push_back(loadHeader(path));
+  checkParts(parts);
+  const ImageOutputOptions& r = parts.front().header.options;
+  const int width = r.fullWidth, height = r.fullHeight;
 
   // Sample order: a pixel's sums are added as its samples come, whatever the argument order.
   std::stable_sort(parts.begin(), parts.end(),
                    [](const Part& a, const Part& b) { return a.begin < b.begin; });
   ExrImage out;
   out.film = Film(width, height);
-  for (const auto& [name, channels] : layout(ref.image.film))
+  for (const auto& [name, channels] : layout(parts.front().header))
     if (!name.empty()) out.film.addLayer(name, channels);
   std::vector<PixelSums> total(size_t(width) * height);
-  std::vector<float> seconds;
-  for (const Part& p : parts) {
-    const Film& f = p.image.film;
-    seconds.push_back(metadataFloat(p.image.options, "tray:renderSeconds", 0));
-    std::vector<int> from;  // the part's layer for each output layer
-    for (const FilmLayer& layer : out.film.layers()) from.push_back(f.findLayer(layer.name));
-    for (int y = p.y0; y < p.y1; ++y)
-      for (int x = p.x0; x < p.x1; ++x) {
-        const int px = x - p.x0, py = y - p.y0;
-        total[size_t(y) * width + x] += p.state.sums[size_t(py) * f.width() + px];
-        for (size_t l = 1; l < out.film.layers().size(); ++l) {
-          const FilmLayer& layer = out.film.layers()[l];
-          const float* src = f.pixel(from[l], px, py);
-          float* dst = out.film.pixel(int(l), x, y);
-          for (size_t c = 0; c < layer.channels.size(); ++c)
-            if (layer.name == "samples")
-              dst[c] += src[c];  // camera rays: every part's count
-            else if (p.begin == 0)
-              dst[c] = src[c];  // first-hit AOVs: of sample 0, as one machine writes them
-        }
-      }
-  }
+  const int n = int(metadataFloat(r, "tray:samplesPerPixel", 0));
+  const size_t pixels = size_t(width) * height, layers = out.film.layers().size();
+  LayerMeans means{std::vector<std::vector<double>>(layers),
+                   std::vector<std::vector<double>>(layers), std::vector<uint8_t>(pixels, 0)};
+  for (size_t l = 1; l < layers; ++l)
+    if (averagedLayer(out.film.layers()[l].name)) {
+      means.sum[l].assign(pixels * out.film.layers()[l].channels.size(), 0.0);
+      means.weight[l].assign(pixels, 0.0);
+    }
+  for (const Part& p : parts) addPart(p, n ? n : 1, out.film, total, means);
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       const PixelSums& s = total[size_t(y) * width + x];
@@ -127,14 +214,33 @@ ExrImage mergeParts(const std::vector<std::string>& paths) {
       float* px = out.film.pixel(Film::kBeauty, x, y);
       px[0] = c.x, px[1] = c.y, px[2] = c.z, px[3] = s.coverage();
     }
+  for (size_t l = 1; l < layers; ++l) {
+    const size_t nc = out.film.layers()[l].channels.size();
+    for (size_t at = 0; !means.weight[l].empty() && at < pixels; ++at) {
+      if (!means.ranged[at]) continue;  // one part held all its samples: copied as it is
+      const double w = means.weight[l][at];
+      float* dst = out.film.pixel(int(l), int(at % width), int(at / width));
+      for (size_t c = 0; c < nc; ++c)
+        dst[c] = w != 0 ? float(means.sum[l][at * nc + c] / w)
+                 : out.film.layers()[l].name == "Z" ? kInfinity : 0.0f;
+    }
+  }
 
-  out.options = ref.image.options;
+  // Metadata of the job (all parts agree on it: precision and colorspace are in tray:job), with
+  // what the parts did added up.
+  auto sum = [&](const char* key) {
+    return std::accumulate(parts.begin(), parts.end(), 0.0, [&](double s, const Part& p) {
+      return s + metadataFloat(p.header.options, key, 0);
+    });
+  };
+  out.options = r;
   out.options.xOffset = out.options.yOffset = 0;
   for (auto& [k, v] : out.options.floatMetadata) {
-    if (k == "tray:renderSeconds") v = std::accumulate(seconds.begin(), seconds.end(), 0.0f);
+    if (k == "tray:renderSeconds") v = float(sum("tray:renderSeconds"));
+    if (k == "tray:samplesDone") v = float(sum("tray:samplesDone"));
     if (k == "tray:pixelsDone" || k == "tray:pixelsTotal") v = float(width) * height;
     if (k == "tray:sampleBegin") v = 0;
-    if (k == "tray:sampleEnd") v = float(n);
+    if (k == "tray:sampleEnd") v = metadataFloat(r, "tray:samplesPerPixel", 0);
   }
   for (auto& [k, v] : out.options.stringMetadata)
     if (k == "tray:status") v = "complete";

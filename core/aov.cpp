@@ -29,7 +29,8 @@ const std::vector<AovSpec>& specs() {
 
 }  // namespace
 
-const std::vector<std::string>& AovSet::known() {
+/// Every AOV but the light paths: what "all" stands for.
+const std::vector<std::string>& allButLightPaths() {
   static const std::vector<std::string> names = [] {
     std::vector<std::string> n;
     for (const auto& s : specs()) n.push_back(s.name);
@@ -40,8 +41,30 @@ const std::vector<std::string>& AovSet::known() {
   return names;
 }
 
+int lightPathIndex(const std::string& name) {
+  const auto& names = lightPathNames();
+  for (size_t i = 0; i < names.size(); ++i)
+    if (names[i] == name) return int(i);
+  return -1;
+}
+
+const std::vector<std::string>& AovSet::known() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> n = allButLightPaths();
+    for (const auto& p : lightPathNames()) n.push_back(p);
+    return n;
+  }();
+  return names;
+}
+
+bool AovSet::wantsLightPaths(const std::vector<std::string>& names) {
+  for (const auto& n : names)
+    if (lightPathIndex(n) >= 0) return true;
+  return false;
+}
+
 std::vector<std::string> AovSet::parse(const std::string& list) {
-  if (list == "all") return known();
+  if (list == "all") return allButLightPaths();
   std::vector<std::string> out;
   std::stringstream ss(list);
   std::string item;
@@ -52,12 +75,21 @@ std::vector<std::string> AovSet::parse(const std::string& list) {
       out.push_back("crypto_material");
       continue;
     }
+    if (item == "lightpaths") {
+      for (const auto& p : lightPathNames()) out.push_back(p);
+      continue;
+    }
+    if (item == "all") {
+      for (const auto& a : allButLightPaths()) out.push_back(a);
+      continue;
+    }
     bool ok = false;
     for (const auto& k : known()) ok = ok || k == item;
     if (!ok) {
       std::string names;
       for (const auto& k : known()) names += (names.empty() ? "" : ", ") + k;
-      throw Error("--aov: unknown AOV '" + item + "' (known: " + names + ", cryptomatte, all)");
+      throw Error("--aov: unknown AOV '" + item + "' (known: " + names +
+                  ", cryptomatte, lightpaths, all)");
     }
     out.push_back(item);
   }
@@ -65,24 +97,41 @@ std::vector<std::string> AovSet::parse(const std::string& list) {
 }
 
 AovSet::AovSet(Film& film, const std::vector<std::string>& names) {
-  for (const auto& n : names)
+  for (const auto& n : names) {
     for (size_t i = 0; i < specs().size(); ++i)
-      if (n == specs()[i].name)
+      if (n == specs()[i].name) {
         slots_.push_back({Kind(i), film.addLayer(specs()[i].layer, specs()[i].channels)});
+        const Kind k = Kind(i);
+        surface_ = surface_ || k == Kind::kDepth || k == Kind::kNormal || k == Kind::kAlbedo;
+      }
+    if (const int path = lightPathIndex(n); path >= 0) {
+      slots_.push_back({Kind::kPath, film.addLayer(n, {"R", "G", "B"}), path});
+      lightPaths_ = true;
+    }
+  }
 }
 
-void AovSet::write(Film& film, int x, int y, const PixelValue& v) const {
+void AovSet::configure(AovSums& sums) const {
+  sums.lightPaths = lightPaths_;
+  sums.surface = surface_;
+}
+
+void AovSet::write(Film& film, int x, int y, const PixelValue& v, const AovSums* sums) const {
   const PrimaryHit& h = v.primary;
+  auto put = [](float* p, const Vec3& c) { p[0] = c.x, p[1] = c.y, p[2] = c.z; };
   for (const Slot& s : slots_) {
     float* p = film.pixel(s.layer, x, y);
     switch (s.kind) {
-      case Kind::kDepth: p[0] = h.hit ? h.depth : kInfinity; break;
-      case Kind::kNormal: p[0] = h.normal.x, p[1] = h.normal.y, p[2] = h.normal.z; break;
-      case Kind::kPosition: p[0] = h.position.x, p[1] = h.position.y, p[2] = h.position.z; break;
-      case Kind::kAlbedo: p[0] = h.albedo.x, p[1] = h.albedo.y, p[2] = h.albedo.z; break;
+      case Kind::kDepth:
+        p[0] = sums ? sums->meanDepth() : h.hit ? h.depth : kInfinity;
+        break;
+      case Kind::kNormal: put(p, sums ? sums->meanNormal() : h.normal); break;
+      case Kind::kPosition: put(p, h.position); break;
+      case Kind::kAlbedo: put(p, sums ? sums->meanAlbedo() : h.albedo); break;
       case Kind::kObjectId: p[0] = float(h.objectId); break;
       case Kind::kMaterialId: p[0] = float(h.materialId); break;
       case Kind::kSamples: p[0] = float(v.samples); break;
+      case Kind::kPath: put(p, sums ? sums->path(s.path) : Color(0.0f)); break;
     }
   }
 }

@@ -35,7 +35,9 @@ Color Integrator::cameraLi(const Ray& ray, Sampler& sampler, RayStats& stats,
   // The environment still lit every surface the ray met (reflections, light); only what the
   // camera sees of it directly is left out, as a compositor's "over" expects (Porter & Duff
   // 1984: premultiplied colour, alpha = coverage).
-  return transparent_ && !primary->hit ? Color(0.0f) : L;
+  if (!(transparent_ && !primary->hit)) return L;
+  if (primary->lightPaths) primary->lightPaths->clear();
+  return Color(0.0f);
 }
 
 RenderContext declaring(const RenderContext& ctx, const std::vector<OptionSpec>& specs) {
@@ -64,28 +66,41 @@ Ray Integrator::cameraRay(int x, int y, int i, Sampler& sampler, Vec2& offset) c
              : ctx_.camera.generateRay(cx + offset.x, cy + offset.y);
 }
 
-void Integrator::addSample(PixelSums& sums, IdCoverage* coverage, const Vec2& offset, Color L,
-                           const PrimaryHit& seen, RayStats& stats) const {
+void Integrator::addSample(PixelSums& sums, IdCoverage* coverage, AovSums* aovSums,
+                           const Vec2& offset, Color L, const PrimaryHit& seen,
+                           const LightPathRadiance* paths, RayStats& stats) const {
   // The environment still lit every surface the ray met (reflections, light); only what the
-  // camera sees of it directly is left out (cameraLi).
-  if (transparent_ && !seen.hit) L = Color(0.0f);
+  // camera sees of it directly is left out (cameraLi), from the light-path split too.
+  if (transparent_ && !seen.hit) {
+    L = Color(0.0f);
+    paths = nullptr;
+  }
   if (!isFinite(L)) {
     ++stats.nanSamples;
     L = Color(0.0f);
+    paths = nullptr;  // a split of zeros adds nothing: its sums keep every bit
   }
   const double w = filter_.evaluate(offset);
   sums.rgb[0] += w * L.x, sums.rgb[1] += w * L.y, sums.rgb[2] += w * L.z;
   sums.alpha += seen.hit ? w : 0.0;
   sums.weight += w;
   if (coverage) coverage->add(seen.hit ? seen.objectId : -1, seen.hit ? seen.materialId : -1, w);
+  if (aovSums) {
+    aovSums->addWeight(w);
+    if (paths && aovSums->lightPaths) aovSums->addLightPaths(*paths, w);
+    if (aovSums->surface) aovSums->addSurface(seen.hit, seen.albedo, seen.normal, seen.depth, w);
+  }
 }
 
 uint32_t Integrator::accumulate(int x, int y, int begin, int end, PixelSums& sums,
-                                PrimaryHit& first, RayStats& stats, IdCoverage* coverage) const {
+                                PrimaryHit& first, RayStats& stats, IdCoverage* coverage,
+                                AovSums* aovSums) const {
   // Filter-weighted sums, normalised by the weight sum at the end (pbrt-v4 8.8's weighted
   // estimator): each pixel owns its samples, so tiles never share film writes. Doubles keep the
   // mean accurate at very high sample counts and let sums of sample ranges be combined.
   end = std::min(end, pixelSampler_.count());
+  LightPathRadiance paths;
+  LightPathRadiance* splitInto = aovSums && aovSums->lightPaths ? &paths : nullptr;
   for (int i = begin; i < end; ++i) {
     Sampler s = sampler(x, y, i);
     Vec2 d;
@@ -93,7 +108,11 @@ uint32_t Integrator::accumulate(int x, int y, int begin, int end, PixelSums& sum
     ++stats.cameraRays;
     PrimaryHit primary;
     PrimaryHit& seen = i == begin ? first : primary;
-    addSample(sums, coverage, d, Li(ray, s, stats, &seen), seen, stats);
+    if (splitInto) paths.clear();
+    seen.lightPaths = splitInto;
+    const Color L = Li(ray, s, stats, &seen);
+    seen.lightPaths = nullptr;
+    addSample(sums, coverage, aovSums, d, L, seen, splitInto, stats);
   }
   return uint32_t(std::max(0, end - begin));
 }
@@ -101,7 +120,8 @@ uint32_t Integrator::accumulate(int x, int y, int begin, int end, PixelSums& sum
 void Integrator::accumulatePixels(std::span<PixelTask> tasks, int begin, int end,
                                   RayStats& stats) const {
   for (PixelTask& t : tasks)
-    t.samples = accumulate(t.x, t.y, begin, end, t.sums, t.first, stats, t.coverage);
+    t.samples =
+        accumulate(t.x, t.y, begin, end, t.sums, t.first, stats, t.coverage, t.aovSums);
 }
 
 PixelValue Integrator::renderPixel(int x, int y, RayStats& stats, IdCoverage* coverage) const {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/accelerator.h"
+#include "core/aov_sums.h"
 #include "core/camera.h"
 #include "core/id_coverage.h"
 #include "core/math.h"
@@ -39,6 +40,9 @@ struct PrimaryHit {
   Vec3 position, normal;
   Color albedo;
   int objectId = -1, materialId = -1;
+  /// Light-path AOVs: when not null, Li also adds each contribution to its path's category
+  /// there (core/light_paths.h). Set by accumulate for the duration of one sample.
+  LightPathRadiance* lightPaths = nullptr;
 };
 
 /// The averaged result of one pixel.
@@ -55,6 +59,7 @@ struct PixelTask {
   PixelSums sums;
   PrimaryHit first;                ///< what the range's first sample hit
   IdCoverage* coverage = nullptr;  ///< Cryptomatte's ids, when not null
+  AovSums* aovSums = nullptr;      ///< the AOVs averaged over all samples, when not null
   uint32_t samples = 0;            ///< camera rays traced
 };
 
@@ -89,6 +94,8 @@ class Integrator {
   /// (--transparent, TRAY_environment "transparent") a ray that hits nothing gives 0, so that
   /// the film holds premultiplied RGB beside the coverage alpha. `primary` must not be null.
   Color cameraLi(const Ray& ray, Sampler& sampler, RayStats& stats, PrimaryHit* primary) const;
+  /// True when Li fills PrimaryHit::lightPaths (the path tracer): light-path AOVs need it.
+  virtual bool splitsLightPaths() const { return false; }
   /// One pixel's value. `coverage`, when not null (Cryptomatte), receives every camera sample's
   /// object and material ids with the weight the sample has in the pixel.
   virtual PixelValue renderPixel(int x, int y, RayStats& stats,
@@ -98,10 +105,12 @@ class Integrator {
   virtual int samplesPerPixel() const;
   /// Adds samples [begin, end) of pixel (x, y) to `sums`, each from its own counter-based
   /// Sampler(pixel, sample, seed): sums over consecutive ranges add up to renderPixel's. Fills
-  /// `first` with what sample `begin` hit, and `coverage` (when not null) as renderPixel does;
-  /// returns the camera rays traced.
+  /// `first` with what sample `begin` hit, `coverage` (when not null) as renderPixel does, and
+  /// `aovSums` (when not null) with what it asks for of every sample; returns the camera rays
+  /// traced.
   virtual uint32_t accumulate(int x, int y, int begin, int end, PixelSums& sums, PrimaryHit& first,
-                              RayStats& stats, IdCoverage* coverage = nullptr) const;
+                              RayStats& stats, IdCoverage* coverage = nullptr,
+                              AovSums* aovSums = nullptr) const;
   /// Pixels the renderer gives accumulatePixels at once: 1 (the default) for integrators that
   /// trace one sample at a time; a wavefront integrator asks for a tile's worth.
   virtual int pixelBatch() const { return 1; }
@@ -121,11 +130,13 @@ class Integrator {
   Ray cameraRay(int x, int y, int i, Sampler& sampler, Vec2& offset) const;
   /// Samples in the pixel sampler's pattern (accumulate's upper bound for `end`).
   int sampleCount() const { return pixelSampler_.count(); }
-  /// Adds one sample, Li's radiance `L` and what it hit first, to a pixel's sums as accumulate
-  /// does: the transparent-background rule of cameraLi, NaN samples counted and dropped, the
-  /// filter weight at `offset`.
-  void addSample(PixelSums& sums, IdCoverage* coverage, const Vec2& offset, Color L,
-                 const PrimaryHit& seen, RayStats& stats) const;
+  /// Adds one sample, Li's radiance `L`, what it hit first and (when not null) its light-path
+  /// split, to a pixel's sums, ids and averaged AOVs as accumulate does: the
+  /// transparent-background rule of cameraLi, NaN samples counted and dropped (their split
+  /// too), the filter weight at `offset`.
+  void addSample(PixelSums& sums, IdCoverage* coverage, AovSums* aovSums, const Vec2& offset,
+                 Color L, const PrimaryHit& seen, const LightPathRadiance* paths,
+                 RayStats& stats) const;
 
   RenderContext ctx_;
 

@@ -12,7 +12,13 @@ struct LightSampleContext {
   Vec3 p;                  ///< the reference point
   Vec3 n;                  ///< its shading normal, on the side being shaded
   bool transmits = false;  ///< the receiver also scatters below n (directions there matter)
+  /// Light from below n may reach the receiver's BSDF: it transmits, or the outgoing direction
+  /// lies below n (shading normals), or a lobe has a normal of its own (a clearcoat's). Light
+  /// choosers may neglect lights wholly below n only when this is false.
+  bool belowMatters = false;
 };
+
+struct LightBounds;  // core/light_bounds.h
 
 /// A direction towards a light from a reference point, with what arrives along it.
 struct LightSample {
@@ -42,6 +48,9 @@ class Light {
   /// Total emitted power (any consistent estimate; luminance): the light chooser picks lights
   /// in proportion to it.
   virtual float power() const = 0;
+  /// Where the light is and how it emits, for choosers that weigh lights by their estimated
+  /// contribution at the shading point (core/light_bounds.h).
+  virtual LightBounds bounds() const = 0;
   /// A direction towards the light from ctx, with u uniform in [0,1)^2. pdf is per solid angle
   /// (1 for delta lights); an invalid sample (pdf 0) when the light cannot reach ctx.p.
   virtual LightSample sample(const LightSampleContext& ctx, Vec2 u) const = 0;

@@ -1,5 +1,6 @@
 #include "core/render_setup.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -97,6 +98,13 @@ Color meanOf(const Scene& scene, const TextureRef& ref) {
   return Color(float(sum[0] / n), float(sum[1] / n), float(sum[2] / n));
 }
 
+/// glTF 2.0's core emission is emissiveFactor (each in [0, 1]) x an 8-bit texture: radiance
+/// at most 1, what assets use for labels, screens and LEDs that glow in any light. Only
+/// KHR_materials_emissive_strength (or TRay's own extensions) can say more, as a light needs.
+bool brighterThanCoreGltf(const Material& m) {
+  return maxComponent(m.emissive) > 1.0f;
+}
+
 }  // namespace
 
 EmissionSummary summarizeEmission(const Scene& scene) {
@@ -110,6 +118,7 @@ EmissionSummary summarizeEmission(const Scene& scene) {
     if (M < 0) {  // radiant exitance pi L of a Lambertian emitter, L = factor x mean texel
       const Color L = m.emissive * meanOf(scene, m.emissiveTexture);
       M = isFinite(L) ? kPi * luminance(L) * (m.doubleSided ? 2.0f : 1.0f) : 0.0f;
+      if (prim.kind == Primitive::Kind::kMesh && !brighterThanCoreGltf(m)) M = 0.0f;
     }
     if (prim.kind == Primitive::Kind::kShape) {
       // No area for analytic shapes here: any emissive one counts as a light.
@@ -151,6 +160,29 @@ bool addDefaultLightingIfUnlit(Scene& scene, const CameraDesc& camera) {
   scene.lights.push_back(key);
   scene.environment.ambient = Color(0.1f);
   scene.environment.background = Color(0.1f);
+  return true;
+}
+
+bool useHeadlightIfEnclosed(Scene& scene, const CameraDesc& camera, const Accelerator& accel) {
+  if (scene.lights.empty() ||
+      scene.lights.back().type != PunctualLightDesc::Type::kDirectional)
+    return false;
+  const Vec3 eye = camera.toWorld.point(Vec3(0.0f));
+  const Vec3 directions[] = {-scene.lights.back().direction,
+                             {1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  for (const Vec3& d : directions) {
+    Hit hit;
+    if (!accel.intersect(Ray{eye, d}, hit)) return false;  // light gets in (or out) that way
+  }
+  // The subject's distance: where the centre of the view meets the scene.
+  Hit centre;
+  const Vec3 forward = normalize(camera.toWorld.vector(Vec3(0, 0, -1)));
+  const float d = accel.intersect(Ray{eye, forward}, centre) ? centre.t : 1.0f;
+  PunctualLightDesc headlight;
+  headlight.type = PunctualLightDesc::Type::kPoint;
+  headlight.position = eye;
+  headlight.intensity = Color(EmissionSummary::kDefaultIrradiance * d * d);
+  scene.lights.back() = headlight;
   return true;
 }
 

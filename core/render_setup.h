@@ -2,6 +2,7 @@
 // Choices every front end makes the same way: which camera and what image size.
 #include <string>
 
+#include "core/accelerator.h"
 #include "core/render_options.h"
 #include "core/scene.h"
 
@@ -52,6 +53,16 @@ EmissionSummary summarizeEmission(const Scene& scene);
 /// irradiance 2.5 arriving from above-left behind the camera, and a uniform environment of
 /// 0.1 (ambient and background). Returns whether it did.
 bool addDefaultLightingIfUnlit(Scene& scene, const CameraDesc& camera);
+
+/// After addDefaultLightingIfUnlit added its key light (the last of scene.lights): when the
+/// camera is enclosed, so that neither that light nor the environment can reach what it sees
+/// (a sky box or sky dome around the asset, a closed room), replaces the key light by a
+/// headlight that moves with the camera: a point light at the camera, whose intensity E d^2
+/// gives the key light's irradiance E at the distance d where the view's centre ray meets the
+/// scene. Enclosed means: rays from the camera towards the key light and along the six axes
+/// all hit something. Needs the scene's accelerator (built before lights matter). Returns
+/// whether it replaced the light.
+bool useHeadlightIfEnclosed(Scene& scene, const CameraDesc& camera, const Accelerator& accel);
 
 /// Parses "WxH"; empty: 640 wide with the height from the camera's aspect ratio (4:3 if unset).
 ImageSize resolveImageSize(const std::string& text, const CameraDesc& camera);

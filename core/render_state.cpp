@@ -8,12 +8,6 @@
 namespace tray {
 namespace {
 
-const std::vector<std::string>& stateChannels() {
-  static const std::vector<std::string> c = {"Rh", "Rl", "Gh", "Gl", "Bh",  "Bl",
-                                             "Ah", "Al", "Wh", "Wl", "done"};
-  return c;
-}
-
 /// A double as two float32 bit patterns (memcpy: no conversion, NaN patterns included).
 void split(double d, float* out) {
   uint64_t bits;
@@ -34,6 +28,19 @@ double join(const float* in) {
 }
 
 }  // namespace
+
+const std::vector<std::string>& stateChannels() {
+  static const std::vector<std::string> c = {"Rh", "Rl", "Gh", "Gl", "Bh",  "Bl",
+                                             "Ah", "Al", "Wh", "Wl", "done"};
+  return c;
+}
+
+PixelSums joinSums(const float* in) {
+  PixelSums s;
+  s.rgb[0] = join(in), s.rgb[1] = join(in + 2), s.rgb[2] = join(in + 4);
+  s.alpha = join(in + 6), s.weight = join(in + 8);
+  return s;
+}
 
 RenderState RenderState::empty(size_t pixels) {
   RenderState s;
@@ -81,9 +88,7 @@ RenderState loadState(const Film& film) {
     const float* px = film.pixel(layer, int(p % film.width()), int(p / film.width()));
     float in[11];
     for (size_t c = 0; c < 11; ++c) in[c] = px[at[c]];
-    PixelSums& s = state.sums[p];
-    s.rgb[0] = join(in), s.rgb[1] = join(in + 2), s.rgb[2] = join(in + 4);
-    s.alpha = join(in + 6), s.weight = join(in + 8);
+    state.sums[p] = joinSums(in);
     state.done[p] = in[10] != 0.0f;
   }
   return state;

@@ -3,6 +3,7 @@
 // sample-range parts store so that they can be resumed or merged exactly (docs/farm.md).
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "core/film.h"
@@ -23,6 +24,11 @@ struct RenderState {
 /// bit for bit as two float32 words (high word first: Rh Rl Gh Gl Bh Bl Ah Al Wh Wl; words are
 /// bit patterns, not numbers, as in Cryptomatte's ids) and `done` as 0 or 1.
 inline constexpr const char* kStateLayer = "tray";
+
+/// The state layer's channels in storage order: Rh Rl Gh Gl Bh Bl Ah Al Wh Wl done.
+const std::vector<std::string>& stateChannels();
+/// The sums held by the ten words Rh..Wl (in stateChannels() order), bit for bit.
+PixelSums joinSums(const float* words);
 
 /// Adds (or overwrites) the state layer of `film`; state and film have the same pixel count.
 void storeState(const RenderState& state, Film& film);

@@ -69,6 +69,9 @@ RenderStats renderImage(const Integrator& integrator, Film& film, RenderState& s
   if (state.done.empty()) state = RenderState::empty(pixels);
   if (state.sums.size() != pixels || state.done.size() != pixels)
     throw Error("the render state does not match the film", Error::Kind::kRender);
+  if (AovSet::wantsLightPaths(options.aovs) && !integrator.splitsLightPaths())
+    throw Error("--aov: the light-path layers (lightpaths, diffuse_direct, ...) need "
+                "--integrator path or path-wavefront");
   const AovSet aovs(film, options.aovs);
   std::unique_ptr<std::atomic<uint8_t>[]> done(new std::atomic<uint8_t>[pixels]);
   for (size_t p = 0; p < pixels; ++p) {
@@ -89,13 +92,14 @@ RenderStats renderImage(const Integrator& integrator, Film& film, RenderState& s
   auto lastCheckpoint = start;
 
   auto stopped = [&] { return options.stop && options.stop->load(std::memory_order_relaxed); };
-  // Writes a rendered pixel (film coordinates) and publishes it as done.
+  // Writes a rendered pixel (film coordinates) and publishes it as done. `averaged` (when not
+  // null) holds the AOVs averaged over all samples.
   auto finishPixel = [&](int x, int y, const PixelSums& sums, const PixelValue& v,
-                         const IdCoverage* ids) {
+                         const IdCoverage* ids, const AovSums* averaged) {
     const size_t p = size_t(y) * film.width() + x;
     state.sums[p] = sums;
     writeBeauty(film, x, y, sums);
-    aovs.write(film, x, y, v);
+    aovs.write(film, x, y, v, averaged);
     if (ids) crypto.write(film, x, y, *ids);
     done[p].store(1, std::memory_order_release);
   };
@@ -107,7 +111,7 @@ RenderStats renderImage(const Integrator& integrator, Film& film, RenderState& s
     PixelSums sums;
     sums.rgb[0] = v.radiance.x, sums.rgb[1] = v.radiance.y, sums.rgb[2] = v.radiance.z;
     sums.alpha = v.alpha, sums.weight = 1;
-    finishPixel(x, y, sums, v, ids);
+    finishPixel(x, y, sums, v, ids, nullptr);
   };
   // Pixels go to the integrator in batches of its pixelBatch() (1: one at a time); tasks hold
   // image coordinates, so pixels keep their samples in region renders.
@@ -119,14 +123,19 @@ RenderStats renderImage(const Integrator& integrator, Film& film, RenderState& s
       PixelValue v;
       v.primary = t.first;
       v.samples = t.samples;
-      finishPixel(t.x - options.x0, t.y - options.y0, t.sums, v, t.coverage);
+      finishPixel(t.x - options.x0, t.y - options.y0, t.sums, v, t.coverage, t.aovSums);
     }
     tasks.clear();
   };
 
   auto renderTile = [&](int tile) {
     RayStats local;
-    std::vector<IdCoverage> coverage(spp > 0 ? batch : 1);  // only filled for Cryptomatte
+    // Per pixel of a batch, reused across batches: Cryptomatte's ids (only filled for
+    // Cryptomatte) and the AOVs averaged over all samples (only where accumulate() places the
+    // samples).
+    std::vector<IdCoverage> coverage(spp > 0 ? batch : 1);
+    std::vector<AovSums> aovSums(spp > 0 && aovs.averaged() ? batch : 0);
+    for (AovSums& a : aovSums) aovs.configure(a);
     std::vector<PixelTask> tasks;
     const int x0 = (tile % tilesX) * ts, y0 = (tile / tilesX) * ts;
     const int x1 = std::min(x0 + ts, film.width()), y1 = std::min(y0 + ts, film.height());
@@ -140,9 +149,14 @@ RenderStats renderImage(const Integrator& integrator, Film& film, RenderState& s
         }
         PixelTask& t = tasks.emplace_back();
         t.x = x + options.x0, t.y = y + options.y0;
-        IdCoverage& ids = coverage[tasks.size() - 1];
+        const size_t slot = tasks.size() - 1;
+        IdCoverage& ids = coverage[slot];
         ids.clear();
         t.coverage = crypto.active() ? &ids : nullptr;
+        if (!aovSums.empty()) {
+          aovSums[slot].clear();
+          t.aovSums = &aovSums[slot];
+        }
         if (tasks.size() == batch) renderBatch(tasks, local);
       }
     if (!stopped()) renderBatch(tasks, local);

@@ -15,15 +15,17 @@ class PathIntegrator final : public Integrator {
   explicit PathIntegrator(const RenderContext& ctx) : Integrator(ctx), estimator_(ctx_) {}
 
   uint32_t accumulate(int x, int y, int begin, int end, PixelSums& sums, PrimaryHit& first,
-                      RayStats& stats, IdCoverage* coverage) const override {
+                      RayStats& stats, IdCoverage* coverage, AovSums* aovSums) const override {
     pixelX_ = x, pixelY_ = y;
-    return Integrator::accumulate(x, y, begin, end, sums, first, stats, coverage);
+    return Integrator::accumulate(x, y, begin, end, sums, first, stats, coverage, aovSums);
   }
+  bool splitsLightPaths() const override { return true; }
 
   Color Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats,
            PrimaryHit* primary) const override {
     if (estimator_.maxDepth() == 0) return Color(0.0f);
-    PathState state = PathState::camera(cameraRay, pixelX_, pixelY_);
+    PathState state = PathState::camera(cameraRay, pixelX_, pixelY_,
+                                         primary ? primary->lightPaths : nullptr);
     for (;;) {
       Hit hit;
       const bool found = ctx_.accel.intersect(state.ray, hit);
@@ -57,6 +59,9 @@ const std::vector<OptionSpec>& pathOptions() {
                   "clamp each indirect contribution to this value (fireflies; biased; 0 = off)"),
       // Prints only: the pixels are the same with or without it.
       diagnostic(flagOption("debug-nan", "print where NaN/Inf samples arise")),
+      choiceOption("light-sampler", "bvh", {"bvh", "power"},
+                   "how next-event estimation picks a light: bvh (by its estimated "
+                   "contribution at the shading point) or power (in proportion to power)"),
   };
   return specs;
 }

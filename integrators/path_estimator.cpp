@@ -34,6 +34,8 @@ struct PathEstimator::Vertex {
   Vec3 wo;        ///< towards where the ray came from
   bool refractive;
   Color sigmaA;   ///< absorption of the medium the arriving segment crossed
+  /// What light sampling knows of the receiver; BSDF sampling's MIS weights use the same.
+  LightSampleContext here;
 };
 
 PathEstimator::PathEstimator(const RenderContext& ctx)
@@ -44,7 +46,7 @@ PathEstimator::PathEstimator(const RenderContext& ctx)
       absorbingMedia_(
           std::any_of(ctx.scene.materials.begin(), ctx.scene.materials.end(),
                       [](const Material& m) { return !isBlack(m.layers.absorption()); })),
-      lights_(ctx.scene),
+      lights_(ctx.scene, lightSamplerKind(ctx.settings.getString("light-sampler"))),
       materials_(ctx.scene, ctx.camera, ctx.settings.getInt("spp")) {}
 
 void PathEstimator::reportNan(const PathState& state, const char* what, int depth) const {
@@ -59,14 +61,15 @@ void PathEstimator::reportNan(const PathState& state, const char* what, int dept
 // component is at most clampIndirect_: biased (energy is lost) but bounded per sample, the
 // "clamp indirect" of Cycles and Arnold. Direct light at the first non-delta vertex, and
 // emitters seen directly or through mirrors and glass, are never clamped.
-void PathEstimator::add(PathState& state, Color c, const char* what, bool indirect,
-                        int depth) const {
+Color PathEstimator::add(PathState& state, Color c, const char* what, bool indirect,
+                         int depth) const {
   if (!isFinite(c)) reportNan(state, what, depth);
   if (clampIndirect_ > 0 && indirect) {  // the constant first: a predictable branch
     const float peak = maxComponent(c);
     if (peak > clampIndirect_) c *= clampIndirect_ / peak;
   }
   state.L += c;
+  return c;
 }
 
 Color PathEstimator::result(const PathState& state) {
@@ -81,7 +84,8 @@ void PathEstimator::escape(PathState& st) const {
     if (isBlack(Le)) continue;
     const float w =
         st.specular ? 1.0f : powerHeuristic(st.prevPdf, lights_.pdf(i, st.prev, dir, {}, {}));
-    add(st, st.beta * Le * w, "environment", st.indirectEmission, st.depth);
+    st.paths.addFound(add(st, st.beta * Le * w, "environment", st.indirectEmission, st.depth),
+                      true);
   }
 }
 
@@ -140,7 +144,8 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
   // KHR_materials_unlit: the base colour leaves the surface as is and nothing scatters, as
   // from an emitter that is not in the light set (docs/scene-format.md, "Unlit").
   if (sm.unlit) {
-    add(st, st.beta * sm.baseColor, "unlit surface", st.indirectEmission, st.depth);
+    st.paths.addFound(
+        add(st, st.beta * sm.baseColor, "unlit surface", st.indirectEmission, st.depth), false);
     return PathStep::kDone;
   }
 
@@ -151,13 +156,18 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
     int light = lights_.lightAt(hit.primitive, hit.triangle);
     if (!st.specular && light >= 0)
       w = powerHeuristic(st.prevPdf, lights_.pdf(light, st.prev, -v.wo, s.p, s.ng));
-    add(st, st.beta * sm.emissive * w, "emission", st.indirectEmission, st.depth);
+    st.paths.addFound(add(st, st.beta * sm.emissive * w, "emission", st.indirectEmission, st.depth),
+                      false);
   }
   if (st.depth + 1 > maxDepth_) return PathStep::kDone;
 
   // Shade on the side the ray arrived from.
   v.n = s.frontFace ? sm.n : -sm.n;
   const Bsdf bsdf(sm, Frame::fromNormal(v.n), eta);
+  // A reflecting BSDF sees only light above n unless wo lies below it (shading normals) or a
+  // clearcoat brings a normal of its own.
+  v.here = {s.p, v.n, bsdf.transmits(),
+            bsdf.transmits() || !(dot(v.wo, v.n) > 0) || sm.clearcoat > 0};
   wantsShadow = nextEvent(st, v, bsdf, sampler, shadow);
   if (wantsShadow) ++stats.shadowRays;
   return scatter(st, v, bsdf, sampler, stats);
@@ -171,7 +181,7 @@ bool PathEstimator::nextEvent(const PathState& st, const Vertex& v, const Bsdf& 
   const SurfacePoint& s = v.s;
   // The light choice and the point on it as one 3D sample (stratified jointly by Sobol').
   const Vec3 u = sampler.next3D();
-  LightSample ls = lights_.sample({s.p, v.n, bsdf.transmits()}, u.x, {u.y, u.z});
+  LightSample ls = lights_.sample(v.here, u.x, {u.y, u.z});
   if (!ls.valid() || isBlack(ls.L)) return false;
   float bsdfPdf;
   Color f = bsdf.eval(v.wo, ls.wi, bsdfPdf) * std::fabs(dot(ls.wi, v.n));
@@ -186,6 +196,8 @@ bool PathEstimator::nextEvent(const PathState& st, const Vertex& v, const Bsdf& 
   shadow.contribution = st.beta * f * ls.L * (w / ls.pdf);
   shadow.indirect = st.indirectNee;
   shadow.depth = st.depth;
+  shadow.firstVertex = st.paths.atFirstVertex();
+  if (st.paths.active() && shadow.firstVertex) shadow.toLight = bsdf.evalLobes(v.wo, ls.wi);
   return true;
 }
 
@@ -207,11 +219,15 @@ PathStep PathEstimator::scatter(PathState& st, const Vertex& v, const Bsdf& bsdf
   st.indirectEmission = st.indirectNee;
   st.indirectNee = st.indirectNee || !bs.delta;
   st.prevPdf = bs.pdf;
-  st.prev = {s.p, v.n, bsdf.transmits()};
+  st.prev = v.here;
   if (bs.transmission && v.refractive) {
     st.media.cross(s.material, *v.m, s.frontFace);
     st.etaFactor /= bs.etaScale;
   }
+  if (st.paths.active())
+    st.paths.scattered(!st.paths.atFirstVertex() ? LobeSplit{}
+                       : bs.delta                ? LightPathSplitter::deltaLobe(bs.transmission)
+                                                 : bsdf.evalLobes(v.wo, bs.wi));
   st.ray = spawnRay(s.p, s.ng, bs.wi);
   ++stats.secondaryRays;
   ++st.depth;

@@ -5,8 +5,9 @@
 // numbers, so a pixel sample gives the same radiance either way (docs/wavefront.md).
 #include <atomic>
 
-#include "core/shading.h"
 #include "core/integrator.h"
+#include "core/light_paths.h"
+#include "core/shading.h"
 #include "lights/light_set.h"
 #include "materials/medium_stack.h"
 
@@ -31,10 +32,15 @@ struct PathState {
   MediumStack media;
   Vec3 cameraOrigin;             ///< for the primary hit's depth
   int pixelX = -1, pixelY = -1;  ///< for --debug-nan reports
-  /// A path starting with the camera ray `ray` of pixel (x, y).
-  static PathState camera(const Ray& ray, int x, int y) {
+  /// Light-path AOVs (core/light_paths.h): each contribution also goes to its path's category
+  /// when the splitter has a target.
+  LightPathSplitter paths{nullptr};
+  /// A path starting with the camera ray `ray` of pixel (x, y); its light-path split goes to
+  /// `lightPaths` when not null.
+  static PathState camera(const Ray& ray, int x, int y, LightPathRadiance* lightPaths) {
     PathState s;
     s.ray = ray, s.cameraOrigin = ray.o, s.pixelX = x, s.pixelY = y;
+    s.paths = LightPathSplitter(lightPaths);
     return s;
   }
 };
@@ -46,6 +52,10 @@ struct ShadowQuery {
   Color contribution;
   bool indirect = false;  ///< clamped by --clamp-indirect
   int depth = 0;          ///< for --debug-nan reports
+  /// Light-path AOVs: drawn at the path's first vertex, and then (only with a splitter target)
+  /// the BSDF's split toward the light.
+  bool firstVertex = false;
+  LobeSplit toLight;
 };
 
 /// What one vertex did to its path.
@@ -68,7 +78,9 @@ class PathEstimator {
                 PrimaryHit* primary) const;
   /// Adds a next-event estimate whose shadow ray was traced.
   void resolveShadow(PathState& state, const ShadowQuery& shadow, bool occluded) const {
-    if (!occluded) add(state, shadow.contribution, "light sample", shadow.indirect, shadow.depth);
+    if (occluded) return;
+    const Color c = add(state, shadow.contribution, "light sample", shadow.indirect, shadow.depth);
+    if (state.paths.active()) state.paths.addLightSample(c, shadow.toLight, shadow.firstVertex);
   }
   /// The sample's radiance once the path is done (NaN when the throughput became non-finite:
   /// counted and discarded upstream).
@@ -80,7 +92,8 @@ class PathEstimator {
                  ShadowQuery& shadow) const;
   PathStep scatter(PathState& st, const Vertex& v, const Bsdf& bsdf, Sampler& sampler,
                    RayStats& stats) const;
-  void add(PathState& state, Color c, const char* what, bool indirect, int depth) const;
+  /// Adds `c` to the path's radiance (clamped when indirect) and returns what was added.
+  Color add(PathState& state, Color c, const char* what, bool indirect, int depth) const;
   void escape(PathState& state) const;
   void reportNan(const PathState& state, const char* what, int depth) const;
   static constexpr int kMaxNanReports = 10;

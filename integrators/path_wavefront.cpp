@@ -18,6 +18,7 @@ struct Wave {
   std::vector<Sampler> samplers;
   std::vector<PrimaryHit> primary;
   std::vector<Vec2> offsets;  ///< pixel-sampler offset, for the filter weight
+  std::vector<LightPathRadiance> lightPaths;  ///< when light-path AOVs are asked for
   // The queue of live paths and its rays, hits.
   std::vector<uint32_t> live, next;
   std::vector<Ray> rays;
@@ -43,13 +44,15 @@ class PathWavefrontIntegrator final : public Integrator {
   int pixelBatch() const override { return 256; }
 
   uint32_t accumulate(int x, int y, int begin, int end, PixelSums& sums, PrimaryHit& first,
-                      RayStats& stats, IdCoverage* coverage) const override {
+                      RayStats& stats, IdCoverage* coverage, AovSums* aovSums) const override {
     PixelTask task;
     task.x = x, task.y = y, task.sums = sums, task.first = first, task.coverage = coverage;
+    task.aovSums = aovSums;
     accumulatePixels({&task, 1}, begin, end, stats);
     sums = task.sums, first = task.first;
     return task.samples;
   }
+  bool splitsLightPaths() const override { return true; }
 
   void accumulatePixels(std::span<PixelTask> tasks, int begin, int end,
                         RayStats& stats) const override;
@@ -59,12 +62,16 @@ class PathWavefrontIntegrator final : public Integrator {
            PrimaryHit* primary) const override {
     Wave& w = scratch();
     w.clear();
-    w.paths.push_back(PathState::camera(ray, -1, -1));
+    w.paths.push_back(PathState::camera(ray, -1, -1, primary ? primary->lightPaths : nullptr));
     w.samplers.push_back(sampler);
     w.primary.emplace_back();
     trace(w, stats);
     sampler = w.samplers[0];
-    if (primary) *primary = w.primary[0];
+    if (primary) {
+      LightPathRadiance* split = primary->lightPaths;  // the caller's, not the wave's
+      *primary = w.primary[0];
+      primary->lightPaths = split;
+    }
     return PathEstimator::result(w.paths[0]);
   }
 
@@ -88,11 +95,15 @@ void PathWavefrontIntegrator::accumulatePixels(std::span<PixelTask> tasks, int b
   for (PixelTask& t : tasks) t.samples = uint32_t(n);
   const size_t total = tasks.size() * n;
   Wave& w = scratch();
+  auto splits = [](const PixelTask& t) { return t.aovSums && t.aovSums->lightPaths; };
+  const bool anySplit = std::any_of(tasks.begin(), tasks.end(), splits);
   // Paths in (pixel, sample) order, cut into waves: each pixel's samples are added to its sums
   // in sample order, as accumulate() does, so the sums are the same bits.
   for (size_t g0 = 0; g0 < total; g0 += kWaveSize) {
     const size_t g1 = std::min(total, g0 + kWaveSize);
     w.clear();
+    // Sized before the paths point into it; zero, as accumulate() clears a sample's split.
+    w.lightPaths.assign(anySplit ? g1 - g0 : 0, LightPathRadiance{});
     for (size_t g = g0; g < g1; ++g) {
       const PixelTask& t = tasks[g / n];
       const int i = begin + int(g % n);
@@ -100,7 +111,8 @@ void PathWavefrontIntegrator::accumulatePixels(std::span<PixelTask> tasks, int b
       Vec2 offset;
       const Ray ray = cameraRay(t.x, t.y, i, s, offset);
       ++stats.cameraRays;
-      w.paths.push_back(PathState::camera(ray, t.x, t.y));
+      w.paths.push_back(
+          PathState::camera(ray, t.x, t.y, splits(t) ? &w.lightPaths[g - g0] : nullptr));
       w.samplers.push_back(s);
       w.primary.emplace_back();
       w.offsets.push_back(offset);
@@ -110,8 +122,8 @@ void PathWavefrontIntegrator::accumulatePixels(std::span<PixelTask> tasks, int b
       PixelTask& t = tasks[g / n];
       const size_t k = g - g0;
       if (g % n == 0) t.first = w.primary[k];
-      addSample(t.sums, t.coverage, w.offsets[k], PathEstimator::result(w.paths[k]),
-                w.primary[k], stats);
+      addSample(t.sums, t.coverage, t.aovSums, w.offsets[k], PathEstimator::result(w.paths[k]),
+                w.primary[k], splits(t) ? &w.lightPaths[k] : nullptr, stats);
     }
   }
 }

@@ -27,7 +27,7 @@ class WhittedIntegrator final : public Integrator {
   explicit WhittedIntegrator(const RenderContext& ctx)
       : Integrator(ctx),
         maxDepth_(ctx.settings.getInt("max-depth")),
-        lights_(ctx.scene),
+        lights_(ctx.scene, LightSamplerKind::kPower),  // only its lists: nothing is chosen
         materials_(ctx.scene, ctx.camera, ctx.settings.getInt("spp")) {
     for (const Material& m : ctx.scene.materials) hasBlend_ |= m.alphaMode == AlphaMode::kBlend;
   }

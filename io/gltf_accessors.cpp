@@ -1,6 +1,7 @@
 #include "io/gltf_accessors.h"
 
 #include <cstring>
+#include <string>
 
 namespace tray {
 
@@ -224,13 +225,15 @@ void checkAccessors(const GltfContext& ctx) {
   for (size_t i = 0; i < ctx.model.accessors.size(); ++i) checkAccessor(ctx, int(i));
 }
 
-std::vector<float> readFloats(const GltfContext& ctx, int index) {
+namespace {
+
+/// The accessor's elements as floats, normalized per glTF 2.0 §3.11 when `normalized`.
+std::vector<float> readElements(const GltfContext& ctx, int index, bool normalized) {
   const Accessor& a = ctx.model.accessors[size_t(index)];
   const int n = componentCount(a.type), csize = componentSize(a.componentType);
   std::vector<float> out(a.count * size_t(n), 0.0f);
   auto readElement = [&](const unsigned char* p, float* dst) {
-    for (int c = 0; c < n; ++c)
-      dst[c] = readComponent(p + c * csize, a.componentType, a.normalized);
+    for (int c = 0; c < n; ++c) dst[c] = readComponent(p + c * csize, a.componentType, normalized);
   };
   if (a.bufferView >= 0) {
     const auto& bv = ctx.model.bufferViews[size_t(a.bufferView)];
@@ -249,6 +252,41 @@ std::vector<float> readFloats(const GltfContext& ctx, int index) {
     }
   }
   return out;
+}
+
+/// First component of accessor `a`'s data (already read, unnormalized) outside its declared
+/// min/max; "" if none. Declared bounds are rounded to float first, as glTF-Validator does.
+std::string firstOutOfBounds(const Accessor& a, const std::vector<float>& data) {
+  const size_t n = size_t(componentCount(a.type));
+  for (size_t i = 0; i < data.size(); ++i) {
+    const size_t c = i % n;
+    const float v = data[i];
+    if (c < a.minValues.size() && v < float(a.minValues[c]))
+      return "element " + std::to_string(i / n) + " component " + std::to_string(c) + " is " +
+             std::to_string(v) + ", below min " + std::to_string(float(a.minValues[c]));
+    if (c < a.maxValues.size() && v > float(a.maxValues[c]))
+      return "element " + std::to_string(i / n) + " component " + std::to_string(c) + " is " +
+             std::to_string(v) + ", above max " + std::to_string(float(a.maxValues[c]));
+  }
+  return "";
+}
+
+}  // namespace
+
+std::vector<float> readFloats(const GltfContext& ctx, int index) {
+  return readElements(ctx, index, ctx.model.accessors[size_t(index)].normalized);
+}
+
+void warnAccessorBounds(const GltfContext& ctx) {
+  for (size_t i = 0; i < ctx.model.accessors.size(); ++i) {
+    const Accessor& a = ctx.model.accessors[i];
+    if (a.minValues.empty() && a.maxValues.empty()) continue;
+    // glTF 2.0 §5.1.7: min/max hold the data's bounds after sparse substitution, unnormalized.
+    const std::string where = firstOutOfBounds(a, readElements(ctx, int(i), false));
+    if (!where.empty())
+      ctx.warn(nameOf("accessor", int(i), a.name) + " has data outside its declared min/max (" +
+               where + "); rendered from the data as stored");
+  }
 }
 
 std::vector<uint32_t> readIndices(const GltfContext& ctx, int index) {

@@ -23,6 +23,9 @@ void checkBufferViews(const GltfContext& ctx);
 /// Reads accessor `index` (layout already checked) as count x components floats, normalized
 /// integers mapped per glTF 2.0 §3.11, sparse substitutions applied. Missing bufferView: zeros.
 std::vector<float> readFloats(const GltfContext& ctx, int index);
+/// glTF-Validator's ACCESSOR_ELEMENT_OUT_OF_MIN/MAX_BOUND, as one warning per accessor: viewers
+/// and culling trust min/max, TRay renders from the data, so it warns rather than refuses.
+void warnAccessorBounds(const GltfContext& ctx);
 /// Reads an index accessor (SCALAR unsigned byte/short/int) as 32-bit indices.
 std::vector<uint32_t> readIndices(const GltfContext& ctx, int index);
 

@@ -6,6 +6,7 @@
 #include <new>
 #include <nlohmann/json.hpp>
 
+#include "core/error.h"
 #include "io/gltf_context.h"
 #include "io/gltf_raw_fields.h"
 
@@ -83,6 +84,27 @@ std::string_view glbJson(const std::string& path, const std::vector<unsigned cha
     if (binLength % 4 != 0) failFile(path, "GLB BIN chunk length is not a multiple of 4");
   }
   return {reinterpret_cast<const char*>(b + 20), size_t(jsonLength)};
+}
+
+std::vector<unsigned char> withGlbJson(const std::vector<unsigned char>& bytes,
+                                       std::string_view json) {
+  const uint64_t oldJsonEnd = 20 + uint64_t(readU32(bytes.data() + 12));
+  const uint64_t jsonLength = (json.size() + 3) / 4 * 4;
+  const uint64_t total = 20 + jsonLength + (bytes.size() - oldJsonEnd);
+  if (total > 0xffffffffu) throw Error("GLB with merged buffers exceeds 4 GiB");
+  std::vector<unsigned char> out;
+  out.reserve(total);
+  auto put32 = [&out](uint64_t v) {
+    for (int i = 0; i < 4; ++i) out.push_back(static_cast<unsigned char>(v >> (8 * i)));
+  };
+  out.insert(out.end(), bytes.begin(), bytes.begin() + 8);  // magic, version
+  put32(total);
+  put32(jsonLength);
+  put32(kChunkJson);
+  out.insert(out.end(), json.begin(), json.end());
+  out.resize(20 + jsonLength, ' ');
+  out.insert(out.end(), bytes.begin() + std::ptrdiff_t(oldJsonEnd), bytes.end());
+  return out;
 }
 
 void checkJsonRoot(const std::string& path, std::string_view text) {

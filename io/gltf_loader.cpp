@@ -52,10 +52,16 @@ tinygltf::Model parse(const std::vector<unsigned char>& bytes, const std::string
   checkJsonRoot(path, json);
   // Buffers before tinygltf reads them: the --max-memory check, and one read per file.
   const BufferPlan plan = planBuffers(json, policy);
-  memory.buffers = plan.bytes + (binary ? plan.mergedBytes : 0);  // .glb: not merged (below)
+  // A .glb gets the merged JSON only where that saves memory: rebuilding the container copies
+  // its BIN chunk, which must be smaller than the duplicate reads it avoids.
+  const size_t binBytes = binary ? bytes.size() - 20 - json.size() : 0;
+  const bool merge = plan.merged > 0 && (!binary || plan.mergedBytes > binBytes);
+  memory.buffers = plan.bytes + (merge ? 0 : plan.mergedBytes) + (merge && binary ? binBytes : 0);
   checkMemory(path, memory, options.maxMemoryBytes);
-  // A .glb keeps its JSON: rebuilding the container would copy its BIN chunk.
-  if (!binary && plan.merged > 0) json = plan.json;
+  std::vector<unsigned char> rebuilt;
+  if (merge && binary) rebuilt = withGlbJson(bytes, plan.json);
+  if (merge && !binary) json = plan.json;
+  const std::vector<unsigned char>& document = rebuilt.empty() ? bytes : rebuilt;
 
   FileAccess access(policy);
   tinygltf::TinyGLTF gltf;
@@ -66,8 +72,8 @@ tinygltf::Model parse(const std::vector<unsigned char>& bytes, const std::string
   // Sizes fit in unsigned int: files are capped at 2 GiB.
   bool ok = false;
   try {
-    ok = binary ? gltf.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(),
-                                            unsigned(bytes.size()), policy.folder())
+    ok = binary ? gltf.LoadBinaryFromMemory(&model, &err, &warn, document.data(),
+                                            unsigned(document.size()), policy.folder())
                 : gltf.LoadASCIIFromString(&model, &err, &warn, json.data(), unsigned(json.size()),
                                            policy.folder());
   } catch (const std::bad_alloc&) {  // not a problem of the file: main reports it

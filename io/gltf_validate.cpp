@@ -221,6 +221,7 @@ void validateDocument(const GltfContext& ctx) {
   checkExtensions(ctx);
   checkBufferViews(ctx);
   checkAccessors(ctx);
+  warnAccessorBounds(ctx);
   checkTextures(ctx);
   checkMeshes(ctx);
   std::vector<int> parent;

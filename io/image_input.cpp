@@ -29,51 +29,26 @@ std::pair<std::string, std::string> splitChannel(const std::string& name) {
 
 }  // namespace
 
-ExrImage readExr(const std::string& path) {
+namespace {
+
+std::unique_ptr<OIIO::ImageInput> openExr(const std::string& path) {
   OIIO::ImageSpec config;
   config.attribute("oiio:try_all_readers", 0);
   auto in = OIIO::ImageInput::open(path, &config);
   if (!in) throw Error(path + ": cannot read: " + oneLine(OIIO::geterror()));
   if (std::string(in->format_name()) != "openexr") throw Error(path + ": not an OpenEXR file");
-  const OIIO::ImageSpec& spec = in->spec();
-  const int nc = spec.nchannels;
-  std::vector<float> pixels(size_t(spec.width) * spec.height * nc);
-  if (!in->read_image(0, 0, 0, nc, OIIO::TypeDesc::FLOAT, pixels.data()))
-    throw Error(path + ": cannot read pixels: " + oneLine(in->geterror()));
+  return in;
+}
 
-  ExrImage image;
-  image.film = Film(spec.width, spec.height);
-  Film& film = image.film;
-  // Each file channel goes to (layer, channel index) of the film, layers in file order.
-  std::vector<std::pair<int, int>> target(nc);
-  std::vector<std::pair<std::string, std::vector<std::string>>> layers;
-  for (int c = 0; c < nc; ++c) {
-    // Not a structured binding: clang 14 (the fuzz build) cannot capture one in a lambda.
-    const auto split = splitChannel(spec.channelnames[c]);
-    const std::string& layer = split.first;
-    auto it = std::find_if(layers.begin(), layers.end(), [&](auto& l) { return l.first == layer; });
-    if (it == layers.end()) it = layers.insert(layers.end(), {layer, {}});
-    it->second.push_back(split.second);
-  }
-  const auto& beauty =
-      std::find_if(layers.begin(), layers.end(), [](auto& l) { return l.first.empty(); });
-  if (beauty == layers.end() || beauty->second != std::vector<std::string>{"R", "G", "B", "A"})
+ExrHeader headerOf(const OIIO::ImageSpec& spec, const std::string& path) {
+  ExrHeader h;
+  h.width = spec.width, h.height = spec.height;
+  h.channels.assign(spec.channelnames.begin(), spec.channelnames.end());
+  const auto layers = h.layers();
+  if (layers.empty() || !layers.front().first.empty() ||
+      layers.front().second != std::vector<std::string>{"R", "G", "B", "A"})
     throw Error(path + ": not a TRay image (no R G B A channels)");
-  for (const auto& [name, channels] : layers)
-    if (!name.empty()) film.addLayer(name, channels);
-  for (int c = 0; c < nc; ++c) {
-    auto [layer, channel] = splitChannel(spec.channelnames[c]);
-    const int l = film.findLayer(layer);
-    const auto& chans = film.layers()[l].channels;
-    target[c] = {l, int(std::find(chans.begin(), chans.end(), channel) - chans.begin())};
-  }
-  for (int y = 0; y < spec.height; ++y)
-    for (int x = 0; x < spec.width; ++x) {
-      const float* src = &pixels[(size_t(y) * spec.width + x) * nc];
-      for (int c = 0; c < nc; ++c) film.pixel(target[c].first, x, y)[target[c].second] = src[c];
-    }
-
-  ImageOutputOptions& o = image.options;
+  ImageOutputOptions& o = h.options;
   o.halfFloat = spec.channelformat(0) == OIIO::TypeDesc::HALF;
   o.colorspace = spec.get_string_attribute("colorspace", "lin_rec709");
   o.fullWidth = spec.full_width, o.fullHeight = spec.full_height;
@@ -91,6 +66,75 @@ ExrImage readExr(const std::string& path) {
         o.stringMetadata.emplace_back(name, p.get_string());
     }
   }
+  return h;
+}
+
+}  // namespace
+
+std::vector<std::pair<std::string, std::vector<std::string>>> ExrHeader::layers() const {
+  std::vector<std::pair<std::string, std::vector<std::string>>> layers;
+  for (const std::string& name : channels) {
+    // Not a structured binding: clang 14 (the fuzz build) cannot capture one in a lambda.
+    const auto split = splitChannel(name);
+    auto it = std::find_if(layers.begin(), layers.end(),
+                           [&](auto& l) { return l.first == split.first; });
+    if (it == layers.end()) it = layers.insert(layers.end(), {split.first, {}});
+    it->second.push_back(split.second);
+  }
+  // The beauty first, as in a Film (OpenEXR sorts channels by name: "A" may follow "Z"...).
+  std::stable_partition(layers.begin(), layers.end(), [](auto& l) { return l.first.empty(); });
+  return layers;
+}
+
+ExrHeader readExrHeader(const std::string& path) {
+  return headerOf(openExr(path)->spec(), path);
+}
+
+struct ExrRowReader::Impl {
+  std::unique_ptr<OIIO::ImageInput> in;
+  std::string path;
+};
+
+ExrRowReader::ExrRowReader(const std::string& path) : impl_(new Impl{openExr(path), path}) {
+  header_ = headerOf(impl_->in->spec(), path);
+}
+
+ExrRowReader::~ExrRowReader() = default;
+
+void ExrRowReader::read(int y, int rows, std::vector<float>& out) {
+  const OIIO::ImageSpec& spec = impl_->in->spec();
+  out.resize(size_t(rows) * spec.width * spec.nchannels);
+  if (!impl_->in->read_scanlines(0, 0, spec.y + y, spec.y + y + rows, 0, 0, spec.nchannels,
+                                 OIIO::TypeDesc::FLOAT, out.data()))
+    throw Error(impl_->path + ": cannot read pixels: " + oneLine(impl_->in->geterror()));
+}
+
+ExrImage readExr(const std::string& path) {
+  ExrRowReader reader(path);
+  const ExrHeader& header = reader.header();
+  const int nc = int(header.channels.size());
+  std::vector<float> pixels;
+  reader.read(0, header.height, pixels);
+
+  ExrImage image;
+  image.film = Film(header.width, header.height);
+  Film& film = image.film;
+  for (const auto& [name, channels] : header.layers())
+    if (!name.empty()) film.addLayer(name, channels);
+  // Each file channel goes to (layer, channel index) of the film.
+  std::vector<std::pair<int, int>> target(nc);
+  for (int c = 0; c < nc; ++c) {
+    auto [layer, channel] = splitChannel(header.channels[c]);
+    const int l = film.findLayer(layer);
+    const auto& chans = film.layers()[l].channels;
+    target[c] = {l, int(std::find(chans.begin(), chans.end(), channel) - chans.begin())};
+  }
+  for (int y = 0; y < header.height; ++y)
+    for (int x = 0; x < header.width; ++x) {
+      const float* src = &pixels[(size_t(y) * header.width + x) * nc];
+      for (int c = 0; c < nc; ++c) film.pixel(target[c].first, x, y)[target[c].second] = src[c];
+    }
+  image.options = header.options;
   return image;
 }
 

@@ -196,37 +196,55 @@ void checkOutputs(const std::vector<std::string>& paths, const ImageOutputOption
 }
 
 size_t writeImage(const Film& film, const std::string& path, const ImageOutputOptions& options) {
-  const bool exr = checkPath(path);
+  return writeImages(film, {path}, options).front();
+}
+
+std::vector<size_t> writeImages(const Film& film, const std::vector<std::string>& paths,
+                                const ImageOutputOptions& options) {
   if (options.fullWidth < 0 || options.fullHeight < 0)
-    throw Error(path + ": negative display window size");
-  std::error_code ec;
-  // Written under a temporary name in the same folder and renamed into place when complete:
-  // rename(2) is atomic within a file system, so readers never see a partial image and a
-  // failed write leaves any earlier file intact. Unique per process and call.
+    throw Error(paths.empty() ? "negative display window size"
+                              : paths.front() + ": negative display window size");
+  // Each file is written under a temporary name in its folder, and all are renamed into place
+  // only once every one is complete: rename(2) is atomic within a file system, so readers never
+  // see a partial image, and a failed write leaves every earlier file intact. Unique per
+  // process and call.
   static std::atomic<unsigned> counter{0};
-  const std::string tmp =
-      path + ".tmp-" + std::to_string(getpid()) + "-" + std::to_string(counter.fetch_add(1));
-  size_t clamped = 0;
-  try {
-    if (exr)
-      clamped = writeExr(film, path, tmp, options);
-    else
-      writeDisplay(film, path, tmp, options);
-    fs::rename(tmp, path, ec);
-    if (ec) throw Error(path + ": cannot move the finished file into place: " + ec.message());
-    return clamped;
-  } catch (const Error& e) {
+  std::vector<std::string> tmps;
+  std::vector<size_t> clamped;
+  auto removeTmps = [&] {
     std::error_code ignored;
-    fs::remove(tmp, ignored);
-    // Colour errors do not know the file: give every message the "PATH: problem" form.
-    const std::string what = e.what();
-    if (what.rfind(path + ": ", 0) == 0) throw;
-    throw Error(path + ": " + what, e.kind());
-  } catch (...) {
-    std::error_code ignored;
-    fs::remove(tmp, ignored);
-    throw;
+    for (const auto& tmp : tmps) fs::remove(tmp, ignored);
+  };
+  for (const std::string& path : paths) {
+    try {
+      const bool exr = checkPath(path);
+      tmps.push_back(path + ".tmp-" + std::to_string(getpid()) + "-" +
+                     std::to_string(counter.fetch_add(1)));
+      if (exr)
+        clamped.push_back(writeExr(film, path, tmps.back(), options));
+      else
+        writeDisplay(film, path, tmps.back(), options), clamped.push_back(0);
+    } catch (const Error& e) {
+      removeTmps();
+      // Colour errors do not know the file: give every message the "PATH: problem" form.
+      const std::string what = e.what();
+      if (what.rfind(path + ": ", 0) == 0) throw;
+      throw Error(path + ": " + what, e.kind());
+    } catch (...) {
+      removeTmps();
+      throw;
+    }
   }
+  for (size_t i = 0; i < paths.size(); ++i) {
+    std::error_code ec;
+    fs::rename(tmps[i], paths[i], ec);
+    if (ec) {
+      tmps.erase(tmps.begin(), tmps.begin() + long(i) + 1);
+      removeTmps();
+      throw Error(paths[i] + ": cannot move the finished file into place: " + ec.message());
+    }
+  }
+  return clamped;
 }
 
 }  // namespace tray

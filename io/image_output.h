@@ -35,6 +35,12 @@ struct ImageOutputOptions {
 size_t writeImage(const Film& film, const std::string& path,
                   const ImageOutputOptions& options = {});
 
+/// Writes the film to every path as writeImage does, all or nothing: each file is complete
+/// under a temporary name before any is renamed into place, so an error (a full disk, a bad
+/// colorspace) leaves none of them changed. Returns each path's clamp count.
+std::vector<size_t> writeImages(const Film& film, const std::vector<std::string>& paths,
+                                const ImageOutputOptions& options = {});
+
 /// The one-line warning for `clamped` values clamped to half's range in `path`.
 std::string halfClampWarning(const std::string& path, size_t clamped);
 

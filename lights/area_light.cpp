@@ -1,6 +1,7 @@
 #include "lights/area_light.h"
 
 #include "core/front_face.h"
+#include "core/light_bounds.h"
 #include "core/sampling.h"
 
 namespace tray {
@@ -33,6 +34,19 @@ float AreaLight::power() const {
   if (!(area_ > 0) || !std::isfinite(area_)) return 0.0f;  // degenerate: never chosen
   const bool twoFaces = doubleSided_ && !shape_;
   return luminance(Le_) * area_ * kPi * (twoFaces ? 2.0f : 1.0f);
+}
+
+LightBounds AreaLight::bounds() const {
+  if (!(area_ > 0) || !std::isfinite(area_)) return LightBounds::finite({}, n_, 0, 1, 0, false);
+  const float L = luminance(Le_);
+  if (shape_)
+    return LightBounds::finite(toWorld_->bounds(shape_->bounds()), Vec3(0, 0, 1),
+                               0.25f * L * area_, -1.0f, 0.0f, false);
+  Bounds3 box;
+  box.extend(p0_);
+  box.extend(p0_ + e1_);
+  box.extend(p0_ + e2_);
+  return LightBounds::finite(box, n_, L * area_, 1.0f, 0.0f, doubleSided_);
 }
 
 LightSample AreaLight::sampleTriangle(const Vec3& ref, Vec2 u) const {

@@ -23,6 +23,10 @@ class AreaLight final : public Light {
   /// Le x area x pi per emitting face. A closed shape's inside never lights the scene, so a
   /// shape counts one face even when doubleSided; a two-sided triangle counts two.
   float power() const override;
+  /// A triangle: its box and normal cone (theta_o 0, theta_e pi/2), phi = luminance(Le) x
+  /// area, its largest radiant intensity. A shape: its world box, all directions, phi =
+  /// luminance(Le) x area / 4 (a convex body's mean projected area is a quarter of its area).
+  LightBounds bounds() const override;
   LightSample sample(const LightSampleContext& ctx, Vec2 u) const override;
   float pdf(const LightSampleContext& ctx, const Vec3& wi, const Vec3& p,
             const Vec3& n) const override;

@@ -1,5 +1,6 @@
 #pragma once
 #include "core/light.h"
+#include "core/light_bounds.h"
 #include "core/sampling.h"
 
 namespace tray {
@@ -19,6 +20,7 @@ class EnvironmentLight final : public Light {
   float power() const override {
     return luminance(Le_) * 4.0f * kPi * kPi * sceneRadius_ * sceneRadius_;
   }
+  LightBounds bounds() const override { return LightBounds::ambient(luminance(Le_)); }
   Color Le(const Vec3&) const override { return Le_; }
   LightSample sample(const LightSampleContext& ctx, Vec2 u) const override {
     LightSample s;

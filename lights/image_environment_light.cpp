@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/light_bounds.h"
+
 namespace tray {
 
 namespace {
@@ -57,6 +59,7 @@ ImageEnvironmentLight::ImageEnvironmentLight(std::shared_ptr<const EnvironmentMa
     sum += row * sinTheta;
   }
   const double mean = sum * (2.0 * kPi / w) * (kPi / h) / (4.0 * kPi);
+  meanLuminance_ = float(mean * intensity_);
   power_ = float(4.0 * kPi * kPi * double(sceneRadius) * sceneRadius * mean * intensity_);
   distribution_ = PiecewiseConstant2D(samplingWeights(*map_, uniform), size_t(w), size_t(h));
 }
@@ -118,5 +121,7 @@ float ImageEnvironmentLight::pdf(const LightSampleContext&, const Vec3& wi, cons
   if (!(sinTheta > 0)) return 0.0f;
   return distribution_.pdf(uv) / (2.0f * kPi * kPi * sinTheta);
 }
+
+LightBounds ImageEnvironmentLight::bounds() const { return LightBounds::ambient(meanLuminance_); }
 
 }  // namespace tray

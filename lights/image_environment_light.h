@@ -31,6 +31,8 @@ class ImageEnvironmentLight final : public Light {
   /// pbrt's Phi: 4 pi (pi R^2) x the map's mean luminance over the sphere (so a constant map
   /// has the power of the constant environment of the same radiance).
   float power() const override { return power_; }
+  /// Ambient: pi x the map's mean luminance over the sphere.
+  LightBounds bounds() const override;
   LightSample sample(const LightSampleContext& ctx, Vec2 u) const override;
   float pdf(const LightSampleContext& ctx, const Vec3& wi, const Vec3& p,
             const Vec3& n) const override;
@@ -47,6 +49,7 @@ class ImageEnvironmentLight final : public Light {
   float cosRot_ = 1, sinRot_ = 0;  ///< world = R_y(rotation) * map
   float intensity_ = 1;
   float power_ = 0;
+  float meanLuminance_ = 0;  ///< over the sphere, times the intensity
   PiecewiseConstant2D distribution_;
 };
 

@@ -45,7 +45,7 @@ void LightSet::addPrimitive(const Scene& scene, size_t i, std::vector<float>& po
   }
 }
 
-LightSet::LightSet(const Scene& scene) {
+LightSet::LightSet(const Scene& scene, LightSamplerKind kind) {
   Bounds3 b = scene.bounds();
   float radius = b.empty() || !b.finite() ? 1.0f : std::max(0.5f * length(b.diagonal()), 1e-3f);
   std::vector<float> power;
@@ -77,15 +77,21 @@ LightSet::LightSet(const Scene& scene) {
   for (const PunctualLight& l : punctual_) lights_.push_back(&l);
   for (const EnvironmentLight& l : environment_) lights_.push_back(&l);
   for (const ImageEnvironmentLight& l : imageEnvironment_) lights_.push_back(&l);
-  for (float& p : power)
+  std::vector<LightBounds> bounds;
+  for (float& p : power) {
     if (!std::isfinite(p) || p < 0) p = 0;
-  table_ = AliasTable(power);
+    anyPower_ = anyPower_ || p > 0;
+  }
+  if (kind == LightSamplerKind::kBvh)
+    for (const Light* l : lights_) bounds.push_back(l->bounds());
+  chooser_ = makeLightSampler(kind, power, bounds);
 }
 
 LightSample LightSet::sample(const LightSampleContext& ctx, float u1, Vec2 u2) const {
-  if (table_.empty()) return {};
   float pmf;
-  LightSample s = lights_[table_.sample(u1, pmf)]->sample(ctx, u2);
+  const int i = chooser_->sample(ctx, u1, pmf);
+  if (i < 0 || !(pmf > 0)) return {};
+  LightSample s = lights_[size_t(i)]->sample(ctx, u2);
   s.pdf *= pmf;
   return s;
 }

@@ -1,30 +1,32 @@
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "core/light.h"
 #include "core/scene.h"
-#include "lights/alias_table.h"
 #include "lights/area_light.h"
 #include "lights/environment_light.h"
 #include "lights/image_environment_light.h"
+#include "lights/light_sampler.h"
 #include "lights/punctual_light.h"
 
 namespace tray {
 
-/// Every light of a scene behind the Light interface, chosen in proportion to power with an
-/// alias table (pbrt-v4 12.6.3's PowerLightSampler): emissive mesh triangles and samplable
-/// emissive analytic shapes (AreaLight, in primitive order), KHR_lights_punctual lights, and
-/// the environment (a constant or an image). Built once per render; queries are const and allocation-free. Refers to
-/// the scene's shapes and transforms: the scene must outlive it, unchanged.
+/// Every light of a scene behind the Light interface, chosen by a LightSampler (by estimated
+/// contribution at the receiver through a light BVH, or in proportion to power; `kind`):
+/// emissive mesh triangles and samplable emissive analytic shapes (AreaLight, in primitive
+/// order), KHR_lights_punctual lights, and the environment (a constant or an image). Built
+/// once per render; queries are const and allocation-free. Refers to the scene's shapes and
+/// transforms: the scene must outlive it, unchanged.
 class LightSet {
  public:
-  explicit LightSet(const Scene& scene);
+  explicit LightSet(const Scene& scene, LightSamplerKind kind = LightSamplerKind::kBvh);
   LightSet(const LightSet&) = delete;  // lights_ points into the vectors below
   LightSet& operator=(const LightSet&) = delete;
 
   size_t size() const { return lights_.size(); }
-  bool empty() const { return table_.empty(); }
+  bool empty() const { return !anyPower_; }
   const Light& light(size_t i) const { return *lights_[i]; }
 
   /// Chooses a light with u1, then a direction to it from ctx with u2. The returned pdf
@@ -42,8 +44,11 @@ class LightSet {
   float pdf(int index, const LightSampleContext& ctx, const Vec3& wi, const Vec3& p,
             const Vec3& n) const {
     if (index < 0 || size_t(index) >= lights_.size()) return 0.0f;
-    return table_.pmf(uint32_t(index)) * lights_[size_t(index)]->pdf(ctx, wi, p, n);
+    const float pmf = chooser_->pmf(ctx, index);
+    return pmf > 0 ? pmf * lights_[size_t(index)]->pdf(ctx, wi, p, n) : 0.0f;
   }
+  /// The probability that sample() from ctx chooses light `index`.
+  float pmf(const LightSampleContext& ctx, int index) const { return chooser_->pmf(ctx, index); }
   /// Indices of the lights that rays escaping the scene see (Light::Le): the environment.
   const std::vector<int>& infinite() const { return infinite_; }
   /// Indices of the delta lights (point, spot, directional), in the scene's order.
@@ -62,7 +67,8 @@ class LightSet {
   std::vector<bool> isTriangles_;     ///< per primitive: lights are per triangle
   std::vector<int> infinite_, delta_;
   size_t triangleCount_ = 0;
-  AliasTable table_;
+  bool anyPower_ = false;
+  std::unique_ptr<LightSampler> chooser_;
 };
 
 }  // namespace tray

@@ -1,5 +1,6 @@
 #pragma once
 #include "core/light.h"
+#include "core/light_bounds.h"
 #include "core/light_desc.h"
 
 namespace tray {
@@ -28,6 +29,19 @@ class PunctualLight final : public Light {
         return kPi * sceneRadius_ * sceneRadius_ * I;
     }
     return 0.0f;
+  }
+  /// Point: all directions, phi = intensity; spot: the outer cone, where it emits at most its
+  /// intensity (theta_e 0: nothing outside); directional: its irradiance.
+  LightBounds bounds() const override {
+    const float I = luminance(desc_.intensity);
+    if (desc_.type == PunctualLightDesc::Type::kDirectional)
+      return LightBounds::directional(-desc_.direction, I);
+    Bounds3 box;
+    box.extend(desc_.position);
+    if (desc_.type == PunctualLightDesc::Type::kPoint)
+      return LightBounds::finite(box, Vec3(0, 0, 1), I, -1.0f, 0.0f, false);
+    return LightBounds::finite(box, desc_.direction, I, std::cos(desc_.outerConeAngle), 1.0f,
+                               false);
   }
   LightSample sample(const LightSampleContext& ctx, Vec2) const override {
     LightSample s;

@@ -75,11 +75,12 @@ Color Bsdf::evalLocal(const Vec3& wo, const Vec3& wi) const {
       break;
   }
   Color f(0.0f);
-  if (wMetal_ > 0) f += wMetal_ * metal_.eval(wo, wi);
-  if (wGlass_ > 0) f += wGlass_ * glass_.eval(wo, wi);
+  if (wMetal_ > 0 && includes(kSpecularLobes)) f += wMetal_ * metal_.eval(wo, wi);
+  if (wGlass_ > 0 && includesGlass(wo, wi)) f += wGlass_ * glass_.eval(wo, wi);
   if (wPlastic_ > 0) {
-    if (coat_ > 0) f += (wPlastic_ * coat_) * coatLobe_.eval(wo, wi);
-    f += (wPlastic_ * (1.0f - coatFresnel(wo))) * diffuse_.eval(wo, wi);
+    if (coat_ > 0 && includes(kSpecularLobes)) f += (wPlastic_ * coat_) * coatLobe_.eval(wo, wi);
+    if (includes(kDiffuseLobes))
+      f += (wPlastic_ * (1.0f - coatFresnel(wo))) * diffuse_.eval(wo, wi);
   }
   return f;
 }
@@ -191,6 +192,20 @@ BsdfSample Bsdf::baseSample(const Vec3& wo, float uc, Vec2 u) const {
   BsdfSample s = sampleLocal(woLocal, uc, u);
   s.wi = frame_.toWorld(s.wi);
   return s;
+}
+
+LobeSplit Bsdf::evalLobes(const Vec3& wo, const Vec3& wi) const {
+  // The same sums as eval, one kind of lobe at a time (the lone-lobe shortcuts skip the masks).
+  Bsdf part = *this;
+  part.only_ = only_ == Only::kNothing ? Only::kNothing : Only::kMixture;
+  LobeSplit out;
+  part.lobeMask_ = kDiffuseLobes;
+  out.diffuse = part.eval(wo, wi);
+  part.lobeMask_ = kSpecularLobes;
+  out.specular = part.eval(wo, wi);
+  part.lobeMask_ = kTransmissionLobes;
+  out.transmission = part.eval(wo, wi);
+  return out;
 }
 
 }  // namespace tray

@@ -1,6 +1,7 @@
 #pragma once
 #include <cstdint>
 
+#include "core/light_paths.h"
 #include "core/material.h"
 #include "core/sampling.h"
 #include "materials/dielectric.h"
@@ -46,6 +47,10 @@ class Bsdf {
   /// True when light can also scatter to the far side of the surface.
   bool transmits() const { return wGlass_ > 0; }
   const Frame& frame() const { return frame_; }
+
+  /// eval split by lobe kind (core/light_paths.h): the three parts sum to eval(wo, wi) up to
+  /// float rounding. For light-path AOVs, at a path's first scattering only.
+  LobeSplit evalLobes(const Vec3& wo, const Vec3& wi) const;
 
   /// The same, in the local frame (tests use these directly), without clearcoat and sheen.
   Color evalLocal(const Vec3& wo, const Vec3& wi) const;
@@ -101,6 +106,14 @@ class Bsdf {
   CharlieSheen sheen_{1.0f};
   bool hasNonDelta_;
   Only only_;
+  /// Lobe kinds eval includes (evalLobes evaluates a copy with one kind at a time).
+  enum LobeKind : uint8_t { kDiffuseLobes = 1, kSpecularLobes = 2, kTransmissionLobes = 4 };
+  uint8_t lobeMask_ = kDiffuseLobes | kSpecularLobes | kTransmissionLobes;
+  bool includes(LobeKind k) const { return lobeMask_ & k; }
+  /// A dielectric's value from wo to wi counts as specular (reflection) or transmission.
+  bool includesGlass(const Vec3& wo, const Vec3& wi) const {
+    return includes(sameHemisphere(wo, wi) ? kSpecularLobes : kTransmissionLobes);
+  }
 };
 
 }  // namespace tray

@@ -49,7 +49,7 @@ float Bsdf::clearcoatProbability(float cFc) const {
 Color Bsdf::layeredEval(const Vec3& wo, const Vec3& wi, float& pdf) const {
   const float cFc = clearcoatFresnel(wo), pc = clearcoatProbability(cFc);
   const Vec3 woC = ccFrame_.toLocal(wo), wiC = ccFrame_.toLocal(wi);
-  Color coat = ccLobe_.eval(woC, wiC) * clearcoat_;
+  Color coat = includes(kSpecularLobes) ? ccLobe_.eval(woC, wiC) * clearcoat_ : Color(0.0f);
   // The integrator multiplies by the base normal's cosine; the coat's BRDF goes with its own.
   if (ccOwnFrame_ && !isBlack(coat)) {
     const float cosBase = std::fabs(dot(wi, frame_.n));

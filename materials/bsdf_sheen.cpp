@@ -36,7 +36,8 @@ Color Bsdf::sheenEval(const Vec3& wo, const Vec3& wi, float& pdf) const {
   const Color base = baseEval(wo, wi, basePdf);
   const float sheenPdf = sameHemisphere(woL, wiL) ? cosineHemispherePdf(absCosTheta(wiL)) : 0.0f;
   pdf = ps * sheenPdf + (1.0f - ps) * basePdf;
-  return sheenColor_ * sheen_.eval(woL, wiL) + base * std::min(1.0f - sEo, 1.0f - sEi);
+  const Color sheen = includes(kDiffuseLobes) ? sheenColor_ * sheen_.eval(woL, wiL) : Color(0.0f);
+  return sheen + base * std::min(1.0f - sEo, 1.0f - sEi);
 }
 
 BsdfSample Bsdf::sheenSample(const Vec3& wo, float uc, Vec2 u) const {

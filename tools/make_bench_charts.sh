@@ -35,6 +35,9 @@ sweep whitted "$here/scenes/whitted.gltf" --resolution 160x120 --reference-spp 1
 sweep csg "$here/scenes/csg.gltf" --resolution 160x120 --reference-spp 1024 --max-spp 256
 # The Cornell box against an independent reference: every method's error is against the true
 # image, so Whitted's bias (no indirect light) shows as a floor no sample count removes.
+# With Open Image Denoise installed (tools/setup-denoise.sh), the Cornell box also gets the
+# "path sobol + OIDN" line (docs/denoising.md).
+denoise=$("$here/tools/tray-denoise" --check 2>/dev/null && echo --denoise || true)
 sweep cornell-box "$shared/reference/cornell-box.gltf" --resolution 256x256 --max-spp 256 \
-  --reference "$shared/reference/cornell-box.ref.exr"
+  --reference "$shared/reference/cornell-box.ref.exr" $denoise
 echo "make_bench_charts: wrote $out"

@@ -4,6 +4,10 @@
 # build in build-fuzz/; see docs/fuzzing.md). TRAY_SKIP_FUZZ=1 skips the fuzz runs.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
+# The farm tests (ctest label farm) run a one-machine Slurm cluster as root: its packages too.
+if [ "$(id -u)" -eq 0 ]; then
+  export TRAY_EXTRA_PACKAGES="${TRAY_EXTRA_PACKAGES:-} slurmctld slurmd slurm-client munge"
+fi
 source tools/setup.sh
 ctest --test-dir "$BUILD_DIR" --output-on-failure -j"$(nproc)" "$@"
 if [ "${TRAY_SKIP_FUZZ:-0}" != 1 ]; then

@@ -6,7 +6,8 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 PACKAGES=(libembree-dev libopenimageio-dev openimageio-tools libopenexr-dev libopencolorio-dev
   opencolorio-tools libtinygltf-dev nlohmann-json3-dev libstb-dev libtbb-dev libgtest-dev
-  libbenchmark-dev libcli11-dev cmake ninja-build g++ pkg-config python3 valgrind)
+  libbenchmark-dev libcli11-dev libxxhash-dev cmake ninja-build g++ pkg-config python3 valgrind
+  python3-openimageio python3-numpy python3-venv)
 PACKAGES+=(${TRAY_EXTRA_PACKAGES:-})
 
 missing=()
@@ -23,3 +24,6 @@ fi
 BUILD_DIR=${BUILD_DIR:-build}
 cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release ${TRAY_CMAKE_ARGS:-} >/dev/null
 cmake --build "$BUILD_DIR" -j"$(nproc)"
+# The denoiser (tools/tray-denoise) is optional: the renderer and its tests run without it.
+tools/setup-denoise.sh ||
+  echo "setup: pyoidn could not be installed: tray-denoise (and its test) will be skipped"

@@ -6,6 +6,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <fstream>
+#include <sstream>
 #include <thread>
 
 #include "tests/cli/cli_run.h"
@@ -86,7 +88,9 @@ int ulps(float a, float b) {
 
 TEST(Farm, FourSampleRangesMergeWithinFloatRounding) {
   const fs::path dir = tempFolder("farm");
-  const std::string job = kJob + " --float";
+  const std::string job = kBaseJob +
+                          " --aov depth,normal,position,albedo,objectid,materialid,samples,"
+                          "lightpaths --seed 7 --resolution 37x29 --float";
   ASSERT_EQ(runCli(TRAY_RENDER_BIN, job + " " + out(dir, "full.exr"), dir).exitCode, 0);
   const char* ranges[] = {"0,2", "2,3", "3,7", "7,8"};
   std::string parts, reversed;
@@ -105,7 +109,7 @@ TEST(Farm, FourSampleRangesMergeWithinFloatRounding) {
   expectSamePixels(merged, readExrFile(dir / "reversed.exr"), "merge order");
   ASSERT_EQ(full.spec.channelnames, merged.spec.channelnames);
   int worst = 0;
-  size_t exact = 0, values = 0;
+  size_t exact = 0, values = 0, averaged = 0;
   for (int y = 0; y < full.spec.height; ++y)
     for (int x = 0; x < full.spec.width; ++x)
       for (const std::string& c : full.spec.channelnames) {
@@ -113,11 +117,24 @@ TEST(Farm, FourSampleRangesMergeWithinFloatRounding) {
         if (c == "R" || c == "G" || c == "B" || c == "A") {  // sums of parts: rounding differs
           worst = std::max(worst, ulps(a, b));
           exact += a == b, ++values;
+        } else if (c == "Z" || c[0] == 'N' || c.rfind("albedo", 0) == 0 || c.find('_') != c.npos ||
+                   c.rfind("emission", 0) == 0 || c.rfind("transmission", 0) == 0 ||
+                   c.rfind("background", 0) == 0) {
+          // Averaged over every sample: the parts' means weighted by their filter-weight sums.
+          if (a != b) {
+            EXPECT_NEAR(a, b, 1e-6f + 1e-5f * std::fabs(a)) << c << " at " << x << "," << y;
+          }
+          averaged += a != 0;
         } else {  // AOVs of sample 0, and the summed sample count
           EXPECT_EQ(std::memcmp(&a, &b, 4), 0) << c << " at " << x << "," << y;
         }
       }
   EXPECT_LE(worst, 1) << "beauty differs by more than float rounding";
+  EXPECT_GT(averaged, size_t(37 * 29));  // the averaged layers were compared, not all zero
+  // The merged image did every sample of every pixel: the parts' counts added up.
+  EXPECT_EQ(merged.spec.get_float_attribute("tray:samplesDone"), 37.0f * 29.0f * 8.0f);
+  EXPECT_EQ(merged.spec.get_float_attribute("tray:samplesDone"),
+            full.spec.get_float_attribute("tray:samplesDone"));
   EXPECT_GT(double(exact) / values, 0.99);
   std::printf("sample-range merge: %zu of %zu beauty values bit-identical, worst %d ulp\n", exact,
               values, worst);
@@ -146,6 +163,30 @@ TEST(Farm, MergeRefusesIncompleteOrForeignParts) {
                    job + " --max-depth 3 --sample-range 4,8 " + out(dir, "depth3.exr"), dir)
                 .exitCode,
             0);
+  // The output's precision is the job's: a float part does not merge with half ones.
+  ASSERT_EQ(
+      runCli(TRAY_RENDER_BIN, job + " --float --sample-range 4,8 " + out(dir, "float.exr"), dir)
+          .exitCode,
+      0);
+  // The same scene file name with other bytes (one space added) is another scene.
+  fs::create_directories(dir / "edited");
+  const fs::path edited = dir / "edited" / fs::path(kCornell).filename();
+  fs::copy_file(kCornell, edited);
+  std::ofstream(edited, std::ios::app) << " ";
+  std::string editedJob = job;
+  editedJob.replace(editedJob.find(kCornell), kCornell.size(), edited.string());
+  ASSERT_EQ(
+      runCli(TRAY_RENDER_BIN, editedJob + " --sample-range 4,8 " + out(dir, "edited.exr"), dir)
+          .exitCode,
+      0);
+  // A part of another job whose pixels cannot be read: refused by its header alone.
+  {
+    const std::string bytes = [&] {
+      std::ifstream f(dir / "seed8.exr", std::ios::binary);
+      return std::string(std::istreambuf_iterator<char>(f), {});
+    }();
+    std::ofstream(dir / "truncated.exr", std::ios::binary) << bytes.substr(0, bytes.size() - 200);
+  }
   ASSERT_EQ(runCli(TRAY_RENDER_BIN, job + " " + out(dir, "full.exr"), dir).exitCode, 0);
   ASSERT_EQ(runCli(TRAY_RENDER_BIN,
                    job + " --threads 1 --test-interrupt-after-tiles 1 --sample-range 4,8 " +
@@ -160,7 +201,10 @@ TEST(Farm, MergeRefusesIncompleteOrForeignParts) {
   } cases[] = {
       {a, "a part is missing"},
       {a + " " + b + " " + b, "renders too"},
-      {a + " '" + (dir / "seed8.exr").string() + "'", "another render"},
+      {a + " '" + (dir / "seed8.exr").string() + "'", "seed is '8' there"},
+      {a + " '" + (dir / "float.exr").string() + "'", "output is 'float,default' there"},
+      {a + " '" + (dir / "edited.exr").string() + "'", "content is"},
+      {a + " '" + (dir / "truncated.exr").string() + "'", "another render"},
       {a + " '" + (dir / "indep.exr").string() + "'", "another render"},
       {a + " '" + (dir / "depth3.exr").string() + "'", "another render"},
       {"'" + (dir / "full.exr").string() + "'", "not a part"},
@@ -173,6 +217,34 @@ TEST(Farm, MergeRefusesIncompleteOrForeignParts) {
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   }
   EXPECT_FALSE(fs::exists(dir / "m.exr"));
+}
+
+TEST(Farm, PlainProgressIsOneParseableLinePerStep) {
+  const fs::path dir = tempFolder("farm");
+  // 64x48: 12 tiles of 16x16; a line each 25% (and none by time), the last at 100%.
+  CliResult r = runTool(TRAY_RENDER_BIN,
+                        "'" + kWhitted + "' --resolution 64x48 --progress plain --progress-step 25 "
+                        "--progress-seconds 0 " + out(dir, "p.exr"),
+                        dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  std::istringstream lines(r.err);
+  std::string line;
+  std::vector<double> percents;
+  while (std::getline(lines, line)) {
+    double percent = 0, elapsed = 0, eta = 0;
+    char tail = 0;
+    ASSERT_EQ(std::sscanf(line.c_str(), "progress %lf%% elapsed %lf s eta %lf s%c", &percent,
+                          &elapsed, &eta, &tail),
+              3)
+        << "not a progress line: '" << line << "'";
+    percents.push_back(percent);
+  }
+  EXPECT_EQ(percents, (std::vector<double>{25, 50, 75, 100}));
+  // A bad mode is a usage error before any work.
+  CliResult bad =
+      runTool(TRAY_RENDER_BIN, "'" + kWhitted + "' --progress fancy " + out(dir, "x.exr"), dir);
+  EXPECT_EQ(bad.exitCode, 2);
+  EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
 }
 
 TEST(Farm, BadRegionsAndRangesAreUsageErrors) {

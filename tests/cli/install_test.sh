@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs the build into a temporary prefix, moves away from the source tree and renders with
 # the installed tray-render: the OCIO config must come from PREFIX/share/tray (an ACEScg EXR and
-# an sRGB PNG need it), tray-merge must run, and no installed file may name the source folder.
+# an sRGB PNG need it), tray-merge and tray-farm must run, and no installed file may name the source folder.
 set -euo pipefail
 build=$1 source=$2
 prefix=$(mktemp -d)
@@ -15,6 +15,9 @@ env -u OCIO "$prefix/bin/tray-render" -q whitted.gltf --resolution 32x24 --outpu
   -o out.exr -o out.png
 test -s out.exr && test -s out.png
 "$prefix/bin/tray-merge" --help >/dev/null
+# tray-farm finds its modules in share/tray/farm and tray-render beside itself.
+"$prefix/bin/tray-farm" submit whitted.gltf --split regions:2 --resolution 32x24 -o farm.exr \
+  --dry-run | grep -qF "exec $prefix/bin/tray-render "
 if grep -rlF "$source" "$prefix/bin" "$prefix/share"; then
   echo "installed files name the source folder $source" >&2
   exit 1

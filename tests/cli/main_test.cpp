@@ -207,5 +207,26 @@ TEST(CliDefaultLight, NoDefaultLightLeavesAnUnlitAssetBlack) {
   EXPECT_EQ(b.at(4, 3, "A"), 1.0f);  // the box is still there, unlit
 }
 
+TEST(CliDefaultLight, ASkyBoxAroundTheCameraGetsAHeadlightNotABlackImage) {
+  // An unlit sphere inside a 40 m box: the default key light and environment cannot get in.
+  const fs::path dir = tempFolder("cli_main");
+  const fs::path scene = dir / "skybox.gltf";
+  std::ofstream(scene) << R"({"asset": {"version": "2.0"}, "extensionsUsed": ["TRAY_shape"],
+    "scene": 0, "scenes": [{"nodes": [0, 1, 2]}],
+    "cameras": [{"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.1}}],
+    "nodes": [{"camera": 0, "translation": [0, 0, 5]},
+      {"extensions": {"TRAY_shape": {"type": "sphere", "radius": 1}}},
+      {"name": "sky", "extensions": {"TRAY_shape": {"type": "box", "min": [-20, -20, -20],
+                                                    "max": [20, 20, 20]}}}]})";
+  const std::string args = " -q --integrator=path --spp 4 --resolution 8x6 --float -o ";
+  CliResult r = runCli(TRAY_RENDER_BIN, quoted(scene) + args + quoted(dir / "sky.exr"), dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.err.find("default headlight"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("the camera is enclosed (a sky box?)"), std::string::npos) << r.err;
+  EXPECT_EQ(lines(r.err), 2u) << r.err;
+  const Exr image = readExrFile(dir / "sky.exr");
+  EXPECT_GT(image.at(4, 3, "R"), 0.05f);  // the sphere, lit (black before the headlight)
+}
+
 }  // namespace
 }  // namespace tray::test

@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "core/renderer.h"
 #include "integrators/registry.h"
+#include "tests/render_film.h"
 #include "tests/scene_builder.h"
 
 namespace tray {
@@ -15,7 +16,10 @@ using namespace tray::test;
 
 TEST(Aov, ParsesListsAndRejectsUnknownNames) {
   EXPECT_EQ(AovSet::parse("depth,normal"), (std::vector<std::string>{"depth", "normal"}));
-  EXPECT_EQ(AovSet::parse("all").size(), AovSet::known().size());
+  // "all": every layer but the seven light-path ones, which only the path tracer fills.
+  EXPECT_EQ(AovSet::parse("all").size(), AovSet::known().size() - kLightPathCount);
+  EXPECT_EQ(AovSet::parse("albedo,lightpaths").size(), size_t(1 + kLightPathCount));
+  EXPECT_EQ(AovSet::parse("specular_indirect"), (std::vector<std::string>{"specular_indirect"}));
   EXPECT_THROW(AovSet::parse("depth,colour"), Error);
 }
 
@@ -60,6 +64,44 @@ TEST(Aov, LayersHoldDepthNormalAndIdsOfTheFirstHit) {
   EXPECT_EQ(film.pixel(Z, 16, 0)[0], kInfinity);
   EXPECT_EQ(film.pixel(obj, 16, 0)[0], -1.0f);
   EXPECT_EQ(film.pixel(Film::kBeauty, 16, 0)[3], 0.0f);  // alpha = coverage
+}
+
+TEST(Aov, AlbedoNormalAndDepthAverageEverySampleWithThePixelFilter) {
+  // A sphere of one albedo over nothing: in an outline pixel a fraction alpha of the (filter-
+  // weighted) samples hit it, so the averaged albedo is alpha x its albedo, and the normal is
+  // alpha x the mean normal of the hits (length <= alpha). The depth averages the hits only.
+  Scene s;
+  const Color a(0.9f, 0.5f, 0.1f);
+  addSphere(s, {0, 0, -4}, 1.0f, addMaterial(s, diffuse(a)));
+  s.finalize();
+  for (const char* filter : {"box", "gaussian"}) {
+    RenderSettings st;
+    st.set("spp", 64);
+    st.set("pixel-sampler", "jitter");
+    st.set("filter", filter);
+    const int W = 24;
+    Film film = renderFilm(s, lookAt({0, 0, 0}, {0, 0, -1}, 0.6f), W, W, st, nullptr,
+                           AovSet::parse("albedo,normal,depth"));
+    const int albedo = film.findLayer("albedo"), N = film.findLayer("N"), Z = film.findLayer("Z");
+    int outline = 0;
+    for (int y = 0; y < W; ++y)
+      for (int x = 0; x < W; ++x) {
+        const float alpha = film.pixel(Film::kBeauty, x, y)[3];
+        const float* al = film.pixel(albedo, x, y);
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(al[c], alpha * a[c], 1e-5f) << x << "," << y;
+        const float* n = film.pixel(N, x, y);
+        EXPECT_LE(length(Vec3(n[0], n[1], n[2])), alpha + 1e-5f);
+        const float z = film.pixel(Z, x, y)[0];
+        if (alpha == 0) {
+          EXPECT_EQ(z, kInfinity);
+        } else {
+          EXPECT_GE(z, 3.0f - 1e-4f);  // between the sphere's nearest point and its outline
+          EXPECT_LE(z, std::sqrt(15.0f) + 1e-4f);
+        }
+        if (alpha > 0.05f && alpha < 0.95f) ++outline;
+      }
+    EXPECT_GT(outline, 8) << filter;  // the outline pixels are mixes, not one sample's value
+  }
 }
 
 }  // namespace

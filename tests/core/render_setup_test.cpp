@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "accel/registry.h"
+#include "tests/render_film.h"
 #include "tests/scene_builder.h"
 
 namespace tray {
@@ -77,9 +79,9 @@ TEST(DefaultLighting, DecidesByEmittedPowerNotByAnEmissiveTexture) {
   // A car whose emissive texture is black but for its lamps counted as lit and rendered black.
   // Threshold: 1% of 2.5 x 101 / 4 = 0.63 W; the quad gives pi x factor x lit/4096.
   const CameraDesc cam = lookAt(Vec3(0, 5, 5), Vec3(0.0f));
-  Scene lamps = floorWithTexturedEmitter(1.0f, 40);  // 0.031 W
+  Scene lamps = floorWithTexturedEmitter(4.0f, 10);  // 0.031 W (bright lamps, mostly black)
   EXPECT_FALSE(summarizeEmission(lamps).meaningful());
-  EXPECT_NEAR(summarizeEmission(lamps).meshPower, kPi * 40 / 4096, 1e-6);
+  EXPECT_NEAR(summarizeEmission(lamps).meshPower, kPi * 4 * 10 / 4096, 1e-6);
   EXPECT_NEAR(summarizeEmission(lamps).surfaceArea, 101.0, 1e-3);
   EXPECT_TRUE(addDefaultLightingIfUnlit(lamps, cam));
 
@@ -88,12 +90,77 @@ TEST(DefaultLighting, DecidesByEmittedPowerNotByAnEmissiveTexture) {
   EXPECT_FALSE(addDefaultLightingIfUnlit(panel, cam));
 }
 
+TEST(DefaultLighting, CoreGltfGlowIsNotTheScenesLight) {
+  // ClearCoatTest, TextureEncodingTest, TextureTransformMultiTest: white emissive labels
+  // (factor 1, radiance 1) passed the power rule, so no default light came, and the spheres
+  // and cubes they label rendered black. Core glTF emission cannot exceed radiance 1: such
+  // surfaces glow like screens; only a stronger emitter (emissive_strength) is a light.
+  const CameraDesc cam = lookAt(Vec3(0, 5, 5), Vec3(0.0f));
+  Scene labels = floorWithTexturedEmitter(1.0f, 4096);  // pi W: past the 0.63 W power rule
+  EXPECT_FALSE(summarizeEmission(labels).meaningful());
+  EXPECT_TRUE(addDefaultLightingIfUnlit(labels, cam));
+  Scene bright = floorWithTexturedEmitter(1.001f, 4096);
+  EXPECT_TRUE(summarizeEmission(bright).meaningful());
+}
+
 TEST(DefaultLighting, UnusedEmissiveMaterialsDoNotCount) {
   Scene s = unlitSphereScene();
   Material glow = diffuse(Color(0.0f));
   glow.emissive = Color(100.0f);
   addMaterial(s, glow);  // in the file, on no object
   EXPECT_TRUE(addDefaultLightingIfUnlit(s, lookAt(Vec3(0, 0, 5), Vec3(0.0f))));
+}
+
+/// The unlit sphere inside a closed 40 x 40 x 40 box of diffuse triangles: a sky box.
+Scene sphereInSkyBox() {
+  Scene s = unlitSphereScene();
+  TriangleMesh box;
+  const float h = 20;
+  for (int i = 0; i < 8; ++i)
+    box.positions.push_back({i & 1 ? h : -h, i & 2 ? h : -h, i & 4 ? h : -h});
+  // Two triangles per face; the winding does not matter to occlusion.
+  box.indices = {0, 1, 3, 0, 3, 2, 4, 6, 7, 4, 7, 5, 0, 4, 5, 0, 5, 1,
+                 2, 3, 7, 2, 7, 6, 0, 2, 6, 0, 6, 4, 1, 5, 7, 1, 7, 3};
+  box.material = addMaterial(s, diffuse(Color(0.5f)));
+  addMeshInstance(s, addMesh(s, box), Mat4::identity());
+  s.finalize();
+  return s;
+}
+
+/// The centre pixel's red channel, direct light only (max depth 2).
+float centrePixel(const Scene& s, const CameraDesc& cam) {
+  RenderSettings settings;
+  settings.set("integrator", "path");
+  settings.set("spp", 16);
+  settings.set("max-depth", 2);
+  const Film film = renderFilm(s, cam, 33, 33, settings, nullptr, {}, "embree", 2);
+  return film.pixel(Film::kBeauty, 16, 16)[0];
+}
+
+TEST(DefaultLighting, AHeadlightReplacesTheKeyLightWhenASkyBoxEnclosesTheCamera) {
+  Scene s = sphereInSkyBox();
+  const CameraDesc cam = lookAt(Vec3(0, 0, 5), Vec3(0.0f));
+  ASSERT_TRUE(addDefaultLightingIfUnlit(s, cam));
+  // The sky box keeps out both the key light and the environment: a black sphere.
+  EXPECT_EQ(centrePixel(s, cam), 0.0f);
+  auto accel = makeAccelerator("embree", s);
+  ASSERT_TRUE(useHeadlightIfEnclosed(s, cam, *accel));
+  ASSERT_EQ(s.lights.size(), 1u);
+  EXPECT_EQ(s.lights[0].type, PunctualLightDesc::Type::kPoint);
+  // The sphere's nearest point, 4 from the camera, receives the key light's irradiance: a
+  // Lambertian albedo 0.5 facing the light sends 0.5 / pi x 2.5 back.
+  const float expected = 0.5f / kPi * EmissionSummary::kDefaultIrradiance;
+  EXPECT_NEAR(centrePixel(s, cam), expected, 0.02f * expected);
+}
+
+TEST(DefaultLighting, TheKeyLightStaysWhereItCanReachTheScene) {
+  Scene s = unlitSphereScene();
+  const CameraDesc cam = lookAt(Vec3(0, 0, 5), Vec3(0.0f));
+  ASSERT_TRUE(addDefaultLightingIfUnlit(s, cam));
+  auto accel = makeAccelerator("embree", s);
+  EXPECT_FALSE(useHeadlightIfEnclosed(s, cam, *accel));
+  EXPECT_EQ(s.lights[0].type, PunctualLightDesc::Type::kDirectional);
+  EXPECT_GT(centrePixel(s, cam), 0.1f);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 // them differ, and the tests below would show it. docs/wavefront.md.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -95,8 +96,8 @@ struct Case {
 
 class SameAsScalar : public testing::TestWithParam<Case> {};
 
-// Same random numbers per sample, same estimator: the same pixels, AOVs and Cryptomatte
-// included, and the same ray counts.
+// Same random numbers per sample, same estimator: the same pixels, AOVs (the light-path
+// layers among them) and Cryptomatte included, and the same ray counts.
 TEST_P(SameAsScalar, SamePixelsAovsAndRayCounts) {
   const Case c = GetParam();
   const Scene scene = sharedScene(c.scene);
@@ -111,6 +112,13 @@ TEST_P(SameAsScalar, SamePixelsAovsAndRayCounts) {
   EXPECT_EQ(scalar.stats.rays.secondaryRays, wave.stats.rays.secondaryRays);
   EXPECT_EQ(scalar.stats.rays.shadowRays, wave.stats.rays.shadowRays);
   EXPECT_GT(wave.stats.rays.shadowRays, 0u);
+  // The light-path layers were filled, not both left black: every scene has direct light.
+  const int direct = wave.film.findLayer("diffuse_direct");
+  ASSERT_GE(direct, 0);
+  float peak = 0;
+  for (int y = 0; y < job.size; ++y)
+    for (int x = 0; x < job.size; ++x) peak = std::max(peak, wave.film.pixel(direct, x, y)[0]);
+  EXPECT_GT(peak, 0.0f);
 }
 
 INSTANTIATE_TEST_SUITE_P(

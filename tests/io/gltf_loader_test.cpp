@@ -164,7 +164,7 @@ class TinyDoc {
   /// Adds raw bytes as bufferView + accessor; returns the accessor index.
   template <typename T>
   int add(const std::vector<T>& values, int componentType, const char* type,
-          bool normalized = false, int components = 1) {
+          bool normalized = false, int components = 1, const std::string& extra = "") {
     while (bytes_.size() % 4) bytes_ += '\0';
     size_t offset = bytes_.size();
     bytes_.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
@@ -174,7 +174,7 @@ class TinyDoc {
     accessors_ += sep(accessors_) + "{\"bufferView\":" + std::to_string(view) +
                   ",\"componentType\":" + std::to_string(componentType) + ",\"type\":\"" + type +
                   "\",\"count\":" + std::to_string(values.size() / size_t(components)) +
-                  (normalized ? ",\"normalized\":true" : "") + "}";
+                  (normalized ? ",\"normalized\":true" : "") + extra + "}";
     return accessorCount_++;
   }
   int vec3(const std::vector<float>& v) { return add(v, 5126, "VEC3", false, 3); }
@@ -506,6 +506,35 @@ TEST(GltfTiny, DegenerateTrianglesDroppedAndBadNormalsZeroed) {
   ASSERT_EQ(report.warnings.size(), 2u);
   EXPECT_NE(report.warnings[0].find("dropped 2 degenerate"), std::string::npos);
   EXPECT_NE(report.warnings[1].find("replaced 1 non-finite"), std::string::npos);
+}
+
+// glTF-Validator reports data outside an accessor's declared min/max as an error; rendering
+// survives it (TRay uses the data), so it is one warning naming the accessor, not a refusal, and
+// bounds that hold (also unnormalized ones of a normalized accessor, §5.1.7) say nothing.
+TEST(GltfTiny, DataOutsideMinMaxIsOneWarningNamingTheAccessor) {
+  const std::string rest = R"("scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],"meshes":[{
+      "primitives":[{"attributes":{"POSITION":0,"TEXCOORD_0":2},"indices":1}]}])";
+  for (const bool lying : {false, true}) {
+    TinyDoc d;
+    d.add<float>({0, 0, 0, 1, 0, 0, 0, 1, 0}, 5126, "VEC3", false, 3,
+                 lying ? R"(,"min":[0,0,0],"max":[1,0.5,0])" : R"(,"min":[0,0,0],"max":[1,1,0])");
+    d.indices({0, 1, 2});
+    d.add<uint8_t>({0, 0, 255, 0, 0, 255}, 5121, "VEC2", true, 2, R"(,"min":[0,0],"max":[255,255])");
+    LoadReport report;
+    const Scene s = d.load(rest, {}, &report);
+    ASSERT_EQ(s.meshes.size(), 1u);
+    expectNear(s.meshes[0].positions[2], {0, 1, 0});  // the data, not the declared bound
+    if (!lying) {
+      EXPECT_TRUE(report.warnings.empty()) << report.warnings[0];
+      continue;
+    }
+    ASSERT_EQ(report.warnings.size(), 1u);
+    EXPECT_NE(report.warnings[0].find("accessor 0 has data outside its declared min/max"),
+              std::string::npos)
+        << report.warnings[0];
+    EXPECT_NE(report.warnings[0].find("element 2 component 1"), std::string::npos)
+        << report.warnings[0];
+  }
 }
 
 TEST(GltfTiny, NanPositionNamesTheAccessor) {

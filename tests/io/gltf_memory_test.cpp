@@ -137,6 +137,58 @@ TEST(GltfMemory, BuffersNamingOneFileAreReadOnceAndSeeItsBytes) {
   EXPECT_EQ(report.memory.buffers, 36u);  // the file once, not three times
 }
 
+/// `json` as a .glb (glTF 2.0 §4.4) with `bin` as its BIN chunk (none if empty).
+std::string glbOf(std::string json, const std::string& bin) {
+  while (json.size() % 4) json += ' ';
+  auto u32 = [](uint64_t v) {
+    std::string out(4, '\0');
+    for (int i = 0; i < 4; ++i) out[size_t(i)] = char((v >> (8 * i)) & 0xff);
+    return out;
+  };
+  std::string body = u32(json.size()) + "JSON" + json;
+  if (!bin.empty()) body += u32(bin.size()) + std::string("BIN\0", 4) + bin;
+  return "glTF" + u32(2) + u32(12 + body.size()) + body;
+}
+
+// A .glb whose JSON names one external file in three buffers, beside its own BIN chunk: the
+// file is read once (the container is rebuilt around the merged JSON, since the BIN chunk it
+// copies is smaller than the two reads saved), and every mesh still sees its own bytes.
+TEST(GltfMemory, GlbBuffersNamingOneFileAreReadOnceBesideItsBinChunk) {
+  const fs::path dir = freshFolder("shared_glb");
+  const float triangle[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  std::string file(reinterpret_cast<const char*>(triangle), sizeof triangle);
+  file.resize(400, '\0');
+  std::ofstream(dir / "shared.bin", std::ios::binary) << file;
+  const float binTriangle[9] = {0, 0, 0, 2, 0, 0, 0, 2, 0};
+  const std::string bin(reinterpret_cast<const char*>(binTriangle), sizeof binTriangle);
+  std::string buffers = R"({"byteLength":36})", views, accessors, meshes, nodes, roots;
+  for (int i = 0; i < 4; ++i) {
+    const std::string c = i ? "," : "", n = std::to_string(i);
+    if (i) buffers += R"(,{"uri":"shared.bin","byteLength":400})";
+    views += c + R"({"buffer":)" + n + R"(,"byteLength":36})";
+    accessors += c + R"({"bufferView":)" + n + R"(,"componentType":5126,"count":3,"type":"VEC3"})";
+    meshes += c + R"({"primitives":[{"attributes":{"POSITION":)" + n + "}}]}";
+    nodes += c + R"({"mesh":)" + n + "}";
+    roots += c + n;
+  }
+  const std::string json = R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[)" + roots +
+                           R"(]}],"nodes":[)" + nodes + R"(],"meshes":[)" + meshes +
+                           R"(],"accessors":[)" + accessors + R"(],"bufferViews":[)" + views +
+                           R"(],"buffers":[)" + buffers + "]}";
+  std::ofstream(dir / "shared.glb", std::ios::binary) << glbOf(json, bin);
+  LoadReport report;
+  const Scene s = loadGltf((dir / "shared.glb").string(), {}, &report);
+  ASSERT_EQ(s.meshes.size(), 4u);
+  float xs = 0;
+  for (const auto& m : s.meshes) {
+    ASSERT_EQ(m.triangleCount(), 1u);
+    xs += m.positions[1].x;
+  }
+  EXPECT_EQ(xs, 2.0f + 1 + 1 + 1);  // the BIN chunk's triangle and the file's three times
+  // The file once (400) plus the BIN chunk (36) and its rebuilt copy (44): not 3 x 400.
+  EXPECT_EQ(report.memory.buffers, 480u);
+}
+
 TEST(GltfMemory, MaxMemoryRefusesHugeBuffersBeforeReadingThem) {
   // Issue 18: a 700-byte file naming one 1.5 GiB buffer four times read it into four vectors
   // and peaked at 3.3 GB before the 4 GiB cap on URI bytes refused it. A sparse file costs no

@@ -91,8 +91,9 @@ class AovExr : public ::testing::Test {
 };
 
 TEST_F(AovExr, DepthNormalPositionAndIdsAtKnownPixels) {
-  // Centre pixel, first sample's ray: the sphere's front point (0, 1, -3) up to the grid
-  // offset of a quarter pixel; its normal points back at the camera.
+  // Centre pixel: the sphere's front point (0, 1, -3) up to the grid offsets of a quarter pixel
+  // (depth and normal: means of the 16 samples; position: the first's); its normal points back
+  // at the camera.
   EXPECT_NEAR(image.at("Z", 16, 16), 3.0f, 0.01f);
   EXPECT_NEAR(image.at("N.Z", 16, 16), 1.0f, 0.01f);
   EXPECT_NEAR(image.at("P.Z", 16, 16), -3.0f, 0.01f);
@@ -100,10 +101,15 @@ TEST_F(AovExr, DepthNormalPositionAndIdsAtKnownPixels) {
   EXPECT_EQ(image.at("materialid.id", 16, 16), 1.0f);
   EXPECT_NEAR(image.at("albedo.G", 16, 16), 0.5f, 1e-3f);
   EXPECT_EQ(image.at("samples.count", 16, 16), 16.0f);
-  // Bottom row: the floor at depth t |d| along the first sample's ray, normal +Y.
-  const float h = 0.5f / 4;  // the first 4x4 grid sample: the centre of the pixel's first cell
-  Ray r = camera->generateRay(16 + h, 32 + h);
-  EXPECT_NEAR(image.at("Z", 16, 32), -r.o.y / r.d.y * length(r.d), 1e-3f);
+  // Bottom row: the floor at the mean depth t |d| of the 16 grid samples' rays (the 4x4 cell
+  // centres; box filter: equal weights), normal +Y.
+  double depth = 0;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) {
+      const Ray r = camera->generateRay(16 + (i + 0.5f) / 4, 32 + (j + 0.5f) / 4);
+      depth += -r.o.y / r.d.y * length(r.d) / 16;
+    }
+  EXPECT_NEAR(image.at("Z", 16, 32), depth, 1e-3f);
   EXPECT_NEAR(image.at("N.Y", 16, 32), 1.0f, 1e-3f);
   EXPECT_NEAR(image.at("P.Y", 16, 32), 0.0f, 1e-4f);
   EXPECT_EQ(image.at("objectid.id", 16, 32), 0.0f);

@@ -341,6 +341,26 @@ TEST(ImageOutput, FailedWriteLeavesTheExistingFileIntact) {
   EXPECT_EQ(filesIn(dir).size(), 1u);  // the partial temporary is gone
 }
 
+TEST(ImageOutput, WriteImagesIsAllOrNothing) {
+  // The second output fails (an unknown display for the PNG) after the first is written under
+  // its temporary name: neither file changes, no temporary is left.
+  const fs::path dir = tempFolder();
+  const fs::path exr = dir / "a.exr", png = dir / "a.png";
+  writeImages(testFilm(), {exr.string(), png.string()});
+  const std::string exrBefore = contents(exr), pngBefore = contents(png);
+  Film other = testFilm();
+  other.pixel(Film::kBeauty, 0, 0)[0] = 7.0f;
+  ImageOutputOptions bad;
+  bad.display = "no-such-display";
+  EXPECT_THROW(writeImages(other, {exr.string(), png.string()}, bad), Error);
+  EXPECT_EQ(contents(exr), exrBefore);
+  EXPECT_EQ(contents(png), pngBefore);
+  EXPECT_EQ(filesIn(dir).size(), 2u);
+  // Both written when both can be.
+  writeImages(other, {exr.string(), png.string()});
+  EXPECT_NE(contents(exr), exrBefore);
+}
+
 TEST(ImageOutput, ChannelNames) {
   EXPECT_EQ(exrChannelName({"", {"R"}, {}}, "R"), "R");
   EXPECT_EQ(exrChannelName({"Z", {"Z"}, {}}, "Z"), "Z");

@@ -1,6 +1,7 @@
 // Light sampling against closed forms: the irradiance that light samples estimate from
-// emissive triangles equals Lambert's polygon formula, the sampled pdf is the one pdf() gives
-// for MIS, lights are chosen in proportion to power, and emitters are one-sided.
+// emissive triangles equals Lambert's polygon formula with either light chooser, the sampled
+// pdf is the one pdf() gives for MIS, the power chooser picks in proportion to power, and
+// emitters are one-sided.
 #include "lights/light_set.h"
 
 #include <gtest/gtest.h>
@@ -39,30 +40,34 @@ TEST(LightSet, TriangleSamplesEstimateLambertsIrradianceWithTheirOwnPdf) {
   addTriangleLight(s, left[0], left[1], left[2], Color(1.0f));
   addTriangleLight(s, right[0], right[1], right[2], Color(3.0f));
   s.finalize();
-  const LightSet lights(s);
-  ASSERT_EQ(lights.size(), 2u);
-  ASSERT_EQ(lights.triangleCount(), 2u);
+  for (LightSamplerKind kind : {LightSamplerKind::kPower, LightSamplerKind::kBvh}) {
+    const LightSet lights(s, kind);
+    ASSERT_EQ(lights.size(), 2u);
+    ASSERT_EQ(lights.triangleCount(), 2u);
 
-  const Vec3 x(0.1f, 0, 0.2f), n(0, 1, 0);
-  const double expected = polygonIrradiance(x, n, left) + 3 * polygonIrradiance(x, n, right);
-  double sum = 0;
-  int counts[2] = {0, 0};
-  const int samples = 200000;
-  for (int i = 0; i < samples; ++i) {
-    Sampler u(0, uint32_t(i), 5);
-    const float uLight = u.next1D();
-    LightSample ls = lights.sample({x, n, false}, uLight, u.next2D());
-    ASSERT_TRUE(ls.valid());
-    const int light = ls.p.x < 0 ? 0 : 1;
-    ++counts[light];
-    EXPECT_NEAR(lights.pdf(light, {x, n, false}, ls.wi, ls.p, {0, -1, 0}), ls.pdf, 1e-4f * ls.pdf);
-    sum += ls.L.x * std::max(0.0f, dot(n, ls.wi)) / ls.pdf;
+    const Vec3 x(0.1f, 0, 0.2f), n(0, 1, 0);
+    const double expected = polygonIrradiance(x, n, left) + 3 * polygonIrradiance(x, n, right);
+    double sum = 0;
+    int counts[2] = {0, 0};
+    const int samples = 200000;
+    for (int i = 0; i < samples; ++i) {
+      Sampler u(0, uint32_t(i), 5);
+      const float uLight = u.next1D();
+      LightSample ls = lights.sample({x, n, false}, uLight, u.next2D());
+      ASSERT_TRUE(ls.valid());
+      const int light = ls.p.x < 0 ? 0 : 1;
+      ++counts[light];
+      EXPECT_NEAR(lights.pdf(light, {x, n, false}, ls.wi, ls.p, {0, -1, 0}), ls.pdf,
+                  1e-4f * ls.pdf);
+      sum += ls.L.x * std::max(0.0f, dot(n, ls.wi)) / ls.pdf;
+    }
+    EXPECT_NEAR(sum / samples, expected, 0.01 * expected);
+    if (kind == LightSamplerKind::kBvh) continue;  // it weighs by the receiver, not by power
+    // Power = radiance x area x pi: the pick frequencies follow it.
+    const double areaL = 0.5 * length(cross(left[1] - left[0], left[2] - left[0]));
+    const double areaR = 0.5 * length(cross(right[1] - right[0], right[2] - right[0]));
+    EXPECT_NEAR(counts[1] / double(samples), 3 * areaR / (areaL + 3 * areaR), 0.01);
   }
-  EXPECT_NEAR(sum / samples, expected, 0.01 * expected);
-  // Power = radiance x area x pi: the pick frequencies follow it.
-  const double areaL = 0.5 * length(cross(left[1] - left[0], left[2] - left[0]));
-  const double areaR = 0.5 * length(cross(right[1] - right[0], right[2] - right[0]));
-  EXPECT_NEAR(counts[1] / double(samples), 3 * areaR / (areaL + 3 * areaR), 0.01);
 }
 
 TEST(LightSet, EmittersAreOneSidedUnlessDoubleSided) {

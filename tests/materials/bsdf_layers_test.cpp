@@ -309,5 +309,36 @@ TEST(Sheen, BlackSheenIsTheBaseBitForBit) {
   }
 }
 
+// Light-path AOVs (core/light_paths.h) split eval by lobe kind: the parts sum to eval, and each
+// lobe lands in its kind (Lambert and sheen: diffuse; metal, coats, a dielectric's reflection:
+// specular; its refraction: transmission).
+TEST(EvalLobes, PartsSumToEvalAndLandInTheirKind) {
+  const Vec3 wo = direction(40), up = direction(30, 2.0f), down = -direction(25, 1.0f);
+  const Color base(0.7f, 0.5f, 0.3f);
+  std::vector<Bsdf> all;
+  for (const CoatCase& c : kCoats) all.push_back(coated(c, base, 0.7f));
+  for (const SheenCase& c : kSheens) all.push_back(sheened(c, base, Color(0.9f, 0.7f, 0.6f)));
+  for (float transmission : {0.0f, 0.5f, 1.0f})
+    all.emplace_back(material(0.0f, 0.4f, transmission, base), Frame::fromNormal({0, 0, 1}), 1.5f);
+  for (const Bsdf& b : all)
+    for (const Vec3& wi : {up, down}) {
+      const LobeSplit s = b.evalLobes(wo, wi);
+      const Color f = b.eval(wo, wi), sum = s.diffuse + s.specular + s.transmission;
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(sum[c], f[c], 1e-6f * std::max(1.0f, f[c]));
+      if (wi.z < 0) EXPECT_TRUE(isBlack(s.diffuse) && isBlack(s.specular));
+      if (wi.z > 0) EXPECT_TRUE(isBlack(s.transmission));
+    }
+  // Pure kinds: Lambert is all diffuse, a metal all specular, rough glass all specular above
+  // and all transmission below.
+  const Frame z = Frame::fromNormal({0, 0, 1});
+  const LobeSplit lambert = Bsdf(material(0, 1, 0, base), z, 1.5f).evalLobes(wo, up);
+  EXPECT_TRUE(!isBlack(lambert.diffuse) && isBlack(lambert.specular));
+  const LobeSplit metal = Bsdf(material(1, 0.4f, 0, base), z, 1.5f).evalLobes(wo, up);
+  EXPECT_TRUE(isBlack(metal.diffuse) && !isBlack(metal.specular));
+  const Bsdf glass(material(0, 0.4f, 1, base), z, 1.5f);
+  EXPECT_FALSE(isBlack(glass.evalLobes(wo, down).transmission));
+  EXPECT_FALSE(isBlack(glass.evalLobes(wo, up).specular));
+}
+
 }  // namespace
 }  // namespace tray

@@ -1,0 +1,147 @@
+// The light BVH chooser: its probabilities form a distribution at every receiver, sampling
+// reports exactly the pmf that MIS later asks for, choices follow the pmf, and a BSDF ray that
+// hits an emitter gets the pdf next-event estimation gave the same direction.
+#include "lights/bvh_light_sampler.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "accel/registry.h"
+#include "lights/light_set.h"
+#include "tests/light_scenes.h"
+
+namespace tray {
+namespace {
+
+using namespace tray::test;
+
+/// Every kind of light: the many-lights scene plus a sun and a sky.
+Scene everyKindOfLight() {
+  Scene s = manyLightsScene();
+  PunctualLightDesc sun;
+  sun.type = PunctualLightDesc::Type::kDirectional;
+  sun.direction = normalize(Vec3(0.3f, -1, 0.2f));
+  sun.intensity = Color(2.0f);
+  s.lights.push_back(sun);
+  s.environment.background = Color(0.3f);
+  return s;
+}
+
+std::vector<LightBounds> boundsOf(const LightSet& lights) {
+  std::vector<LightBounds> b;
+  for (size_t i = 0; i < lights.size(); ++i) b.push_back(lights.light(i).bounds());
+  return b;
+}
+
+struct Receivers {
+  std::mt19937 gen{3};
+  float u() { return std::uniform_real_distribution<float>(0, 1)(gen); }
+  LightSampleContext next() {
+    Vec3 n;
+    do n = Vec3(2 * u() - 1, 2 * u() - 1, 2 * u() - 1);
+    while (lengthSquared(n) > 1 || lengthSquared(n) < 1e-2f);
+    return {{10 * u() - 5, 2.5f * u() - 0.5f, 10 * u() - 5}, normalize(n), false, u() < 0.3f};
+  }
+};
+
+TEST(BvhLightSampler, PmfsSumToOneAtRandomReceivers) {
+  Scene s = everyKindOfLight();
+  s.finalize();
+  const LightSet lights(s, LightSamplerKind::kBvh);
+  ASSERT_GT(lights.size(), 260u);
+  Receivers r;
+  int none = 0;
+  for (int i = 0; i < 400; ++i) {
+    const LightSampleContext ctx = r.next();
+    double sum = 0;
+    for (size_t l = 0; l < lights.size(); ++l) sum += lights.pmf(ctx, int(l));
+    if (sum == 0) {  // then sampling finds nothing either
+      ++none;
+      EXPECT_FALSE(lights.sample(ctx, 0.5f, {0.5f, 0.5f}).valid());
+      continue;
+    }
+    EXPECT_NEAR(sum, 1.0, 1e-4) << "receiver " << i;
+  }
+  EXPECT_LT(none, 40);
+}
+
+TEST(BvhLightSampler, SamplingReportsThePmfThatQueriesGiveBitForBit) {
+  Scene s = everyKindOfLight();
+  s.finalize();
+  const LightSet lights(s, LightSamplerKind::kPower);
+  const BvhLightSampler sampler(boundsOf(lights));
+  EXPECT_GT(sampler.depth(), 7);
+  Receivers r;
+  for (int i = 0; i < 2000; ++i) {
+    const LightSampleContext ctx = r.next();
+    float pmf;
+    const int light = sampler.sample(ctx, r.u(), pmf);
+    if (light < 0) continue;
+    EXPECT_GT(pmf, 0.0f);
+    EXPECT_EQ(pmf, sampler.pmf(ctx, light)) << "receiver " << i << ", light " << light;
+  }
+}
+
+TEST(BvhLightSampler, ChoicesFollowThePmf) {
+  Scene s = everyKindOfLight();
+  s.finalize();
+  const LightSet lights(s, LightSamplerKind::kPower);
+  const BvhLightSampler sampler(boundsOf(lights));
+  const LightSampleContext ctx{{0.3f, 0, 0.2f}, {0, 1, 0}};
+  // Stratified u: each light's share of [0,1) is its pmf, so counts match it to 1/N.
+  const int n = 1 << 18;
+  std::vector<int> counts(lights.size(), 0);
+  for (int i = 0; i < n; ++i) {
+    float pmf;
+    const int light = sampler.sample(ctx, (float(i) + 0.5f) / n, pmf);
+    ASSERT_GE(light, 0);
+    ++counts[size_t(light)];
+  }
+  int chosen = 0;
+  for (size_t l = 0; l < lights.size(); ++l) {
+    EXPECT_NEAR(counts[l] / double(n), sampler.pmf(ctx, int(l)), 2e-5) << "light " << l;
+    chosen += counts[l] > 0;
+  }
+  EXPECT_GT(chosen, 50);  // not a degenerate distribution
+}
+
+TEST(BvhLightSampler, ABsdfRayThatHitsAnEmitterGetsTheNextEventPdf) {
+  Scene s = everyKindOfLight();
+  s.finalize();
+  const LightSet lights(s, LightSamplerKind::kBvh);
+  auto accel = makeAccelerator("embree", s);
+  Receivers r;
+  int hits = 0;
+  for (int i = 0; i < 3000; ++i) {
+    // Receivers on the ground, as the path tracer shades them.
+    const LightSampleContext ctx{{10 * r.u() - 5, 0, 10 * r.u() - 5}, {0, 1, 0}};
+    const LightSample ls = lights.sample(ctx, r.u(), {r.u(), r.u()});
+    if (!ls.valid() || ls.delta || ls.infinite) continue;
+    Hit hit;
+    if (!accel->intersect(spawnRay(ctx.p, ctx.n, ls.wi), hit)) continue;
+    const int light = lights.lightAt(hit.primitive, hit.triangle);
+    if (light < 0) continue;  // an occluder in between
+    const Ray ray = spawnRay(ctx.p, ctx.n, ls.wi);
+    const SurfacePoint sp = s.surface(ray, hit);
+    if (length(sp.p - ls.p) > 1e-3f) continue;  // another emitter in front of the sampled one
+    ++hits;
+    EXPECT_NEAR(lights.pdf(light, ctx, ls.wi, sp.p, sp.ng), ls.pdf, 2e-3f * ls.pdf) << i;
+  }
+  EXPECT_GT(hits, 300);
+}
+
+TEST(BvhLightSampler, OneLightIsChosenWithProbabilityOneAndNoLightNever) {
+  const LightSampleContext ctx{{0, 0, 0}, {0, 1, 0}};
+  const BvhLightSampler one({LightBounds::ambient(1.0f)});
+  float pmf;
+  EXPECT_EQ(one.sample(ctx, 0.99f, pmf), 0);
+  EXPECT_EQ(pmf, 1.0f);
+  const BvhLightSampler none({});
+  EXPECT_EQ(none.sample(ctx, 0.5f, pmf), -1);
+  EXPECT_EQ(pmf, 0.0f);
+  EXPECT_EQ(none.pmf(ctx, 0), 0.0f);
+}
+
+}  // namespace
+}  // namespace tray
