@@ -92,7 +92,9 @@ void Integrator::addSample(PixelSums& sums, IdCoverage* coverage, AovSums* aovSu
   }
 }
 
-uint32_t Integrator::accumulate(int x, int y, int begin, int end, PixelSums& sums,
+// Flattened: the sampler, camera ray and addSample pieces inline here as in one function
+// (measured: their calls cost the scalar path about 0.5% of its instructions).
+[[gnu::flatten]] uint32_t Integrator::accumulate(int x, int y, int begin, int end, PixelSums& sums,
                                 PrimaryHit& first, RayStats& stats, IdCoverage* coverage,
                                 AovSums* aovSums) const {
   // Filter-weighted sums, normalised by the weight sum at the end (pbrt-v4 8.8's weighted

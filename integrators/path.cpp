@@ -26,10 +26,10 @@ class PathIntegrator final : public Integrator {
     if (estimator_.maxDepth() == 0) return Color(0.0f);
     PathState state = PathState::camera(cameraRay, pixelX_, pixelY_,
                                          primary ? primary->lightPaths : nullptr);
+    ShadowQuery shadow;  // step() sets what resolveShadow reads: not re-initialised per vertex
     for (;;) {
       Hit hit;
       const bool found = ctx_.accel.intersect(state.ray, hit);
-      ShadowQuery shadow;
       bool wantsShadow;
       const PathStep step =
           estimator_.step(state, sampler, found, hit, shadow, wantsShadow, stats, primary);

@@ -93,7 +93,22 @@ class PathEstimator {
   PathStep scatter(PathState& st, const Vertex& v, const Bsdf& bsdf, Sampler& sampler,
                    RayStats& stats) const;
   /// Adds `c` to the path's radiance (clamped when indirect) and returns what was added.
-  Color add(PathState& state, Color c, const char* what, bool indirect, int depth) const;
+  /// Firefly clamping (--clamp-indirect): light that reached the camera path after scattering
+  /// off a diffuse or glossy vertex earlier than the one gathering it (caustics,
+  /// interreflection) is "indirect". Each such contribution is scaled down, keeping its hue, so
+  /// that its largest component is at most clampIndirect_: biased (energy is lost) but bounded
+  /// per sample, the "clamp indirect" of Cycles and Arnold. Direct light at the first non-delta
+  /// vertex, and emitters seen directly or through mirrors and glass, are never clamped. Here,
+  /// not in the .cpp, so that the drivers' resolveShadow inlines it.
+  Color add(PathState& state, Color c, const char* what, bool indirect, int depth) const {
+    if (!isFinite(c)) reportNan(state, what, depth);
+    if (clampIndirect_ > 0 && indirect) {  // the constant first: a predictable branch
+      const float peak = maxComponent(c);
+      if (peak > clampIndirect_) c *= clampIndirect_ / peak;
+    }
+    state.L += c;
+    return c;
+  }
   void escape(PathState& state) const;
   void reportNan(const PathState& state, const char* what, int depth) const;
   static constexpr int kMaxNanReports = 10;
