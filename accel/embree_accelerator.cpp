@@ -9,8 +9,11 @@
 #include <new>
 #include <string>
 #include <unordered_map>
+#include <vector>
 
 #include "accel/embree_alpha_filter.h"
+#include "accel/embree_batch.h"
+#include "accel/embree_rays.h"
 #include "core/error.h"
 #include "core/scene.h"
 
@@ -32,25 +35,6 @@ struct AllHitsContext {
   RTCIntersectContext base;
   std::vector<Hit>* hits;
 };
-
-Hit hitFromEmbree(const RTCHit& h, float t) {
-  Hit hit;
-  hit.t = t;
-  if (h.instID[0] != RTC_INVALID_GEOMETRY_ID) {
-    hit.primitive = h.instID[0];
-    hit.triangle = h.primID;
-    hit.b1 = h.u;
-    hit.b2 = h.v;
-  } else {
-    // User geometry: primID carries the material override + 1 (0: none), Ng the object-space
-    // normal and u, v the shape's uv (see shapeIntersect).
-    hit.primitive = h.geomID;
-    hit.normal = {h.Ng_x, h.Ng_y, h.Ng_z};
-    hit.uv = {h.u, h.v};
-    hit.material = int(h.primID) - 1;
-  }
-  return hit;
-}
 
 void allHitsFilter(const RTCFilterFunctionNArguments* args) {
   auto* ctx = reinterpret_cast<const AllHitsContext*>(args->context);
@@ -150,7 +134,7 @@ void shapeOccluded(const RTCOccludedFunctionNArguments* args) {
 
 class EmbreeAccelerator final : public Accelerator {
  public:
-  explicit EmbreeAccelerator(const Scene& scene) : scene_(scene) {
+  EmbreeAccelerator(const Scene& scene, EmbreeBatch batch) : scene_(scene), batch_(batch) {
     device_ = rtcNewDevice(nullptr);
     if (!device_) throw Error("Embree: cannot create a device", Error::Kind::kRender);
     rtcSetDeviceErrorFunction(device_, onError, this);
@@ -178,6 +162,19 @@ class EmbreeAccelerator final : public Accelerator {
     toEmbree(ray, r);
     rtcOccluded1(top_, &ctx.base, &r);
     return r.tfar < 0;
+  }
+
+  // Batches through the stream or packet API (accel/embree_batch.cpp). User geometry's
+  // callbacks read one ray (N = 1), so scenes with analytic shapes, and EmbreeBatch::kLoop,
+  // trace ray by ray.
+  void intersectBatch(std::span<const Ray> rays, std::span<Hit> hits,
+                      std::span<uint8_t> found) const override {
+    if (!streamable()) return Accelerator::intersectBatch(rays, hits, found);
+    embreeIntersectBatch(top_, scene_, batch_, rays, hits, found);
+  }
+  void occludedBatch(std::span<const Ray> rays, std::span<uint8_t> blocked) const override {
+    if (!streamable()) return Accelerator::occludedBatch(rays, blocked);
+    embreeOccludedBatch(top_, scene_, batch_, rays, blocked);
   }
 
   void allHits(const Ray& ray, std::vector<Hit>& hits) const override {
@@ -216,29 +213,7 @@ class EmbreeAccelerator final : public Accelerator {
     if (!error_.empty()) throw Error("Embree: " + error_, Error::Kind::kRender);
   }
 
-  /// Only the fields Embree reads (rtcIntersect1 docs): zero-filling the whole 80-byte RTCRayHit
-  /// for each of a path's rays costs more than it seems.
-  static void toEmbree(const Ray& r, RTCRay& ray) {
-    ray.org_x = r.o.x;
-    ray.org_y = r.o.y;
-    ray.org_z = r.o.z;
-    ray.tnear = r.tmin;
-    ray.dir_x = r.d.x;
-    ray.dir_y = r.d.y;
-    ray.dir_z = r.d.z;
-    ray.time = 0.0f;
-    ray.tfar = r.tmax;
-    ray.mask = 0xffffffffu;
-    ray.id = 0;
-    ray.flags = 0;
-  }
-  static RTCRayHit toEmbree(const Ray& r) {
-    RTCRayHit rh;
-    toEmbree(r, rh.ray);
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    return rh;
-  }
+  bool streamable() const { return batch_ != EmbreeBatch::kLoop && !hasUserGeometry_; }
 
   /// A new Embree-owned buffer of `count` items of `stride` bytes, filled from `data`.
   void copyToEmbree(RTCGeometry g, RTCBufferType type, RTCFormat format, const void* data,
@@ -290,6 +265,7 @@ class EmbreeAccelerator final : public Accelerator {
         rtcSetGeometryInstancedScene(g, meshScene(p.mesh));
         rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, &p.toWorld.m.m[0][0]);
       } else {
+        hasUserGeometry_ = true;
         userData_[i] = {&scene_, i};
         g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_USER);
         rtcSetGeometryUserPrimitiveCount(g, 1);
@@ -307,6 +283,8 @@ class EmbreeAccelerator final : public Accelerator {
   }
 
   const Scene& scene_;
+  EmbreeBatch batch_;
+  bool hasUserGeometry_ = false;
   RTCDevice device_ = nullptr;
   RTCScene top_ = nullptr;
   std::unordered_map<uint32_t, RTCScene> meshScenes_;
@@ -320,7 +298,11 @@ class EmbreeAccelerator final : public Accelerator {
 }  // namespace
 
 std::unique_ptr<Accelerator> makeEmbreeAccelerator(const Scene& scene) {
-  return std::make_unique<EmbreeAccelerator>(scene);
+  return makeEmbreeAccelerator(scene, EmbreeBatch::kPacket8);
+}
+
+std::unique_ptr<Accelerator> makeEmbreeAccelerator(const Scene& scene, EmbreeBatch batch) {
+  return std::make_unique<EmbreeAccelerator>(scene, batch);
 }
 
 }  // namespace tray

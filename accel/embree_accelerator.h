@@ -5,8 +5,21 @@
 
 namespace tray {
 
+/// How Accelerator::intersectBatch/occludedBatch reach Embree (bench/path_bench measures them).
+/// (The stream API's coherent flag is not offered: with Embree 3.13.5 it did not return on
+/// the Cornell box, even for 256 rays; docs/wavefront.md.)
+enum class EmbreeBatch {
+  kLoop,     ///< rtcIntersect1 per ray, as the default implementation
+  kStream,   ///< rtcIntersect1M over the whole batch, flagged incoherent
+  kPacket8,  ///< rtcIntersect8 over consecutive groups of 8 rays
+};
+
 /// Embree 3 traversal: meshes as triangle geometry built once per mesh and placed by instances;
 /// analytic shapes as user geometry calling Scene::intersectShape.
+/// Batches as 8-wide packets (EmbreeBatch::kPacket8: the fastest of the three in path_bench's
+/// --embree-modes on the Cornell box and MetalRoughSpheresNoTextures, docs/wavefront.md).
 std::unique_ptr<Accelerator> makeEmbreeAccelerator(const Scene& scene);
+/// Batches use `batch` where the scene has no user geometry (benchmarks compare them).
+std::unique_ptr<Accelerator> makeEmbreeAccelerator(const Scene& scene, EmbreeBatch batch);
 
 }  // namespace tray

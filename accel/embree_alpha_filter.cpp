@@ -15,7 +15,9 @@ void alphaFilter(const RTCFilterFunctionNArguments* args) {
     const uint32_t primitive = RTCHitN_instID(args->hit, args->N, i, 0);
     const uint32_t triangle = RTCHitN_primID(args->hit, args->N, i);
     const float u = RTCHitN_u(args->hit, args->N, i), v = RTCHitN_v(args->hit, args->N, i);
-    if (!alphaAccepts(*ctx->scene, *ctx->worldRay, primitive, triangle, u, v)) args->valid[i] = 0;
+    const Ray& ray =
+        ctx->worldRay ? *ctx->worldRay : ctx->worldRays[RTCRayN_id(args->ray, args->N, i)];
+    if (!alphaAccepts(*ctx->scene, ray, primitive, triangle, u, v)) args->valid[i] = 0;
   }
 }
 

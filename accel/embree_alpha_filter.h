@@ -13,8 +13,13 @@ namespace tray {
 struct AlphaRayContext {
   RTCIntersectContext base;  ///< first: Embree sees a pointer to it
   const Scene* scene;
-  const Ray* worldRay;
-  AlphaRayContext(const Scene& s, const Ray& r) : scene(&s), worldRay(&r) {
+  const Ray* worldRay;   ///< the ray of a single-ray query
+  const Ray* worldRays;  ///< a stream query's rays, indexed by each RTCRay's id
+  AlphaRayContext(const Scene& s, const Ray& r) : scene(&s), worldRay(&r), worldRays(nullptr) {
+    rtcInitIntersectContext(&base);
+  }
+  AlphaRayContext(const Scene& s, const Ray* rays)
+      : scene(&s), worldRay(nullptr), worldRays(rays) {
     rtcInitIntersectContext(&base);
   }
 };

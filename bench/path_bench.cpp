@@ -1,6 +1,8 @@
-// Path tracing throughput on the Cornell box (512x512, 64 spp, max depth 8), against raw
-// Embree traversal of incoherent rays measured in the same run on the same threads.
+// Path tracing throughput on the Cornell box (512x512, 64 spp, max depth 8): the scalar
+// `path` and `path-wavefront` side by side, against raw Embree traversal of incoherent rays,
+// measured in the same run on the same threads.
 // Usage: path_bench [scene.gltf] [threads] [size] [spp] [--accel NAME] [--no-replay]
+//   [--embree-modes]
 //   (default: the shared Cornell box, 2 threads, 512, 64; smaller runs serve for profiling)
 #include <sys/resource.h>
 #include <tbb/parallel_for.h>
@@ -13,9 +15,11 @@
 #include <filesystem>
 #include <mutex>
 
+#include "accel/embree_accelerator.h"
 #include "accel/registry.h"
 #include "bench/image_error.h"
 #include "core/error.h"
+#include "core/render_setup.h"
 #include "core/renderer.h"
 #include "core/sampler.h"
 #include "core/sampling.h"
@@ -129,65 +133,157 @@ void equalError(const Scene& scene, const Accelerator& accel, const std::string&
               mse[0] / mse[1], rate[1] * mse[0] / mse[1]);
 }
 
-int run(const std::string& path, const std::string& accelName, int threads, int size, int spp,
-        bool replay, const std::string& sampler, bool error) {
+/// Forwards to an accelerator and sums the time spent in its batched queries (a wavefront
+/// integrator's only queries): its share of the render is the traversal fraction, measured in
+/// the render itself. Each batch is thousands of rays, so the clock reads cost nothing.
+class BatchTimingAccelerator final : public Accelerator {
+ public:
+  explicit BatchTimingAccelerator(const Accelerator& inner) : inner_(inner) {}
+  bool intersect(const Ray& ray, Hit& hit) const override { return inner_.intersect(ray, hit); }
+  bool occluded(const Ray& ray) const override { return inner_.occluded(ray); }
+  void allHits(const Ray& ray, std::vector<Hit>& hits) const override { inner_.allHits(ray, hits); }
+  void intersectBatch(std::span<const Ray> rays, std::span<Hit> hits,
+                      std::span<uint8_t> found) const override {
+    const auto start = std::chrono::steady_clock::now();
+    inner_.intersectBatch(rays, hits, found);
+    add(closestNs, start);
+  }
+  void occludedBatch(std::span<const Ray> rays, std::span<uint8_t> blocked) const override {
+    const auto start = std::chrono::steady_clock::now();
+    inner_.occludedBatch(rays, blocked);
+    add(shadowNs, start);
+  }
+  mutable std::atomic<int64_t> closestNs{0}, shadowNs{0};
+
+ private:
+  static void add(std::atomic<int64_t>& sum, std::chrono::steady_clock::time_point start) {
+    sum += std::chrono::duration_cast<std::chrono::nanoseconds>(
+               std::chrono::steady_clock::now() - start)
+               .count();
+  }
+  const Accelerator& inner_;
+};
+
+/// One integrator's render, its CPU time and (wavefront) the time in batched traversal.
+struct Measured {
+  RenderStats stats;
+  double cpu = 0, samples = 0, traversal = -1;
+  double perCpuSecond() const { return samples / cpu * 1e-6; }
+};
+
+Measured measure(const Scene& scene, const Accelerator& accel, const Camera& camera,
+                 RenderSettings settings, const std::string& integrator, int size, int threads) {
+  settings.set("integrator", integrator);
+  BatchTimingAccelerator timed(accel);
+  RenderContext ctx{scene, timed, camera, settings, size, size};
+  auto made = makeIntegrator(ctx);
+  Film film(size, size);
+  RenderOptions options;
+  options.threads = threads;
+  Measured m;
+  const double cpuStart = cpuSeconds();
+  m.stats = renderImage(*made, film, options);
+  m.cpu = cpuSeconds() - cpuStart;
+  m.samples = double(size) * size * settings.getInt("spp");
+  const double batched = double(timed.closestNs + timed.shadowNs) * 1e-9;
+  if (batched > 0) m.traversal = batched / (m.stats.seconds * threads);
+  return m;
+}
+
+void print(const std::string& integrator, const Measured& m, int threads) {
+  std::printf("  %s\n", integrator.c_str());
+  std::printf("    time            %.2f s\n", m.stats.seconds);
+  std::printf("    Msamples/s      %.3f\n", m.samples / m.stats.seconds * 1e-6);
+  std::printf(
+      "    CPU time        %.2f s: %.3f Msamples per CPU-second (x %d threads = %.3f "
+      "Msamples/s on idle cores)\n",
+      m.cpu, m.perCpuSecond(), threads, m.perCpuSecond() * threads);
+  std::printf("    Mrays/s         %.2f, %.2f Mrays per CPU-second (camera %.1fM, bounce %.1fM, "
+              "shadow %.1fM)\n",
+              m.stats.mraysPerSecond(), m.stats.rays.total() / m.cpu * 1e-6,
+              m.stats.rays.cameraRays * 1e-6, m.stats.rays.secondaryRays * 1e-6,
+              m.stats.rays.shadowRays * 1e-6);
+  if (m.traversal >= 0)
+    std::printf("    traversal       %.0f%% of the render (time in batched queries)\n",
+                100 * m.traversal);
+  std::printf("    NaN samples     %llu\n", (unsigned long long)m.stats.rays.nanSamples);
+}
+
+/// A scene from its file; one without lights (most glTF samples) gets a white sky, so that
+/// paths bounce as under an environment rather than ending black.
+Scene benchScene(const std::string& path) {
   Scene scene = loadGltf(path);
-  auto camera = Camera::create(scene.cameras.at(0), size, size);
+  bool lit = !scene.lights.empty();
+  for (const Material& m : scene.materials) lit = lit || !isBlack(m.emissive);
+  if (!lit) scene.environment.background = Color(1.0f);
+  return scene;
+}
+
+/// The scalar path tracer's rays, recorded on a quarter of the pixels, then traced again with
+/// nothing else: the share of its render that is traversal.
+void replay(const Scene& scene, const Accelerator& accel, const RenderSettings& settings,
+            int size) {
+  RecordingAccelerator recorder(accel);
+  const int small = std::max(16, size / 4);
+  auto smallCamera = Camera::create(chooseCamera(scene, -1), small, small);
+  RenderContext smallCtx{scene, recorder, *smallCamera, settings, small, small};
+  auto smallIntegrator = makeIntegrator(smallCtx);
+  Film smallFilm(small, small);
+  RenderOptions one;
+  one.threads = 1;
+  renderImage(*smallIntegrator, smallFilm, one);
+  // Timed again without the recorder's lock, for the share.
+  RenderContext plainCtx{scene, accel, *smallCamera, settings, small, small};
+  RenderStats smallStats = renderImage(*makeIntegrator(plainCtx), smallFilm, one);
+  double closest = replaySeconds(accel, recorder.closest, false, 1);
+  double shadowSeconds = replaySeconds(accel, recorder.shadow, true, 1);
+  std::printf(
+      "    replay          %.2f s render (1 thread, %dx%d): %.2f s closest hits "
+      "(%.1f Mrays/s), %.2f s shadow rays (%.1f Mrays/s): traversal %.0f%%\n",
+      smallStats.seconds, small, small, closest, recorder.closest.size() / closest * 1e-6,
+      shadowSeconds, recorder.shadow.size() / shadowSeconds * 1e-6,
+      100 * (closest + shadowSeconds) / smallStats.seconds);
+}
+
+int run(const std::string& path, const std::string& accelName, int threads, int size, int spp,
+        bool replayRays, const std::string& sampler, bool error, bool embreeModes) {
+  Scene scene = benchScene(path);
+  auto camera = Camera::create(chooseCamera(scene, -1), size, size);
   auto accel = makeAccelerator(accelName, scene);
   RenderSettings settings;
   settings.set("integrator", "path");
   settings.set("spp", spp);
   settings.set("max-depth", 8);
   settings.set("sampler", sampler);
-  RenderContext ctx{scene, *accel, *camera, settings, size, size};
-  auto integrator = makeIntegrator(ctx);
-  Film film(size, size);
-  RenderOptions options;
-  options.threads = threads;
-  const double cpuStart = cpuSeconds();
-  RenderStats stats = renderImage(*integrator, film, options);
-  const double cpu = cpuSeconds() - cpuStart;
-  double samples = double(size) * size * spp;
+  std::printf("path tracing %s: %dx%d, %d spp, max depth 8, %d threads, %s sampler, %s\n",
+              path.c_str(), size, size, spp, threads, sampler.c_str(), accelName.c_str());
+  const Measured scalar = measure(scene, *accel, *camera, settings, "path", size, threads);
+  print("path (scalar)", scalar, threads);
+  if (replayRays) replay(scene, *accel, settings, size);
+  const Measured wave = measure(scene, *accel, *camera, settings, "path-wavefront", size, threads);
+  print("path-wavefront", wave, threads);
+  std::printf("  wavefront / scalar: %.2fx samples per CPU-second\n",
+              wave.perCpuSecond() / scalar.perCpuSecond());
+  if (embreeModes && accelName == "embree") {
+    // How the wavefront's batches reach Embree: per ray, or the stream API either way.
+    const std::pair<const char*, EmbreeBatch> modes[] = {
+        {"rtcIntersect1 loop", EmbreeBatch::kLoop},
+        {"rtcIntersect1M stream", EmbreeBatch::kStream},
+        {"rtcIntersect8 packets", EmbreeBatch::kPacket8}};
+    for (const auto& [name, mode] : modes) {
+      auto a = makeEmbreeAccelerator(scene, mode);
+      const Measured m = measure(scene, *a, *camera, settings, "path-wavefront", size, threads);
+      std::printf("  wavefront, %-26s %.3f Msamples per CPU-second (%.2fx scalar), traversal "
+                  "%.0f%%\n",
+                  name, m.perCpuSecond(), m.perCpuSecond() / scalar.perCpuSecond(),
+                  100 * m.traversal);
+    }
+  }
   double raw = rawTraversalMrays(*accel, scene.bounds(), threads);
-  std::printf("path tracing %s: %dx%d, %d spp, max depth 8, %d threads, %s sampler\n", path.c_str(),
-              size, size, spp, threads, sampler.c_str());
-  std::printf("  time            %.2f s\n", stats.seconds);
-  std::printf("  Msamples/s      %.3f\n", samples / stats.seconds * 1e-6);
-  std::printf(
-      "  CPU time        %.2f s: %.3f Msamples per CPU-second (x %d threads = %.3f "
-      "Msamples/s on idle cores)\n",
-      cpu, samples / cpu * 1e-6, threads, samples / cpu * 1e-6 * threads);
-  std::printf("  Mrays/s         %.2f (camera %.1fM, bounce %.1fM, shadow %.1fM)\n",
-              stats.mraysPerSecond(), stats.rays.cameraRays * 1e-6, stats.rays.secondaryRays * 1e-6,
-              stats.rays.shadowRays * 1e-6);
   std::printf("  raw %-11s %.2f Mrays/s (random incoherent closest hits)\n", accelName.c_str(),
               raw);
-  std::printf("  path / raw      %.2f\n", stats.mraysPerSecond() / raw);
-  if (replay) {
-    // The same path tracer on a quarter of the pixels, its rays recorded, then those exact
-    // rays traced again with nothing else: the share of the render that is traversal.
-    RecordingAccelerator recorder(*accel);
-    const int small = std::max(16, size / 4);
-    auto smallCamera = Camera::create(scene.cameras.at(0), small, small);
-    RenderContext smallCtx{scene, recorder, *smallCamera, settings, small, small};
-    auto smallIntegrator = makeIntegrator(smallCtx);
-    Film smallFilm(small, small);
-    RenderOptions one;
-    one.threads = 1;
-    renderImage(*smallIntegrator, smallFilm, one);
-    // Timed again without the recorder's lock, for the share.
-    RenderContext plainCtx{scene, *accel, *smallCamera, settings, small, small};
-    RenderStats smallStats = renderImage(*makeIntegrator(plainCtx), smallFilm, one);
-    double closest = replaySeconds(*accel, recorder.closest, false, 1);
-    double shadowSeconds = replaySeconds(*accel, recorder.shadow, true, 1);
-    std::printf(
-        "  replay          %.2f s render (1 thread, %dx%d): %.2f s closest hits "
-        "(%.1f Mrays/s), %.2f s shadow rays (%.1f Mrays/s): traversal %.0f%%\n",
-        smallStats.seconds, small, small, closest, recorder.closest.size() / closest * 1e-6,
-        shadowSeconds, recorder.shadow.size() / shadowSeconds * 1e-6,
-        100 * (closest + shadowSeconds) / smallStats.seconds);
-  }
-  std::printf("  NaN samples     %llu\n", (unsigned long long)stats.rays.nanSamples);
+  std::printf("  path / raw      %.2f, path-wavefront / raw %.2f\n",
+              scalar.stats.mraysPerSecond() / raw, wave.stats.mraysPerSecond() / raw);
   const std::string refPath = path.substr(0, path.rfind('.')) + ".ref.exr";
   if (error) {
     RenderSettings at64 = settings;
@@ -201,7 +297,7 @@ int main(int argc, char** argv) {
   std::string path = std::string(TRAY_SOURCE_DIR) + "/../shared/reference/cornell-box.gltf";
   std::string accelName = "embree";
   int threads = 2, size = 512, spp = 64;
-  bool replay = true, error = true;
+  bool replay = true, error = true, embreeModes = false;
   std::string sampler = "independent";
   CLI::App app{"Path tracing throughput (Msamples/s, Mrays/s) against bare traversal"};
   app.add_option("scene", path, "glTF scene (default: the shared Cornell box)");
@@ -214,9 +310,11 @@ int main(int argc, char** argv) {
   app.add_flag("!--no-replay", replay, "skip the replay of the path's rays (profiling runs)");
   app.add_flag("!--no-error", error,
                "skip the equal-error comparison (needs SCENE.ref.exr beside the scene)");
+  app.add_flag("--embree-modes", embreeModes,
+               "also time path-wavefront with each way of batching Embree queries");
   CLI11_PARSE(app, argc, argv);
   try {
-    return run(path, accelName, threads, size, spp, replay, sampler, error);
+    return run(path, accelName, threads, size, spp, replay, sampler, error, embreeModes);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "path_bench: %s\n", e.what());
     return 2;

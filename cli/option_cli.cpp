@@ -2,6 +2,7 @@
 
 #include <cctype>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/error.h"
@@ -11,21 +12,34 @@ namespace tray {
 namespace {
 
 /// One command-line option: the first spec of its name, and the help of every declaration.
+/// Integrators declaring it alike (path and path-wavefront share their options) share one
+/// entry: "path, path-wavefront: ...".
 struct CliOption {
   OptionSpec spec;
-  std::string help;
+  std::vector<std::pair<std::string, std::string>> parts;  ///< (owners, description)
+  std::string help() const {
+    std::string h;
+    for (const auto& [owners, text] : parts)
+      h += (h.empty() ? "" : "; ") + (owners.empty() ? "" : owners + ": ") + text;
+    return h;
+  }
 };
 
 std::vector<CliOption> cliOptions() {
   std::vector<CliOption> out;
   auto add = [&](const OptionSpec& spec, const std::string& owner) {
-    const std::string text = (owner.empty() ? "" : owner + ": ") + describeOption(spec);
+    const std::string text = describeOption(spec);
     for (CliOption& o : out)
       if (o.spec.name == spec.name) {
-        o.help += "; " + text;
+        for (auto& [owners, described] : o.parts)
+          if (described == text && !owners.empty()) {
+            owners += ", " + owner;
+            return;
+          }
+        o.parts.emplace_back(owner, text);
         return;
       }
-    out.push_back({spec, text});
+    out.push_back({spec, {{owner, text}}});
   };
   // Integrator names are known here, not in core or in a wrapper's own file: the help lists
   // them (the registry checks them).
@@ -97,7 +111,7 @@ void addRenderOptions(CLI::App& app, RenderSettings& settings) {
     const std::string flag = "--" + spec.name;
     if (spec.type == OptionType::kBool) {
       app.add_flag_function(
-          flag, [&settings, spec](int64_t count) { settings.set(spec.name, count > 0); }, o.help)
+          flag, [&settings, spec](int64_t count) { settings.set(spec.name, count > 0); }, o.help())
           ->check(flagValueCheck());
       continue;
     }
@@ -106,7 +120,7 @@ void addRenderOptions(CLI::App& app, RenderSettings& settings) {
            [&settings, spec](const std::string& text) {
              settings.setValue(spec.name, parseOptionValue(spec, text));
            },
-           o.help)
+           o.help())
         ->type_name(typeName(spec));
   }
 }

@@ -2,6 +2,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,17 @@ class Accelerator {
   virtual bool intersect(const Ray& ray, Hit& hit) const = 0;
   /// True if anything lies in (ray.tmin, ray.tmax): shadow rays.
   virtual bool occluded(const Ray& ray) const = 0;
+  /// intersect() for each ray of a batch: found[i] = intersect(rays[i], hits[i]), the same
+  /// hits. Wavefront integrators call it once per bounce with the whole queue. The default
+  /// loops; an accelerator with a batched traversal (Embree's stream API) overrides it.
+  virtual void intersectBatch(std::span<const Ray> rays, std::span<Hit> hits,
+                              std::span<uint8_t> found) const {
+    for (size_t i = 0; i < rays.size(); ++i) found[i] = intersect(rays[i], hits[i]);
+  }
+  /// occluded() for each ray of a batch: blocked[i] = occluded(rays[i]).
+  virtual void occludedBatch(std::span<const Ray> rays, std::span<uint8_t> blocked) const {
+    for (size_t i = 0; i < rays.size(); ++i) blocked[i] = occluded(rays[i]);
+  }
   /// Every hit in (ray.tmin, ray.tmax), sorted by t (ties by primitive then triangle). Used by
   /// CSG with mesh children, and by tests.
   virtual void allHits(const Ray& ray, std::vector<Hit>& hits) const = 0;

@@ -51,51 +51,79 @@ int Integrator::samplesPerPixel() const {
   return pixelSampler_.count();
 }
 
-uint32_t Integrator::accumulate(int x, int y, int begin, int end, PixelSums& sums,
+Sampler Integrator::sampler(int x, int y, int i) const {
+  const uint32_t pixelIndex = uint32_t(y) * uint32_t(ctx_.width) + uint32_t(x);
+  return Sampler(pixelIndex, uint32_t(i), seed_, sequence_);
+}
+
+Ray Integrator::cameraRay(int x, int y, int i, Sampler& sampler, Vec2& offset) const {
+  const float cx = x + 0.5f, cy = y + 0.5f;
+  offset = pixelSampler_.offset(i, sampler.next2D());
+  // A thin lens takes the next 2D point of the camera-ray group; a pinhole draws nothing
+  // more, so its images keep every bit.
+  return ctx_.camera.hasLens()
+             ? ctx_.camera.generateLensRay(cx + offset.x, cy + offset.y, sampler.next2D())
+             : ctx_.camera.generateRay(cx + offset.x, cy + offset.y);
+}
+
+void Integrator::addSample(PixelSums& sums, IdCoverage* coverage, AovSums* aovSums,
+                           const Vec2& offset, Color L, const PrimaryHit& seen,
+                           const LightPathRadiance* paths, RayStats& stats) const {
+  // The environment still lit every surface the ray met (reflections, light); only what the
+  // camera sees of it directly is left out (cameraLi), from the light-path split too.
+  if (transparent_ && !seen.hit) {
+    L = Color(0.0f);
+    paths = nullptr;
+  }
+  if (!isFinite(L)) {
+    ++stats.nanSamples;
+    L = Color(0.0f);
+    paths = nullptr;  // a split of zeros adds nothing: its sums keep every bit
+  }
+  const double w = filter_.evaluate(offset);
+  sums.rgb[0] += w * L.x, sums.rgb[1] += w * L.y, sums.rgb[2] += w * L.z;
+  sums.alpha += seen.hit ? w : 0.0;
+  sums.weight += w;
+  if (coverage) coverage->add(seen.hit ? seen.objectId : -1, seen.hit ? seen.materialId : -1, w);
+  if (aovSums) {
+    aovSums->addWeight(w);
+    if (paths && aovSums->lightPaths) aovSums->addLightPaths(*paths, w);
+    if (aovSums->surface) aovSums->addSurface(seen.hit, seen.albedo, seen.normal, seen.depth, w);
+  }
+}
+
+// Flattened: the sampler, camera ray and addSample pieces inline here as in one function
+// (measured: their calls cost the scalar path about 0.5% of its instructions).
+[[gnu::flatten]] uint32_t Integrator::accumulate(int x, int y, int begin, int end, PixelSums& sums,
                                 PrimaryHit& first, RayStats& stats, IdCoverage* coverage,
                                 AovSums* aovSums) const {
-  const Filter& filter = filter_;
-  const PixelSampler& pixelSampler = pixelSampler_;
-  const uint32_t pixelIndex = uint32_t(y) * uint32_t(ctx_.width) + uint32_t(x);
-  const float cx = x + 0.5f, cy = y + 0.5f;
   // Filter-weighted sums, normalised by the weight sum at the end (pbrt-v4 8.8's weighted
   // estimator): each pixel owns its samples, so tiles never share film writes. Doubles keep the
   // mean accurate at very high sample counts and let sums of sample ranges be combined.
-  end = std::min(end, pixelSampler.count());
+  end = std::min(end, pixelSampler_.count());
   LightPathRadiance paths;
   LightPathRadiance* splitInto = aovSums && aovSums->lightPaths ? &paths : nullptr;
   for (int i = begin; i < end; ++i) {
-    Sampler sampler(pixelIndex, uint32_t(i), seed_, sequence_);
-    const Vec2 d = pixelSampler.offset(i, sampler.next2D());
-    // A thin lens takes the next 2D point of the camera-ray group; a pinhole draws nothing
-    // more, so its images keep every bit.
-    Ray ray = ctx_.camera.hasLens()
-                  ? ctx_.camera.generateLensRay(cx + d.x, cy + d.y, sampler.next2D())
-                  : ctx_.camera.generateRay(cx + d.x, cy + d.y);
+    Sampler s = sampler(x, y, i);
+    Vec2 d;
+    const Ray ray = cameraRay(x, y, i, s, d);
     ++stats.cameraRays;
     PrimaryHit primary;
     PrimaryHit& seen = i == begin ? first : primary;
     if (splitInto) paths.clear();
     seen.lightPaths = splitInto;
-    Color L = cameraLi(ray, sampler, stats, &seen);
+    const Color L = Li(ray, s, stats, &seen);
     seen.lightPaths = nullptr;
-    if (!isFinite(L)) {
-      ++stats.nanSamples;
-      L = Color(0.0f);
-      paths.clear();
-    }
-    const double w = filter.evaluate(d);
-    sums.rgb[0] += w * L.x, sums.rgb[1] += w * L.y, sums.rgb[2] += w * L.z;
-    sums.alpha += seen.hit ? w : 0.0;
-    sums.weight += w;
-    if (coverage) coverage->add(seen.hit ? seen.objectId : -1, seen.hit ? seen.materialId : -1, w);
-    if (aovSums) {
-      aovSums->addWeight(w);
-      if (splitInto) aovSums->addLightPaths(paths, w);
-      if (aovSums->surface) aovSums->addSurface(seen.hit, seen.albedo, seen.normal, seen.depth, w);
-    }
+    addSample(sums, coverage, aovSums, d, L, seen, splitInto, stats);
   }
   return uint32_t(std::max(0, end - begin));
+}
+
+void Integrator::accumulatePixels(std::span<PixelTask> tasks, int begin, int end,
+                                  RayStats& stats) const {
+  for (PixelTask& t : tasks)
+    t.samples =
+        accumulate(t.x, t.y, begin, end, t.sums, t.first, stats, t.coverage, t.aovSums);
 }
 
 PixelValue Integrator::renderPixel(int x, int y, RayStats& stats, IdCoverage* coverage) const {

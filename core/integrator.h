@@ -2,6 +2,7 @@
 #include <atomic>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -52,6 +53,16 @@ struct PixelValue {
   uint32_t samples = 0;  ///< camera rays traced for this pixel
 };
 
+/// One pixel of a batch given to Integrator::accumulatePixels: what accumulate() fills for it.
+struct PixelTask {
+  int x = 0, y = 0;  ///< image coordinates
+  PixelSums sums;
+  PrimaryHit first;                ///< what the range's first sample hit
+  IdCoverage* coverage = nullptr;  ///< Cryptomatte's ids, when not null
+  AovSums* aovSums = nullptr;      ///< the AOVs averaged over all samples, when not null
+  uint32_t samples = 0;            ///< camera rays traced
+};
+
 /// What every integrator sees: the scene, its accelerator, the camera and the settings.
 struct RenderContext {
   const Scene& scene;
@@ -100,9 +111,33 @@ class Integrator {
   virtual uint32_t accumulate(int x, int y, int begin, int end, PixelSums& sums, PrimaryHit& first,
                               RayStats& stats, IdCoverage* coverage = nullptr,
                               AovSums* aovSums = nullptr) const;
+  /// Pixels the renderer gives accumulatePixels at once: 1 (the default) for integrators that
+  /// trace one sample at a time; a wavefront integrator asks for a tile's worth.
+  virtual int pixelBatch() const { return 1; }
+  /// accumulate() over samples [begin, end) of every task's pixel. The default calls it pixel
+  /// by pixel; a wavefront integrator overrides it to trace the batch's samples together, with
+  /// the same sums per pixel (each sample drawing the same numbers).
+  virtual void accumulatePixels(std::span<PixelTask> tasks, int begin, int end,
+                                RayStats& stats) const;
   const RenderContext& context() const { return ctx_; }
 
  protected:
+  /// The pieces of accumulate(), for integrators that place samples the same way but trace
+  /// them otherwise. The counter-based sampler of sample i of pixel (x, y):
+  Sampler sampler(int x, int y, int i) const;
+  /// The camera ray of sample i of pixel (x, y), drawn from its sampler as accumulate does;
+  /// `offset` receives the sample's position relative to the pixel centre.
+  Ray cameraRay(int x, int y, int i, Sampler& sampler, Vec2& offset) const;
+  /// Samples in the pixel sampler's pattern (accumulate's upper bound for `end`).
+  int sampleCount() const { return pixelSampler_.count(); }
+  /// Adds one sample, Li's radiance `L`, what it hit first and (when not null) its light-path
+  /// split, to a pixel's sums, ids and averaged AOVs as accumulate does: the
+  /// transparent-background rule of cameraLi, NaN samples counted and dropped (their split
+  /// too), the filter weight at `offset`.
+  void addSample(PixelSums& sums, IdCoverage* coverage, AovSums* aovSums, const Vec2& offset,
+                 Color L, const PrimaryHit& seen, const LightPathRadiance* paths,
+                 RayStats& stats) const;
+
   RenderContext ctx_;
 
  private:

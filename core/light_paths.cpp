@@ -66,9 +66,11 @@ void LightPathSplitter::addFound(const Color& c, bool environment) {
   addShared(c, share_, scatterings_ == 1);
 }
 
-void LightPathSplitter::addLightSample(const Color& c, const LobeSplit& toLight) {
+void LightPathSplitter::addLightSample(const Color& c, const LobeSplit& toLight,
+                                       bool atFirstVertex) {
   if (!out_) return;
-  if (scatterings_ > 0) return addShared(c, share_, false);
+  // A later vertex's sample takes the first scattering's shares, fixed once it happened.
+  if (!atFirstVertex) return addShared(c, share_, false);
   Color share[3];
   sharesOf(toLight, share);
   addShared(c, share, true);

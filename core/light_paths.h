@@ -54,9 +54,11 @@ class LightPathSplitter {
   bool atFirstVertex() const { return scatterings_ == 0; }
   /// Emission, an unlit surface or the environment reached by the ray being traced.
   void addFound(const Color& c, bool environment);
-  /// A light sample (next-event estimation) at the current vertex; `toLight` is the BSDF's
-  /// split toward the light (read only at the first vertex).
-  void addLightSample(const Color& c, const LobeSplit& toLight);
+  /// A light sample (next-event estimation) drawn at the first vertex (`atFirstVertex`, as
+  /// atFirstVertex() said when it was drawn; `toLight` is then the BSDF's split toward the
+  /// light) or at a later one. Given, not read, since a wavefront adds the sample once its
+  /// shadow ray is traced, after the path has scattered on (docs/wavefront.md).
+  void addLightSample(const Color& c, const LobeSplit& toLight, bool atFirstVertex);
   /// The path scattered into a new direction: at the first scattering, `lobes` (the BSDF's
   /// split in that direction) fixes the shares of everything the path gathers later.
   void scattered(const LobeSplit& lobes);

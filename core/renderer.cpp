@@ -7,6 +7,7 @@
 #include <chrono>
 #include <memory>
 #include <mutex>
+#include <vector>
 
 #include "core/aov.h"
 #include "core/cryptomatte.h"
@@ -70,7 +71,7 @@ RenderStats renderImage(const Integrator& integrator, Film& film, RenderState& s
     throw Error("the render state does not match the film", Error::Kind::kRender);
   if (AovSet::wantsLightPaths(options.aovs) && !integrator.splitsLightPaths())
     throw Error("--aov: the light-path layers (lightpaths, diffuse_direct, ...) need "
-                "--integrator path");
+                "--integrator path or path-wavefront");
   const AovSet aovs(film, options.aovs);
   std::unique_ptr<std::atomic<uint8_t>[]> done(new std::atomic<uint8_t>[pixels]);
   for (size_t p = 0; p < pixels; ++p) {
@@ -91,44 +92,74 @@ RenderStats renderImage(const Integrator& integrator, Film& film, RenderState& s
   auto lastCheckpoint = start;
 
   auto stopped = [&] { return options.stop && options.stop->load(std::memory_order_relaxed); };
-  auto renderPixel = [&](int x, int y, RayStats& stats, IdCoverage& coverage, AovSums& aovSums) {
-    coverage.clear();
-    IdCoverage* ids = crypto.active() ? &coverage : nullptr;
-    aovSums.clear();
-    // Averaged AOVs need every sample: only where accumulate() places them.
-    AovSums* averaged = aovs.averaged() && spp > 0 ? &aovSums : nullptr;
+  // Writes a rendered pixel (film coordinates) and publishes it as done. `averaged` (when not
+  // null) holds the AOVs averaged over all samples.
+  auto finishPixel = [&](int x, int y, const PixelSums& sums, const PixelValue& v,
+                         const IdCoverage* ids, const AovSums* averaged) {
     const size_t p = size_t(y) * film.width() + x;
-    const int ix = x + options.x0, iy = y + options.y0;  // image coordinates
-    PixelSums sums;
-    PixelValue v;
-    if (spp > 0) {
-      v.samples = integrator.accumulate(ix, iy, options.sampleBegin, sampleEnd, sums, v.primary,
-                                        stats, ids, averaged);
-    } else {  // the integrator places its own samples: its mean, weight 1 (exact in double)
-      v = integrator.renderPixel(ix, iy, stats, ids);
-      sums.rgb[0] = v.radiance.x, sums.rgb[1] = v.radiance.y, sums.rgb[2] = v.radiance.z;
-      sums.alpha = v.alpha, sums.weight = 1;
-    }
     state.sums[p] = sums;
     writeBeauty(film, x, y, sums);
     aovs.write(film, x, y, v, averaged);
-    if (ids) crypto.write(film, x, y, coverage);
+    if (ids) crypto.write(film, x, y, *ids);
     done[p].store(1, std::memory_order_release);
+  };
+  // The integrator places its own samples: its mean, weight 1 (exact in double).
+  auto renderOwnSamples = [&](int x, int y, RayStats& stats, IdCoverage& coverage) {
+    coverage.clear();
+    IdCoverage* ids = crypto.active() ? &coverage : nullptr;
+    PixelValue v = integrator.renderPixel(x + options.x0, y + options.y0, stats, ids);
+    PixelSums sums;
+    sums.rgb[0] = v.radiance.x, sums.rgb[1] = v.radiance.y, sums.rgb[2] = v.radiance.z;
+    sums.alpha = v.alpha, sums.weight = 1;
+    finishPixel(x, y, sums, v, ids, nullptr);
+  };
+  // Pixels go to the integrator in batches of its pixelBatch() (1: one at a time); tasks hold
+  // image coordinates, so pixels keep their samples in region renders.
+  const size_t batch = size_t(std::max(1, integrator.pixelBatch()));
+  auto renderBatch = [&](std::vector<PixelTask>& tasks, RayStats& stats) {
+    if (tasks.empty()) return;
+    integrator.accumulatePixels(tasks, options.sampleBegin, sampleEnd, stats);
+    for (const PixelTask& t : tasks) {
+      PixelValue v;
+      v.primary = t.first;
+      v.samples = t.samples;
+      finishPixel(t.x - options.x0, t.y - options.y0, t.sums, v, t.coverage, t.aovSums);
+    }
+    tasks.clear();
   };
 
   auto renderTile = [&](int tile) {
     RayStats local;
-    IdCoverage coverage;  // reused across the tile's pixels; only filled for Cryptomatte
-    AovSums aovSums;      // likewise, for the AOVs averaged over all samples
-    aovs.configure(aovSums);
+    // Per pixel of a batch, reused across batches: Cryptomatte's ids (only filled for
+    // Cryptomatte) and the AOVs averaged over all samples (only where accumulate() places the
+    // samples).
+    std::vector<IdCoverage> coverage(spp > 0 ? batch : 1);
+    std::vector<AovSums> aovSums(spp > 0 && aovs.averaged() ? batch : 0);
+    for (AovSums& a : aovSums) aovs.configure(a);
+    std::vector<PixelTask> tasks;
     const int x0 = (tile % tilesX) * ts, y0 = (tile / tilesX) * ts;
     const int x1 = std::min(x0 + ts, film.width()), y1 = std::min(y0 + ts, film.height());
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x) {
         if (stopped()) break;
-        if (!done[size_t(y) * film.width() + x].load(std::memory_order_relaxed))
-          renderPixel(x, y, local, coverage, aovSums);
+        if (done[size_t(y) * film.width() + x].load(std::memory_order_relaxed)) continue;
+        if (spp == 0) {
+          renderOwnSamples(x, y, local, coverage[0]);
+          continue;
+        }
+        PixelTask& t = tasks.emplace_back();
+        t.x = x + options.x0, t.y = y + options.y0;
+        const size_t slot = tasks.size() - 1;
+        IdCoverage& ids = coverage[slot];
+        ids.clear();
+        t.coverage = crypto.active() ? &ids : nullptr;
+        if (!aovSums.empty()) {
+          aovSums[slot].clear();
+          t.aovSums = &aovSums[slot];
+        }
+        if (tasks.size() == batch) renderBatch(tasks, local);
       }
+    if (!stopped()) renderBatch(tasks, local);
     bool checkpointNow = false;
     {
       std::lock_guard<std::mutex> lock(mutex);

@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "integrators/adaptive.h"
 #include "integrators/path.h"
+#include "integrators/path_wavefront.h"
 #include "integrators/whitted.h"
 
 namespace tray {
@@ -20,6 +21,8 @@ std::vector<IntegratorEntry>& table() {
        makeAdaptive, adaptiveOptions(), "inner"},
       {"path", "path tracing: MIS next-event estimation, GGX/dielectric BSDFs, area lights",
        makePath, pathOptions(), ""},
+      {"path-wavefront", "path's estimator, every bounce of a tile's samples traced as one batch",
+       makePathWavefront, pathOptions(), ""},
   };
   return entries;
 }

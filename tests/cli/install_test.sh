@@ -15,9 +15,10 @@ env -u OCIO "$prefix/bin/tray-render" -q whitted.gltf --resolution 32x24 --outpu
   -o out.exr -o out.png
 test -s out.exr && test -s out.png
 "$prefix/bin/tray-merge" --help >/dev/null
-# tray-farm finds its modules in share/tray/farm and tray-render beside itself.
+# tray-farm finds its modules in share/tray/farm and tray-render beside itself. grep reads all
+# (not -q): quitting at the first match could break tray-farm's pipe, failing under pipefail.
 "$prefix/bin/tray-farm" submit whitted.gltf --split regions:2 --resolution 32x24 -o farm.exr \
-  --dry-run | grep -qF "exec $prefix/bin/tray-render "
+  --dry-run | grep -F "exec $prefix/bin/tray-render " >/dev/null
 if grep -rlF "$source" "$prefix/bin" "$prefix/share"; then
   echo "installed files name the source folder $source" >&2
   exit 1

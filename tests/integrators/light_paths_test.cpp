@@ -7,6 +7,7 @@
 
 #include "core/aov.h"
 #include "core/error.h"
+#include "tests/integrators/path_under_test.h"
 #include "tests/render_film.h"
 #include "tests/scene_builder.h"
 
@@ -59,7 +60,7 @@ Scene everyPath(bool withGlass = true, bool withSky = true) {
 
 Film render(const Scene& s, const std::string& integrator = "path", int maxDepth = 8) {
   RenderSettings st;
-  st.set("integrator", integrator);
+  st.set("integrator", orPathUnderTest(integrator));
   st.set("spp", 16);
   if (integrator == "path") st.set("max-depth", maxDepth);
   return renderFilm(s, lookAt({0, 1.2f, 4}, {0, 0.5f, 0}), kSize, kSize, st, nullptr,
@@ -141,7 +142,7 @@ TEST(LightPaths, MirrorFilesWhatItReflectsAsSpecular) {
   s.environment.background = Color(0.5f);
   s.finalize();
   RenderSettings st;
-  st.set("integrator", "path");
+  st.set("integrator", pathUnderTest());
   st.set("spp", 4);
   // Seen from above, the sphere's centre reflects the sky.
   const Film f = renderFilm(s, lookAt({0, 1.5f, 2}, {0, 0.5f, 0}, 0.05f), 8, 8, st, nullptr,

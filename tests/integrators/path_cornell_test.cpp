@@ -10,6 +10,7 @@
 #include "integrators/path.h"
 #include "integrators/registry.h"
 #include "io/gltf_loader.h"
+#include "tests/integrators/path_under_test.h"
 
 namespace tray {
 namespace {
@@ -24,7 +25,7 @@ Image renderCornell(const Scene& scene, int spp, const std::string& sampler = "i
   auto camera = Camera::create(scene.cameras.at(0), kSize, kSize);
   auto accel = makeAccelerator("embree", scene);
   RenderSettings settings;
-  settings.set("integrator", "path");
+  settings.set("integrator", test::pathUnderTest());
   settings.set("spp", spp);
   settings.set("max-depth", 8);
   settings.set("sampler", sampler);

@@ -11,6 +11,7 @@
 #include "tests/integrators/path_probe.h"
 #include "tests/render_film.h"
 #include "tests/scene_builder.h"
+#include "tests/integrators/path_under_test.h"
 
 namespace tray {
 namespace {
@@ -105,7 +106,7 @@ TEST(PathEnvironment, SmallBrightSunConvergesFarFasterThanUniformSampling) {
   const Scene importance = scene(false), uniform = scene(true);
   const CameraDesc cam = lookAt({0, 3, 6}, {0, 0.8f, 0}, 0.7f);
   RenderSettings settings;
-  settings.set("integrator", "path");
+  settings.set("integrator", test::pathUnderTest());
   settings.set("max-depth", 3);
   settings.set("spp", 1024);
   const Film reference = renderFilm(importance, cam, 12, 12, settings);

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "io/gltf_loader.h"
+#include "tests/integrators/path_under_test.h"
 #include "tests/light_scenes.h"
 #include "tests/render_film.h"
 
@@ -17,7 +18,7 @@ using namespace tray::test;
 std::vector<float> render(const Scene& scene, int w, int h, int spp, const std::string& chooser,
                           int seed) {
   RenderSettings settings;
-  settings.set("integrator", "path");
+  settings.set("integrator", pathUnderTest());
   settings.set("spp", spp);
   settings.set("sampler", "independent");  // pixels independent: the error estimate below
   settings.set("seed", seed);

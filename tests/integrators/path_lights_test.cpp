@@ -11,6 +11,7 @@
 #include "integrators/registry.h"
 #include "tests/integrators/path_probe.h"
 #include "tests/scene_builder.h"
+#include "tests/integrators/path_under_test.h"
 
 namespace tray {
 namespace {
@@ -104,7 +105,7 @@ TEST(PathLights, NonFiniteSamplesAreCountedDiscardedAndReportedWithDebugNan) {
     auto accel = makeAccelerator("embree", s);
     auto camera = Camera::create(lookAt({0, 0, 4}, {0, 0, 0}, 0.6f), 8, 8);
     RenderSettings st;
-    st.set("integrator", "path");
+    st.set("integrator", test::pathUnderTest());
     st.set("spp", 2);
     st.set("debug-nan", debug);
     RenderContext ctx{s, *accel, *camera, st, 8, 8};

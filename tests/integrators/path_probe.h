@@ -5,8 +5,9 @@
 
 #include "accel/registry.h"
 #include "core/renderer.h"
-#include "integrators/path.h"
+#include "integrators/registry.h"
 #include "tests/scene_builder.h"
+#include "tests/integrators/path_under_test.h"
 
 namespace tray::test {
 
@@ -15,7 +16,7 @@ struct PathProbe {
       : accel(makeAccelerator("embree", scene)),
         camera(Camera::create(lookAt({0, 1, 3}, {0, 0, 0}), 4, 4)),
         ctx{scene, *accel, *camera, settingsWithDepth(maxDepth), 4, 4},
-        path(makePath(ctx)) {}
+        path(makeIntegrator(ctx, pathUnderTest())) {}
   Color Li(const Ray& ray, Sampler& sampler) { return path->Li(ray, sampler, stats, nullptr); }
 
   std::unique_ptr<Accelerator> accel;

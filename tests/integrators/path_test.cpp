@@ -9,6 +9,7 @@
 #include "tests/integrators/path_probe.h"
 #include "tests/render_film.h"
 #include "tests/scene_builder.h"
+#include "tests/integrators/path_under_test.h"
 
 namespace tray {
 namespace {
@@ -17,7 +18,7 @@ using namespace tray::test;
 
 Film render(const Scene& scene, const CameraDesc& cam, int w, int h, RenderSettings settings,
             int threads = 0, RenderStats* stats = nullptr) {
-  settings.set("integrator", "path");
+  settings.set("integrator", test::pathUnderTest());
   return renderFilm(scene, cam, w, h, settings, stats, {}, "embree", threads);
 }
 

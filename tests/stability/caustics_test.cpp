@@ -10,6 +10,7 @@
 #include <string>
 
 #include "tests/stability/stability_scenes.h"
+#include "tests/integrators/path_under_test.h"
 
 namespace tray {
 namespace {
@@ -114,7 +115,7 @@ TEST(Caustics, ClampingNeverTouchesDirectLight) {
   // BSDF sampling. The clamp is not for it: even a clamp far below the lamp's radiance leaves
   // the image unchanged, bit for bit.
   RenderSettings st;
-  st.set("integrator", "path");
+  st.set("integrator", test::pathUnderTest());
   st.set("spp", 4);
   st.set("pixel-sampler", "jitter");
   st.set("max-depth", 2);

@@ -19,6 +19,7 @@
 #include "accel/registry.h"
 #include "io/gltf_loader.h"
 #include "tests/stability/stability_scenes.h"
+#include "tests/integrators/path_under_test.h"
 
 namespace tray {
 namespace {
@@ -57,7 +58,7 @@ struct Render {
 
 Render render(const SceneWithCamera& a, const char* integrator, const char* accel) {
   RenderSettings st;
-  st.set("integrator", integrator);
+  st.set("integrator", test::orPathUnderTest(integrator));
   st.set("spp", 4);
   st.set("pixel-sampler", "jitter");
   RenderStats stats;

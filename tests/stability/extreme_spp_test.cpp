@@ -14,6 +14,7 @@
 #include "core/pixel_sampler.h"
 #include "integrators/registry.h"
 #include "tests/stability/stability_scenes.h"
+#include "tests/integrators/path_under_test.h"
 
 namespace tray {
 namespace {
@@ -24,7 +25,7 @@ constexpr int kSpp = 65536;
 
 RenderSettings settings(const char* integrator) {
   RenderSettings st;
-  st.set("integrator", integrator);
+  st.set("integrator", test::orPathUnderTest(integrator));
   st.set("pixel-sampler", "jitter");
   st.set("spp", kSpp);
   st.set("seed", 7);

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "tests/stability/stability_scenes.h"
+#include "tests/integrators/path_under_test.h"
 
 namespace tray {
 namespace {
@@ -27,7 +28,7 @@ const Placement kPlacements[] = {{"scale 1e-3", 1e-3f, Vec3(0.0f)},
 /// path tracer's image is deterministic, so a shadowed pixel is shadowed, not noisy.
 size_t pathShadowedPixels(const Placement& p, bool meshFloor) {
   RenderSettings st;
-  st.set("integrator", "path");
+  st.set("integrator", test::pathUnderTest());
   st.set("max-depth", 2);
   SceneWithCamera a = acneScene(p.scale, p.offset, meshFloor);
   return shadowedPixels(renderFilm(a.scene, a.camera, kW, kH, st));

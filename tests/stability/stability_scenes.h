@@ -14,6 +14,7 @@
 #include "core/integrator.h"
 #include "tests/render_film.h"
 #include "tests/scene_builder.h"
+#include "tests/integrators/path_under_test.h"
 
 namespace tray::stability {
 
@@ -177,7 +178,7 @@ inline SceneWithCamera trappedLightScene() {
 inline RenderSettings pathSettings(int spp, float clampIndirect = 0,
                                    const std::string& sampler = "independent") {
   RenderSettings s;
-  s.set("integrator", "path");
+  s.set("integrator", test::pathUnderTest());
   s.set("sampler", sampler);
   s.set("pixel-sampler", "jitter");
   s.set("spp", spp);

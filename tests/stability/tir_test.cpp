@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "tests/stability/stability_scenes.h"
+#include "tests/integrators/path_under_test.h"
 
 namespace tray {
 namespace {
@@ -31,7 +32,7 @@ bool allFinite(const Film& f) {
 
 RenderStats renderTrapped(const Case& c, int maxDepth) {
   RenderSettings st;
-  st.set("integrator", c.integrator);
+  st.set("integrator", test::orPathUnderTest(c.integrator));
   st.set("pixel-sampler", "jitter");
   st.set("spp", c.spp);
   st.set("max-depth", maxDepth);

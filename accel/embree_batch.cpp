@@ -1,0 +1,99 @@
+#include "accel/embree_batch.h"
+
+#include <vector>
+
+#include "accel/embree_alpha_filter.h"
+#include "accel/embree_rays.h"
+
+namespace tray {
+namespace {
+
+constexpr int kLanes = 8;
+
+/// Lane l of a packet from ray i (id i: the alpha filter's index into the batch's rays).
+void toLane(const Ray& r, uint32_t i, RTCRay8& p, int l) {
+  p.org_x[l] = r.o.x, p.org_y[l] = r.o.y, p.org_z[l] = r.o.z, p.tnear[l] = r.tmin;
+  p.dir_x[l] = r.d.x, p.dir_y[l] = r.d.y, p.dir_z[l] = r.d.z, p.time[l] = 0.0f;
+  p.tfar[l] = r.tmax, p.mask[l] = 0xffffffffu, p.id[l] = i, p.flags[l] = 0;
+}
+
+/// The valid mask of the packet starting at ray b: lanes past the batch's end are off.
+void laneMask(size_t b, size_t n, int valid[kLanes]) {
+  for (int l = 0; l < kLanes; ++l) valid[l] = b + size_t(l) < n ? -1 : 0;
+}
+
+void intersectPackets(RTCScene top, RTCIntersectContext* ctx, std::span<const Ray> rays,
+                      std::span<Hit> hits, std::span<uint8_t> found) {
+  const size_t n = rays.size();
+  for (size_t b = 0; b < n; b += kLanes) {
+    alignas(32) int valid[kLanes];
+    alignas(32) RTCRayHit8 p;
+    laneMask(b, n, valid);
+    for (int l = 0; l < kLanes && b + l < n; ++l) {
+      toLane(rays[b + l], uint32_t(b + l), p.ray, l);
+      p.hit.geomID[l] = RTC_INVALID_GEOMETRY_ID;
+      p.hit.instID[0][l] = RTC_INVALID_GEOMETRY_ID;
+    }
+    rtcIntersect8(valid, top, ctx, &p);
+    for (int l = 0; l < kLanes && b + l < n; ++l) {
+      found[b + l] = p.hit.geomID[l] != RTC_INVALID_GEOMETRY_ID;
+      if (!found[b + l]) continue;
+      RTCHit h;
+      h.Ng_x = p.hit.Ng_x[l], h.Ng_y = p.hit.Ng_y[l], h.Ng_z = p.hit.Ng_z[l];
+      h.u = p.hit.u[l], h.v = p.hit.v[l];
+      h.primID = p.hit.primID[l], h.geomID = p.hit.geomID[l], h.instID[0] = p.hit.instID[0][l];
+      hits[b + l] = hitFromEmbree(h, p.ray.tfar[l]);
+    }
+  }
+}
+
+void occludedPackets(RTCScene top, RTCIntersectContext* ctx, std::span<const Ray> rays,
+                     std::span<uint8_t> blocked) {
+  const size_t n = rays.size();
+  for (size_t b = 0; b < n; b += kLanes) {
+    alignas(32) int valid[kLanes];
+    alignas(32) RTCRay8 p;
+    laneMask(b, n, valid);
+    for (int l = 0; l < kLanes && b + l < n; ++l) toLane(rays[b + l], uint32_t(b + l), p, l);
+    rtcOccluded8(valid, top, ctx, &p);
+    for (int l = 0; l < kLanes && b + l < n; ++l) blocked[b + l] = p.tfar[l] < 0;
+  }
+}
+
+}  // namespace
+
+void embreeIntersectBatch(RTCScene top, const Scene& scene, EmbreeBatch mode,
+                          std::span<const Ray> rays, std::span<Hit> hits,
+                          std::span<uint8_t> found) {
+  AlphaRayContext ctx(scene, rays.data());
+  if (mode == EmbreeBatch::kPacket8) return intersectPackets(top, &ctx.base, rays, hits, found);
+  ctx.base.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  static thread_local std::vector<RTCRayHit> queue;
+  queue.resize(rays.size());
+  for (size_t i = 0; i < rays.size(); ++i) {
+    queue[i] = toEmbree(rays[i]);
+    queue[i].ray.id = uint32_t(i);  // the alpha filter's index into rays
+  }
+  rtcIntersect1M(top, &ctx.base, queue.data(), unsigned(queue.size()), sizeof(RTCRayHit));
+  for (size_t i = 0; i < rays.size(); ++i) {
+    found[i] = queue[i].hit.geomID != RTC_INVALID_GEOMETRY_ID;
+    if (found[i]) hits[i] = hitFromEmbree(queue[i].hit, queue[i].ray.tfar);
+  }
+}
+
+void embreeOccludedBatch(RTCScene top, const Scene& scene, EmbreeBatch mode,
+                         std::span<const Ray> rays, std::span<uint8_t> blocked) {
+  AlphaRayContext ctx(scene, rays.data());
+  if (mode == EmbreeBatch::kPacket8) return occludedPackets(top, &ctx.base, rays, blocked);
+  ctx.base.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  static thread_local std::vector<RTCRay> queue;
+  queue.resize(rays.size());
+  for (size_t i = 0; i < rays.size(); ++i) {
+    toEmbree(rays[i], queue[i]);
+    queue[i].id = uint32_t(i);
+  }
+  rtcOccluded1M(top, &ctx.base, queue.data(), unsigned(queue.size()), sizeof(RTCRay));
+  for (size_t i = 0; i < rays.size(); ++i) blocked[i] = queue[i].tfar < 0;
+}
+
+}  // namespace tray

@@ -1,0 +1,232 @@
+#include "integrators/path_estimator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "core/front_face.h"
+#include "core/shading.h"
+#include "materials/bsdf.h"
+
+namespace tray {
+namespace {
+
+/// Beer-Lambert transmittance exp(-sigma_a d) per channel (KHR_materials_volume).
+Color transmittance(const Color& sigmaA, float d) {
+  return {std::exp(-sigmaA.x * d), std::exp(-sigmaA.y * d), std::exp(-sigmaA.z * d)};
+}
+
+/// Absorption of the medium beyond a refractive surface: the one in effect once crossed.
+Color farSideAbsorption(const MediumStack& media, int id, const Material& m, bool entering) {
+  MediumStack far = media;
+  far.cross(id, m, entering);
+  return far.currentAbsorption();
+}
+
+}  // namespace
+
+/// The scattering vertex being shaded: what NEE and BSDF sampling both read.
+struct PathEstimator::Vertex {
+  SurfacePoint s;
+  const Material* m;
+  Vec3 n;         ///< shading normal on the side the ray arrived from
+  Vec3 wo;        ///< towards where the ray came from
+  bool refractive;
+  Color sigmaA;   ///< absorption of the medium the arriving segment crossed
+  /// What light sampling knows of the receiver; BSDF sampling's MIS weights use the same.
+  LightSampleContext here;
+};
+
+PathEstimator::PathEstimator(const RenderContext& ctx)
+    : ctx_(ctx),
+      maxDepth_(ctx.settings.getInt("max-depth")),
+      clampIndirect_(ctx.settings.getFloat("clamp-indirect")),
+      debugNan_(ctx.settings.getBool("debug-nan")),
+      absorbingMedia_(
+          std::any_of(ctx.scene.materials.begin(), ctx.scene.materials.end(),
+                      [](const Material& m) { return !isBlack(m.layers.absorption()); })),
+      lights_(ctx.scene, lightSamplerKind(ctx.settings.getString("light-sampler"))),
+      materials_(ctx.scene, ctx.camera, ctx.settings.getInt("spp")) {}
+
+void PathEstimator::reportNan(const PathState& state, const char* what, int depth) const {
+  if (!debugNan_ || nanReports_.fetch_add(1) >= kMaxNanReports) return;
+  std::fprintf(stderr, "debug-nan: pixel (%d, %d), depth %d: non-finite %s\n", state.pixelX,
+               state.pixelY, depth, what);
+}
+
+Color PathEstimator::result(const PathState& state) {
+  return state.nan ? Color(std::numeric_limits<float>::quiet_NaN()) : state.L;
+}
+
+/// Escaped: the infinite lights' radiance, weighted against their light-sampling pdfs.
+void PathEstimator::escape(PathState& st) const {
+  for (int i : lights_.infinite()) {
+    const Vec3 dir = normalize(st.ray.d);
+    const Color Le = lights_.light(size_t(i)).Le(dir);
+    if (isBlack(Le)) continue;
+    const float w =
+        st.specular ? 1.0f : powerHeuristic(st.prevPdf, lights_.pdf(i, st.prev, dir, {}, {}));
+    st.paths.addFound(add(st, st.beta * Le * w, "environment", st.indirectEmission, st.depth),
+                      true);
+  }
+}
+
+PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const Hit& hit,
+                             ShadowQuery& shadow, bool& wantsShadow, RayStats& stats,
+                             PrimaryHit* primary) const {
+  wantsShadow = false;
+  Vertex v;
+  // KHR_materials_volume: the segment crosses the medium in effect, which absorbs.
+  v.sigmaA = st.media.currentAbsorption();
+  const bool absorbing = !isBlack(v.sigmaA);
+  if (!found) {
+    // Lost inside an open absorbing mesh: transmittance exp(-inf) = 0.
+    if (!absorbing) escape(st);
+    return PathStep::kDone;
+  }
+  if (absorbing) {
+    st.beta *= transmittance(v.sigmaA, hit.t * length(st.ray.d));
+    if (isBlack(st.beta)) return PathStep::kDone;
+  }
+  v.s = ctx_.scene.surface(st.ray, hit);
+  const SurfacePoint& s = v.s;
+  v.m = &ctx_.scene.material(s.material);
+  const Material& m = *v.m;
+  v.wo = -normalize(st.ray.d);
+
+  // Nested dielectrics: a surface of a medium that is not in effect is passed straight by.
+  // A metallicRoughnessTexture can lower metallic below a factor of 1 (glTF's default factor,
+  // which the Khronos transmission samples keep): such a surface may transmit too.
+  v.refractive = m.transmission > 0 && (m.metallic < 1 || m.metallicRoughnessTexture.valid());
+  float eta = m.ior / st.media.currentIor();
+  if (v.refractive) {
+    MediumStack::Interface iface = st.media.interface(s.material, m, s.frontFace);
+    if (!iface.real) {
+      st.media.cross(s.material, m, s.frontFace);
+      if (++st.nullCrossings > kMaxNullCrossings) return PathStep::kDone;
+      st.ray = spawnRay(s.p, s.ng, st.ray.d);
+      ++stats.secondaryRays;
+      return PathStep::kContinue;
+    }
+    eta = iface.etaT / iface.etaI;
+  }
+  // Textures are evaluated only at surfaces that scatter or emit (not at null interfaces).
+  ShadingMaterial sm = materials_.evaluate(hit, s);
+  // The clearcoat and sheen are on the outside of a transmissive solid: not seen from within.
+  if (v.refractive && !s.frontFace) sm.clearcoat = 0, sm.sheenColor = Color(0.0f);
+  if (primary && !primary->hit) {
+    primary->hit = true;
+    primary->depth = length(s.p - st.cameraOrigin);
+    primary->position = s.p;
+    primary->normal = sm.n;
+    primary->albedo = sm.baseColor;
+    primary->objectId = ctx_.scene.primitives[s.primitive].objectId;
+    primary->materialId = s.material;
+  }
+  // KHR_materials_unlit: the base colour leaves the surface as is and nothing scatters, as
+  // from an emitter that is not in the light set (docs/scene-format.md, "Unlit").
+  if (sm.unlit) {
+    st.paths.addFound(
+        add(st, st.beta * sm.baseColor, "unlit surface", st.indirectEmission, st.depth), false);
+    return PathStep::kDone;
+  }
+
+  // Emission found by BSDF sampling (or seen directly), MIS-weighted against the chance
+  // that light sampling would have picked the same point.
+  if (!isBlack(sm.emissive) && emitsToward(s.front, -st.ray.d, m.doubleSided)) {
+    float w = 1.0f;
+    int light = lights_.lightAt(hit.primitive, hit.triangle);
+    if (!st.specular && light >= 0)
+      w = powerHeuristic(st.prevPdf, lights_.pdf(light, st.prev, -v.wo, s.p, s.ng));
+    st.paths.addFound(add(st, st.beta * sm.emissive * w, "emission", st.indirectEmission, st.depth),
+                      false);
+  }
+  if (st.depth + 1 > maxDepth_) return PathStep::kDone;
+
+  // Shade on the side the ray arrived from.
+  v.n = s.frontFace ? sm.n : -sm.n;
+  const Bsdf bsdf(sm, Frame::fromNormal(v.n), eta);
+  // A reflecting BSDF sees only light above n unless wo lies below it (shading normals) or a
+  // clearcoat brings a normal of its own.
+  v.here = {s.p, v.n, bsdf.transmits(),
+            bsdf.transmits() || !(dot(v.wo, v.n) > 0) || sm.clearcoat > 0};
+  wantsShadow = nextEvent(st, v, bsdf, sampler, shadow);
+  if (wantsShadow) ++stats.shadowRays;
+  return scatter(st, v, bsdf, sampler, stats);
+}
+
+// nextEvent and scatter are parts of step, kept apart to be read: inlined into it (measured:
+// the calls and the spilling around them cost the scalar path about 0.7% of its instructions).
+
+/// Next-event estimation: one light sample, MIS-weighted against BSDF sampling. Returns true
+/// with `shadow` set when the estimate needs its shadow ray traced.
+[[gnu::always_inline]] inline bool PathEstimator::nextEvent(const PathState& st, const Vertex& v,
+                                                            const Bsdf& bsdf, Sampler& sampler,
+                                                            ShadowQuery& shadow) const {
+  if (!bsdf.hasNonDelta() || lights_.empty()) return false;
+  const SurfacePoint& s = v.s;
+  // The light choice and the point on it as one 3D sample (stratified jointly by Sobol').
+  const Vec3 u = sampler.next3D();
+  LightSample ls = lights_.sample(v.here, u.x, {u.y, u.z});
+  if (!ls.valid() || isBlack(ls.L)) return false;
+  float bsdfPdf;
+  Color f = bsdf.eval(v.wo, ls.wi, bsdfPdf) * std::fabs(dot(ls.wi, v.n));
+  if (isBlack(f)) return false;
+  shadow.ray = ls.infinite ? spawnRay(s.p, s.ng, ls.wi) : spawnRayTo(s.p, s.ng, ls.p);
+  float w = ls.delta ? 1.0f : powerHeuristic(ls.pdf, bsdfPdf);
+  // An unoccluded shadow ray crossed one medium: the one on its side of s.
+  const Color sigma = absorbingMedia_ && v.refractive && dot(ls.wi, v.n) < 0
+                          ? farSideAbsorption(st.media, s.material, *v.m, s.frontFace)
+                          : v.sigmaA;
+  if (!isBlack(sigma)) f *= ls.infinite ? Color(0.0f) : transmittance(sigma, length(ls.p - s.p));
+  shadow.contribution = st.beta * f * ls.L * (w / ls.pdf);
+  shadow.indirect = st.indirectNee;
+  shadow.depth = st.depth;
+  shadow.firstVertex = st.paths.atFirstVertex();
+  if (st.paths.active() && shadow.firstVertex) shadow.toLight = bsdf.evalLobes(v.wo, ls.wi);
+  return true;
+}
+
+/// BSDF sampling continues the path, then Russian roulette.
+[[gnu::always_inline]] inline PathStep PathEstimator::scatter(PathState& st, const Vertex& v,
+                                                              const Bsdf& bsdf, Sampler& sampler,
+                                                              RayStats& stats) const {
+  const SurfacePoint& s = v.s;
+  const Vec3 u = sampler.next3D();  // the lobe choice, then the direction
+  BsdfSample bs = bsdf.sample(v.wo, u.x, {u.y, u.z});
+  if (!bs.valid()) return PathStep::kDone;
+  st.beta *= bs.f * (std::fabs(dot(bs.wi, v.n)) / bs.pdf);
+  if (!isFinite(st.beta)) {
+    reportNan(st, "path throughput", st.depth);
+    st.nan = true;  // counted and discarded upstream
+    return PathStep::kDone;
+  }
+  if (isBlack(st.beta)) return PathStep::kDone;
+  st.specular = bs.delta;
+  st.indirectEmission = st.indirectNee;
+  st.indirectNee = st.indirectNee || !bs.delta;
+  st.prevPdf = bs.pdf;
+  st.prev = v.here;
+  if (bs.transmission && v.refractive) {
+    st.media.cross(s.material, *v.m, s.frontFace);
+    st.etaFactor /= bs.etaScale;
+  }
+  if (st.paths.active())
+    st.paths.scattered(!st.paths.atFirstVertex() ? LobeSplit{}
+                       : bs.delta                ? LightPathSplitter::deltaLobe(bs.transmission)
+                                                 : bsdf.evalLobes(v.wo, bs.wi));
+  st.ray = spawnRay(s.p, s.ng, bs.wi);
+  ++stats.secondaryRays;
+  ++st.depth;
+
+  // Russian roulette (Arvo & Kirk 1990) with Mitsuba's survival probability.
+  if (st.depth > kRouletteDepth) {
+    float q = std::min(maxComponent(st.beta) * st.etaFactor, 0.95f);
+    if (!(sampler.next1D() < q)) return PathStep::kDone;
+    st.beta /= q;
+  }
+  return PathStep::kContinue;
+}
+
+}  // namespace tray

@@ -1,0 +1,129 @@
+#pragma once
+// The path tracer's estimator one vertex at a time, shared by the scalar `path` integrator
+// (one path traced to its end) and `path-wavefront` (every path of a batch advanced one
+// segment at a time, rays traced together). Both drive the same code over the same random
+// numbers, so a pixel sample gives the same radiance either way (docs/wavefront.md).
+#include <atomic>
+
+#include "core/integrator.h"
+#include "core/light_paths.h"
+#include "core/shading.h"
+#include "lights/light_set.h"
+#include "materials/medium_stack.h"
+
+namespace tray {
+
+class Bsdf;
+
+/// Everything a path carries from one vertex to the next (the locals of a recursive Li).
+struct PathState {
+  Ray ray;       ///< the segment to trace next
+  Color L{0.0f}, beta{1.0f};
+  int depth = 1;  ///< segments so far, counting the one being traced
+  int nullCrossings = 0;
+  bool specular = true;  ///< the last scattering was a delta lobe (or the camera): no MIS
+  bool nan = false;      ///< the throughput became non-finite: the sample is discarded
+  /// Firefly clamping (--clamp-indirect): a non-delta vertex precedes the current one, and
+  /// one precedes the vertex the traced ray left from.
+  bool indirectNee = false, indirectEmission = false;
+  float prevPdf = 0;        ///< BSDF pdf of the last scattering, for MIS against light sampling
+  LightSampleContext prev;  ///< the last scattering point, as light sampling saw it
+  float etaFactor = 1;      ///< undoes the 1/eta^2 radiance scaling for Russian roulette
+  MediumStack media;
+  Vec3 cameraOrigin;             ///< for the primary hit's depth
+  int pixelX = -1, pixelY = -1;  ///< for --debug-nan reports
+  /// Light-path AOVs (core/light_paths.h): each contribution also goes to its path's category
+  /// when the splitter has a target.
+  LightPathSplitter paths{nullptr};
+  /// A path starting with the camera ray `ray` of pixel (x, y); its light-path split goes to
+  /// `lightPaths` when not null.
+  static PathState camera(const Ray& ray, int x, int y, LightPathRadiance* lightPaths) {
+    PathState s;
+    s.ray = ray, s.cameraOrigin = ray.o, s.pixelX = x, s.pixelY = y;
+    s.paths = LightPathSplitter(lightPaths);
+    return s;
+  }
+};
+
+/// A next-event estimate waiting for its shadow ray: added to the path's radiance if the ray
+/// is not occluded. Deferring the test changes no random number and no order of additions.
+struct ShadowQuery {
+  Ray ray;
+  Color contribution;
+  bool indirect = false;  ///< clamped by --clamp-indirect
+  int depth = 0;          ///< for --debug-nan reports
+  /// Light-path AOVs: drawn at the path's first vertex, and then (only with a splitter target)
+  /// the BSDF's split toward the light.
+  bool firstVertex = false;
+  LobeSplit toLight;
+};
+
+/// What one vertex did to its path.
+enum class PathStep : uint8_t {
+  kContinue,  ///< state.ray is the next segment
+  kDone,      ///< the path ended (escaped, absorbed, roulette, max depth, NaN)
+};
+
+/// Unidirectional path tracing with next-event estimation and MIS (Veach 1997, ch. 9), written
+/// as a step per vertex. Thread-safe: all per-path data lives in PathState.
+class PathEstimator {
+ public:
+  explicit PathEstimator(const RenderContext& ctx);
+  int maxDepth() const { return maxDepth_; }
+  /// Processes the result of tracing state.ray (`found`: `hit` is its closest hit): emission,
+  /// NEE (sets `shadow` and returns true in `wantsShadow` when a shadow ray must be tested),
+  /// BSDF sampling and Russian roulette. Fills `primary` at the first surface if not null.
+  PathStep step(PathState& state, Sampler& sampler, bool found, const Hit& hit,
+                ShadowQuery& shadow, bool& wantsShadow, RayStats& stats,
+                PrimaryHit* primary) const;
+  /// Adds a next-event estimate whose shadow ray was traced.
+  void resolveShadow(PathState& state, const ShadowQuery& shadow, bool occluded) const {
+    if (occluded) return;
+    const Color c = add(state, shadow.contribution, "light sample", shadow.indirect, shadow.depth);
+    if (state.paths.active()) state.paths.addLightSample(c, shadow.toLight, shadow.firstVertex);
+  }
+  /// The sample's radiance once the path is done (NaN when the throughput became non-finite:
+  /// counted and discarded upstream).
+  static Color result(const PathState& state);
+
+ private:
+  struct Vertex;
+  bool nextEvent(const PathState& st, const Vertex& v, const Bsdf& bsdf, Sampler& sampler,
+                 ShadowQuery& shadow) const;
+  PathStep scatter(PathState& st, const Vertex& v, const Bsdf& bsdf, Sampler& sampler,
+                   RayStats& stats) const;
+  /// Adds `c` to the path's radiance (clamped when indirect) and returns what was added.
+  /// Firefly clamping (--clamp-indirect): light that reached the camera path after scattering
+  /// off a diffuse or glossy vertex earlier than the one gathering it (caustics,
+  /// interreflection) is "indirect". Each such contribution is scaled down, keeping its hue, so
+  /// that its largest component is at most clampIndirect_: biased (energy is lost) but bounded
+  /// per sample, the "clamp indirect" of Cycles and Arnold. Direct light at the first non-delta
+  /// vertex, and emitters seen directly or through mirrors and glass, are never clamped. Here,
+  /// not in the .cpp, so that the drivers' resolveShadow inlines it.
+  Color add(PathState& state, Color c, const char* what, bool indirect, int depth) const {
+    if (!isFinite(c)) reportNan(state, what, depth);
+    if (clampIndirect_ > 0 && indirect) {  // the constant first: a predictable branch
+      const float peak = maxComponent(c);
+      if (peak > clampIndirect_) c *= clampIndirect_ / peak;
+    }
+    state.L += c;
+    return c;
+  }
+  void escape(PathState& state) const;
+  void reportNan(const PathState& state, const char* what, int depth) const;
+  static constexpr int kMaxNanReports = 10;
+  /// Mitsuba's default: Russian roulette from the fifth segment on.
+  static constexpr int kRouletteDepth = 5;
+  /// Passes through false interfaces of nested dielectrics before giving up on a path.
+  static constexpr int kMaxNullCrossings = 64;
+  const RenderContext& ctx_;
+  int maxDepth_;
+  float clampIndirect_;
+  bool debugNan_;
+  bool absorbingMedia_;  ///< some material absorbs (KHR_materials_volume): NEE looks it up
+  LightSet lights_;
+  MaterialEvaluator materials_;
+  mutable std::atomic<int> nanReports_{0};
+};
+
+}  // namespace tray

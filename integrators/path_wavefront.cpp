@@ -1,0 +1,172 @@
+#include "integrators/path_wavefront.h"
+
+#include <algorithm>
+#include <vector>
+
+#include "integrators/path.h"
+#include "integrators/path_estimator.h"
+
+namespace tray {
+namespace {
+
+/// The paths of one wave, their ray queues (structure of arrays: one array per field, so the
+/// accelerator reads rays and writes hits contiguously) and their shadow queue. Reused by a
+/// thread from one batch to the next: no allocation once grown.
+struct Wave {
+  // Per path, in (pixel, sample) order.
+  std::vector<PathState> paths;
+  std::vector<Sampler> samplers;
+  std::vector<PrimaryHit> primary;
+  std::vector<Vec2> offsets;  ///< pixel-sampler offset, for the filter weight
+  std::vector<LightPathRadiance> lightPaths;  ///< when light-path AOVs are asked for
+  // The queue of live paths and its rays, hits.
+  std::vector<uint32_t> live, next;
+  std::vector<Ray> rays;
+  std::vector<Hit> hits;
+  std::vector<uint8_t> found;
+  // The shadow queue: next-event estimates waiting for their rays.
+  std::vector<ShadowQuery> shadows;
+  std::vector<uint32_t> shadowPath;
+  std::vector<Ray> shadowRays;
+  std::vector<uint8_t> blocked;
+
+  void clear() {
+    paths.clear(), samplers.clear(), primary.clear(), offsets.clear();
+  }
+};
+
+class PathWavefrontIntegrator final : public Integrator {
+ public:
+  explicit PathWavefrontIntegrator(const RenderContext& ctx)
+      : Integrator(ctx), estimator_(ctx_) {}
+
+  /// A 16 x 16 tile (the renderer's default) at once.
+  int pixelBatch() const override { return 256; }
+
+  uint32_t accumulate(int x, int y, int begin, int end, PixelSums& sums, PrimaryHit& first,
+                      RayStats& stats, IdCoverage* coverage, AovSums* aovSums) const override {
+    PixelTask task;
+    task.x = x, task.y = y, task.sums = sums, task.first = first, task.coverage = coverage;
+    task.aovSums = aovSums;
+    accumulatePixels({&task, 1}, begin, end, stats);
+    sums = task.sums, first = task.first;
+    return task.samples;
+  }
+  bool splitsLightPaths() const override { return true; }
+
+  void accumulatePixels(std::span<PixelTask> tasks, int begin, int end,
+                        RayStats& stats) const override;
+
+  /// One path on its own (adaptive's inner integrator): a wave of one.
+  Color Li(const Ray& ray, Sampler& sampler, RayStats& stats,
+           PrimaryHit* primary) const override {
+    Wave& w = scratch();
+    w.clear();
+    w.paths.push_back(PathState::camera(ray, -1, -1, primary ? primary->lightPaths : nullptr));
+    w.samplers.push_back(sampler);
+    w.primary.emplace_back();
+    trace(w, stats);
+    sampler = w.samplers[0];
+    if (primary) {
+      LightPathRadiance* split = primary->lightPaths;  // the caller's, not the wave's
+      *primary = w.primary[0];
+      primary->lightPaths = split;
+    }
+    return PathEstimator::result(w.paths[0]);
+  }
+
+ private:
+  /// Paths in flight per wave: enough to fill the accelerator's batches, few enough that a
+  /// wave's state (about 400 bytes a path) stays in the L2 cache.
+  static constexpr size_t kWaveSize = 4096;
+  static Wave& scratch() {
+    static thread_local Wave wave;
+    return wave;
+  }
+  void trace(Wave& w, RayStats& stats) const;
+  void bounce(Wave& w, RayStats& stats) const;
+  PathEstimator estimator_;
+};
+
+void PathWavefrontIntegrator::accumulatePixels(std::span<PixelTask> tasks, int begin, int end,
+                                               RayStats& stats) const {
+  end = std::min(end, sampleCount());
+  const size_t n = size_t(std::max(0, end - begin));
+  for (PixelTask& t : tasks) t.samples = uint32_t(n);
+  const size_t total = tasks.size() * n;
+  Wave& w = scratch();
+  auto splits = [](const PixelTask& t) { return t.aovSums && t.aovSums->lightPaths; };
+  const bool anySplit = std::any_of(tasks.begin(), tasks.end(), splits);
+  // Paths in (pixel, sample) order, cut into waves: each pixel's samples are added to its sums
+  // in sample order, as accumulate() does, so the sums are the same bits.
+  for (size_t g0 = 0; g0 < total; g0 += kWaveSize) {
+    const size_t g1 = std::min(total, g0 + kWaveSize);
+    w.clear();
+    // Sized before the paths point into it; zero, as accumulate() clears a sample's split.
+    w.lightPaths.assign(anySplit ? g1 - g0 : 0, LightPathRadiance{});
+    for (size_t g = g0; g < g1; ++g) {
+      const PixelTask& t = tasks[g / n];
+      const int i = begin + int(g % n);
+      Sampler s = sampler(t.x, t.y, i);
+      Vec2 offset;
+      const Ray ray = cameraRay(t.x, t.y, i, s, offset);
+      ++stats.cameraRays;
+      w.paths.push_back(
+          PathState::camera(ray, t.x, t.y, splits(t) ? &w.lightPaths[g - g0] : nullptr));
+      w.samplers.push_back(s);
+      w.primary.emplace_back();
+      w.offsets.push_back(offset);
+    }
+    trace(w, stats);
+    for (size_t g = g0; g < g1; ++g) {
+      PixelTask& t = tasks[g / n];
+      const size_t k = g - g0;
+      if (g % n == 0) t.first = w.primary[k];
+      addSample(t.sums, t.coverage, t.aovSums, w.offsets[k], PathEstimator::result(w.paths[k]),
+                w.primary[k], splits(t) ? &w.lightPaths[k] : nullptr, stats);
+    }
+  }
+}
+
+void PathWavefrontIntegrator::trace(Wave& w, RayStats& stats) const {
+  if (estimator_.maxDepth() == 0) return;  // nothing is traced: black, nothing hit
+  w.live.resize(w.paths.size());
+  for (size_t k = 0; k < w.live.size(); ++k) w.live[k] = uint32_t(k);
+  while (!w.live.empty()) bounce(w, stats);
+}
+
+/// One segment of every live path: trace the queue, shade each hit (emission, light sample,
+/// BSDF sample), then trace the shadow queue and add the unoccluded estimates.
+void PathWavefrontIntegrator::bounce(Wave& w, RayStats& stats) const {
+  const size_t count = w.live.size();
+  w.rays.resize(count), w.hits.resize(count), w.found.resize(count);
+  for (size_t j = 0; j < count; ++j) w.rays[j] = w.paths[w.live[j]].ray;
+  ctx_.accel.intersectBatch(w.rays, w.hits, w.found);
+
+  w.next.clear(), w.shadows.clear(), w.shadowPath.clear();
+  for (size_t j = 0; j < count; ++j) {
+    const uint32_t k = w.live[j];
+    ShadowQuery shadow;
+    bool wantsShadow;
+    const PathStep step = estimator_.step(w.paths[k], w.samplers[k], w.found[j], w.hits[j],
+                                          shadow, wantsShadow, stats, &w.primary[k]);
+    if (wantsShadow) w.shadows.push_back(shadow), w.shadowPath.push_back(k);
+    if (step == PathStep::kContinue) w.next.push_back(k);
+  }
+
+  const size_t shadowCount = w.shadows.size();
+  w.shadowRays.resize(shadowCount), w.blocked.resize(shadowCount);
+  for (size_t q = 0; q < shadowCount; ++q) w.shadowRays[q] = w.shadows[q].ray;
+  ctx_.accel.occludedBatch(w.shadowRays, w.blocked);
+  for (size_t q = 0; q < shadowCount; ++q)
+    estimator_.resolveShadow(w.paths[w.shadowPath[q]], w.shadows[q], w.blocked[q]);
+  std::swap(w.live, w.next);
+}
+
+}  // namespace
+
+std::unique_ptr<Integrator> makePathWavefront(const RenderContext& ctx) {
+  return std::make_unique<PathWavefrontIntegrator>(declaring(ctx, pathOptions()));
+}
+
+}  // namespace tray

@@ -1,0 +1,212 @@
+// path-wavefront against the scalar path tracer it must equal. Both run PathEstimator over
+// the same random numbers per pixel sample, and every bounce's rays meet the same
+// accelerator queries, so the images are expected to be the same bits (tolerance 0); only a
+// batched traversal that returned a different closest hit among equal-t candidates could make
+// them differ, and the tests below would show it. docs/wavefront.md.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "accel/registry.h"
+#include "core/aov.h"
+#include "core/render_setup.h"
+#include "core/renderer.h"
+#include "integrators/registry.h"
+#include "io/gltf_loader.h"
+#include "tests/scene_builder.h"
+
+namespace tray {
+namespace {
+
+const std::string kShared = TRAY_SHARED_DIR;
+
+struct Render {
+  Film film{1, 1};
+  RenderStats stats;
+};
+
+struct Job {
+  std::string integrator = "path";
+  std::string accel = "embree";
+  std::string sampler = "sobol";
+  int size = 24, spp = 8, threads = 1, tileSize = 16;
+  uint64_t seed = 0;
+  std::vector<std::string> aovs;
+  int sampleBegin = 0, sampleEnd = 0;
+};
+
+Render render(const Scene& scene, const Job& job, RenderState* state = nullptr) {
+  auto camera = Camera::create(chooseCamera(scene, -1), job.size, job.size);
+  auto accel = makeAccelerator(job.accel, scene);
+  RenderSettings settings;
+  settings.set("integrator", job.integrator);
+  settings.set("spp", job.spp);
+  settings.set("sampler", job.sampler);
+  settings.set("seed", int64_t(job.seed));
+  RenderContext ctx{scene, *accel, *camera, settings, job.size, job.size};
+  auto integrator = makeIntegrator(ctx);
+  Render r;
+  r.film = Film(job.size, job.size);
+  RenderOptions options;
+  options.threads = job.threads;
+  options.tileSize = job.tileSize;
+  options.aovs = job.aovs;
+  options.sampleBegin = job.sampleBegin, options.sampleEnd = job.sampleEnd;
+  RenderState fresh;
+  r.stats = renderImage(*integrator, r.film, state ? *state : fresh, options);
+  return r;
+}
+
+/// Every layer, every channel, every pixel: the number of values that differ.
+size_t differingValues(const Film& a, const Film& b) {
+  EXPECT_EQ(a.layers().size(), b.layers().size());
+  size_t differ = 0;
+  for (size_t l = 0; l < std::min(a.layers().size(), b.layers().size()); ++l) {
+    EXPECT_EQ(a.layers()[l].name, b.layers()[l].name);
+    const auto &da = a.layers()[l].data, &db = b.layers()[l].data;
+    EXPECT_EQ(da.size(), db.size());
+    for (size_t i = 0; i < std::min(da.size(), db.size()); ++i)
+      differ += !(da[i] == db[i] || (std::isnan(da[i]) && std::isnan(db[i])));
+  }
+  return differ;
+}
+
+/// A scene from ../shared; one without lights gets a point light at the camera.
+Scene sharedScene(const std::string& file) {
+  Scene scene = loadGltf(kShared + "/" + file);
+  if (!scene.lights.empty()) return scene;
+  const Vec3 eye = chooseCamera(scene, -1).toWorld.point(Vec3(0.0f));
+  const float d2 = lengthSquared(scene.bounds().center() - eye);
+  scene.lights.push_back(test::pointLight(eye, Color(2.0f * std::max(d2, 1e-4f))));
+  return scene;
+}
+
+const Scene& cornell() {
+  static const Scene s = loadGltf(kShared + "/reference/cornell-box.gltf");
+  return s;
+}
+
+struct Case {
+  const char* scene;  ///< under ../shared
+  const char* accel;
+  const char* sampler;
+};
+
+class SameAsScalar : public testing::TestWithParam<Case> {};
+
+// Same random numbers per sample, same estimator: the same pixels, AOVs (the light-path
+// layers among them) and Cryptomatte included, and the same ray counts.
+TEST_P(SameAsScalar, SamePixelsAovsAndRayCounts) {
+  const Case c = GetParam();
+  const Scene scene = sharedScene(c.scene);
+  Job job;
+  job.accel = c.accel, job.sampler = c.sampler;
+  job.aovs = AovSet::known();
+  const Render scalar = render(scene, job);
+  job.integrator = "path-wavefront";
+  const Render wave = render(scene, job);
+  EXPECT_EQ(differingValues(scalar.film, wave.film), 0u);
+  EXPECT_EQ(scalar.stats.rays.cameraRays, wave.stats.rays.cameraRays);
+  EXPECT_EQ(scalar.stats.rays.secondaryRays, wave.stats.rays.secondaryRays);
+  EXPECT_EQ(scalar.stats.rays.shadowRays, wave.stats.rays.shadowRays);
+  EXPECT_GT(wave.stats.rays.shadowRays, 0u);
+  // The light-path layers were filled, not both left black: every scene has direct light.
+  const int direct = wave.film.findLayer("diffuse_direct");
+  ASSERT_GE(direct, 0);
+  float peak = 0;
+  for (int y = 0; y < job.size; ++y)
+    for (int x = 0; x < job.size; ++x) peak = std::max(peak, wave.film.pixel(direct, x, y)[0]);
+  EXPECT_GT(peak, 0.0f);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Scenes, SameAsScalar,
+    testing::Values(Case{"reference/cornell-box.gltf", "embree", "sobol"},
+                    Case{"reference/cornell-box.gltf", "embree", "independent"},
+                    Case{"reference/cornell-box.gltf", "bvh", "sobol"},
+                    Case{"reference/furnace-sphere.gltf", "embree", "sobol"},
+                    // Alpha-tested (MASK, BLEND) triangles: Embree's filter in a stream query.
+                    Case{"gltf-features/AlphaBlendModeTest.glb", "embree", "sobol"},
+                    Case{"gltf-samples/TransmissionTest.glb", "embree", "sobol"}),
+    [](const testing::TestParamInfo<Case>& info) {
+      std::string s = std::string(info.param.scene) + "_" + info.param.accel + "_" +
+                      info.param.sampler;
+      for (char& ch : s)
+        if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+      return s;
+    });
+
+// Independent seeds: two unbiased estimates of the same image, whose channel means agree
+// within Monte Carlo error (4 standard errors, from the per-pixel spread).
+TEST(PathWavefront, ChannelMeansWithinMonteCarloErrorOfScalar) {
+  Job job;
+  job.sampler = "independent", job.size = 32, job.spp = 16, job.seed = 1;
+  const Render scalar = render(cornell(), job);
+  job.integrator = "path-wavefront", job.seed = 2;
+  const Render wave = render(cornell(), job);
+  const size_t n = size_t(job.size) * job.size;
+  for (int c = 0; c < 3; ++c) {
+    double mean[2] = {0, 0}, sq[2] = {0, 0};
+    for (int k = 0; k < 2; ++k) {
+      const Film& f = k == 0 ? scalar.film : wave.film;
+      for (int y = 0; y < job.size; ++y)
+        for (int x = 0; x < job.size; ++x) {
+          const double v = f.pixel(Film::kBeauty, x, y)[c];
+          mean[k] += v / n, sq[k] += v * v / n;
+        }
+    }
+    // Each pixel mean is an independent estimate: the spread of pixel differences bounds the
+    // error of the image means' difference (conservative: it includes the image's variation).
+    const double var = (sq[0] - mean[0] * mean[0]) + (sq[1] - mean[1] * mean[1]);
+    const double sigma = std::sqrt(var / n);
+    EXPECT_NE(mean[0], mean[1]) << "the seeds gave the same image";
+    EXPECT_LT(std::fabs(mean[0] - mean[1]), 4 * sigma) << "channel " << c;
+  }
+}
+
+// Same pixels whatever the thread count and tile size (a tile is one batch of paths).
+TEST(PathWavefront, DeterministicAcrossThreadsAndTiles) {
+  Job job;
+  job.integrator = "path-wavefront", job.size = 40;
+  const Render one = render(cornell(), job);
+  job.threads = 2, job.tileSize = 7;
+  const Render two = render(cornell(), job);
+  EXPECT_EQ(differingValues(one.film, two.film), 0u);
+}
+
+// Sample ranges (the farm's --sample-range) add up to the whole: sums of [0, 3) and [3, 8).
+TEST(PathWavefront, SampleRangesAddUpToTheWhole) {
+  Job job;
+  job.integrator = "path-wavefront";
+  RenderState whole, part;
+  render(cornell(), job, &whole);
+  job.sampleEnd = 3;
+  render(cornell(), job, &part);
+  RenderState rest;
+  job.sampleBegin = 3, job.sampleEnd = 8;
+  render(cornell(), job, &rest);
+  for (size_t p = 0; p < whole.sums.size(); ++p) {
+    PixelSums sum = part.sums[p];
+    sum += rest.sums[p];
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(sum.rgb[c], whole.sums[p].rgb[c], 1e-9) << p;
+    EXPECT_EQ(sum.weight, whole.sums[p].weight);
+  }
+}
+
+// A checkpoint's pixels are kept and the rest rendered: the resumed image equals the whole.
+TEST(PathWavefront, ResumedFromCheckpointEqualsUninterrupted) {
+  Job job;
+  job.integrator = "path-wavefront";
+  RenderState state;
+  const Render whole = render(cornell(), job, &state);
+  RenderState half = RenderState::empty(state.done.size());
+  for (size_t p = 0; p < state.done.size(); p += 2) half.sums[p] = state.sums[p], half.done[p] = 1;
+  const Render resumed = render(cornell(), job, &half);
+  EXPECT_EQ(resumed.stats.pixelsDone, state.done.size());
+  EXPECT_EQ(differingValues(whole.film, resumed.film), 0u);
+}
+
+}  // namespace
+}  // namespace tray
