@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <mutex>
 
+#include "bench/cpu_time.h"
 #include "accel/embree_accelerator.h"
 #include "accel/registry.h"
 #include "bench/image_error.h"
@@ -31,13 +32,6 @@ using namespace tray;
 
 /// CPU seconds used by this process so far, all threads: on a machine shared with other work
 /// the wall-clock time depends on the load, the CPU time much less.
-double cpuSeconds() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
-         1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
-}
-
 /// Closest-hit queries per second for rays with random origins inside the scene bounds and
 /// uniformly random directions: the incoherent workload a path tracer's bounces produce.
 double rawTraversalMrays(const Accelerator& accel, const Bounds3& b, int threads) {
