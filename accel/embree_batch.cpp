@@ -27,7 +27,7 @@ void intersectPackets(RTCScene top, RTCIntersectContext* ctx, std::span<const Ra
   const size_t n = rays.size();
   for (size_t b = 0; b < n; b += kLanes) {
     alignas(32) int valid[kLanes];
-    alignas(32) RTCRayHit8 p;
+    alignas(32) RTCRayHit8 p{};  // inactive lanes too: Embree's SIMD code reads every lane
     laneMask(b, n, valid);
     for (int l = 0; l < kLanes && b + l < n; ++l) {
       toLane(rays[b + l], uint32_t(b + l), p.ray, l);
@@ -52,7 +52,7 @@ void occludedPackets(RTCScene top, RTCIntersectContext* ctx, std::span<const Ray
   const size_t n = rays.size();
   for (size_t b = 0; b < n; b += kLanes) {
     alignas(32) int valid[kLanes];
-    alignas(32) RTCRay8 p;
+    alignas(32) RTCRay8 p{};  // inactive lanes too: Embree's SIMD code reads every lane
     laneMask(b, n, valid);
     for (int l = 0; l < kLanes && b + l < n; ++l) toLane(rays[b + l], uint32_t(b + l), p, l);
     rtcOccluded8(valid, top, ctx, &p);
