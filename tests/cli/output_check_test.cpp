@@ -35,7 +35,11 @@ std::string runTray(const std::string& args, int& code) {
 }
 
 TEST(CliOutputCheck, MistakesAreReportedBeforeTheSceneIsRead) {
-  const std::string tmp = ::testing::TempDir();
+  // A folder of its own: a stray x.exr left in the shared temp folder failed the last check.
+  const fs::path dir = fs::path(::testing::TempDir()) / "tray_output_check";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string tmp = dir.string();
   const Case cases[] = {
       {"extension", "-o " + tmp + "/x.tiff", "unsupported output format '.tiff'"},
       {"folder", "-o /nonexistent-folder/x.exr", "folder '/nonexistent-folder' does not exist"},
