@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "accel/registry.h"
+#include "cli/cli_options.h"
 #include "cli/farm.h"
 #include "cli/frames.h"
 #include "cli/option_cli.h"
@@ -32,35 +33,6 @@
 
 namespace {
 
-struct CliOptions {
-  std::string scenePath;
-  std::vector<std::string> outputs{"out.exr"};
-  std::string resolution;
-  std::string camera;  ///< --camera: a glTF camera index or a node/camera name; "" default
-  int scene = -1;
-  int threads = 0;
-  std::string accel = "embree";
-  bool floatOutput = false;
-  std::string outputColorspace;  ///< empty: the config's linear Rec.709, else scene_linear
-  std::string display, view;
-  bool allowAnyPath = false;
-  bool ignoreRequiredExtensions = false;
-  bool quiet = false;
-  std::string progress = "bar";  ///< --progress bar|plain|none
-  tray::ProgressSettings progressSettings;
-  std::string sceneHash;  ///< sceneContentHash, computed once for all frames; empty: not yet
-  std::string aovs;
-  int cryptomatteRanks = 6;
-  std::string aaHeatmap;
-  std::string region, sampleRange;
-  double checkpointSeconds = 0;
-  bool resume = false;
-  int testInterruptAfterTiles = 0;
-  std::string frames;  ///< --frames A-B; empty: one image
-  double maxMemoryMB = -1;     ///< -1: 80% of physical memory; 0: no limit
-  double textureMemoryMB = 0;  ///< 0: TextureSampler::kDefaultCacheMB
-  tray::RenderSettings settings;
-};
 
 /// The job's content: the scene and every file it names, and the --env map, whose pixels are
 /// not in the option's value (its path).
@@ -71,11 +43,6 @@ std::string contentHashOf(const CliOptions& o) {
                                             : std::vector<std::string>{env});
 }
 
-std::string joined(const std::vector<std::string>& names) {
-  std::string s;
-  for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
-  return s;
-}
 
 /// What run() is doing, for the out-of-memory message (std::bad_alloc says nothing itself).
 const char* gPhase = "starting";
@@ -92,18 +59,6 @@ double defaultMaxMemoryMB() {
   return double(kB) / 1024.0 * 0.8;
 }
 
-/// Rejects a leading minus before CLI11 converts: it would store --seed -1 as 2^64 - 1, and an
-/// index of -1 would mean "absent" (the default camera or scene) instead of an error.
-CLI::Validator nonNegative(const std::string& expected) {
-  return CLI::Validator(
-      [expected](std::string& value) -> std::string {
-        const size_t first = value.find_first_not_of(" \t");
-        if (first != std::string::npos && value[first] == '-')
-          return "'" + value + "' is negative: expected " + expected;
-        return {};
-      },
-      "", "non-negative");
-}
 
 /// Output mistakes (format, folder, colorspace, display/view, $OCIO, checkpoints without an
 /// EXR), before any work: on a farm, a mistake found after the render costs hours.
@@ -339,78 +294,7 @@ int main(int argc, char** argv) {
   CliOptions o;
 
   CLI::App app{"TRay: offline renderer for glTF 2.0 scenes (Embree, Whitted and path tracing)"};
-  app.set_version_flag("--version", std::string("tray-render ") + TRAY_VERSION);
-  app.add_option("scene", o.scenePath, "glTF 2.0 scene (.gltf or .glb)")->required();
-  app.add_option("-o,--output", o.outputs,
-                 "output image(s): .exr (scene-linear) or .png/.jpg (display-referred); repeatable")
-      ->capture_default_str();
-  // --integrator, --spp, --seed, --sampler, --pixel-sampler, --filter and every registered
-  // integrator's own options (--max-depth, --aa-depth, ...), from their declarations.
-  tray::addRenderOptions(app, o.settings);
-  app.add_option("--aa-heatmap", o.aaHeatmap, "write an image of camera rays per pixel (PNG/EXR)");
-  app.add_option("--threads", o.threads, "worker threads (0: all cores)")
-      ->check(CLI::Range(0, 4096))
-      ->capture_default_str();
-  app.add_option("--resolution", o.resolution,
-                 "image size WxH (default 640 wide, height from the camera)");
-  app.add_option("--camera", o.camera,
-                 "the glTF camera to render: N for the file's cameras[N], or a node or camera "
-                 "name (default: the placed camera of lowest index)")
-      ->check(nonNegative("a camera index >= 0 or a name (omit --camera for the default)"));
-  app.add_option("--scene", o.scene, "index of the glTF scene (default: the file's default scene)")
-      ->check(nonNegative("a scene index >= 0 (omit --scene for the file's default scene)"));
-  app.add_option("--accel", o.accel, "accelerator: " + joined(tray::acceleratorNames()))
-      ->capture_default_str();
-  app.add_flag("--float", o.floatOutput, "write 32-bit float EXR (default half)");
-  app.add_option("--output-colorspace", o.outputColorspace,
-                 "OCIO colorspace (name, alias or role) of EXR output (default: the config's "
-                 "linear Rec.709, lin_rec709 in TRay's; else its scene_linear role)");
-  app.add_option("--display", o.display, "OCIO display for PNG/JPG output (default: sRGB)");
-  app.add_option("--view", o.view, "OCIO view for PNG/JPG output (default: the display's first)");
-  app.add_flag("--allow-any-path", o.allowAnyPath, "let scene URIs leave the scene's folder");
-  app.add_flag("--ignore-required-extensions", o.ignoreRequiredExtensions,
-               "render a glTF whose required extensions TRay lacks (with a warning)");
-  app.add_option("--aov", o.aovs,
-                 "extra EXR layers: comma-separated from " + joined(tray::AovSet::known()) +
-                     ", cryptomatte (= crypto_object,crypto_material), lightpaths (the path "
-                     "tracer's 7 light-path layers), or all (all but the light paths)");
-  app.add_option("--cryptomatte-ranks", o.cryptomatteRanks,
-                 "Cryptomatte: ids kept per pixel and type (2 per EXR layer)")
-      ->check(CLI::Range(1, 32))
-      ->capture_default_str();
-  app.add_option("--region", o.region,
-                 "render pixels x0..x1-1, y0..y1-1 only: an EXR data window of the full image");
-  app.add_option("--sample-range", o.sampleRange,
-                 "render samples a..b-1 of each pixel only: a part for tray-merge");
-  app.add_option("--checkpoint", o.checkpointSeconds,
-                 "every SECONDS, write the progress so far to the first .exr output")
-      ->check(CLI::NonNegativeNumber);
-  app.add_flag("--resume", o.resume, "continue the render saved in the first .exr output");
-  app.add_option("--test-interrupt-after-tiles", o.testInterruptAfterTiles)->group("");
-  app.add_option("--max-memory", o.maxMemoryMB,
-                 "refuse a scene whose buffers, textures and geometry need more than MB "
-                 "(default: 80% of physical memory; 0: no limit)")
-      ->check(CLI::NonNegativeNumber);
-  app.add_option("--texture-memory", o.textureMemoryMB,
-                 "texture cache budget in MB (default 128; never changes pixels)")
-      ->check(CLI::NonNegativeNumber);
-  app.add_flag("-q,--quiet", o.quiet, "no progress bar or summary (--progress none)");
-  app.add_option("--progress", o.progress,
-                 "bar (on a terminal), plain (one line 'progress P% elapsed S s eta S s' per "
-                 "--progress-step percent or --progress-seconds, for farm logs) or none")
-      ->check(CLI::IsMember({"bar", "plain", "none"}))
-      ->capture_default_str();
-  app.add_option("--progress-step", o.progressSettings.stepPercent,
-                 "--progress plain: a line each time progress passes a multiple of PERCENT")
-      ->check(CLI::Range(0.1, 100.0))
-      ->capture_default_str();
-  app.add_option("--progress-seconds", o.progressSettings.intervalSeconds,
-                 "--progress plain: a line at least every SECONDS (0: only by --progress-step)")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
-  app.add_option("--frames", o.frames,
-                 "render frames FIRST-LAST of the animation at --fps, each at time frame / fps, "
-                 "to outputs named by a pattern: -o out.####.exr (or out.%04d.exr)");
+  addCliOptions(app, o);
 
   // One line, in the form of every other error (CLI11 adds a second "Run with --help" line).
   app.failure_message([](const CLI::App*, const CLI::Error& e) {
