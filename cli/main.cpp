@@ -86,33 +86,45 @@ tray::LoadOptions loadOptionsOf(const CliOptions& o) {
 
 /// One image. `document`, when given (--frames), is the file parsed once: the frame's scene
 /// is converted from it at the frame's time instead of reading the file again.
-int run(const CliOptions& o, const tray::GltfDocument* document = nullptr) {
-  // First: a signal while the scene loads also stops the render (at its first pixel).
-  const std::atomic<bool>& stop = tray::installInterruptHandlers();
-  checkOutputsOf(o);
+/// What a render needs before its first pixel: the scene as loaded and lit, the camera, the
+/// image size and the accelerator. Filled in place: the accelerator refers to `scene`.
+struct PreparedScene {
+  tray::Scene scene;
+  tray::CameraDesc cam;
+  int placedCamera = -1;
+  int width = 0, height = 0;
+  std::unique_ptr<tray::Camera> camera;
+  std::unique_ptr<tray::Accelerator> accel;
+};
+
+/// Loads the scene (from `document` when --frames parsed it once), applies --env and the lens
+/// options, adds the default lighting if the scene is unlit, checks --max-memory and builds the
+/// accelerator. Warnings go to stderr.
+void prepareScene(const CliOptions& o, const tray::GltfDocument* document, PreparedScene& p) {
   gPhase = "loading the scene";
   const tray::LoadOptions loadOptions = loadOptionsOf(o);
   tray::LoadReport report;
-  tray::Scene scene = document ? document->scene(loadOptions, &report)
-                               : tray::loadGltf(o.scenePath, loadOptions, &report);
+  p.scene = document ? document->scene(loadOptions, &report)
+                     : tray::loadGltf(o.scenePath, loadOptions, &report);
+  tray::Scene& scene = p.scene;
   scene.sourcePath = o.scenePath;
   tray::applyEnvironmentOptions(scene, o.settings, &report.warnings);  // --env: read and checked
   for (const auto& w : report.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
 
-  const int placedCamera = tray::findCamera(scene, o.camera);
-  tray::CameraDesc cam = tray::chooseCamera(scene, o.camera);
-  tray::applyLensOptions(cam, o.settings);
+  p.placedCamera = tray::findCamera(scene, o.camera);
+  p.cam = tray::chooseCamera(scene, o.camera);
+  tray::applyLensOptions(p.cam, o.settings);
   bool defaultLight = false;
   if (o.settings.getBool("no-default-light")) {
     // Nothing added: an unlit asset renders black (or lit by emitters too weak to count).
-  } else if ((defaultLight = tray::addDefaultLightingIfUnlit(scene, cam)))
+  } else if ((defaultLight = tray::addDefaultLightingIfUnlit(scene, p.cam)))
     std::fprintf(stderr,
-                 "warning: %s has no lights of meaningful power: using TRay's default headlight and a 0.1 "
-                 "environment (docs/scene-format.md; --no-default-light turns it off)\n",
+                 "warning: %s has no lights of meaningful power: using TRay's default headlight "
+                 "and a 0.1 environment (docs/scene-format.md; --no-default-light turns it off)\n",
                  o.scenePath.c_str());
-  const tray::ImageSize size = tray::resolveImageSize(o.resolution, cam);
-  const int width = size.width, height = size.height;
-  auto camera = tray::Camera::create(cam, width, height);
+  const tray::ImageSize size = tray::resolveImageSize(o.resolution, p.cam);
+  p.width = size.width, p.height = size.height;
+  p.camera = tray::Camera::create(p.cam, p.width, p.height);
   {  // The accelerator's estimate, with what the loader counted, before it is built.
     tray::MemoryEstimate need = report.memory;
     for (const auto& m : scene.meshes) need.geometry += m.triangleCount();
@@ -120,12 +132,25 @@ int run(const CliOptions& o, const tray::GltfDocument* document = nullptr) {
     tray::checkMemory(o.scenePath, need, loadOptions.maxMemoryBytes);
   }
   gPhase = "building the accelerator";
-  auto accel = tray::makeAccelerator(o.accel, scene);
-  if (defaultLight && tray::useHeadlightIfEnclosed(scene, cam, *accel))
+  p.accel = tray::makeAccelerator(o.accel, scene);
+  if (defaultLight && tray::useHeadlightIfEnclosed(scene, p.cam, *p.accel))
     std::fprintf(stderr,
                  "warning: %s: the camera is enclosed (a sky box?) and the default key light "
                  "cannot get in: a headlight at the camera replaces it\n",
                  o.scenePath.c_str());
+}
+
+int run(const CliOptions& o, const tray::GltfDocument* document = nullptr) {
+  // First: a signal while the scene loads also stops the render (at its first pixel).
+  const std::atomic<bool>& stop = tray::installInterruptHandlers();
+  checkOutputsOf(o);
+  PreparedScene prepared;
+  prepareScene(o, document, prepared);
+  const tray::Scene& scene = prepared.scene;
+  const tray::CameraDesc& cam = prepared.cam;
+  const int width = prepared.width, height = prepared.height, placedCamera = prepared.placedCamera;
+  const tray::Camera* camera = prepared.camera.get();
+  const tray::Accelerator* accel = prepared.accel.get();
   gPhase = "rendering";
   tray::RenderContext ctx{scene, *accel, *camera, o.settings, width, height};
   auto integrator = tray::makeIntegrator(ctx);
