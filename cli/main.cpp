@@ -140,6 +140,17 @@ void prepareScene(const CliOptions& o, const tray::GltfDocument* document, Prepa
                  o.scenePath.c_str());
 }
 
+/// The one line a finished render prints (unless --quiet).
+void printSummary(const CliOptions& o, int width, int height, const tray::RenderStats& stats) {
+  std::printf("%s: %dx%d, %d spp, %s on %s: %.3f s, %.2f M rays, %.2f Mrays/s",
+              o.scenePath.c_str(), width, height, int(o.settings.getInt("spp")),
+              o.settings.getString("integrator").c_str(), o.accel.c_str(), stats.seconds,
+              stats.rays.total() * 1e-6, stats.mraysPerSecond());
+  if (stats.rays.nanSamples)
+    std::printf(", %llu NaN/Inf samples discarded", (unsigned long long)stats.rays.nanSamples);
+  std::printf("\n");
+}
+
 int run(const CliOptions& o, const tray::GltfDocument* document = nullptr) {
   // First: a signal while the scene loads also stops the render (at its first pixel).
   const std::atomic<bool>& stop = tray::installInterruptHandlers();
@@ -155,7 +166,6 @@ int run(const CliOptions& o, const tray::GltfDocument* document = nullptr) {
   tray::RenderContext ctx{scene, *accel, *camera, o.settings, width, height};
   auto integrator = tray::makeIntegrator(ctx);
   const std::string integratorName = o.settings.getString("integrator");
-  const int spp = o.settings.getInt("spp");
 
   const tray::PixelRegion region = tray::parseRegion(o.region, width, height);
   const tray::SampleRange range =
@@ -270,14 +280,7 @@ int run(const CliOptions& o, const tray::GltfDocument* document = nullptr) {
     return 128 + (sig ? sig : SIGINT);
   }
 
-  if (!o.quiet) {
-    std::printf("%s: %dx%d, %d spp, %s on %s: %.3f s, %.2f M rays, %.2f Mrays/s",
-                o.scenePath.c_str(), width, height, spp, integratorName.c_str(),
-                o.accel.c_str(), stats.seconds, stats.rays.total() * 1e-6, stats.mraysPerSecond());
-    if (stats.rays.nanSamples)
-      std::printf(", %llu NaN/Inf samples discarded", (unsigned long long)stats.rays.nanSamples);
-    std::printf("\n");
-  }
+  if (!o.quiet) printSummary(o, width, height, stats);
   return 0;
 }
 
