@@ -34,6 +34,14 @@ struct CliResult {
   std::string err;
 };
 
+/// 'path' for /bin/sh (appended piecewise: GCC 12 warns falsely on "lit" + std::string&&).
+inline std::string quoted(const fs::path& path) {
+  std::string s = "'";
+  s += path.string();
+  s += "'";
+  return s;
+}
+
 /// Runs `binary args` through the shell (args already quoted), stderr captured.
 inline CliResult runTool(const std::string& binary, const std::string& args, const fs::path& dir) {
   const fs::path errFile = dir / "stderr.txt";

@@ -13,14 +13,6 @@
 namespace tray::test {
 namespace {
 
-/// 'path' for /bin/sh (appended piecewise: GCC 12 warns falsely on "lit" + std::string&&).
-std::string quoted(const fs::path& path) {
-  std::string s = "'";
-  s += path.string();
-  s += "'";
-  return s;
-}
-
 const std::string kScene = quoted(fs::path(TRAY_SOURCE_DIR) / "scenes" / "whitted.gltf");
 
 size_t lines(const std::string& s) {

@@ -15,13 +15,6 @@
 namespace tray::test {
 namespace {
 
-std::string quoted(const fs::path& path) {
-  std::string s = "'";
-  s += path.string();
-  s += "'";
-  return s;
-}
-
 /// Runs tray-render with `args`, output silenced; the exit code and the peak resident memory
 /// of the child in MB (getrusage's ru_maxrss through wait4).
 std::pair<int, double> renderPeak(const std::vector<std::string>& args) {

@@ -15,6 +15,7 @@
 #include <functional>
 
 #include "core/error.h"
+#include "tests/error_of.h"
 #include "io/gltf_loader.h"
 #include "tests/base64.h"
 
@@ -129,15 +130,6 @@ class Doc {
   std::string bytes_, views_, accessors_;
   int count_ = 0;
 };
-
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
 
 LoadOptions at(float t) {
   LoadOptions o;

@@ -13,6 +13,7 @@
 #include <functional>
 
 #include "core/error.h"
+#include "tests/error_of.h"
 #include "tests/base64.h"
 
 namespace tray {
@@ -213,15 +214,6 @@ TinyDoc triangleDoc() {
 }
 const std::string kTriangleMesh =
     R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}])";
-
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
 
 void expectNear(const Vec3& a, const Vec3& b) {
   EXPECT_NEAR(a.x, b.x, 1e-5f);
