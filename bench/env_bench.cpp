@@ -57,15 +57,23 @@ struct Run {
   double seconds, rmse;
 };
 
-Run render(const Scene& s, const CameraDesc& cam, int w, int h, int spp, int threads,
-           const Film& reference) {
+/// A path-traced film of `s` at `spp` and `seed` on Embree; `seconds` gets the CPU time.
+Film renderPath(const Scene& s, const CameraDesc& cam, int w, int h, int spp, int seed,
+                int threads, double& seconds) {
   RenderSettings st;
   st.set("integrator", "path");
   st.set("spp", spp);
-  st.set("seed", 7);
+  st.set("seed", seed);
   const double t0 = cpuSeconds();
-  const Film f = test::renderFilm(s, cam, w, h, st, nullptr, {}, "embree", threads);
-  const double seconds = cpuSeconds() - t0;
+  Film f = test::renderFilm(s, cam, w, h, st, nullptr, {}, "embree", threads);
+  seconds = cpuSeconds() - t0;
+  return f;
+}
+
+Run render(const Scene& s, const CameraDesc& cam, int w, int h, int spp, int threads,
+           const Film& reference) {
+  double seconds = 0;
+  const Film f = renderPath(s, cam, w, h, spp, 7, threads, seconds);
   return {spp, seconds, compareBeauty(f, reference).rmse};
 }
 
@@ -91,14 +99,10 @@ int main(int argc, char** argv) {
   const Scene importance = sunScene(false), uniform = sunScene(true);
   const CameraDesc cam = test::lookAt({0, 2.5f, 6}, {0, 0.8f, 0}, 0.75f);
 
-  RenderSettings st;
-  st.set("integrator", "path");
-  st.set("spp", refSpp);
-  st.set("seed", 1);
-  const double t0 = cpuSeconds();
-  const Film reference = test::renderFilm(importance, cam, w, h, st, nullptr, {}, "embree", threads);
+  double refSeconds = 0;
+  const Film reference = renderPath(importance, cam, w, h, refSpp, 1, threads, refSeconds);
   std::printf("reference: %dx%d, %d spp, importance sampled: %.1f s CPU\n", w, h, refSpp,
-              cpuSeconds() - t0);
+              refSeconds);
 
   // The target: the error importance sampling reaches at 16 spp. Monte Carlo error falls as
   // 1 / sqrt(spp) and time grows as spp, so time to the target is t (rmse / target)^2, taken
