@@ -118,13 +118,15 @@ EmissionSummary summarizeEmission(const Scene& scene) {
     if (M < 0) {  // radiant exitance pi L of a Lambertian emitter, L = factor x mean texel
       const Color L = m.emissive * meanOf(scene, m.emissiveTexture);
       M = isFinite(L) ? kPi * luminance(L) * (m.doubleSided ? 2.0f : 1.0f) : 0.0f;
-      if (prim.kind == Primitive::Kind::kMesh && !brighterThanCoreGltf(m)) M = 0.0f;
     }
     if (prim.kind == Primitive::Kind::kShape) {
       // No area for analytic shapes here: any emissive one counts as a light.
       if (M > 0) e.emissiveShapes = true;
       continue;
     }
+    // Meshes of core glTF glow (radiance <= 1) add area, not power. Decided here, not in the
+    // cache: a shape may share the material, and any emissive shape counts.
+    const double power = brighterThanCoreGltf(m) ? double(M) : 0.0;
     const TriangleMesh& mesh = scene.meshes[prim.mesh];
     for (size_t t = 0; t < mesh.triangleCount(); ++t) {
       const uint32_t* idx = &mesh.indices[3 * t];
@@ -133,7 +135,7 @@ EmissionSummary summarizeEmission(const Scene& scene) {
                                              prim.toWorld.point(mesh.positions[idx[2]]) - a));
       if (!std::isfinite(area)) continue;
       e.surfaceArea += area;
-      e.meshPower += double(area) * M;
+      e.meshPower += double(area) * power;
     }
   }
   return e;

@@ -103,6 +103,21 @@ TEST(DefaultLighting, CoreGltfGlowIsNotTheScenesLight) {
   EXPECT_TRUE(summarizeEmission(bright).meaningful());
 }
 
+// The glow rule is about meshes: an analytic shape sharing the glowing mesh's material is still
+// a light, whichever of the two comes first.
+TEST(DefaultLighting, AShapeSharingAGlowMaterialStillCounts) {
+  Scene s;
+  Material glow = diffuse(Color(0.0f));
+  glow.emissive = Color(1.0f);
+  const int m = addMaterial(s, glow);
+  addMeshInstance(s, addMesh(s, quadMesh(0.5f, m)), Mat4::identity());
+  addSphere(s, Vec3(0, 2, 0), 0.5f, m);
+  s.finalize();
+  EXPECT_TRUE(summarizeEmission(s).emissiveShapes);
+  EXPECT_EQ(summarizeEmission(s).meshPower, 0.0);
+  EXPECT_FALSE(addDefaultLightingIfUnlit(s, lookAt(Vec3(0, 0, 5), Vec3(0.0f))));
+}
+
 TEST(DefaultLighting, UnusedEmissiveMaterialsDoNotCount) {
   Scene s = unlitSphereScene();
   Material glow = diffuse(Color(0.0f));
