@@ -88,17 +88,16 @@ std::string camelCase(const std::string& name) {
 
 /// CLI11 2.1 sums a flag's values with std::stoll, so `--debug-nan=xyz` threw
 /// std::invalid_argument past its own ParseError (found by fuzz/options_fuzz). This check runs
-/// first and turns any value it would not understand into the usual one-line usage error.
+/// CLI11's own conversion first and turns its exception into the usual one-line usage error.
 CLI::Validator flagValueCheck() {
   return CLI::Validator(
       [](std::string& text) -> std::string {
-        static const char* kWords[] = {"true", "false", "on", "off", "yes", "no", "enable",
-                                       "disable", "1", "0", "-1", "+1"};
-        for (const char* word : kWords)
-          if (text == word) return {};
-        if (text.size() == 1 && std::string("tfynTFYN+-").find(text[0]) != std::string::npos)
+        try {
+          CLI::detail::to_flag_value(text);
           return {};
-        return "expected true/false, on/off, yes/no or 1/0, got '" + text + "'";
+        } catch (const std::exception&) {
+          return "expected true/false, on/off, yes/no or a number, got '" + text + "'";
+        }
       },
       "", "flag value");
 }
