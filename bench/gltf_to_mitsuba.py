@@ -221,9 +221,10 @@ def mesh(gltf, name, prim, world, bsdf, emitter):
     p = pos @ world[:3, :3].T + world[:3, 3]
     if np.linalg.det(world[:3, :3]) < 0:
         idx = idx[:, [0, 2, 1]]
-    # Degenerate triangles: TRay drops them on load; Mitsuba would only never hit them.
-    area = np.linalg.norm(np.cross(p[idx[:, 1]] - p[idx[:, 0]], p[idx[:, 2]] - p[idx[:, 0]]), axis=1)
-    idx = idx[area > 0]
+    # Zero-area triangles: TRay drops them on load (they cannot be hit, but would count as
+    # emitter area in Mitsuba).
+    edges = np.cross(p[idx[:, 1]] - p[idx[:, 0]], p[idx[:, 2]] - p[idx[:, 0]])
+    idx = idx[np.linalg.norm(edges, axis=1) > 0]
     props = mi.Properties()
     props["bsdf"] = mi.load_dict(bsdf)
     if emitter:

@@ -146,7 +146,7 @@ def cornell_error(a):
 
 def parse_args():
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    p.add_argument("--tray-build", default=os.path.join(HERE, "..", "build"),
+    p.add_argument("--tray-build", default=os.path.normpath(os.path.join(HERE, "..", "build")),
                    help="folder with TRay's path_bench and tray-render (default: build/)")
     p.add_argument("--gltf", default=os.path.join(SHARED, "cornell-box.gltf"))
     p.add_argument("--reference", default=os.path.join(SHARED, "cornell-box.ref.exr"))
