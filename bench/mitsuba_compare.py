@@ -8,8 +8,8 @@ compilation is excluded, then best of --repeats), and TRay's path_bench on the s
 converged render (/work/shared/reference/cornell-box.ref.exr); TRay with its default (Sobol'
 numbers, jittered pixel positions), with independent numbers, and independent throughout like
 Mitsuba's independent sampler. TRay's figures cover both the scalar `path` and `path-wavefront`.
-Then the heavier scenes (bench/mitsuba_heavy.py): scenes/heavy-*.gltf, converted for Mitsuba by
-bench/gltf_to_mitsuba.py. --quick: small sizes and one repeat, a few minutes in all.
+Then the heavier scenes (bench/mitsuba_heavy.py): scenes/bench/heavy-*.gltf, converted for
+Mitsuba by bench/gltf_to_mitsuba.py. --quick: small sizes and one repeat, a few minutes in all.
 
 Run with the venv of tools/setup-mitsuba.sh (tools/compare-mitsuba.sh does it all).
 """

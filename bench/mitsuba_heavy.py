@@ -1,6 +1,6 @@
-"""The heavier scenes of bench/mitsuba_compare.py (issue 16): scenes/heavy-helmets.gltf
+"""The heavier scenes of bench/mitsuba_compare.py (issue 16): scenes/bench/heavy-helmets.gltf
 (DamagedHelmet and WaterBottle, textured, on a glossy metal floor with a glass sphere, sky and
-area light) and scenes/heavy-spheres.gltf (MetalRoughSpheresNoTextures, ~1M triangles, under a
+area light) and scenes/bench/heavy-spheres.gltf (MetalRoughSpheresNoTextures, ~1M triangles, under a
 white sky). Mitsuba renders each from the same glTF through bench/gltf_to_mitsuba.py.
 
 Per scene, in one run:
@@ -186,7 +186,7 @@ def run(a):
     """All heavier scenes; False if a pair of converged renders disagrees in its means."""
     rows, all_ok = [], True
     for name in SCENES:
-        path = os.path.join(HERE, "..", "scenes", name + ".gltf")
+        path = os.path.join(HERE, "..", "scenes", "bench", name + ".gltf")
         try:
             gltf = g2m.Gltf(path)
             mi.set_variant("llvm_ad_rgb")

@@ -1,6 +1,6 @@
 #!/bin/sh
 # TRay's path tracer against Mitsuba 3 measured in the same run (bench/mitsuba_compare.py): the
-# Cornell box and the heavier scenes/heavy-*.gltf; report in docs/bench/mitsuba-compare.txt, the
+# Cornell box and the heavier scenes/bench/heavy-*.gltf; report in docs/bench/mitsuba-compare.txt, the
 # converged heavier scenes side by side in docs/bench/mitsuba-heavy-side-by-side.png. Needs
 # build/path_bench and build/tray-render:
 #   cmake --build build --target path_bench tray-render

@@ -1,11 +1,12 @@
 #!/usr/bin/env python3
-"""Writes the heavier bench scenes of bench/mitsuba_compare.py into scenes/ (issue 16).
+"""Writes the heavier bench scenes of bench/mitsuba_compare.py into scenes/bench/ (issue 16).
 
-scenes/heavy-helmets.gltf: DamagedHelmet and WaterBottle (textured) on a glossy metal floor, a
+scenes/bench/heavy-helmets.gltf: DamagedHelmet and WaterBottle (textured) on a glossy metal floor, a
 glass sphere (KHR_materials_transmission + ior), lit by a constant sky (TRAY_environment
 background = Mitsuba `constant`) and one emissive quad (KHR_materials_emissive_strength = a
-Mitsuba `area` emitter of that radiance). scenes/heavy-spheres.gltf: MetalRoughSpheresNoTextures
-(~1M triangles) as it is, under a white sky of radiance 1, with a camera of its own.
+Mitsuba `area` emitter of that radiance). scenes/bench/heavy-spheres.gltf:
+MetalRoughSpheresNoTextures (~1M triangles) as it is, under a white sky of radiance 1, with a
+camera of its own.
 
 The assets stay in ../shared: the scenes reference their buffers and images by relative URI
 (a .glb as a buffer whose bufferViews start after its BIN chunk header), so tray-render needs
@@ -21,7 +22,9 @@ import struct
 from array import array
 
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
-SCENES = os.path.join(ROOT, "scenes")
+# A folder of their own: tests/accel/bvh_render_test.cpp loads every file directly in scenes/
+# without --allow-any-path (and these repeat shared assets that test already covers).
+SCENES = os.path.join(ROOT, "scenes", "bench")
 SHARED = os.path.normpath(os.path.join(ROOT, "..", "shared"))
 
 
@@ -218,11 +221,12 @@ def spheres():
 
 
 def main():
+    os.makedirs(SCENES, exist_ok=True)
     for name, doc in (("heavy-helmets.gltf", helmets()), ("heavy-spheres.gltf", spheres())):
         with open(os.path.join(SCENES, name), "w") as f:
             json.dump(doc, f, separators=(",", ":"))
             f.write("\n")
-        print(os.path.join("scenes", name))
+        print(os.path.relpath(os.path.join(SCENES, name), ROOT))
 
 
 if __name__ == "__main__":
