@@ -38,7 +38,7 @@ MITSUBA_RUNS = {"llvm_ad_rgb": ("llvm_ad_rgb", "independent"),
 def add_arguments(p):
     g = p.add_argument_group("heavier scenes")
     g.add_argument("--heavy-size", type=int, default=128, help="speed runs: image size")
-    g.add_argument("--heavy-spp", type=int, default=16, help="speed runs: samples per pixel")
+    g.add_argument("--heavy-spp", type=int, default=64, help="speed runs: samples per pixel")
     g.add_argument("--heavy-error-size", type=int, default=128,
                    help="size of the converged renders and of the equal-spp error renders")
     g.add_argument("--heavy-error-spp", type=int, default=16)
@@ -49,9 +49,6 @@ def add_arguments(p):
     g.add_argument("--ref-cache", default=os.path.join(HERE, "..", "build", "mitsuba-refs"),
                    help="folder for the converged renders (kept between runs)")
     g.add_argument("--side-by-side", help="write the converged renders here as a PNG")
-    g.add_argument("--texture-memory", type=int, default=1024,
-                   help="tray-render's texture cache, MB (never changes pixels; see "
-                        "docs/bench/mitsuba.md: at the default 128 the helmet scene thrashes)")
 
 
 def quick(a):
@@ -84,8 +81,7 @@ def tray_image(a, scene, size, spp, extra, tmp):
     if os.path.exists(out):
         os.remove(out)
     cmd = [a.tray_render, "--spp", str(spp), "--max-depth", str(a.max_depth), "--resolution",
-           f"{size}x{size}", "--float", "--texture-memory", str(a.texture_memory),
-           "--threads", str(a.threads), *extra, scene, "-o", out]
+           f"{size}x{size}", "--float", "--threads", str(a.threads), *extra, scene, "-o", out]
     r = subprocess.run(cmd, capture_output=True, text=True)
     if r.returncode != 0 or not os.path.exists(out):
         fail(f"{' '.join(cmd)} failed (exit {r.returncode}): {r.stderr.strip()}")
