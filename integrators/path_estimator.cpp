@@ -28,6 +28,9 @@ Color farSideAbsorption(const MediumStack& media, int id, const Material& m, boo
 
 /// The scattering vertex being shaded: what NEE and BSDF sampling both read.
 struct PathEstimator::Vertex {
+  /// The surface is built in place (not assigned from a returned temporary: a
+  /// store-forwarding stall, see setSpawnRay in core/ray.h).
+  Vertex(const Scene& scene, const Ray& ray, const Hit& hit) : s(scene.surface(ray, hit)) {}
   SurfacePoint s;
   const Material* m;
   Vec3 n;         ///< shading normal on the side the ray arrived from
@@ -88,9 +91,7 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
     st.beta *= transmittance(sigmaA, hit.t * length(st.ray.d));
     if (isBlack(st.beta)) return PathStep::kDone;
   }
-  // The surface is built in place (not assigned from a returned temporary: see setSpawnRay
-  // in core/ray.h on store-forwarding stalls).
-  Vertex v{.s = ctx_.scene.surface(st.ray, hit)};
+  Vertex v(ctx_.scene, st.ray, hit);
   v.sigmaA = sigmaA;
   const SurfacePoint& s = v.s;
   v.m = &ctx_.scene.material(s.material);
