@@ -15,6 +15,7 @@
 #include "accel/embree_batch.h"
 #include "accel/embree_rays.h"
 #include "core/error.h"
+#include "core/motion.h"
 #include "core/scene.h"
 
 namespace tray {
@@ -84,7 +85,10 @@ void reportShapeHit(const RTCIntersectFunctionNArguments* args, const Hit& hit, 
 void shapeBounds(const RTCBoundsFunctionArguments* args) {
   auto* data = static_cast<const ShapeUserData*>(args->geometryUserPtr);
   const Primitive& p = data->scene->primitives[data->primitive];
-  Bounds3 b = p.toWorld.bounds(p.shape->bounds());
+  // A moving shape: its box at this time step; Embree interpolates the boxes between steps.
+  Transform step = p.toWorld;
+  if (!p.motion.empty()) step.m = p.motion[args->timeStep];  // bounds() reads m only
+  Bounds3 b = step.bounds(p.shape->bounds());
   b.lo = max(b.lo, Vec3(-kMaxExtent));
   b.hi = min(b.hi, Vec3(kMaxExtent));
   RTCBounds* o = args->bounds_o;
@@ -99,11 +103,15 @@ void shapeIntersect(const RTCIntersectFunctionNArguments* args) {
   Ray ray{{rh->ray.org_x, rh->ray.org_y, rh->ray.org_z},
           {rh->ray.dir_x, rh->ray.dir_y, rh->ray.dir_z},
           rh->ray.tnear,
-          rh->ray.tfar};
+          rh->ray.tfar,
+          BlendRays::kStochastic,
+          rh->ray.time};
   if (args->context->filter) {
     // All-hits query: report every boundary crossing of the solid within the range.
     const Primitive& p = data->scene->primitives[data->primitive];
-    Ray local{p.toWorld.inversePoint(ray.o), p.toWorld.inverseVector(ray.d), ray.tmin, ray.tmax};
+    Transform toWorld;
+    if (!toWorldAt(p, ray.time, toWorld)) return;
+    Ray local{toWorld.inversePoint(ray.o), toWorld.inverseVector(ray.d), ray.tmin, ray.tmax};
     std::vector<Interval> spans;
     p.shape->intervals(local, spans);
     for (const Interval& s : spans)
@@ -127,7 +135,8 @@ void shapeOccluded(const RTCOccludedFunctionNArguments* args) {
   if (!args->valid[0]) return;
   auto* data = static_cast<const ShapeUserData*>(args->geometryUserPtr);
   RTCRay* r = reinterpret_cast<RTCRay*>(args->ray);
-  Ray ray{{r->org_x, r->org_y, r->org_z}, {r->dir_x, r->dir_y, r->dir_z}, r->tnear, r->tfar};
+  Ray ray{{r->org_x, r->org_y, r->org_z}, {r->dir_x, r->dir_y, r->dir_z},
+          r->tnear, r->tfar, BlendRays::kStochastic, r->time};
   Hit hit;
   if (data->scene->intersectShape(data->primitive, ray, hit)) r->tfar = -kInfinity;
 }
@@ -252,6 +261,18 @@ class EmbreeAccelerator final : public Accelerator {
     return s;
   }
 
+  /// An instance's placement: its one transform, or for a moving primitive one per motion step,
+  /// which Embree interpolates linearly by the ray's time (core/motion.h does the same).
+  static void setInstanceMotion(RTCGeometry g, const Primitive& p) {
+    if (p.motion.empty()) {
+      rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, &p.toWorld.m.m[0][0]);
+      return;
+    }
+    rtcSetGeometryTimeStepCount(g, unsigned(p.motion.size()));
+    for (unsigned k = 0; k < p.motion.size(); ++k)
+      rtcSetGeometryTransform(g, k, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, &p.motion[k].m[0][0]);
+  }
+
   void build() {
     top_ = rtcNewScene(device_);
     rtcSetSceneFlags(top_, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
@@ -263,7 +284,7 @@ class EmbreeAccelerator final : public Accelerator {
         if (scene_.meshes[p.mesh].triangleCount() == 0) continue;
         g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
         rtcSetGeometryInstancedScene(g, meshScene(p.mesh));
-        rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, &p.toWorld.m.m[0][0]);
+        setInstanceMotion(g, p);
       } else {
         hasUserGeometry_ = true;
         userData_[i] = {&scene_, i};
@@ -273,6 +294,8 @@ class EmbreeAccelerator final : public Accelerator {
         rtcSetGeometryBoundsFunction(g, shapeBounds, nullptr);
         rtcSetGeometryIntersectFunction(g, shapeIntersect);
         rtcSetGeometryOccludedFunction(g, shapeOccluded);
+        // A moving shape: Embree asks shapeBounds for its box at each step.
+        if (!p.motion.empty()) rtcSetGeometryTimeStepCount(g, unsigned(p.motion.size()));
       }
       rtcCommitGeometry(g);
       rtcAttachGeometryByID(top_, g, i);

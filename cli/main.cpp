@@ -77,6 +77,12 @@ tray::LoadOptions loadOptionsOf(const CliOptions& o) {
   loadOptions.allowAnyPath = o.allowAnyPath;
   loadOptions.time = tray::animationTime(o.settings);
   loadOptions.animation = o.settings.getString("animation");
+  if (const auto shutter = tray::shutterOf(o.settings); shutter && loadOptions.time) {
+    const float fps = o.settings.getFloat("fps");
+    loadOptions.shutterOpen = shutter->at(*loadOptions.time, fps, 0.0f);
+    loadOptions.shutterClose = shutter->at(*loadOptions.time, fps, 1.0f);
+    loadOptions.motionSteps = int(o.settings.getInt("motion-steps"));
+  }
   const double maxMemoryMB = o.maxMemoryMB < 0 ? defaultMaxMemoryMB() : o.maxMemoryMB;
   loadOptions.maxMemoryBytes = uint64_t(maxMemoryMB * 1048576.0);
   loadOptions.textureCacheMB = o.textureMemoryMB;
@@ -337,6 +343,9 @@ int main(int argc, char** argv) {
       if (o.settings.isSet("time"))
         throw tray::Error("--frames sets the time of each frame (frame / fps): drop --time");
     }
+    if (tray::shutterOf(o.settings) && o.frames.empty() && !tray::animationTime(o.settings))
+      throw tray::Error("--shutter needs an animation time to open around: add --time SECONDS "
+                        "or --frames (the static pose does not move)");
     tray::checkFramePatterns(o.outputs, !o.frames.empty());
     o.progressSettings.mode =
         o.quiet ? tray::ProgressMode::kNone : tray::parseProgressMode(o.progress);

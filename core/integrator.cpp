@@ -27,7 +27,8 @@ Integrator::Integrator(const RenderContext& ctx)
       sequence_(Sampler::parse(ctx.settings.getString("sampler"))),
       pixelSampler_(pixelSamplerOf(ctx.settings, sequence_, filter_.radius())),
       seed_(uint64_t(ctx.settings.getInt64("seed"))),
-      transparent_(ctx.settings.getBool("transparent") || ctx.scene.environment.transparent) {}
+      transparent_(ctx.settings.getBool("transparent") || ctx.scene.environment.transparent),
+      moving_(ctx.scene.moving()) {}
 
 Color Integrator::cameraLi(const Ray& ray, Sampler& sampler, RayStats& stats,
                            PrimaryHit* primary) const {
@@ -61,9 +62,11 @@ Ray Integrator::cameraRay(int x, int y, int i, Sampler& sampler, Vec2& offset) c
   offset = pixelSampler_.offset(i, sampler.next2D());
   // A thin lens takes the next 2D point of the camera-ray group; a pinhole draws nothing
   // more, so its images keep every bit.
-  return ctx_.camera.hasLens()
-             ? ctx_.camera.generateLensRay(cx + offset.x, cy + offset.y, sampler.next2D())
-             : ctx_.camera.generateRay(cx + offset.x, cy + offset.y);
+  Ray ray = ctx_.camera.hasLens()
+                ? ctx_.camera.generateLensRay(cx + offset.x, cy + offset.y, sampler.next2D())
+                : ctx_.camera.generateRay(cx + offset.x, cy + offset.y);
+  setShutterTime(ray, sampler);  // a static object keeps every bit (docs/motion-blur.md)
+  return ray;
 }
 
 void Integrator::addSample(PixelSums& sums, IdCoverage* coverage, AovSums* aovSums,

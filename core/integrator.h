@@ -128,6 +128,11 @@ class Integrator {
   /// The camera ray of sample i of pixel (x, y), drawn from its sampler as accumulate does;
   /// `offset` receives the sample's position relative to the pixel centre.
   Ray cameraRay(int x, int y, int i, Sampler& sampler, Vec2& offset) const;
+  /// Motion blur: gives a camera ray its shutter time, from a dimension of the sample's own
+  /// (Sampler::kShutterDimension) so that no other number changes; nothing when nothing moves.
+  void setShutterTime(Ray& ray, const Sampler& sampler) const {
+    if (moving_) ray.time = sampler.reserved1D(Sampler::kShutterDimension);
+  }
   /// Samples in the pixel sampler's pattern (accumulate's upper bound for `end`).
   int sampleCount() const { return pixelSampler_.count(); }
   /// Adds one sample, Li's radiance `L`, what it hit first and (when not null) its light-path
@@ -146,6 +151,7 @@ class Integrator {
   PixelSampler pixelSampler_;
   uint64_t seed_;
   bool transparent_;  ///< escaped camera rays give 0 (cameraLi)
+  bool moving_;       ///< something moves over the shutter: camera rays draw a time
 };
 
 }  // namespace tray

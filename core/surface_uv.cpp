@@ -1,5 +1,7 @@
 #include "core/surface_uv.h"
 
+#include "core/motion.h"
+
 namespace tray {
 
 namespace {
@@ -13,12 +15,15 @@ const std::vector<Vec2>& uvSet(const TriangleMesh& m, int set) {
 UvFrame surfaceUvFrame(const Scene& scene, const Hit& hit, const SurfacePoint& s, int set) {
   UvFrame f;
   const Primitive& prim = scene.primitives[s.primitive];
+  Transform moved;  // a moving primitive: where the ray found it (core/motion.h)
+  if (!prim.motion.empty()) toWorldAt(prim, s.time, moved);
+  const Transform& toWorld = prim.motion.empty() ? prim.toWorld : moved;
   if (prim.kind == Primitive::Kind::kShape) {
     f.uv = s.uv;
     Vec3 du, dv;
-    prim.shape->uvDerivatives(prim.toWorld.inversePoint(s.p), hit.normal, du, dv);
-    f.dpdu = prim.toWorld.vector(du);
-    f.dpdv = prim.toWorld.vector(dv);
+    prim.shape->uvDerivatives(toWorld.inversePoint(s.p), hit.normal, du, dv);
+    f.dpdu = toWorld.vector(du);
+    f.dpdv = toWorld.vector(dv);
     return f;
   }
   const TriangleMesh& m = scene.meshes[prim.mesh];
@@ -38,15 +43,15 @@ UvFrame surfaceUvFrame(const Scene& scene, const Hit& hit, const SurfacePoint& s
   const float det = du02 * dv12 - dv02 * du12;
   if (std::fabs(det) > 1e-12f) {
     const float inv = 1.0f / det;
-    f.dpdu = prim.toWorld.vector((dv12 * dp02 - dv02 * dp12) * inv);
-    f.dpdv = prim.toWorld.vector((du02 * dp12 - du12 * dp02) * inv);
+    f.dpdu = toWorld.vector((dv12 * dp02 - dv02 * dp12) * inv);
+    f.dpdv = toWorld.vector((du02 * dp12 - du12 * dp02) * inv);
   }
   if (!m.tangents.empty()) {
     Vec3 t = b0 * m.tangents[idx[0]] + hit.b1 * m.tangents[idx[1]] + hit.b2 * m.tangents[idx[2]];
-    f.tangent = prim.toWorld.vector(t);
+    f.tangent = toWorld.vector(t);
     f.bitangentSign = m.tangentSigns[idx[0]];
     // A mirroring transform flips the bitangent's handedness relative to the tangent.
-    if (prim.toWorld.swapsHandedness()) f.bitangentSign = -f.bitangentSign;
+    if (toWorld.swapsHandedness()) f.bitangentSign = -f.bitangentSign;
   }
   return f;
 }

@@ -105,7 +105,7 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
     if (!iface.real) {
       st.media.cross(s.material, m, s.frontFace);
       if (++st.nullCrossings > kMaxNullCrossings) return PathStep::kDone;
-      st.ray = spawnRay(s.p, s.ng, st.ray.d);
+      st.ray = spawnRay(s.p, s.ng, st.ray.d, s.time);
       ++stats.secondaryRays;
       return PathStep::kContinue;
     }
@@ -173,7 +173,8 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
   float bsdfPdf;
   Color f = bsdf.eval(v.wo, ls.wi, bsdfPdf) * std::fabs(dot(ls.wi, v.n));
   if (isBlack(f)) return false;
-  shadow.ray = ls.infinite ? spawnRay(s.p, s.ng, ls.wi) : spawnRayTo(s.p, s.ng, ls.p);
+  shadow.ray = ls.infinite ? spawnRay(s.p, s.ng, ls.wi, s.time)
+                          : spawnRayTo(s.p, s.ng, ls.p, s.time);
   float w = ls.delta ? 1.0f : powerHeuristic(ls.pdf, bsdfPdf);
   // An unoccluded shadow ray crossed one medium: the one on its side of s.
   const Color sigma = absorbingMedia_ && v.refractive && dot(ls.wi, v.n) < 0
@@ -216,7 +217,7 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
     st.paths.scattered(!st.paths.atFirstVertex() ? LobeSplit{}
                        : bs.delta                ? LightPathSplitter::deltaLobe(bs.transmission)
                                                  : bsdf.evalLobes(v.wo, bs.wi));
-  st.ray = spawnRay(s.p, s.ng, bs.wi);
+  st.ray = spawnRay(s.p, s.ng, bs.wi, s.time);
   ++stats.secondaryRays;
   ++st.depth;
 

@@ -1,0 +1,28 @@
+#pragma once
+// Motion blur from glTF animations (docs/motion-blur.md): the nodes posed at several times over
+// the shutter, and every placed primitive whose world transform changes over them made a
+// moving one (core/motion.h).
+#include <vector>
+
+#include "core/scene.h"
+#include "io/gltf_animation.h"
+#include "io/gltf_context.h"
+#include "io/gltf_deform.h"
+
+namespace tray {
+
+struct MotionSteps {
+  float open = 0, close = 0;  ///< the shutter, in seconds
+  int count = 0;              ///< times posed, evenly spaced from open to close; 0: none
+};
+
+/// Poses animation `which` at each of `steps`' times: `local` holds every node's local matrix
+/// as placed (the frame's pose; unanimated nodes keep theirs). A primitive whose node's world
+/// matrix is not the same at every step gets those matrices as Primitive::motion; one that
+/// stays put over the shutter stays static. Skinned meshes keep the frame's deformed pose (no
+/// deformation blur). Sets scene.shutterOpen and shutterClose.
+void addMotionSteps(const GltfContext& ctx, const std::vector<Animation>& animations, int which,
+                    const std::vector<Mat4>& local, const Deformer& deformer,
+                    const MotionSteps& steps, Scene& scene);
+
+}  // namespace tray

@@ -1,0 +1,204 @@
+// Motion blur (core/motion.h, docs/motion-blur.md): the interpolation of motion steps as Embree
+// does it, the box that holds every interpolated placement, a sphere sweeping across the frame
+// giving the analytic coverage profile on both accelerators, and a static object rendering bit
+// for bit as without motion blur.
+#include "core/motion.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "tests/render_film.h"
+#include "tests/scene_builder.h"
+
+namespace tray {
+namespace {
+
+using namespace tray::test;
+
+TEST(MotionSteps, InterpolateLinearlyWithinEachSegmentAsEmbree) {
+  const std::vector<Mat4> steps = {Mat4::translate({0, 0, 0}), Mat4::translate({4, 0, 0}),
+                                   Mat4::translate({4, 2, 0})};
+  auto at = [&](float t) {
+    const Mat4 m = interpolateSteps(steps, t);
+    return Vec3(m.m[0][3], m.m[1][3], m.m[2][3]);
+  };
+  // Two segments: t in [0, 0.5] goes to the middle step, [0.5, 1] from it to the last.
+  EXPECT_EQ(at(0.0f).x, 0.0f);
+  EXPECT_FLOAT_EQ(at(0.25f).x, 2.0f);
+  EXPECT_FLOAT_EQ(at(0.5f).x, 4.0f);
+  EXPECT_FLOAT_EQ(at(0.5f).y, 0.0f);
+  EXPECT_FLOAT_EQ(at(0.75f).y, 1.0f);
+  EXPECT_EQ(at(1.0f).y, 2.0f);  // the last segment's end, exactly
+  EXPECT_EQ(at(-1.0f).x, 0.0f);  // clamped to the shutter
+  EXPECT_EQ(at(7.0f).y, 2.0f);
+  // Entry by entry, not a rotation's slerp: halfway through a quarter turn the matrix is the
+  // mean of the two: a 45-degree turn shrunk by cos 45 degrees.
+  const std::vector<Mat4> turn = {Mat4(), Mat4::rotate(0, 0, 0.7071068f, 0.7071068f)};
+  const Mat4 half = interpolateSteps(turn, 0.5f);
+  EXPECT_NEAR(half.m[0][0], 0.5f, 1e-6f);
+  EXPECT_NEAR(half.m[0][1], -0.5f, 1e-6f);
+  EXPECT_NEAR(half.m[1][0], 0.5f, 1e-6f);
+}
+
+TEST(MotionSteps, FlatInstantsAreMissedAndStaticPrimitivesKeepTheirTransform) {
+  Primitive p;
+  p.toWorld = Transform(Mat4::translate({1, 2, 3}));
+  Transform t;
+  ASSERT_TRUE(toWorldAt(p, 0.7f, t));
+  EXPECT_EQ(t.m.m[1][3], 2.0f);
+  // A half turn about z between two steps passes through a matrix of zero scale in x and y.
+  p.motion = {Mat4(), Mat4::rotate(0, 0, 1, 0)};
+  EXPECT_FALSE(toWorldAt(p, 0.5f, t));
+  EXPECT_TRUE(toWorldAt(p, 0.25f, t));
+  EXPECT_TRUE(stepsMove(p.motion));
+  EXPECT_FALSE(stepsMove({Mat4::translate({1, 0, 0}), Mat4::translate({1, 0, 0})}));
+}
+
+TEST(MotionSteps, BoundsHoldEveryInterpolatedPlacement) {
+  Primitive p;
+  p.motion = {Mat4::translate({-3, 0, 0}), Mat4::rotate(0, 0.3826834f, 0, 0.9238795f),
+              Mat4::translate({0, 5, 1}) * Mat4::scale({2, 2, 2})};
+  const Bounds3 local{Vec3(-1.0f), Vec3(1.0f)};
+  const Bounds3 box = motionBounds(p, local);
+  for (int k = 0; k <= 100; ++k) {
+    Transform t;
+    ASSERT_TRUE(toWorldAt(p, k / 100.0f, t));
+    for (int c = 0; c < 8; ++c) {
+      const Vec3 q = t.point({c & 1 ? 1.0f : -1.0f, c & 2 ? 1.0f : -1.0f, c & 4 ? 1.0f : -1.0f});
+      for (int a = 0; a < 3; ++a) {
+        EXPECT_GE(q[a], box.lo[a] - 1e-5f);
+        EXPECT_LE(q[a], box.hi[a] + 1e-5f);
+      }
+    }
+  }
+}
+
+// --- A sphere sweeping across the frame --------------------------------------------------------
+
+constexpr int kW = 40, kH = 10;
+constexpr float kUnit = 0.1f;             // world units per pixel
+constexpr float kRadius = 4 * kUnit;      // 8 px across
+constexpr float kFrom = -10 * kUnit, kTo = 6 * kUnit;  // centre's x at open and close (16 px)
+
+/// An emissive sphere (radiance 1, no lights: pixel value = coverage) moving along x from kFrom
+/// to kTo over the shutter through `steps` evenly spaced steps, on black.
+Scene sweepScene(int steps) {
+  Scene s;
+  Material glow = diffuse(Color(0.0f));
+  glow.emissive = Color(1.0f);
+  const uint32_t i = addSphere(s, {0, 0, 0}, kRadius, addMaterial(s, glow));
+  for (int k = 0; k < steps; ++k)
+    s.primitives[i].motion.push_back(
+        Mat4::translate({kFrom + (kTo - kFrom) * float(k) / float(steps - 1), 0, 0}));
+  s.finalize();
+  return s;
+}
+
+/// Orthographic, kUnit per pixel, the image centred on the origin: pixel x spans world
+/// [(x - kW/2) kUnit, (x + 1 - kW/2) kUnit], row y spans [(kH/2 - y - 1) kUnit, (kH/2 - y) kUnit].
+CameraDesc sweepCamera() {
+  CameraDesc cd = lookAt({0, 0, 5}, {0, 0, 0});
+  cd.type = CameraDesc::Type::kOrthographic;
+  cd.ymag = kH * 0.5f * kUnit;
+  cd.xmag = kW * 0.5f * kUnit;
+  return cd;
+}
+
+/// The fraction of the pixel's area and of the shutter over which the sphere covers a point:
+/// at height y the sphere's chord is [c - w, c + w], w = sqrt(r^2 - y^2), so a point x is
+/// covered while the centre c is within w of it, i.e. for |[x - w, x + w] ∩ [from, to]| /
+/// (to - from) of the shutter. Integrated over the pixel by the midpoint rule in doubles.
+double analyticCoverage(int px, int py) {
+  constexpr int n = 200;
+  double sum = 0;
+  for (int j = 0; j < n; ++j) {
+    const double y = (kH * 0.5 - py - (j + 0.5) / n) * kUnit;
+    const double w2 = double(kRadius) * kRadius - y * y;
+    if (w2 <= 0) continue;
+    const double w = std::sqrt(w2);
+    for (int i = 0; i < n; ++i) {
+      const double x = (px - kW * 0.5 + (i + 0.5) / n) * kUnit;
+      const double overlap = std::min(x + w, double(kTo)) - std::max(x - w, double(kFrom));
+      sum += std::max(overlap, 0.0) / (kTo - kFrom);
+    }
+  }
+  return sum / (double(n) * n);
+}
+
+constexpr int kSpp = 2048;
+
+class SweptSphere : public testing::TestWithParam<const char*> {};
+
+// 2048 independent samples per pixel: a coverage estimate c has a standard error of
+// sqrt(c (1 - c) / 2048), at most 0.011; each pixel must be within 4.5 of those (and exactly 0
+// where the sweep never reaches). Without the ray's time the sphere would sit at one end
+// (coverage 0 or 1 across the sweep): off by up to 1.
+TEST_P(SweptSphere, CoverageProfileIsTheOverlapOverTheTravel) {
+  for (int steps : {2, 3}) {
+    const Scene scene = sweepScene(steps);
+    RenderSettings settings;
+    settings.set("integrator", "whitted");
+    settings.set("sampler", "independent");
+    settings.set("spp", kSpp);
+    const Film film = renderFilm(scene, sweepCamera(), kW, kH, settings, nullptr, {}, GetParam());
+    double worst = 0, peak = 0;
+    for (int y = 0; y < kH; ++y)
+      for (int x = 0; x < kW; ++x) {
+        const double want = analyticCoverage(x, y), got = film.pixel(Film::kBeauty, x, y)[0];
+        worst = std::max(worst, std::fabs(got - want));
+        peak = std::max(peak, want);
+        const double bound = 4.5 * std::sqrt(std::max(want * (1 - want), 1e-6) / kSpp);
+        EXPECT_NEAR(got, want, bound) << "pixel " << x << "," << y << " steps " << steps;
+        EXPECT_EQ(film.pixel(Film::kBeauty, x, y)[3], float(got));  // alpha: the same coverage
+      }
+    std::printf("%s, %d steps: worst |coverage - analytic| %.4f (peak coverage %.3f)\n",
+                GetParam(), steps, worst, peak);
+    EXPECT_GT(peak, 0.4);  // the sweep is in the picture
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Accelerators, SweptSphere, testing::Values("embree", "bvh"));
+
+// --- Static objects keep every bit -----------------------------------------------------------
+
+/// A lit sphere on a floor; with `mover`, a small sphere far off to the side moves over the
+/// shutter (so camera rays draw times) where no path of this image reaches it.
+Scene stillLife(bool mover) {
+  Scene s;
+  const int grey = addMaterial(s, diffuse(Color(0.6f)));
+  addSphere(s, {0, 0.5f, 0}, 0.5f, grey);
+  addMeshInstance(s, addMesh(s, quadMesh(3, grey)), Mat4());
+  s.lights.push_back(pointLight({1, 3, 2}, Color(20.0f)));
+  if (mover) {
+    const uint32_t i = addSphere(s, {0, 0, 0}, 0.01f, grey);
+    s.primitives[i].motion = {Mat4::translate({5000, 10, 0}), Mat4::translate({5001, 10, 0})};
+    s.primitives[i].toWorld = Transform(s.primitives[i].motion[0]);
+  }
+  s.finalize();
+  return s;
+}
+
+TEST(MotionBlur, StaticObjectsRenderBitForBitAsWithoutMotion) {
+  const Scene still = stillLife(false), moving = stillLife(true);
+  ASSERT_TRUE(moving.moving());
+  ASSERT_FALSE(still.moving());
+  for (const char* accel : {"embree", "bvh"}) {
+    RenderSettings settings;
+    settings.set("integrator", "path");
+    settings.set("spp", 4);
+    const CameraDesc cam = lookAt({0, 1.5f, 3}, {0, 0.4f, 0});
+    const Film a = renderFilm(still, cam, 32, 24, settings, nullptr, {}, accel);
+    const Film b = renderFilm(moving, cam, 32, 24, settings, nullptr, {}, accel);
+    size_t differ = 0;
+    for (int y = 0; y < 24; ++y)
+      for (int x = 0; x < 32; ++x)
+        for (int c = 0; c < 4; ++c)
+          differ += a.pixel(Film::kBeauty, x, y)[c] != b.pixel(Film::kBeauty, x, y)[c];
+    EXPECT_EQ(differ, 0u) << accel;
+  }
+}
+
+}  // namespace
+}  // namespace tray
