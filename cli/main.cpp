@@ -5,6 +5,7 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <algorithm>
 #include <filesystem>
 #include <new>
 #include <string>
@@ -83,6 +84,9 @@ tray::LoadOptions loadOptionsOf(const CliOptions& o) {
     loadOptions.shutterClose = shutter->at(*loadOptions.time, fps, 1.0f);
     loadOptions.motionSteps = int(o.settings.getInt("motion-steps"));
   }
+  const std::vector<std::string> aovs = tray::AovSet::parse(o.aovs);
+  if (loadOptions.time && std::count(aovs.begin(), aovs.end(), "motion"))
+    loadOptions.previousTime = *loadOptions.time - 1.0f / o.settings.getFloat("fps");
   const double maxMemoryMB = o.maxMemoryMB < 0 ? defaultMaxMemoryMB() : o.maxMemoryMB;
   loadOptions.maxMemoryBytes = uint64_t(maxMemoryMB * 1048576.0);
   loadOptions.textureCacheMB = o.textureMemoryMB;

@@ -1,5 +1,6 @@
 #pragma once
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "core/ray.h"
@@ -25,6 +26,10 @@ struct CameraDesc {
   float focusDistance = 0.0f;  ///< view depth of the plane in focus (> 0 when lensRadius > 0)
   int apertureBlades = 0;      ///< 0: a round aperture; N >= 3: a regular N-gon (bokeh shape)
   Transform toWorld;
+  int node = -1;  ///< the glTF node that places it (-1: not from a file)
+  /// Where the camera was one frame before (time - 1/fps), for motion vectors (core/
+  /// motion_vectors.h); empty: it did not move, or no previous frame was posed.
+  std::optional<Transform> previousToWorld;
 };
 
 /// A uniform point on the aperture of unit circumradius from u in [0,1)^2: the unit disk
@@ -58,6 +63,11 @@ class Camera {
   static std::unique_ptr<Camera> create(const CameraDesc& desc, int width, int height);
   /// A perspective camera framing the given bounds (used when a scene has no camera).
   static CameraDesc framing(const Bounds3& bounds, float aspectRatio);
+  /// The description create() built this camera from.
+  const CameraDesc& desc() const { return desc_; }
+
+ private:
+  CameraDesc desc_;
 };
 
 }  // namespace tray

@@ -44,6 +44,9 @@ struct Scene {
   /// The shutter interval in seconds that ray time 0 to 1 spans (docs/motion-blur.md); both 0
   /// without --shutter.
   float shutterOpen = 0, shutterClose = 0;
+  /// Per primitive: its toWorld one frame before (time - 1/fps), for motion vectors (core/
+  /// motion_vectors.h); empty when no previous frame was posed (then toWorld stands for it).
+  std::vector<Mat4> previousToWorld;
 
   /// Adds the default material if none, checks indices; call after filling.
   void finalize();

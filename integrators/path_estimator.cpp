@@ -119,6 +119,7 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
     primary->hit = true;
     primary->depth = length(s.p - st.cameraOrigin);
     primary->position = s.p;
+    primary->primitive = s.primitive, primary->time = s.time;
     primary->normal = sm.n;
     primary->albedo = sm.baseColor;
     primary->objectId = ctx_.scene.primitives[s.primitive].objectId;

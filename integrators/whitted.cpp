@@ -93,6 +93,7 @@ class WhittedIntegrator final : public Integrator {
       primary->hit = true;
       primary->depth = hit.t * length(ray.d);
       primary->position = s.p;
+      primary->primitive = s.primitive, primary->time = s.time;
       primary->normal = sm.n;
       primary->albedo = ph.diffuse;
       primary->objectId = scene.primitives[s.primitive].objectId;

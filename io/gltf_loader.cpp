@@ -171,6 +171,9 @@ Scene convert(const tinygltf::Model& model, const std::string& path, const LoadO
   if (options.time && options.motionSteps >= 2)
     addMotionSteps(ctx, animations, which, objects.localMatrices, deformer,
                    {options.shutterOpen, options.shutterClose, options.motionSteps}, scene);
+  if (options.time && options.previousTime)
+    addPreviousFrame(ctx, animations, which, objects.localMatrices, deformer,
+                     *options.previousTime, scene);
   if (deformer.renormalisedVertices())
     ctx.warn(std::to_string(deformer.renormalisedVertices()) +
              " skinned vertex(es) with weights not summing to 1: rescaled to 1");

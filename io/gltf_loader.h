@@ -25,6 +25,10 @@ struct LoadOptions {
   /// get Primitive::motion; 0 steps: none.
   float shutterOpen = 0, shutterClose = 0;
   int motionSteps = 0;
+  /// Motion vectors (--aov motion), with a `time` only: the previous frame's time (time -
+  /// 1/fps), at which every primitive's and camera's placement is also posed
+  /// (Scene::previousToWorld, CameraDesc::previousToWorld).
+  std::optional<float> previousTime;
   /// tray-render --max-memory in bytes (0: no limit): a scene whose buffers, textures and
   /// geometry need more is refused before they are allocated (io/memory_estimate.h).
   uint64_t maxMemoryBytes = 0;

@@ -49,4 +49,20 @@ void addMotionSteps(const GltfContext& ctx, const std::vector<Animation>& animat
   }
 }
 
+void addPreviousFrame(const GltfContext& ctx, const std::vector<Animation>& animations, int which,
+                      const std::vector<Mat4>& local, const Deformer& deformer, float time,
+                      Scene& scene) {
+  const std::vector<Mat4> world = worldAt(ctx, animations, which, local, time);
+  scene.previousToWorld.clear();
+  for (const Primitive& p : scene.primitives)
+    scene.previousToWorld.push_back(deformer.skinned(p.objectId) ? p.toWorld.m
+                                                                   : world[size_t(p.objectId)]);
+  for (CameraDesc& c : scene.cameras) {
+    if (c.node < 0 || !stepsMove({c.toWorld.m, world[size_t(c.node)]})) continue;
+    Mat4 inv;
+    if (world[size_t(c.node)].isFinite() && invert(world[size_t(c.node)], inv))
+      c.previousToWorld = Transform(world[size_t(c.node)]);
+  }
+}
+
 }  // namespace tray

@@ -25,4 +25,11 @@ void addMotionSteps(const GltfContext& ctx, const std::vector<Animation>& animat
                     const std::vector<Mat4>& local, const Deformer& deformer,
                     const MotionSteps& steps, Scene& scene);
 
+/// Motion vectors: poses animation `which` at `time` (the previous frame) and records every
+/// primitive's placement then (Scene::previousToWorld; skinned meshes: their frame placement,
+/// no deformation) and every camera's (CameraDesc::previousToWorld, when it differs).
+void addPreviousFrame(const GltfContext& ctx, const std::vector<Animation>& animations, int which,
+                      const std::vector<Mat4>& local, const Deformer& deformer, float time,
+                      Scene& scene);
+
 }  // namespace tray

@@ -136,6 +136,7 @@ struct Walker {
       if (c.name.empty()) c.name = node.name;
       c.nodeName = node.name;
       c.gltfIndex = node.camera;  // --camera N means the file's cameras[N] (docs/scene-format.md)
+      c.node = index;
       c.toWorld = toWorld;
       scene.cameras.push_back(c);
     }

@@ -69,5 +69,27 @@ TEST(Shutter, BlursWhatMovesAndKeepsEveryBitWhereNothingDoes) {
   EXPECT_EQ(readExrFile(dir / "c.exr").pixels, readExrFile(dir / "cs.exr").pixels);
 }
 
+// --aov motion: Nuke's motion.u / motion.v, non-zero on the moving box, zero on its static
+// base (the camera does not move).
+TEST(Shutter, MotionVectorLayerShowsWhatMoves) {
+  const fs::path dir = tempFolder("shutter_vectors");
+  const std::string box =
+      quoted(fs::path(kBox)) + " --resolution 32x24 --time 1 --aov motion,objectid --float ";
+  CliResult r = runCli(TRAY_RENDER_BIN, box + "-o " + quoted(dir / "v.exr"), dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const Exr v = readExrFile(dir / "v.exr");
+  ASSERT_GE(v.channel("motion.u"), 0);
+  ASSERT_GE(v.channel("motion.v"), 0);
+  int moving = 0, still = 0;
+  for (int y = 0; y < 24; ++y)
+    for (int x = 0; x < 32; ++x) {
+      const float u = v.at(x, y, "motion.u"), w = v.at(x, y, "motion.v");
+      if (v.at(x, y, "objectid.id") < 0) continue;
+      (u != 0 || w != 0 ? moving : still) += 1;
+    }
+  EXPECT_GT(moving, 10);
+  EXPECT_GT(still, 10);
+}
+
 }  // namespace
 }  // namespace tray

@@ -54,6 +54,24 @@ TEST(GltfMotion, EachStepIsTheWorldTransformAtItsTime) {
   EXPECT_TRUE(blurred.moving());
 }
 
+TEST(GltfMotion, PreviousFrameIsThePoseOneFrameBefore) {
+  LoadOptions o = at(1.0f);
+  o.previousTime = 1.0f - 1.0f / 24;
+  const Scene scene = loadGltf(kBox, o);
+  const Scene before = loadGltf(kBox, at(1.0f - 1.0f / 24));
+  ASSERT_EQ(scene.previousToWorld.size(), scene.primitives.size());
+  int moved = 0;
+  for (size_t i = 0; i < scene.primitives.size(); ++i) {
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 4; ++c)
+        EXPECT_FLOAT_EQ(scene.previousToWorld[i].m[r][c], before.primitives[i].toWorld.m.m[r][c]);
+    moved += stepsMove({scene.previousToWorld[i], scene.primitives[i].toWorld.m});
+  }
+  EXPECT_GT(moved, 0);
+  EXPECT_FALSE(scene.moving());  // no shutter: nothing blurs
+  EXPECT_TRUE(loadGltf(kBox, at(1.0f)).previousToWorld.empty());  // not asked: not posed
+}
+
 TEST(GltfMotion, NoShutterOrNoTimeMeansNoMotion) {
   EXPECT_FALSE(loadGltf(kBox, at(1.0f)).moving());
   LoadOptions o;  // static pose: nothing to blur
