@@ -12,8 +12,9 @@ namespace tray {
 /// Arbitrary output variables: extra EXR layers beside the beauty. Channel names follow
 /// compositing conventions (docs/aovs.md): depth -> Z, normal -> N.X/Y/Z, position -> P.X/Y/Z,
 /// albedo -> albedo.R/G/B, objectid -> objectid.id, materialid -> materialid.id,
-/// samples -> samples.count, motion -> motion.u/v (core/motion_vectors.h); the light-path layers (core/light_paths.h; "lightpaths": all seven)
-/// -> diffuse_direct.R/G/B, …, background.R/G/B. Albedo, normal, depth and the light paths are
+/// samples -> samples.count, motion -> motion.u/v (core/motion_vectors.h); the light-path
+/// layers (core/light_paths.h; "lightpaths": all seven) -> diffuse_direct.R/G/B, …,
+/// background.R/G/B. Albedo, normal, depth and the light paths are
 /// averaged over every sample with the pixel filter (AovSums) when the integrator places its
 /// samples through accumulate(); position and the ids are of the first camera hit.
 /// crypto_object and crypto_material (both: "cryptomatte") are parsed here and filled by
