@@ -224,10 +224,11 @@ class EmbreeAccelerator final : public Accelerator {
 
   bool streamable() const { return batch_ != EmbreeBatch::kLoop && !hasUserGeometry_; }
 
-  /// A new Embree-owned buffer of `count` items of `stride` bytes, filled from `data`.
+  /// A new Embree-owned buffer of `count` items of `stride` bytes, filled from `data` (`slot`:
+  /// the time step of a vertex buffer).
   void copyToEmbree(RTCGeometry g, RTCBufferType type, RTCFormat format, const void* data,
-                    size_t stride, size_t count) {
-    void* dst = rtcSetNewGeometryBuffer(g, type, 0, format, stride, count);
+                    size_t stride, size_t count, unsigned slot = 0) {
+    void* dst = rtcSetNewGeometryBuffer(g, type, slot, format, stride, count);
     if (!dst) {
       checkError();
       throw Error("Embree: cannot allocate a geometry buffer", Error::Kind::kRender);
@@ -248,8 +249,15 @@ class EmbreeAccelerator final : public Accelerator {
     // 16-byte SSE load, so a shared float3 array needs padding after it (docs of
     // rtcSetSharedGeometryBuffer); the mesh's std::vector has none, and valgrind saw reads past
     // its end. Embree pads the buffers it allocates itself (rtcSetNewGeometryBuffer docs).
-    copyToEmbree(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, m.positions.data(), sizeof(Vec3),
-                 m.positions.size());
+    if (m.positionSteps.empty()) {
+      copyToEmbree(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, m.positions.data(), sizeof(Vec3),
+                   m.positions.size());
+    } else {  // a deforming mesh: one vertex buffer per time step, interpolated by Embree
+      rtcSetGeometryTimeStepCount(g, unsigned(m.positionSteps.size()));
+      for (unsigned k = 0; k < m.positionSteps.size(); ++k)
+        copyToEmbree(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, m.positionSteps[k].data(),
+                     sizeof(Vec3), m.positionSteps[k].size(), k);
+    }
     copyToEmbree(g, RTC_BUFFER_TYPE_INDEX, RTC_FORMAT_UINT3, m.indices.data(),
                  3 * sizeof(uint32_t), m.triangleCount());
     attachAlphaFilter(g, scene_, m);

@@ -137,7 +137,8 @@ void prepareScene(const CliOptions& o, const tray::GltfDocument* document, Prepa
   p.camera = tray::Camera::create(p.cam, p.width, p.height);
   {  // The accelerator's estimate, with what the loader counted, before it is built.
     tray::MemoryEstimate need = report.memory;
-    for (const auto& m : scene.meshes) need.geometry += m.triangleCount();
+    for (const auto& m : scene.meshes)  // a deforming mesh: its triangles at every motion step
+      need.geometry += m.triangleCount() * std::max<size_t>(1, m.positionSteps.size());
     need.geometry *= tray::kGeometryBytesPerTriangle;
     tray::checkMemory(o.scenePath, need, loadOptions.maxMemoryBytes);
   }

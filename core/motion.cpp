@@ -5,16 +5,31 @@
 
 namespace tray {
 
-Mat4 interpolateSteps(const std::vector<Mat4>& steps, float t) {
-  if (steps.size() == 1) return steps[0];
+void timeSegment(size_t count, float t, size_t& segment, float& fraction) {
   // Embree's getTimeSegment: the segment index clamped to the valid ones, the fraction
   // measured from its start (so t = 1 is the end of the last segment).
-  const float segments = float(steps.size() - 1);
+  const float segments = float(count - 1);
   const float scaled = std::clamp(t, 0.0f, 1.0f) * segments;
   const float index = std::clamp(std::floor(scaled), 0.0f, segments - 1.0f);
-  const float f = scaled - index;
-  const Mat4& a = steps[size_t(index)];
-  const Mat4& b = steps[size_t(index) + 1];
+  segment = size_t(index);
+  fraction = scaled - index;
+}
+
+Vec3 vertexAt(const TriangleMesh& mesh, uint32_t v, float t) {
+  if (mesh.positionSteps.empty()) return mesh.positions[v];
+  size_t k;
+  float f;
+  timeSegment(mesh.positionSteps.size(), t, k, f);
+  return (1.0f - f) * mesh.positionSteps[k][v] + f * mesh.positionSteps[k + 1][v];
+}
+
+Mat4 interpolateSteps(const std::vector<Mat4>& steps, float t) {
+  if (steps.size() == 1) return steps[0];
+  size_t k;
+  float f;
+  timeSegment(steps.size(), t, k, f);
+  const Mat4& a = steps[k];
+  const Mat4& b = steps[k + 1];
   Mat4 m;
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 4; ++c) m.m[r][c] = (1.0f - f) * a.m[r][c] + f * b.m[r][c];

@@ -8,6 +8,14 @@
 
 namespace tray {
 
+/// Embree's time segments: of `count` >= 2 steps evenly spaced over [0, 1], the segment that
+/// holds t (clamped to [0, 1]) and the fraction of the way through it.
+void timeSegment(size_t count, float t, size_t& segment, float& fraction);
+
+/// Vertex v of `mesh` at shutter time t: its position, or for a deforming mesh the linear
+/// interpolation of its positionSteps.
+Vec3 vertexAt(const TriangleMesh& mesh, uint32_t v, float t);
+
 /// The matrix of `steps` (N >= 1, evenly spaced over time 0 to 1) at time t, clamped to [0, 1]:
 /// the segment floor(t (N - 1)) and the fraction within it, as Embree's time segments.
 Mat4 interpolateSteps(const std::vector<Mat4>& steps, float t);

@@ -31,7 +31,9 @@ void Scene::finalize() {
 
 bool Scene::moving() const {
   for (const auto& p : primitives)
-    if (!p.motion.empty()) return true;
+    if (!p.motion.empty() || (p.kind == Primitive::Kind::kMesh && p.mesh < meshes.size() &&
+                              !meshes[p.mesh].positionSteps.empty()))
+      return true;
   return false;
 }
 
@@ -83,7 +85,9 @@ SurfacePoint Scene::surface(const Ray& ray, const Hit& hit) const {
     uint32_t i0 = m.indices[3 * hit.triangle], i1 = m.indices[3 * hit.triangle + 1],
              i2 = m.indices[3 * hit.triangle + 2];
     float b0 = 1.0f - hit.b1 - hit.b2;
-    const Vec3 &p0 = m.positions[i0], &p1 = m.positions[i1], &p2 = m.positions[i2];
+    // A deforming mesh: its triangle where the ray found it.
+    const Vec3 p0 = vertexAt(m, i0, ray.time), p1 = vertexAt(m, i1, ray.time),
+               p2 = vertexAt(m, i2, ray.time);
     s.p = toWorld.point(b0 * p0 + hit.b1 * p1 + hit.b2 * p2);
     s.ng = normalize(triangleFrontNormal(toWorld, p0, p1, p2));
     s.front = s.ng;

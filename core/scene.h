@@ -50,7 +50,7 @@ struct Scene {
 
   /// Adds the default material if none, checks indices; call after filling.
   void finalize();
-  /// True when some primitive moves over the shutter: camera rays then draw a time.
+  /// True when some primitive moves or deforms over the shutter: camera rays then draw a time.
   bool moving() const;
   /// World bounds of the finite primitives, moving ones over the whole shutter.
   Bounds3 bounds() const;

@@ -37,7 +37,8 @@ UvFrame surfaceUvFrame(const Scene& scene, const Hit& hit, const SurfacePoint& s
   const Vec2 &t0 = uvs[idx[0]], &t1 = uvs[idx[1]], &t2 = uvs[idx[2]];
   f.uv = {b0 * t0.x + hit.b1 * t1.x + hit.b2 * t2.x, b0 * t0.y + hit.b1 * t1.y + hit.b2 * t2.y};
   // Solve [dp02 dp12] = [dpdu dpdv] [duv02 duv12] for the triangle's constant derivatives.
-  const Vec3 &p0 = m.positions[idx[0]], &p1 = m.positions[idx[1]], &p2 = m.positions[idx[2]];
+  const Vec3 p0 = vertexAt(m, idx[0], s.time), p1 = vertexAt(m, idx[1], s.time),
+             p2 = vertexAt(m, idx[2], s.time);
   const float du02 = t0.x - t2.x, dv02 = t0.y - t2.y, du12 = t1.x - t2.x, dv12 = t1.y - t2.y;
   const Vec3 dp02 = p0 - p2, dp12 = p1 - p2;
   const float det = du02 * dv12 - dv02 * du12;

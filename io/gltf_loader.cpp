@@ -166,11 +166,19 @@ Scene convert(const tinygltf::Model& model, const std::string& path, const LoadO
   meshes.moved.assign(model.meshes.size(), false);
   reportMeshStats(ctx, stats);
 
+  // Motion blur: skinned and morphed vertices posed at every step too.
+  const MotionSteps steps{options.shutterOpen, options.shutterClose,
+                          options.time ? options.motionSteps : 0};
+  std::vector<Deformer> stepDeformers;
+  for (float t : steps.count >= 2 ? steps.times() : std::vector<float>()) {
+    const PosedNodes posed = poseNodes(ctx, animations, which, objects.localMatrices, t);
+    stepDeformers.emplace_back(ctx, posed.poses, posed.world);
+  }
   if (sceneIndex >= 0)
-    addSceneNodes(ctx, objects, sceneIndex, defaultMaterial, meshes, deformer, stats, scene);
-  if (options.time && options.motionSteps >= 2)
-    addMotionSteps(ctx, animations, which, objects.localMatrices, deformer,
-                   {options.shutterOpen, options.shutterClose, options.motionSteps}, scene);
+    addSceneNodes(ctx, objects, sceneIndex, defaultMaterial, meshes, deformer, stats, scene,
+                  stepDeformers.empty() ? nullptr : &stepDeformers);
+  if (steps.count >= 2)
+    addMotionSteps(ctx, animations, which, objects.localMatrices, deformer, steps, scene);
   if (options.time && options.previousTime)
     addPreviousFrame(ctx, animations, which, objects.localMatrices, deformer,
                      *options.previousTime, scene);

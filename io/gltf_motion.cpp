@@ -4,18 +4,25 @@
 
 namespace tray {
 
-namespace {
-
-/// Every node's world matrix at time t: the animated nodes posed, the others as in `local`.
-std::vector<Mat4> worldAt(const GltfContext& ctx, const std::vector<Animation>& animations,
-                          int which, std::vector<Mat4> local, float t) {
-  const std::vector<NodePose> poses = poseAt(ctx, animations, which, t);
-  for (size_t i = 0; i < poses.size(); ++i)
-    if (poses[i].animatesTransform()) local[i] = animatedMatrix(ctx, int(i), poses[i]);
-  return worldMatrices(ctx, local);
+std::vector<float> MotionSteps::times() const {
+  std::vector<float> t;
+  for (int k = 0; k < count; ++k) {
+    const float u = float(k) / float(count - 1);
+    // The last step lands on close exactly, whatever the rounding of open + u (close - open).
+    t.push_back(k + 1 == count ? close : open + u * (close - open));
+  }
+  return t;
 }
 
-}  // namespace
+PosedNodes poseNodes(const GltfContext& ctx, const std::vector<Animation>& animations, int which,
+                     std::vector<Mat4> local, float t) {
+  PosedNodes posed;
+  posed.poses = poseAt(ctx, animations, which, t);
+  for (size_t i = 0; i < posed.poses.size(); ++i)
+    if (posed.poses[i].animatesTransform()) local[i] = animatedMatrix(ctx, int(i), posed.poses[i]);
+  posed.world = worldMatrices(ctx, local);
+  return posed;
+}
 
 void addMotionSteps(const GltfContext& ctx, const std::vector<Animation>& animations, int which,
                     const std::vector<Mat4>& local, const Deformer& deformer,
@@ -23,16 +30,10 @@ void addMotionSteps(const GltfContext& ctx, const std::vector<Animation>& animat
   if (steps.count < 2) return;
   scene.shutterOpen = steps.open, scene.shutterClose = steps.close;
   std::vector<std::vector<Mat4>> world;  // per step, per node
-  for (int k = 0; k < steps.count; ++k) {
-    const float u = float(k) / float(steps.count - 1);
-    // The last step lands on close exactly, whatever the rounding of open + u (close - open).
-    const float t =
-        k + 1 == steps.count ? steps.close : steps.open + u * (steps.close - steps.open);
-    world.push_back(worldAt(ctx, animations, which, local, t));
-  }
+  for (float t : steps.times()) world.push_back(poseNodes(ctx, animations, which, local, t).world);
   for (Primitive& p : scene.primitives) {
     const int node = p.objectId;
-    // A skinned mesh is placed by its joints, baked into its vertices at the frame's time.
+    // A skinned mesh is placed by its joints alone: its motion is in its positionSteps.
     if (deformer.skinned(node)) continue;
     std::vector<Mat4> motion;
     for (const auto& w : world) motion.push_back(w[size_t(node)]);
@@ -52,7 +53,7 @@ void addMotionSteps(const GltfContext& ctx, const std::vector<Animation>& animat
 void addPreviousFrame(const GltfContext& ctx, const std::vector<Animation>& animations, int which,
                       const std::vector<Mat4>& local, const Deformer& deformer, float time,
                       Scene& scene) {
-  const std::vector<Mat4> world = worldAt(ctx, animations, which, local, time);
+  const std::vector<Mat4> world = poseNodes(ctx, animations, which, local, time).world;
   scene.previousToWorld.clear();
   for (const Primitive& p : scene.primitives)
     scene.previousToWorld.push_back(deformer.skinned(p.objectId) ? p.toWorld.m

@@ -14,13 +14,25 @@ namespace tray {
 struct MotionSteps {
   float open = 0, close = 0;  ///< the shutter, in seconds
   int count = 0;              ///< times posed, evenly spaced from open to close; 0: none
+  /// The times of the steps, in seconds (the last exactly `close`).
+  std::vector<float> times() const;
 };
+
+/// The nodes posed by animation `which` at time t: what the animations set per node, and every
+/// node's world matrix (`local`: every node's local matrix as placed; unanimated ones kept).
+struct PosedNodes {
+  std::vector<NodePose> poses;
+  std::vector<Mat4> world;
+};
+PosedNodes poseNodes(const GltfContext& ctx, const std::vector<Animation>& animations, int which,
+                     std::vector<Mat4> local, float t);
 
 /// Poses animation `which` at each of `steps`' times: `local` holds every node's local matrix
 /// as placed (the frame's pose; unanimated nodes keep theirs). A primitive whose node's world
 /// matrix is not the same at every step gets those matrices as Primitive::motion; one that
-/// stays put over the shutter stays static. Skinned meshes keep the frame's deformed pose (no
-/// deformation blur). Sets scene.shutterOpen and shutterClose.
+/// stays put over the shutter stays static. Skinned meshes are placed by their joints alone:
+/// their motion is their vertices' (TriangleMesh::positionSteps, set by addSceneNodes). Sets
+/// scene.shutterOpen and shutterClose.
 void addMotionSteps(const GltfContext& ctx, const std::vector<Animation>& animations, int which,
                     const std::vector<Mat4>& local, const Deformer& deformer,
                     const MotionSteps& steps, Scene& scene);

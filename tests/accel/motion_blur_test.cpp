@@ -18,7 +18,8 @@ namespace {
 using namespace tray::test;
 
 /// A cube mesh turning and rising over three steps, a sphere (user geometry) moving along x
-/// over two, a static sphere and a floor: motion of both kinds beside static primitives.
+/// over two, a static sphere and a floor, and a quad whose vertices move (a deforming mesh,
+/// TriangleMesh::positionSteps): motion of every kind beside static primitives.
 Scene movingScene() {
   Scene s;
   const int grey = addMaterial(s, diffuse(Color(0.6f)));
@@ -34,9 +35,25 @@ Scene movingScene() {
                                Mat4::translate({1.2f, 0.35f, -0.3f}) * Mat4::scale({1, 1.5f, 1})};
   addSphere(s, {0, 0.3f, -1}, 0.3f, grey);
   addMeshInstance(s, addMesh(s, quadMesh(3, grey)), Mat4());
+  TriangleMesh flag;
+  flag.positions = {{-0.3f, 0.9f, -0.8f}, {0.3f, 0.9f, -0.8f}, {0.3f, 1.1f, -0.8f},
+                    {-0.3f, 1.1f, -0.8f}};
+  flag.indices = {0, 1, 2, 0, 2, 3};
+  flag.material = red;
+  flag.positionSteps = {flag.positions, flag.positions, flag.positions};
+  for (Vec3& p : flag.positionSteps[1]) p.x += 0.3f;
+  flag.positionSteps[1][2].z += 0.4f;  // one corner bends towards the camera
+  for (Vec3& p : flag.positionSteps[2]) p += Vec3(0.5f, 0.2f, 0);
+  addMeshInstance(s, addMesh(s, flag), Mat4());
   s.lights.push_back(pointLight({1, 3, 2}, Color(20.0f)));
   s.finalize();
   return s;
+}
+
+bool moves(const Scene& s, uint32_t primitive) {
+  const Primitive& p = s.primitives[primitive];
+  return !p.motion.empty() ||
+         (p.kind == Primitive::Kind::kMesh && !s.meshes[p.mesh].positionSteps.empty());
 }
 
 class MovingHits : public testing::TestWithParam<const char*> {};
@@ -63,7 +80,7 @@ TEST_P(MovingHits, SameClosestHitsAndOcclusionAsEmbreeAtRandomTimes) {
     }
     if (!fa) continue;
     ++hits;
-    movingHits += !s.primitives[a.primitive].motion.empty();
+    movingHits += moves(s, a.primitive);
     // The surface point lies on the primitive where it was at the ray's time.
     const SurfacePoint sp = s.surface(r, a);
     EXPECT_NEAR(length(sp.p - (r.o + a.t * r.d)), 0.0f, 1e-4f);
@@ -94,6 +111,21 @@ TEST(MovingHits, TheRayTimePlacesTheObject) {
     EXPECT_NEAR(h.t, 3 - 0.35f, 1e-4f) << name;
     r.time = 1;  // the sphere has moved on to x = 1.2: the ray reaches the one behind, or none
     ASSERT_FALSE(accel->intersect(r, h) && h.primitive == 1u) << name;
+    // The deforming quad: hit at open through its left part, gone from there at close.
+    Ray q{{-0.2f, 1.0f, 3}, {0, 0, -1}};
+    ASSERT_TRUE(accel->intersect(q, h)) << name;
+    EXPECT_EQ(h.primitive, 4u) << name;
+    EXPECT_NEAR(h.t, 3.8f, 1e-4f) << name;
+    q.time = 1;
+    EXPECT_FALSE(accel->intersect(q, h) && h.primitive == 4u) << name;
+    // Halfway through the first segment: the quad moved 0.15 and its bent corner 0.2 nearer.
+    q = Ray{{0.44f, 1.09f, 3}, {0, 0, -1}};
+    q.time = 0.25f;
+    ASSERT_TRUE(accel->intersect(q, h)) << name;
+    EXPECT_EQ(h.primitive, 4u) << name;
+    EXPECT_LT(h.t, 3.8f - 0.1f) << name;
+    const SurfacePoint sp = s.surface(q, h);
+    EXPECT_NEAR(sp.p.z, 3 - h.t, 1e-4f) << name;
   }
 }
 

@@ -54,6 +54,36 @@ TEST(GltfMotion, EachStepIsTheWorldTransformAtItsTime) {
   EXPECT_TRUE(blurred.moving());
 }
 
+// Skinned (SimpleSkin) and morphed (AnimatedMorphCube) vertices: each step's positions are
+// the mesh's vertices as --time alone poses them at that step's time.
+TEST(GltfMotion, DeformingVerticesAtEachStepAreThePoseAtItsTime) {
+  for (const char* file : {"SimpleSkin.gltf", "AnimatedMorphCube.glb"}) {
+    const std::string path = std::string(TRAY_SHARED_DIR) + "/gltf-features/" + file;
+    LoadOptions o = at(1.0f);
+    o.shutterOpen = 0.75f, o.shutterClose = 1.25f, o.motionSteps = 3;
+    const Scene blurred = loadGltf(path, o);
+    const float times[3] = {0.75f, 1.0f, 1.25f};
+    int deforming = 0;
+    for (size_t m = 0; m < blurred.meshes.size(); ++m) {
+      const TriangleMesh& mesh = blurred.meshes[m];
+      if (mesh.positionSteps.empty()) continue;
+      ++deforming;
+      ASSERT_EQ(mesh.positionSteps.size(), 3u);
+      for (int k = 0; k < 3; ++k) {
+        const Scene posed = loadGltf(path, at(times[k]));
+        ASSERT_LT(m, posed.meshes.size());
+        ASSERT_EQ(posed.meshes[m].positions.size(), mesh.positionSteps[size_t(k)].size());
+        for (size_t v = 0; v < mesh.positions.size(); ++v)
+          for (int a = 0; a < 3; ++a)
+            EXPECT_EQ(mesh.positionSteps[size_t(k)][v][a], posed.meshes[m].positions[v][a])
+                << file << " step " << k << " vertex " << v;
+      }
+    }
+    EXPECT_GT(deforming, 0) << file;
+    EXPECT_TRUE(blurred.moving()) << file;
+  }
+}
+
 TEST(GltfMotion, PreviousFrameIsThePoseOneFrameBefore) {
   LoadOptions o = at(1.0f);
   o.previousTime = 1.0f - 1.0f / 24;
