@@ -119,15 +119,32 @@ MeshBvh::MeshBvh(const TriangleMesh& mesh, const BvhBuildOptions& options, bool 
 
 template <bool kOrdered, class OnBlock>
 bool MeshBvh::forEachBlock(const Ray& ray, const float& tmax, OnBlock&& onBlock) const {
+  if (!stepBlocks_.empty()) return forEachBlockAtTime<kOrdered>(ray, tmax, onBlock);
   const WatertightRay4 wr = prepareWatertight4(ray.o, ray.d);
-  const bool deforming = !stepBlocks_.empty();
-  size_t segment = 0;
-  float f = 0;
-  if (deforming) timeSegment(stepBlocks_.size(), ray.time, segment, f);
   auto leaf = [&](uint32_t first, uint32_t count) {
     for (uint32_t k = first; k < first + count; ++k) {
-      Triangle4 atTime;  // a deforming mesh's block at the ray's time
-      const Triangle4& block = deforming ? (atTime = blockAt(segment, f, k)) : blocks_[k];
+      const Triangle4& block = blocks_[k];
+      alignas(16) float t[4], b1[4], b2[4];
+      int mask = intersectWatertight4(wr, block, ray.tmin, tmax, t, b1, b2);
+      if (mask && onBlock(block, mask, t, b1, b2)) return true;
+    }
+    return false;
+  };
+  if (!hierarchy_) return leaf(0, uint32_t(blocks_.size()));
+  return traverseBvh4<kOrdered>(bvh_, prepareBvh4Ray(ray.o, ray.d), ray.tmin, tmax, leaf);
+}
+
+/// forEachBlock for a deforming mesh: each block interpolated at the ray's time before the test.
+/// Kept apart so that static meshes run the loop they ran before motion blur existed.
+template <bool kOrdered, class OnBlock>
+bool MeshBvh::forEachBlockAtTime(const Ray& ray, const float& tmax, OnBlock&& onBlock) const {
+  const WatertightRay4 wr = prepareWatertight4(ray.o, ray.d);
+  size_t segment = 0;
+  float f = 0;
+  timeSegment(stepBlocks_.size(), ray.time, segment, f);
+  auto leaf = [&](uint32_t first, uint32_t count) {
+    for (uint32_t k = first; k < first + count; ++k) {
+      const Triangle4 block = blockAt(segment, f, k);
       alignas(16) float t[4], b1[4], b2[4];
       int mask = intersectWatertight4(wr, block, ray.tmin, tmax, t, b1, b2);
       if (mask && onBlock(block, mask, t, b1, b2)) return true;

@@ -58,6 +58,8 @@ class MeshBvh {
   bool closestHit(const Ray& ray, float& tmax, Hit& hit, const Accept& accept) const;
   template <bool kOrdered, class OnBlock>
   bool forEachBlock(const Ray& ray, const float& tmax, OnBlock&& onBlock) const;
+  template <bool kOrdered, class OnBlock>
+  bool forEachBlockAtTime(const Ray& ray, const float& tmax, OnBlock&& onBlock) const;
   /// Appends the block of triangles ids[0..n) to blocks_ and, for a deforming mesh, to every
   /// step's blocks.
   void pushBlock(const uint32_t* ids, uint32_t n);

@@ -65,7 +65,7 @@ Ray Integrator::cameraRay(int x, int y, int i, Sampler& sampler, Vec2& offset) c
   Ray ray = ctx_.camera.hasLens()
                 ? ctx_.camera.generateLensRay(cx + offset.x, cy + offset.y, sampler.next2D())
                 : ctx_.camera.generateRay(cx + offset.x, cy + offset.y);
-  setShutterTime(ray, sampler);  // a static object keeps every bit (docs/motion-blur.md)
+  setShutterTime(ray, sampler);  // static objects keep every bit (docs/scene-format.md)
   return ray;
 }
 

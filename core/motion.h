@@ -1,9 +1,11 @@
 #pragma once
-// Motion blur of placed primitives (docs/motion-blur.md): a moving primitive carries its
-// object-to-world matrix at N steps evenly spaced over the shutter (Primitive::motion), and a
-// ray at shutter time t in [0, 1] sees it at the linear interpolation between the two steps
-// around t, matrix entry by entry, exactly as Embree interpolates a motion-blurred instance
-// (Embree 3 API, rtcSetGeometryTimeStepCount: "linear interpolation of the transformations").
+// Motion blur of placed primitives (docs/scene-format.md, "Motion blur"): a moving primitive
+// carries its object-to-world matrix at N steps evenly spaced over the shutter
+// (Primitive::motion), and a ray at shutter time t in [0, 1] sees it at the linear
+// interpolation between the two steps around t, matrix entry by entry, as Embree interpolates
+// an instance given one matrix per time step (rtcSetGeometryTimeStepCount and
+// rtcSetGeometryTransform; its quaternion form, which slerps rotations, is not used). A
+// deforming mesh's vertices move the same way (one vertex buffer per time step).
 #include "core/scene.h"
 
 namespace tray {

@@ -41,8 +41,8 @@ struct Scene {
   std::vector<TextureImage> textures;
   double textureCacheMB = 0;  ///< OIIO's texture tile cache (--texture-memory); 0: default
   Environment environment;
-  /// The shutter interval in seconds that ray time 0 to 1 spans (docs/motion-blur.md); both 0
-  /// without --shutter.
+  /// The shutter interval in seconds that ray time 0 to 1 spans (docs/scene-format.md,
+  /// "Motion blur"); both 0 without --shutter.
   float shutterOpen = 0, shutterClose = 0;
   /// Per primitive: its toWorld one frame before (time - 1/fps), for motion vectors (core/
   /// motion_vectors.h); empty when no previous frame was posed (then toWorld stands for it).

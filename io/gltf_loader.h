@@ -20,9 +20,9 @@ struct LoadOptions {
   std::optional<float> time;
   /// Which animation plays at `time`: "all" (together), an index or a name.
   std::string animation = "all";
-  /// Motion blur (docs/motion-blur.md), with a `time` only: the shutter in seconds and the
-  /// number of times (>= 2, evenly spaced over it) the animation is posed at. Moving objects
-  /// get Primitive::motion; 0 steps: none.
+  /// Motion blur (docs/scene-format.md, "Motion blur"), with a `time` only: the shutter in
+  /// seconds and the number of times (>= 2, evenly spaced over it) the animation is posed at.
+  /// Moving objects get Primitive::motion, deforming meshes positionSteps; 0 steps: none.
   float shutterOpen = 0, shutterClose = 0;
   int motionSteps = 0;
   /// Motion vectors (--aov motion), with a `time` only: the previous frame's time (time -

@@ -1,7 +1,7 @@
 #pragma once
-// Motion blur from glTF animations (docs/motion-blur.md): the nodes posed at several times over
-// the shutter, and every placed primitive whose world transform changes over them made a
-// moving one (core/motion.h).
+// Motion blur from glTF animations (docs/scene-format.md, "Motion blur"): the nodes posed at
+// several times over the shutter, and every placed primitive whose world transform changes over
+// them made a moving one (core/motion.h).
 #include <vector>
 
 #include "core/scene.h"

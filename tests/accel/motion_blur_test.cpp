@@ -1,6 +1,6 @@
 // Moving primitives on every accelerator against Embree's own motion blur (instance motion and
 // user geometry over time steps): the same closest hits, occlusion and surface points at random
-// ray times, and the same image from the path tracer. docs/motion-blur.md.
+// ray times, and the same image from the path tracer. docs/scene-format.md, "Motion blur".
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -1,7 +1,7 @@
-// Motion blur (core/motion.h, docs/motion-blur.md): the interpolation of motion steps as Embree
-// does it, the box that holds every interpolated placement, a sphere sweeping across the frame
-// giving the analytic coverage profile on both accelerators, and a static object rendering bit
-// for bit as without motion blur.
+// Motion blur (core/motion.h; docs/scene-format.md, "Motion blur"): the interpolation of motion
+// steps as Embree does it, the box that holds every interpolated placement, a sphere sweeping
+// across the frame giving the analytic coverage profile on both accelerators, and a static
+// object rendering bit for bit as without motion blur.
 #include "core/motion.h"
 
 #include <gtest/gtest.h>
