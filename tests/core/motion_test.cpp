@@ -75,23 +75,44 @@ TEST(MotionSteps, BoundsHoldEveryInterpolatedPlacement) {
   }
 }
 
-// --- A sphere sweeping across the frame --------------------------------------------------------
+// --- A sphere, a square and a deforming square sweeping across the frame ----------------------
 
 constexpr int kW = 40, kH = 10;
 constexpr float kUnit = 0.1f;             // world units per pixel
 constexpr float kRadius = 4 * kUnit;      // 8 px across
 constexpr float kFrom = -10 * kUnit, kTo = 6 * kUnit;  // centre's x at open and close (16 px)
 
-/// An emissive sphere (radiance 1, no lights: pixel value = coverage) moving along x from kFrom
-/// to kTo over the shutter through `steps` evenly spaced steps, on black.
-Scene sweepScene(int steps) {
+/// What sweeps: a sphere (Embree user geometry, moved by its transform), a square mesh moved by
+/// its instance's transform, or a square mesh whose vertices move (TriangleMesh::positionSteps).
+enum class Sweep { kSphere, kSquare, kDeformingSquare };
+
+/// An emissive object (radiance 1, no lights: pixel value = coverage) of half-width kRadius
+/// whose centre moves along x from kFrom to kTo over the shutter through `steps` evenly spaced
+/// steps, on black.
+Scene sweepScene(Sweep kind, int steps) {
   Scene s;
   Material glow = diffuse(Color(0.0f));
   glow.emissive = Color(1.0f);
-  const uint32_t i = addSphere(s, {0, 0, 0}, kRadius, addMaterial(s, glow));
-  for (int k = 0; k < steps; ++k)
-    s.primitives[i].motion.push_back(
-        Mat4::translate({kFrom + (kTo - kFrom) * float(k) / float(steps - 1), 0, 0}));
+  const int material = addMaterial(s, glow);
+  auto centre = [&](int k) {
+    return Vec3(kFrom + (kTo - kFrom) * float(k) / float(steps - 1), 0, 0);
+  };
+  TriangleMesh square;
+  const float a = kRadius;
+  square.positions = {{-a, -a, 0}, {a, -a, 0}, {a, a, 0}, {-a, a, 0}};
+  square.indices = {0, 1, 2, 0, 2, 3};
+  square.material = material;
+  if (kind == Sweep::kDeformingSquare) {
+    for (int k = 0; k < steps; ++k) {
+      square.positionSteps.push_back(square.positions);
+      for (Vec3& p : square.positionSteps.back()) p += centre(k);
+    }
+    addMeshInstance(s, addMesh(s, square), Mat4());
+  } else {
+    const uint32_t i = kind == Sweep::kSphere ? addSphere(s, {0, 0, 0}, kRadius, material)
+                                              : addMeshInstance(s, addMesh(s, square), Mat4());
+    for (int k = 0; k < steps; ++k) s.primitives[i].motion.push_back(Mat4::translate(centre(k)));
+  }
   s.finalize();
   return s;
 }
@@ -106,18 +127,19 @@ CameraDesc sweepCamera() {
   return cd;
 }
 
-/// The fraction of the pixel's area and of the shutter over which the sphere covers a point:
-/// at height y the sphere's chord is [c - w, c + w], w = sqrt(r^2 - y^2), so a point x is
-/// covered while the centre c is within w of it, i.e. for |[x - w, x + w] ∩ [from, to]| /
-/// (to - from) of the shutter. Integrated over the pixel by the midpoint rule in doubles.
-double analyticCoverage(int px, int py) {
+/// The fraction of the pixel's area and of the shutter over which the object covers a point:
+/// at height y its chord is [c - w, c + w] (sphere: w = sqrt(r^2 - y^2); square: w = r for
+/// |y| < r), so a point x is covered while the centre c is within w of it, i.e. for
+/// |[x - w, x + w] ∩ [from, to]| / (to - from) of the shutter. Integrated over the pixel by the
+/// midpoint rule in doubles.
+double analyticCoverage(Sweep kind, int px, int py) {
   constexpr int n = 200;
+  const double r = kRadius;
   double sum = 0;
   for (int j = 0; j < n; ++j) {
     const double y = (kH * 0.5 - py - (j + 0.5) / n) * kUnit;
-    const double w2 = double(kRadius) * kRadius - y * y;
-    if (w2 <= 0) continue;
-    const double w = std::sqrt(w2);
+    if (!(std::fabs(y) < r)) continue;
+    const double w = kind == Sweep::kSphere ? std::sqrt(r * r - y * y) : r;
     for (int i = 0; i < n; ++i) {
       const double x = (px - kW * 0.5 + (i + 0.5) / n) * kUnit;
       const double overlap = std::min(x + w, double(kTo)) - std::max(x - w, double(kFrom));
@@ -129,37 +151,55 @@ double analyticCoverage(int px, int py) {
 
 constexpr int kSpp = 2048;
 
-class SweptSphere : public testing::TestWithParam<const char*> {};
+struct SweepCase {
+  const char* accel;
+  Sweep kind;
+};
+
+class Swept : public testing::TestWithParam<SweepCase> {};
+
+std::string sweepName(const testing::TestParamInfo<SweepCase>& info) {
+  const char* kinds[] = {"sphere", "square", "deforming_square"};
+  return std::string(info.param.accel) + "_" + kinds[int(info.param.kind)];
+}
 
 // 2048 independent samples per pixel: a coverage estimate c has a standard error of
 // sqrt(c (1 - c) / 2048), at most 0.011; each pixel must be within 4.5 of those (and exactly 0
 // where the sweep never reaches). Without the ray's time the sphere would sit at one end
 // (coverage 0 or 1 across the sweep): off by up to 1.
-TEST_P(SweptSphere, CoverageProfileIsTheOverlapOverTheTravel) {
+TEST_P(Swept, CoverageProfileIsTheOverlapOverTheTravel) {
+  const SweepCase c = GetParam();
   for (int steps : {2, 3}) {
-    const Scene scene = sweepScene(steps);
+    const Scene scene = sweepScene(c.kind, steps);
     RenderSettings settings;
     settings.set("integrator", "whitted");
     settings.set("sampler", "independent");
     settings.set("spp", kSpp);
-    const Film film = renderFilm(scene, sweepCamera(), kW, kH, settings, nullptr, {}, GetParam());
+    const Film film = renderFilm(scene, sweepCamera(), kW, kH, settings, nullptr, {}, c.accel);
     double worst = 0, peak = 0;
     for (int y = 0; y < kH; ++y)
       for (int x = 0; x < kW; ++x) {
-        const double want = analyticCoverage(x, y), got = film.pixel(Film::kBeauty, x, y)[0];
+        const double want = analyticCoverage(c.kind, x, y);
+        const double got = film.pixel(Film::kBeauty, x, y)[0];
         worst = std::max(worst, std::fabs(got - want));
         peak = std::max(peak, want);
         const double bound = 4.5 * std::sqrt(std::max(want * (1 - want), 1e-6) / kSpp);
         EXPECT_NEAR(got, want, bound) << "pixel " << x << "," << y << " steps " << steps;
         EXPECT_EQ(film.pixel(Film::kBeauty, x, y)[3], float(got));  // alpha: the same coverage
       }
-    std::printf("%s, %d steps: worst |coverage - analytic| %.4f (peak coverage %.3f)\n",
-                GetParam(), steps, worst, peak);
+    std::printf("%s, sweep %d, %d steps: worst |coverage - analytic| %.4f (peak %.3f)\n",
+                c.accel, int(c.kind), steps, worst, peak);
     EXPECT_GT(peak, 0.4);  // the sweep is in the picture
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Accelerators, SweptSphere, testing::Values("embree", "bvh"));
+INSTANTIATE_TEST_SUITE_P(
+    AcceleratorsAndMotions, Swept,
+    testing::Values(SweepCase{"embree", Sweep::kSphere}, SweepCase{"bvh", Sweep::kSphere},
+                    SweepCase{"embree", Sweep::kSquare}, SweepCase{"bvh", Sweep::kSquare},
+                    SweepCase{"embree", Sweep::kDeformingSquare},
+                    SweepCase{"bvh", Sweep::kDeformingSquare}),
+    sweepName);
 
 // --- Static objects keep every bit -----------------------------------------------------------
 
