@@ -2,6 +2,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/ray.h"
 #include "core/transform.h"
@@ -27,6 +28,9 @@ struct CameraDesc {
   int apertureBlades = 0;      ///< 0: a round aperture; N >= 3: a regular N-gon (bokeh shape)
   Transform toWorld;
   int node = -1;  ///< the glTF node that places it (-1: not from a file)
+  /// Motion blur: toWorld at the motion steps, interpolated as a moving primitive's (core/
+  /// motion.h); empty: the camera holds still over the shutter.
+  std::vector<Mat4> motion;
   /// Where the camera was one frame before (time - 1/fps), for motion vectors (core/
   /// motion_vectors.h); empty: it did not move, or no previous frame was posed.
   std::optional<Transform> previousToWorld;

@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "core/filter.h"
+#include "core/motion.h"
 #include "core/pixel_sampler.h"
 
 namespace tray {
@@ -28,7 +29,18 @@ Integrator::Integrator(const RenderContext& ctx)
       pixelSampler_(pixelSamplerOf(ctx.settings, sequence_, filter_.radius())),
       seed_(uint64_t(ctx.settings.getInt64("seed"))),
       transparent_(ctx.settings.getBool("transparent") || ctx.scene.environment.transparent),
-      moving_(ctx.scene.moving()) {}
+      moving_(ctx.scene.moving() || !ctx.camera.desc().motion.empty()),
+      cameraMotion_(ctx.camera.desc().motion),
+      cameraFrameInverse_(ctx.camera.desc().toWorld.inv) {}
+
+void Integrator::moveWithCamera(Ray& ray) const {
+  // From the camera at the frame's pose (where generateRay put the ray) to the camera at the
+  // ray's time: the ray keeps its place in camera space.
+  Transform move;
+  move.m = interpolateSteps(cameraMotion_, ray.time) * cameraFrameInverse_;  // point() reads m
+  ray.o = move.point(ray.o);
+  ray.d = move.vector(ray.d);
+}
 
 Color Integrator::cameraLi(const Ray& ray, Sampler& sampler, RayStats& stats,
                            PrimaryHit* primary) const {

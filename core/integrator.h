@@ -132,8 +132,11 @@ class Integrator {
   Ray cameraRay(int x, int y, int i, Sampler& sampler, Vec2& offset) const;
   /// Motion blur: gives a camera ray its shutter time, from a dimension of the sample's own
   /// (Sampler::kShutterDimension) so that no other number changes; nothing when nothing moves.
+  /// A moving camera then moves the ray (made at the frame's pose) to where it is at that time.
   void setShutterTime(Ray& ray, const Sampler& sampler) const {
-    if (moving_) ray.time = sampler.reserved1D(Sampler::kShutterDimension);
+    if (!moving_) return;
+    ray.time = sampler.reserved1D(Sampler::kShutterDimension);
+    if (!cameraMotion_.empty()) moveWithCamera(ray);
   }
   /// Samples in the pixel sampler's pattern (accumulate's upper bound for `end`).
   int sampleCount() const { return pixelSampler_.count(); }
@@ -154,6 +157,9 @@ class Integrator {
   uint64_t seed_;
   bool transparent_;  ///< escaped camera rays give 0 (cameraLi)
   bool moving_;       ///< something moves over the shutter: camera rays draw a time
+  std::vector<Mat4> cameraMotion_;  ///< the camera's motion steps (CameraDesc::motion)
+  Mat4 cameraFrameInverse_;         ///< world to camera at the frame's pose
+  void moveWithCamera(Ray& ray) const;
 };
 
 }  // namespace tray

@@ -31,6 +31,17 @@ void addMotionSteps(const GltfContext& ctx, const std::vector<Animation>& animat
   scene.shutterOpen = steps.open, scene.shutterClose = steps.close;
   std::vector<std::vector<Mat4>> world;  // per step, per node
   for (float t : steps.times()) world.push_back(poseNodes(ctx, animations, which, local, t).world);
+  for (CameraDesc& c : scene.cameras) {  // an animated camera blurs the whole image
+    if (c.node < 0) continue;
+    std::vector<Mat4> motion;
+    for (const auto& w : world) motion.push_back(w[size_t(c.node)]);
+    if (!stepsMove(motion)) continue;
+    for (const Mat4& m : motion)
+      if (!m.isFinite())
+        ctx.fail("node " + std::to_string(c.node) +
+                 " (a camera) world transform overflows to infinity over the shutter");
+    c.motion = std::move(motion);
+  }
   for (Primitive& p : scene.primitives) {
     const int node = p.objectId;
     // A skinned mesh is placed by its joints alone: its motion is in its positionSteps.

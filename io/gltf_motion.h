@@ -31,8 +31,9 @@ PosedNodes poseNodes(const GltfContext& ctx, const std::vector<Animation>& anima
 /// as placed (the frame's pose; unanimated nodes keep theirs). A primitive whose node's world
 /// matrix is not the same at every step gets those matrices as Primitive::motion; one that
 /// stays put over the shutter stays static. Skinned meshes are placed by their joints alone:
-/// their motion is their vertices' (TriangleMesh::positionSteps, set by addSceneNodes). Sets
-/// scene.shutterOpen and shutterClose.
+/// their motion is their vertices' (TriangleMesh::positionSteps, set by addSceneNodes). An
+/// animated camera node gets its steps as CameraDesc::motion. Sets scene.shutterOpen and
+/// shutterClose.
 void addMotionSteps(const GltfContext& ctx, const std::vector<Animation>& animations, int which,
                     const std::vector<Mat4>& local, const Deformer& deformer,
                     const MotionSteps& steps, Scene& scene);

@@ -83,8 +83,14 @@ constexpr float kRadius = 4 * kUnit;      // 8 px across
 constexpr float kFrom = -10 * kUnit, kTo = 6 * kUnit;  // centre's x at open and close (16 px)
 
 /// What sweeps: a sphere (Embree user geometry, moved by its transform), a square mesh moved by
-/// its instance's transform, or a square mesh whose vertices move (TriangleMesh::positionSteps).
-enum class Sweep { kSphere, kSquare, kDeformingSquare };
+/// its instance's transform, a square mesh whose vertices move (TriangleMesh::positionSteps),
+/// or the camera, the other way past a still sphere (CameraDesc::motion).
+enum class Sweep { kSphere, kSquare, kDeformingSquare, kCamera };
+
+/// The object's centre at step k of `steps` (the camera's offset is its negative).
+Vec3 sweepCentre(int k, int steps) {
+  return Vec3(kFrom + (kTo - kFrom) * float(k) / float(steps - 1), 0, 0);
+}
 
 /// An emissive object (radiance 1, no lights: pixel value = coverage) of half-width kRadius
 /// whose centre moves along x from kFrom to kTo over the shutter through `steps` evenly spaced
@@ -94,15 +100,15 @@ Scene sweepScene(Sweep kind, int steps) {
   Material glow = diffuse(Color(0.0f));
   glow.emissive = Color(1.0f);
   const int material = addMaterial(s, glow);
-  auto centre = [&](int k) {
-    return Vec3(kFrom + (kTo - kFrom) * float(k) / float(steps - 1), 0, 0);
-  };
+  auto centre = [&](int k) { return sweepCentre(k, steps); };
   TriangleMesh square;
   const float a = kRadius;
   square.positions = {{-a, -a, 0}, {a, -a, 0}, {a, a, 0}, {-a, a, 0}};
   square.indices = {0, 1, 2, 0, 2, 3};
   square.material = material;
-  if (kind == Sweep::kDeformingSquare) {
+  if (kind == Sweep::kCamera) {
+    addSphere(s, {0, 0, 0}, kRadius, material);
+  } else if (kind == Sweep::kDeformingSquare) {
     for (int k = 0; k < steps; ++k) {
       square.positionSteps.push_back(square.positions);
       for (Vec3& p : square.positionSteps.back()) p += centre(k);
@@ -119,11 +125,15 @@ Scene sweepScene(Sweep kind, int steps) {
 
 /// Orthographic, kUnit per pixel, the image centred on the origin: pixel x spans world
 /// [(x - kW/2) kUnit, (x + 1 - kW/2) kUnit], row y spans [(kH/2 - y - 1) kUnit, (kH/2 - y) kUnit].
-CameraDesc sweepCamera() {
+/// Sweep::kCamera: the camera moves by minus the centre's path.
+CameraDesc sweepCamera(Sweep kind, int steps) {
   CameraDesc cd = lookAt({0, 0, 5}, {0, 0, 0});
   cd.type = CameraDesc::Type::kOrthographic;
   cd.ymag = kH * 0.5f * kUnit;
   cd.xmag = kW * 0.5f * kUnit;
+  if (kind == Sweep::kCamera)
+    for (int k = 0; k < steps; ++k)
+      cd.motion.push_back(Mat4::translate(-1.0f * sweepCentre(k, steps)) * cd.toWorld.m);
   return cd;
 }
 
@@ -139,7 +149,8 @@ double analyticCoverage(Sweep kind, int px, int py) {
   for (int j = 0; j < n; ++j) {
     const double y = (kH * 0.5 - py - (j + 0.5) / n) * kUnit;
     if (!(std::fabs(y) < r)) continue;
-    const double w = kind == Sweep::kSphere ? std::sqrt(r * r - y * y) : r;
+    const bool round = kind == Sweep::kSphere || kind == Sweep::kCamera;
+    const double w = round ? std::sqrt(r * r - y * y) : r;
     for (int i = 0; i < n; ++i) {
       const double x = (px - kW * 0.5 + (i + 0.5) / n) * kUnit;
       const double overlap = std::min(x + w, double(kTo)) - std::max(x - w, double(kFrom));
@@ -159,7 +170,7 @@ struct SweepCase {
 class Swept : public testing::TestWithParam<SweepCase> {};
 
 std::string sweepName(const testing::TestParamInfo<SweepCase>& info) {
-  const char* kinds[] = {"sphere", "square", "deforming_square"};
+  const char* kinds[] = {"sphere", "square", "deforming_square", "camera"};
   return std::string(info.param.accel) + "_" + kinds[int(info.param.kind)];
 }
 
@@ -175,7 +186,8 @@ TEST_P(Swept, CoverageProfileIsTheOverlapOverTheTravel) {
     settings.set("integrator", "whitted");
     settings.set("sampler", "independent");
     settings.set("spp", kSpp);
-    const Film film = renderFilm(scene, sweepCamera(), kW, kH, settings, nullptr, {}, c.accel);
+    const Film film =
+        renderFilm(scene, sweepCamera(c.kind, steps), kW, kH, settings, nullptr, {}, c.accel);
     double worst = 0, peak = 0;
     for (int y = 0; y < kH; ++y)
       for (int x = 0; x < kW; ++x) {
@@ -198,7 +210,8 @@ INSTANTIATE_TEST_SUITE_P(
     testing::Values(SweepCase{"embree", Sweep::kSphere}, SweepCase{"bvh", Sweep::kSphere},
                     SweepCase{"embree", Sweep::kSquare}, SweepCase{"bvh", Sweep::kSquare},
                     SweepCase{"embree", Sweep::kDeformingSquare},
-                    SweepCase{"bvh", Sweep::kDeformingSquare}),
+                    SweepCase{"bvh", Sweep::kDeformingSquare}, SweepCase{"embree", Sweep::kCamera},
+                    SweepCase{"bvh", Sweep::kCamera}),
     sweepName);
 
 // --- Static objects keep every bit -----------------------------------------------------------
