@@ -81,7 +81,9 @@ void addCliOptions(CLI::App& app, CliOptions& o) {
                  "(default: 80% of physical memory; 0: no limit)")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--texture-memory", o.textureMemoryMB,
-                 "texture cache budget in MB (default 128; never changes pixels)")
+                 "texture cache budget in MB (default: all the scene's texture levels as "
+                 "float tiles, at least 128 and at most a quarter of physical memory; never "
+                 "changes pixels)")
       ->check(CLI::NonNegativeNumber);
   app.add_flag("-q,--quiet", o.quiet, "no progress bar or summary (--progress none)");
   app.add_option("--progress", o.progress,

@@ -35,7 +35,7 @@ struct CliOptions {
   int testInterruptAfterTiles = 0;
   std::string frames;  ///< --frames A-B; empty: one image
   double maxMemoryMB = -1;     ///< -1: 80% of physical memory; 0: no limit
-  double textureMemoryMB = 0;  ///< 0: TextureSampler::kDefaultCacheMB
+  double textureMemoryMB = 0;  ///< 0: TextureSampler::budgetFor(the scene's images)
   tray::RenderSettings settings;
 };
 

@@ -75,9 +75,12 @@ SurfacePoint Scene::surface(const Ray& ray, const Hit& hit) const {
     Ray local{toWorld.inversePoint(ray.o), toWorld.inverseVector(ray.d)};
     Vec3 pl = prim.shape->refine(local.o + hit.t * local.d);
     s.p = toWorld.point(pl);
-    s.ng = normalize(toWorld.normal(hit.normal));
-    s.n = s.ng;
-    s.front = s.ng;  // outward
+    // Copied from a local, not from s.ng: reading back a just-stored Vec3 as one wider load
+    // cannot be store-forwarded (a stall per hit; see setSpawnRay in core/ray.h).
+    const Vec3 ng = normalize(toWorld.normal(hit.normal));
+    s.ng = ng;
+    s.n = ng;
+    s.front = ng;  // outward
     s.uv = hit.uv;
     s.material = hit.material >= 0 ? hit.material : prim.material;
   } else {
@@ -89,18 +92,20 @@ SurfacePoint Scene::surface(const Ray& ray, const Hit& hit) const {
     const Vec3 p0 = vertexAt(m, i0, ray.time), p1 = vertexAt(m, i1, ray.time),
                p2 = vertexAt(m, i2, ray.time);
     s.p = toWorld.point(b0 * p0 + hit.b1 * p1 + hit.b2 * p2);
-    s.ng = normalize(triangleFrontNormal(toWorld, p0, p1, p2));
-    s.front = s.ng;
+    const Vec3 ng = normalize(triangleFrontNormal(toWorld, p0, p1, p2));
+    s.front = ng;
     if (!m.normals.empty()) {
       Vec3 nl = b0 * m.normals[i0] + hit.b1 * m.normals[i1] + hit.b2 * m.normals[i2];
       Vec3 nw = toWorld.normal(nl);
       float len = length(nw);
-      s.n = len > 0 && std::isfinite(len) ? nw / len : s.ng;
+      const Vec3 n = len > 0 && std::isfinite(len) ? nw / len : ng;
+      s.n = n;
       // Shading keeps the geometric normal on the shading normal's side (flat fallback
       // otherwise); the front face for emission stays the winding's (s.front).
-      if (dot(s.n, s.ng) < 0) s.ng = -s.ng;
+      s.ng = dot(n, ng) < 0 ? -ng : ng;
     } else {
-      s.n = s.ng;
+      s.n = ng;
+      s.ng = ng;
     }
     if (!m.uvs.empty()) {
       s.uv = {b0 * m.uvs[i0].x + hit.b1 * m.uvs[i1].x + hit.b2 * m.uvs[i2].x,
@@ -110,7 +115,7 @@ SurfacePoint Scene::surface(const Ray& ray, const Hit& hit) const {
     }
     s.material = hit.material >= 0 ? hit.material : m.material;
   }
-  s.frontFace = dot(ray.d, s.ng) < 0;
+  s.frontFace = dot(ray.d, s.ng) < 0;  // after the stores above retire: no stall measured
   return s;
 }
 

@@ -2,9 +2,11 @@
 
 #include <OpenImageIO/imagecache.h>
 #include <OpenImageIO/imageio.h>
+#include <OpenImageIO/sysutil.h>
 #include <OpenImageIO/texture.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <string>
 
@@ -129,7 +131,7 @@ TextureSampler::TextureSampler(const std::vector<TextureImage>& images, double c
   ts->attribute("automip", 1);
   ts->attribute("autotile", 64);
   ts->attribute("deduplicate", 0);
-  ts->attribute("max_memory_MB", float(cacheMB > 0 ? cacheMB : kDefaultCacheMB));
+  ts->attribute("max_memory_MB", float(cacheMB > 0 ? cacheMB : budgetFor(images)));
   OIIO::ImageCache* cache = ts->imagecache();
   for (size_t i = 0; i < images.size(); ++i) {
     const TextureImage& im = images[i];
@@ -145,6 +147,36 @@ TextureSampler::TextureSampler(const std::vector<TextureImage>& images, double c
       throw Error("texture '" + im.name + "': OpenImageIO: " + cache->geterror());
     impl_->handles.push_back(ts->get_texture_handle(name));
   }
+}
+
+double TextureSampler::budgetFor(const std::vector<TextureImage>& images) {
+  double bytes = 0;
+  for (const TextureImage& im : images) {
+    // Every MIP level (each about a quarter of the one above: 4/3 in all), three floats per
+    // texel as TexturePyramid hands them over, plus 10% for OIIO's tile padding and records.
+    bytes += 1.1 * (4.0 / 3.0) * double(im.width) * double(im.height) * 3 * sizeof(float);
+  }
+  const double needMB = std::ceil(bytes / (1024.0 * 1024.0));
+  const double quarterMB = double(OIIO::Sysutil::physical_memory()) / 4 / (1024.0 * 1024.0);
+  return std::max<double>(kMinCacheMB, std::min(needMB, quarterMB));
+}
+
+double TextureSampler::cacheMB() const {
+  float mb = 0;
+  impl_->ts->getattribute("max_memory_MB", OIIO::TypeFloat, &mb);
+  return mb;
+}
+
+int64_t TextureSampler::tilesReadAgain() const {
+  int64_t total = 0;
+  OIIO::ImageCache* cache = impl_->ts->imagecache();
+  for (size_t i = 0; i < impl_->handles.size(); ++i) {
+    int64_t n = 0;
+    if (cache->get_image_info(OIIO::ustring("tray:texture/" + std::to_string(i)), 0, 0,
+                              OIIO::ustring("stat:redundant_tiles"), OIIO::TypeInt64, &n))
+      total += n;
+  }
+  return total;
 }
 
 TextureSampler::~TextureSampler() {

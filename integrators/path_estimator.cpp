@@ -28,6 +28,9 @@ Color farSideAbsorption(const MediumStack& media, int id, const Material& m, boo
 
 /// The scattering vertex being shaded: what NEE and BSDF sampling both read.
 struct PathEstimator::Vertex {
+  /// The surface is built in place (not assigned from a returned temporary: a
+  /// store-forwarding stall, see setSpawnRay in core/ray.h).
+  Vertex(const Scene& scene, const Ray& ray, const Hit& hit) : s(scene.surface(ray, hit)) {}
   SurfacePoint s;
   const Material* m;
   Vec3 n;         ///< shading normal on the side the ray arrived from
@@ -76,20 +79,20 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
                              ShadowQuery& shadow, bool& wantsShadow, RayStats& stats,
                              PrimaryHit* primary) const {
   wantsShadow = false;
-  Vertex v;
   // KHR_materials_volume: the segment crosses the medium in effect, which absorbs.
-  v.sigmaA = st.media.currentAbsorption();
-  const bool absorbing = !isBlack(v.sigmaA);
+  const Color sigmaA = st.media.currentAbsorption();
+  const bool absorbing = !isBlack(sigmaA);
   if (!found) {
     // Lost inside an open absorbing mesh: transmittance exp(-inf) = 0.
     if (!absorbing) escape(st);
     return PathStep::kDone;
   }
   if (absorbing) {
-    st.beta *= transmittance(v.sigmaA, hit.t * length(st.ray.d));
+    st.beta *= transmittance(sigmaA, hit.t * length(st.ray.d));
     if (isBlack(st.beta)) return PathStep::kDone;
   }
-  v.s = ctx_.scene.surface(st.ray, hit);
+  Vertex v(ctx_.scene, st.ray, hit);
+  v.sigmaA = sigmaA;
   const SurfacePoint& s = v.s;
   v.m = &ctx_.scene.material(s.material);
   const Material& m = *v.m;
@@ -105,7 +108,7 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
     if (!iface.real) {
       st.media.cross(s.material, m, s.frontFace);
       if (++st.nullCrossings > kMaxNullCrossings) return PathStep::kDone;
-      st.ray = spawnRay(s.p, s.ng, st.ray.d, s.time);
+      setSpawnRay(st.ray, s.p, s.ng, st.ray.d, s.time);
       ++stats.secondaryRays;
       return PathStep::kContinue;
     }
@@ -147,11 +150,14 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
 
   // Shade on the side the ray arrived from.
   v.n = s.frontFace ? sm.n : -sm.n;
-  const Bsdf bsdf(sm, Frame::fromNormal(v.n), eta);
+  const Bsdf bsdf(sm, v.n, eta);
   // A reflecting BSDF sees only light above n unless wo lies below it (shading normals) or a
   // clearcoat brings a normal of its own.
-  v.here = {s.p, v.n, bsdf.transmits(),
-            bsdf.transmits() || !(dot(v.wo, v.n) > 0) || sm.clearcoat > 0};
+  // Field by field, not `= {...}`: see setSpawnRay (core/ray.h) on store-forwarding stalls.
+  v.here.p = s.p;
+  v.here.n = v.n;
+  v.here.transmits = bsdf.transmits();
+  v.here.belowMatters = bsdf.transmits() || !(dot(v.wo, v.n) > 0) || sm.clearcoat > 0;
   wantsShadow = nextEvent(st, v, bsdf, sampler, shadow);
   if (wantsShadow) ++stats.shadowRays;
   return scatter(st, v, bsdf, sampler, stats);
@@ -174,8 +180,10 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
   float bsdfPdf;
   Color f = bsdf.eval(v.wo, ls.wi, bsdfPdf) * std::fabs(dot(ls.wi, v.n));
   if (isBlack(f)) return false;
-  shadow.ray = ls.infinite ? spawnRay(s.p, s.ng, ls.wi, s.time)
-                          : spawnRayTo(s.p, s.ng, ls.p, s.time);
+  if (ls.infinite)
+    setSpawnRay(shadow.ray, s.p, s.ng, ls.wi, s.time);
+  else
+    setSpawnRayTo(shadow.ray, s.p, s.ng, ls.p, s.time);
   float w = ls.delta ? 1.0f : powerHeuristic(ls.pdf, bsdfPdf);
   // An unoccluded shadow ray crossed one medium: the one on its side of s.
   const Color sigma = absorbingMedia_ && v.refractive && dot(ls.wi, v.n) < 0
@@ -218,7 +226,7 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
     st.paths.scattered(!st.paths.atFirstVertex() ? LobeSplit{}
                        : bs.delta                ? LightPathSplitter::deltaLobe(bs.transmission)
                                                  : bsdf.evalLobes(v.wo, bs.wi));
-  st.ray = spawnRay(s.p, s.ng, bs.wi, s.time);
+  setSpawnRay(st.ray, s.p, s.ng, bs.wi, s.time);
   ++stats.secondaryRays;
   ++st.depth;
 

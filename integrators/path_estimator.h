@@ -39,9 +39,14 @@ struct PathState {
   /// `lightPaths` when not null.
   static PathState camera(const Ray& ray, int x, int y, LightPathRadiance* lightPaths) {
     PathState s;
-    s.ray = ray, s.cameraOrigin = ray.o, s.pixelX = x, s.pixelY = y;
-    s.paths = LightPathSplitter(lightPaths);
+    s.beginCamera(ray, x, y, lightPaths);
     return s;
+  }
+  /// The same on a freshly default-constructed state, in place (the wavefront's queue slot:
+  /// copying a just-built state in costs a store-forwarding stall, core/ray.h).
+  void beginCamera(const Ray& cameraRay, int x, int y, LightPathRadiance* lightPaths) {
+    ray = cameraRay, cameraOrigin = cameraRay.o, pixelX = x, pixelY = y;
+    paths = LightPathSplitter(lightPaths);
   }
 };
 

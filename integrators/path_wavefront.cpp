@@ -24,7 +24,8 @@ struct Wave {
   std::vector<Ray> rays;
   std::vector<Hit> hits;
   std::vector<uint8_t> found;
-  // The shadow queue: next-event estimates waiting for their rays.
+  // The shadow queue: next-event estimates waiting for their rays (slots kept from one bounce
+  // to the next; bounce() says how many are in use).
   std::vector<ShadowQuery> shadows;
   std::vector<uint32_t> shadowPath;
   std::vector<Ray> shadowRays;
@@ -111,8 +112,8 @@ void PathWavefrontIntegrator::accumulatePixels(std::span<PixelTask> tasks, int b
       Vec2 offset;
       const Ray ray = cameraRay(t.x, t.y, i, s, offset);
       ++stats.cameraRays;
-      w.paths.push_back(
-          PathState::camera(ray, t.x, t.y, splits(t) ? &w.lightPaths[g - g0] : nullptr));
+      w.paths.emplace_back().beginCamera(ray, t.x, t.y,
+                                         splits(t) ? &w.lightPaths[g - g0] : nullptr);
       w.samplers.push_back(s);
       w.primary.emplace_back();
       w.offsets.push_back(offset);
@@ -143,18 +144,22 @@ void PathWavefrontIntegrator::bounce(Wave& w, RayStats& stats) const {
   for (size_t j = 0; j < count; ++j) w.rays[j] = w.paths[w.live[j]].ray;
   ctx_.accel.intersectBatch(w.rays, w.hits, w.found);
 
-  w.next.clear(), w.shadows.clear(), w.shadowPath.clear();
+  w.next.clear();
+  // step() writes a next-event estimate straight into the queue's next slot, setting what
+  // resolveShadow reads (as the scalar path reuses one query): no default-initialised query
+  // per vertex, and no copy of one just written (a store-forwarding stall, core/ray.h).
+  if (w.shadows.size() < count) w.shadows.resize(count), w.shadowPath.resize(count);
+  size_t shadowCount = 0;
   for (size_t j = 0; j < count; ++j) {
     const uint32_t k = w.live[j];
-    ShadowQuery shadow;
     bool wantsShadow;
     const PathStep step = estimator_.step(w.paths[k], w.samplers[k], w.found[j], w.hits[j],
-                                          shadow, wantsShadow, stats, &w.primary[k]);
-    if (wantsShadow) w.shadows.push_back(shadow), w.shadowPath.push_back(k);
+                                          w.shadows[shadowCount], wantsShadow, stats,
+                                          &w.primary[k]);
+    if (wantsShadow) w.shadowPath[shadowCount++] = k;
     if (step == PathStep::kContinue) w.next.push_back(k);
   }
 
-  const size_t shadowCount = w.shadows.size();
   w.shadowRays.resize(shadowCount), w.blocked.resize(shadowCount);
   for (size_t q = 0; q < shadowCount; ++q) w.shadowRays[q] = w.shadows[q].ray;
   ctx_.accel.occludedBatch(w.shadowRays, w.blocked);

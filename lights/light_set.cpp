@@ -90,9 +90,12 @@ LightSet::LightSet(const Scene& scene, LightSamplerKind kind) {
 LightSample LightSet::sample(const LightSampleContext& ctx, float u1, Vec2 u2) const {
   float pmf;
   const int i = chooser_->sample(ctx, u1, pmf);
-  if (i < 0 || !(pmf > 0)) return {};
-  LightSample s = lights_[size_t(i)]->sample(ctx, u2);
-  s.pdf *= pmf;
+  const bool chosen = i >= 0 && pmf > 0;
+  // One named result built in place (no `return {}` beside it, which stops the compiler's
+  // NRVO): copying the light's sample out of a temporary after writing its pdf cost a
+  // store-forwarding stall per sample (see setSpawnRay in core/ray.h).
+  LightSample s = chosen ? lights_[size_t(i)]->sample(ctx, u2) : LightSample{};
+  if (chosen) s.pdf *= pmf;
   return s;
 }
 

@@ -4,8 +4,8 @@
 
 namespace tray {
 
-Bsdf::Bsdf(const ShadingMaterial& m, const Frame& frame, float eta)
-    : frame_(frame),
+Bsdf::Bsdf(const ShadingMaterial& m, const Vec3& n, float eta)
+    : frame_(Frame::fromNormal(n)),
       wMetal_(std::clamp(m.metallic, 0.0f, 1.0f)),
       wGlass_((1.0f - wMetal_) * std::clamp(m.transmission, 0.0f, 1.0f)),
       wPlastic_(1.0f - wMetal_ - wGlass_),
@@ -108,43 +108,46 @@ float Bsdf::pdfLocal(const Vec3& wo, const Vec3& wi) const {
 }
 
 BsdfSample Bsdf::sampleLocal(const Vec3& wo, float uc, Vec2 u) const {
-  BsdfSample s;
-  // A lone lobe: its own sample, whose f and pdf are its eval and pdf (uc is all its own).
-  if (only_ != Only::kMixture) {
-    if (only_ == Only::kMetal) s = metal_.sample(wo, u);
-    if (only_ == Only::kGlass) s = glass_.sample(wo, uc, u);
-    if (only_ == Only::kDiffuse) s = diffuse_.sample(wo, u);
-    if (!(s.pdf > 0) || !std::isfinite(s.pdf)) s.pdf = 0;
+  // A lone lobe takes uc whole; a mixture picks a lobe with uc, then rescales uc to [0,1) for
+  // the lobe's own discrete choice. -1: no lobe.
+  int lobe = only_ == Only::kMetal     ? 0
+             : only_ == Only::kGlass   ? 1
+             : only_ == Only::kDiffuse ? 3
+                                       : -1;
+  float prob = 1.0f, ucLobe = uc;
+  if (only_ == Only::kMixture) {
+    const Probabilities p = probabilities(wo);
+    const float cdf[4] = {p.metal, p.metal + p.glass, p.metal + p.glass + p.coat, 1.0f};
+    lobe = 0;
+    while (lobe < 3 && uc >= cdf[lobe]) ++lobe;
+    const float probs[4] = {p.metal, p.glass, p.coat, p.diffuse};
+    prob = probs[lobe];
+    const float lo = lobe == 0 ? 0.0f : cdf[lobe - 1];
+    if (prob > 0) ucLobe = std::min((uc - lo) / prob, 0.99999994f);
+  }
+  // The lobe's sample is built in place in the result (returned prvalues, then one named
+  // variable): assigning it from a returned temporary cost a store-forwarding stall per sample
+  // (see setSpawnRay in core/ray.h).
+  const auto lobeSample = [&]() -> BsdfSample {
+    switch (lobe) {
+      case 0: return metal_.sample(wo, u);
+      case 1: return glass_.sample(wo, ucLobe, u);
+      case 2: return coatLobe_.sample(wo, u);
+      case 3: return diffuse_.sample(wo, u);
+      default: return BsdfSample{};
+    }
+  };
+  BsdfSample s = prob > 0 ? lobeSample() : BsdfSample{};
+  // A lone lobe: its own sample, whose f and pdf are its eval and pdf.
+  const bool lone = only_ != Only::kMixture;
+  if (lone || !s.valid()) {
+    if (lone && (!(s.pdf > 0) || !std::isfinite(s.pdf))) s.pdf = 0;
     return s;
   }
-  Probabilities p = probabilities(wo);
-  // Pick a lobe with uc, then rescale uc to [0,1) for the lobe's own discrete choice.
-  const float cdf[4] = {p.metal, p.metal + p.glass, p.metal + p.glass + p.coat, 1.0f};
-  int lobe = 0;
-  while (lobe < 3 && uc >= cdf[lobe]) ++lobe;
-  const float probs[4] = {p.metal, p.glass, p.coat, p.diffuse};
-  if (!(probs[lobe] > 0)) return s;
-  float lo = lobe == 0 ? 0.0f : cdf[lobe - 1];
-  float ucLobe = std::min((uc - lo) / probs[lobe], 0.99999994f);
-  float weight = 1.0f;
-  switch (lobe) {
-    case 0:
-      s = metal_.sample(wo, u), weight = wMetal_;
-      break;
-    case 1:
-      s = glass_.sample(wo, ucLobe, u), weight = wGlass_;
-      break;
-    case 2:
-      s = coatLobe_.sample(wo, u), weight = wPlastic_ * coat_;
-      break;
-    default:
-      s = diffuse_.sample(wo, u);
-      break;
-  }
-  if (!s.valid()) return s;
   if (s.delta) {  // a discrete choice among delta and continuous lobes: probability x pdf
-    s.f *= weight;
-    s.pdf *= probs[lobe];
+    const float weights[4] = {wMetal_, wGlass_, wPlastic_ * coat_, 1.0f};
+    s.f *= weights[lobe];
+    s.pdf *= prob;
     return s;
   }
   s.f = evalLocal(wo, s.wi);

@@ -24,15 +24,17 @@ namespace tray {
 /// KHR_materials_clearcoat puts a GGX dielectric layer (IOR 1.5) with its own normal over all
 /// of it: f = c fc + (1 - c Fc(cos_o)) f_base (bsdf_clearcoat.cpp). KHR_materials_sheen goes
 /// between the two: f_base = f_sheen + f_pbr min(1 - s E(cos_o), 1 - s E(cos_i)) (bsdf_sheen.cpp).
-/// Built per shading point on the stack; directions are world-space, frame.n faces wo's side.
+/// Built per shading point on the stack; directions are world-space, the shading normal n
+/// faces wo's side.
 class Bsdf {
  public:
-  /// eta = n_t / n_i across this interface for light arriving from frame.n's side (from the
-  /// MediumStack; for opaque materials simply ior / n_outside).
-  Bsdf(const ShadingMaterial& m, const Frame& frame, float eta);
+  /// eta = n_t / n_i across this interface for light arriving from n's side (from the
+  /// MediumStack; for opaque materials simply ior / n_outside). The frame around n is built
+  /// here, in place: taking a Frame the caller had just built cost a store-forwarding stall
+  /// per vertex (see setSpawnRay in core/ray.h).
+  Bsdf(const ShadingMaterial& m, const Vec3& n, float eta);
   /// The untextured material (tests).
-  Bsdf(const Material& m, const Frame& frame, float eta)
-      : Bsdf(ShadingMaterial::of(m, frame.n), frame, eta) {}
+  Bsdf(const Material& m, const Vec3& n, float eta) : Bsdf(ShadingMaterial::of(m, n), n, eta) {}
   Color eval(const Vec3& wo, const Vec3& wi) const;
   float pdf(const Vec3& wo, const Vec3& wi) const;
   /// eval and pdf together (next-event estimation needs both), with one change of frame.

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 namespace tray {
 namespace {
 
@@ -122,6 +124,58 @@ TEST(TextureSampler, MipMappedMinificationAveragesAndLinearDoesNot) {
   // minFilter LINEAR: no MIP mapping, the finest level however large the footprint (aliasing).
   r.minFilter = TextureFilter::kLinear;
   EXPECT_NEAR(sampler.sample(r, {{u, v}, {d, 0}, {0, d}}).x, 0.0f, 1e-6f);
+}
+
+/// A size x size image of smooth colours.
+TextureImage gradient(int size) {
+  TextureImage im;
+  im.name = "gradient";
+  im.width = im.height = size;
+  im.pixels.resize(size_t(size) * size_t(size) * 3);
+  for (size_t i = 0; i < im.pixels.size(); ++i) im.pixels[i] = float(i % 997) / 997.0f;
+  return im;
+}
+
+/// Two passes over the finest level, four lookups in every 64 x 64 tile per pass; returns
+/// the tiles OIIO had to read again, and the looked-up values in `values`.
+int64_t readTwiceAcrossEveryTile(const TextureSampler& s, int size, std::vector<Color>& values) {
+  const TextureRef r = ref(TextureWrap::kClampToEdge);
+  for (int pass = 0; pass < 2; ++pass)
+    for (int y = 0; y < size; y += 32)
+      for (int x = 0; x < size; x += 32)
+        values.push_back(at(s, r, (x + 0.5f) / float(size), (y + 0.5f) / float(size)));
+  return s.tilesReadAgain();
+}
+
+// The failure, then the fix: a budget under the texture's float tiles makes OIIO evict tiles
+// and make them again from the codes (DamagedHelmet at the former fixed 128 MB: 10x slower);
+// the default budget, sized from the scene's images, holds them all. Pixels never change.
+TEST(TextureSampler, DefaultBudgetHoldsEveryTileWhereASmallOneReadsThemAgain) {
+  const int size = 1024;  // the finest level alone: 12 MiB of float tiles
+  std::vector<TextureImage> images{gradient(size)};
+  std::vector<Color> small, sized;
+  EXPECT_GT(readTwiceAcrossEveryTile(TextureSampler(images, 10), size, small), 0);
+  const TextureSampler byScene(images);
+  EXPECT_GE(byScene.cacheMB(), 16.0);
+  EXPECT_EQ(readTwiceAcrossEveryTile(byScene, size, sized), 0);
+  ASSERT_EQ(small.size(), sized.size());
+  for (size_t i = 0; i < small.size(); ++i)
+    ASSERT_TRUE(small[i] == sized[i]) << i;
+}
+
+TEST(TextureSampler, BudgetIsEveryLevelAsFloatsWithinBounds) {
+  EXPECT_EQ(TextureSampler::budgetFor({}), TextureSampler::kMinCacheMB);
+  // DamagedHelmet: five 2048^2 images, 48 MiB each as floats, 4/3 with their levels, +10%.
+  TextureImage helmetSized;
+  helmetSized.width = helmetSized.height = 2048;
+  const std::vector<TextureImage> helmet(5, helmetSized);
+  EXPECT_EQ(TextureSampler::budgetFor(helmet), std::ceil(1.1 * 4.0 / 3.0 * 48 * 5));
+  // Never more than a quarter of physical memory, never under the minimum.
+  TextureImage huge;
+  huge.width = huge.height = 1 << 20;
+  const double capped = TextureSampler::budgetFor({huge});
+  EXPECT_GE(capped, TextureSampler::kMinCacheMB);
+  EXPECT_LT(capped, 1.1 * 4.0 / 3.0 * 12.0 * double(1 << 20) * double(1 << 20) / (1 << 20));
 }
 
 TEST(TextureTransform, FollowsTheExtensionsExample) {

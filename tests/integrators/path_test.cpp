@@ -124,7 +124,7 @@ TEST(Path, RayThroughConcentricSpheresFollowsSnellAtEveryInterface) {
     EXPECT_FLOAT_EQ(iface.etaI, float(seq[crossing])) << crossing;
     EXPECT_FLOAT_EQ(iface.etaT, float(seq[crossing + 1])) << crossing;
     Vec3 n = sp.frontFace ? sp.n : -sp.n;
-    Bsdf bsdf(m, Frame::fromNormal(n), iface.etaT / iface.etaI);
+    Bsdf bsdf(m, n, iface.etaT / iface.etaI);
     BsdfSample bs = bsdf.sample(-ray.d, 0.99999f, {0.5f, 0.5f});
     ASSERT_TRUE(bs.valid() && bs.transmission && bs.delta) << crossing;
     media.cross(sp.material, m, sp.frontFace);

@@ -62,7 +62,7 @@ RenderSettings parse(const std::string& args, std::string* help = nullptr) {
   return settings;
 }
 
-const JobFrame kFrame{"scenes/toy.gltf", -1, -1, 8, 6, "embree", ""};
+const JobFrame kFrame{"scenes/toy.gltf", -1, -1, 8, 6, "embree", "", "", ""};
 
 TEST(ToyIntegrator, OptionsAppearInTheHelpWithDefaultAndRange) {
   std::string help;

@@ -63,7 +63,9 @@ TEST_P(Transparent, EscapedRaysAreZeroSurfacesUnchangedEdgesPremultiplied) {
         ++edges;
         for (int k = 0; k < 3; ++k) {
           EXPECT_NEAR(c[k] + (1 - c[3]) * 1.0f, o[k], 2e-5f) << x << "," << y;
-          if (whitted) EXPECT_NEAR(c[k] / c[3], 0.5f, 1e-5f) << x << "," << y;
+          if (whitted) {
+            EXPECT_NEAR(c[k] / c[3], 0.5f, 1e-5f) << x << "," << y;
+          }
           EXPECT_GT(c[k], 0.0f) << x << "," << y;
         }
       }
