@@ -13,6 +13,7 @@
 #include "accel/bvh4_traversal.h"
 #include "accel/bvh_mesh.h"
 #include "core/alpha.h"
+#include "core/motion.h"
 #include "core/scene.h"
 
 namespace tray {
@@ -34,7 +35,9 @@ thread_local LastOccluder tLastOccluder;
 /// Every crossing of a shape's boundary inside the ray's range, as the Embree accelerator reports
 /// them for all-hits queries (accel/embree_accelerator.cpp, shapeIntersect).
 void shapeCrossings(const Primitive& p, uint32_t i, const Ray& ray, std::vector<Hit>& hits) {
-  Ray local{p.toWorld.inversePoint(ray.o), p.toWorld.inverseVector(ray.d), ray.tmin, ray.tmax};
+  Transform toWorld;
+  if (!toWorldAt(p, ray.time, toWorld)) return;
+  Ray local{toWorld.inversePoint(ray.o), toWorld.inverseVector(ray.d), ray.tmin, ray.tmax};
   std::vector<Interval> spans;
   p.shape->intervals(local, spans);
   for (const Interval& s : spans)
@@ -73,9 +76,9 @@ class TwoLevelAccelerator final : public Accelerator {
       const Primitive& p = prims[i];
       if (p.kind == Primitive::Kind::kMesh) {
         Bounds3 b = meshes_[p.mesh]->bounds();
-        if (!b.empty()) boxes[i] = p.toWorld.bounds(b);
+        if (!b.empty()) boxes[i] = motionBounds(p, b);  // over the shutter when it moves
       } else {
-        Bounds3 b = p.toWorld.bounds(p.shape->bounds());
+        Bounds3 b = motionBounds(p, p.shape->bounds());
         if (b.empty()) continue;
         if (!b.finite()) {
           unbounded_.push_back(i);
@@ -129,7 +132,8 @@ class TwoLevelAccelerator final : public Accelerator {
     forEachPrimitive(ray, tmax, [&](uint32_t i) {
       const Primitive& p = scene_.primitives[i];
       if (p.kind == Primitive::Kind::kMesh) {
-        meshes_[p.mesh]->allHits(toObject(p, ray, ray.tmax), i, hits);
+        Ray local;
+        if (toObject(p, ray, ray.tmax, local)) meshes_[p.mesh]->allHits(local, i, hits);
       } else {
         shapeCrossings(p, i, ray, hits);
       }
@@ -177,8 +181,19 @@ class TwoLevelAccelerator final : public Accelerator {
   }
 
  private:
-  static Ray toObject(const Primitive& p, const Ray& ray, float tmax) {
-    return Ray{p.toWorld.inversePoint(ray.o), p.toWorld.inverseVector(ray.d), ray.tmin, tmax};
+  /// The ray in p's object space (a moving p placed at the ray's time, as Embree's instance
+  /// motion places it); false where p is flat at that time (core/motion.h) and cannot be hit.
+  static bool toObject(const Primitive& p, const Ray& ray, float tmax, Ray& local) {
+    if (p.motion.empty()) {
+      local = Ray{p.toWorld.inversePoint(ray.o), p.toWorld.inverseVector(ray.d), ray.tmin, tmax,
+                  ray.blend, ray.time};  // the time places a deforming mesh's triangles
+      return true;
+    }
+    Transform toWorld;
+    if (!toWorldAt(p, ray.time, toWorld)) return false;
+    local = Ray{toWorld.inversePoint(ray.o), toWorld.inverseVector(ray.d), ray.tmin, tmax,
+                ray.blend, ray.time};
+    return true;
   }
 
   /// Calls visit(i) for every primitive the ray may hit before tmax; stops when it returns true.
@@ -204,20 +219,23 @@ class TwoLevelAccelerator final : public Accelerator {
     const Primitive& p = scene_.primitives[i];
     if (p.kind == Primitive::Kind::kMesh) {
       Hit h;
+      Ray local;
+      if (!toObject(p, ray, tmax, local)) return false;
       if (alphaTested_[p.mesh]) {
         const AlphaQuery q{scene_, ray, i};
-        if (!meshes_[p.mesh]->intersect(toObject(p, ray, tmax), tmax, h, q.filter())) return false;
+        if (!meshes_[p.mesh]->intersect(local, tmax, h, q.filter())) return false;
         h.primitive = i;
         hit = h;
         return true;
       }
-      if (!meshes_[p.mesh]->intersect(toObject(p, ray, tmax), tmax, h)) return false;
+      if (!meshes_[p.mesh]->intersect(local, tmax, h)) return false;
       h.primitive = i;
       hit = h;
       return true;
     }
     Hit h;
-    if (!scene_.intersectShape(i, Ray{ray.o, ray.d, ray.tmin, tmax}, h)) return false;
+    if (!scene_.intersectShape(i, Ray{ray.o, ray.d, ray.tmin, tmax, ray.blend, ray.time}, h))
+      return false;
     tmax = h.t;
     hit = h;
     return true;
@@ -226,22 +244,24 @@ class TwoLevelAccelerator final : public Accelerator {
   bool occludedPrimitive(uint32_t i, const Ray& ray, uint32_t& block) const {
     const Primitive& p = scene_.primitives[i];
     block = 0;
+    Ray local;
+    if (p.kind == Primitive::Kind::kMesh && !toObject(p, ray, ray.tmax, local)) return false;
     if (p.kind == Primitive::Kind::kMesh && alphaTested_[p.mesh]) {
       // block stays 0 and occludedBy refuses alpha-tested meshes: the cache never skips the test.
       const AlphaQuery q{scene_, ray, i};
-      return meshes_[p.mesh]->occluded(toObject(p, ray, ray.tmax), q.filter());
+      return meshes_[p.mesh]->occluded(local, q.filter());
     }
-    if (p.kind == Primitive::Kind::kMesh)
-      return meshes_[p.mesh]->occluded(toObject(p, ray, ray.tmax), block);
+    if (p.kind == Primitive::Kind::kMesh) return meshes_[p.mesh]->occluded(local, block);
     Hit h;
     return scene_.intersectShape(i, ray, h);
   }
 
   bool occludedBy(uint32_t i, uint32_t block, const Ray& ray) const {
     const Primitive& p = scene_.primitives[i];
+    Ray local;
     if (p.kind == Primitive::Kind::kMesh)
-      return meshes_[p.mesh] && !alphaTested_[p.mesh] &&
-             meshes_[p.mesh]->occludedBy(toObject(p, ray, ray.tmax), block);
+      return meshes_[p.mesh] && !alphaTested_[p.mesh] && toObject(p, ray, ray.tmax, local) &&
+             meshes_[p.mesh]->occludedBy(local, block);
     Hit h;
     return scene_.intersectShape(i, ray, h);
   }

@@ -5,18 +5,22 @@
 #include <cmath>
 
 #include "accel/bvh4_traversal.h"
+#include "core/motion.h"
 
 namespace tray {
 namespace {
 
-void vertices(const TriangleMesh& m, uint32_t tri, Vec3& p0, Vec3& p1, Vec3& p2) {
-  p0 = m.positions[m.indices[3 * tri]];
-  p1 = m.positions[m.indices[3 * tri + 1]];
-  p2 = m.positions[m.indices[3 * tri + 2]];
+void vertices(const TriangleMesh& m, const std::vector<Vec3>& positions, uint32_t tri, Vec3& p0,
+              Vec3& p1, Vec3& p2) {
+  p0 = positions[m.indices[3 * tri]];
+  p1 = positions[m.indices[3 * tri + 1]];
+  p2 = positions[m.indices[3 * tri + 2]];
 }
 
-/// Packs up to four triangles (ids[0..n)) into a block; the other lanes stay empty.
-Triangle4 pack(const TriangleMesh& m, const uint32_t* ids, uint32_t n) {
+/// Packs up to four triangles (ids[0..n)) with their vertices at `positions` into a block; the
+/// other lanes stay empty.
+Triangle4 pack(const TriangleMesh& m, const std::vector<Vec3>& positions, const uint32_t* ids,
+               uint32_t n) {
   Triangle4 b;
   for (int lane = 0; lane < 4; ++lane) {
     Vec3 p[3];
@@ -24,7 +28,7 @@ Triangle4 pack(const TriangleMesh& m, const uint32_t* ids, uint32_t n) {
     for (Vec3& q : p) q = Vec3(NAN);
     if (uint32_t(lane) < n) {
       b.index[lane] = ids[lane];
-      vertices(m, ids[lane], p[0], p[1], p[2]);
+      vertices(m, positions, ids[lane], p[0], p[1], p[2]);
     }
     for (int v = 0; v < 3; ++v)
       for (int a = 0; a < 3; ++a) b.p[v][a][lane] = p[v][a];
@@ -34,18 +38,43 @@ Triangle4 pack(const TriangleMesh& m, const uint32_t* ids, uint32_t n) {
 
 }  // namespace
 
+void MeshBvh::pushBlock(const uint32_t* ids, uint32_t n) {
+  blocks_.push_back(pack(mesh_, mesh_.positions, ids, n));
+  for (size_t k = 0; k < stepBlocks_.size(); ++k)
+    stepBlocks_[k].push_back(pack(mesh_, mesh_.positionSteps[k], ids, n));
+}
+
+Triangle4 MeshBvh::blockAt(size_t segment, float f, uint32_t k) const {
+  // Embree's vertex motion: each vertex interpolated linearly within the time segment.
+  const Triangle4 &a = stepBlocks_[segment][k], &b = stepBlocks_[segment + 1][k];
+  Triangle4 out;
+  for (int v = 0; v < 3; ++v)
+    for (int axis = 0; axis < 3; ++axis)
+      for (int lane = 0; lane < 4; ++lane)
+        out.p[v][axis][lane] = (1.0f - f) * a.p[v][axis][lane] + f * b.p[v][axis][lane];
+  for (int lane = 0; lane < 4; ++lane) out.index[lane] = a.index[lane];
+  return out;
+}
+
 MeshBvh::MeshBvh(const TriangleMesh& mesh, const BvhBuildOptions& options, bool hierarchy)
-    : mesh_(mesh), hierarchy_(hierarchy) {
+    : mesh_(mesh), stepBlocks_(mesh.positionSteps.size()), hierarchy_(hierarchy) {
   const uint32_t n = uint32_t(mesh.triangleCount());
   std::vector<Bounds3> boxes(n);
+  // A deforming mesh: each triangle boxed over every step (a vertex moves linearly between two
+  // steps, so the union holds the triangle at any time), as Embree's motion-blur boxes do.
+  std::vector<const std::vector<Vec3>*> steps;
+  for (const auto& step : mesh.positionSteps) steps.push_back(&step);
+  if (steps.empty()) steps.push_back(&mesh.positions);
   tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n, 16384), [&](const auto& r) {
     for (uint32_t i = r.begin(); i < r.end(); ++i) {
-      Vec3 p0, p1, p2;
-      vertices(mesh, i, p0, p1, p2);
       Bounds3 b;
-      b.extend(p0);
-      b.extend(p1);
-      b.extend(p2);
+      for (const std::vector<Vec3>* positions : steps) {
+        Vec3 p0, p1, p2;
+        vertices(mesh, *positions, i, p0, p1, p2);
+        b.extend(p0);
+        b.extend(p1);
+        b.extend(p2);
+      }
       boxes[i] = b;
     }
   });
@@ -55,7 +84,7 @@ MeshBvh::MeshBvh(const TriangleMesh& mesh, const BvhBuildOptions& options, bool 
   triangleCount_ = usable.size();
   if (!hierarchy_) {
     for (size_t k = 0; k < usable.size(); k += 4)
-      blocks_.push_back(pack(mesh, &usable[k], uint32_t(std::min<size_t>(4, usable.size() - k))));
+      pushBlock(&usable[k], uint32_t(std::min<size_t>(4, usable.size() - k)));
     return;
   }
   // Leaves are tested four triangles at a time: the SAH counts blocks, so leaves fill them, and
@@ -81,7 +110,7 @@ MeshBvh::MeshBvh(const TriangleMesh& mesh, const BvhBuildOptions& options, bool 
       const uint32_t first = bvh4ref::first(ref), count = bvh4ref::count(ref);
       const uint32_t firstBlock = uint32_t(blocks_.size());
       for (uint32_t k = 0; k < count; k += 4)
-        blocks_.push_back(pack(mesh, &bvh_.primitives[first + k], std::min(4u, count - k)));
+        pushBlock(&bvh_.primitives[first + k], std::min(4u, count - k));
       ref = bvh4ref::makeLeaf(firstBlock, uint32_t(blocks_.size()) - firstBlock);
     }
   blocks_.shrink_to_fit();
@@ -90,10 +119,32 @@ MeshBvh::MeshBvh(const TriangleMesh& mesh, const BvhBuildOptions& options, bool 
 
 template <bool kOrdered, class OnBlock>
 bool MeshBvh::forEachBlock(const Ray& ray, const float& tmax, OnBlock&& onBlock) const {
+  if (!stepBlocks_.empty()) return forEachBlockAtTime<kOrdered>(ray, tmax, onBlock);
   const WatertightRay4 wr = prepareWatertight4(ray.o, ray.d);
   auto leaf = [&](uint32_t first, uint32_t count) {
     for (uint32_t k = first; k < first + count; ++k) {
       const Triangle4& block = blocks_[k];
+      alignas(16) float t[4], b1[4], b2[4];
+      int mask = intersectWatertight4(wr, block, ray.tmin, tmax, t, b1, b2);
+      if (mask && onBlock(block, mask, t, b1, b2)) return true;
+    }
+    return false;
+  };
+  if (!hierarchy_) return leaf(0, uint32_t(blocks_.size()));
+  return traverseBvh4<kOrdered>(bvh_, prepareBvh4Ray(ray.o, ray.d), ray.tmin, tmax, leaf);
+}
+
+/// forEachBlock for a deforming mesh: each block interpolated at the ray's time before the test.
+/// Kept apart so that static meshes run the loop they ran before motion blur existed.
+template <bool kOrdered, class OnBlock>
+bool MeshBvh::forEachBlockAtTime(const Ray& ray, const float& tmax, OnBlock&& onBlock) const {
+  const WatertightRay4 wr = prepareWatertight4(ray.o, ray.d);
+  size_t segment = 0;
+  float f = 0;
+  timeSegment(stepBlocks_.size(), ray.time, segment, f);
+  auto leaf = [&](uint32_t first, uint32_t count) {
+    for (uint32_t k = first; k < first + count; ++k) {
+      const Triangle4 block = blockAt(segment, f, k);
       alignas(16) float t[4], b1[4], b2[4];
       int mask = intersectWatertight4(wr, block, ray.tmin, tmax, t, b1, b2);
       if (mask && onBlock(block, mask, t, b1, b2)) return true;
@@ -139,7 +190,8 @@ template <class Accept>
   // Any hit will do: children in slot order, no sorting (measured faster, bench/accel_bench).
   return forEachBlock<false>(
       ray, ray.tmax, [&](const Triangle4& b, int, const float*, const float*, const float*) {
-        block = uint32_t(&b - blocks_.data());
+        // A deforming mesh's block was made for this ray: none for the last-occluder cache.
+        block = stepBlocks_.empty() ? uint32_t(&b - blocks_.data()) : uint32_t(blocks_.size());
         return true;
       });
 }
@@ -181,7 +233,7 @@ void MeshBvh::allHits(const Ray& ray, uint32_t primitive, std::vector<Hit>& hits
 }
 
 bool MeshBvh::occludedBy(const Ray& ray, uint32_t block) const {
-  if (block >= blocks_.size()) return false;
+  if (block >= blocks_.size() || !stepBlocks_.empty()) return false;
   alignas(16) float t[4], b1[4], b2[4];
   return intersectWatertight4(prepareWatertight4(ray.o, ray.d), blocks_[block], ray.tmin, ray.tmax,
                               t, b1, b2) != 0;

@@ -49,17 +49,28 @@ class MeshBvh {
   size_t binaryNodes() const { return binaryNodes_; }
   size_t triangles() const { return triangleCount_; }
   const Bvh4& tree() const { return bvh_; }
-  size_t memoryBytes() const { return bvh_.memoryBytes() + blocks_.capacity() * sizeof(Triangle4); }
+  size_t memoryBytes() const {
+    return bvh_.memoryBytes() + blocks_.capacity() * (1 + stepBlocks_.size()) * sizeof(Triangle4);
+  }
 
  private:
   template <class Accept>
   bool closestHit(const Ray& ray, float& tmax, Hit& hit, const Accept& accept) const;
   template <bool kOrdered, class OnBlock>
   bool forEachBlock(const Ray& ray, const float& tmax, OnBlock&& onBlock) const;
+  template <bool kOrdered, class OnBlock>
+  bool forEachBlockAtTime(const Ray& ray, const float& tmax, OnBlock&& onBlock) const;
+  /// Appends the block of triangles ids[0..n) to blocks_ and, for a deforming mesh, to every
+  /// step's blocks.
+  void pushBlock(const uint32_t* ids, uint32_t n);
+  /// Block k of a deforming mesh at `f` of the way through time segment `segment`.
+  Triangle4 blockAt(size_t segment, float f, uint32_t k) const;
 
   Bvh4 bvh_;  ///< leaves index blocks_
   const TriangleMesh& mesh_;
   std::vector<Triangle4> blocks_;  ///< leaf by leaf (or every triangle, without hierarchy)
+  /// A deforming mesh (TriangleMesh::positionSteps): blocks_ at each motion step; else empty.
+  std::vector<std::vector<Triangle4>> stepBlocks_;
   Bounds3 bounds_;
   bool hierarchy_;
   double sahCost_ = 0;

@@ -15,6 +15,7 @@
 #include "accel/embree_batch.h"
 #include "accel/embree_rays.h"
 #include "core/error.h"
+#include "core/motion.h"
 #include "core/scene.h"
 
 namespace tray {
@@ -84,7 +85,10 @@ void reportShapeHit(const RTCIntersectFunctionNArguments* args, const Hit& hit, 
 void shapeBounds(const RTCBoundsFunctionArguments* args) {
   auto* data = static_cast<const ShapeUserData*>(args->geometryUserPtr);
   const Primitive& p = data->scene->primitives[data->primitive];
-  Bounds3 b = p.toWorld.bounds(p.shape->bounds());
+  // A moving shape: its box at this time step; Embree interpolates the boxes between steps.
+  Transform step = p.toWorld;
+  if (!p.motion.empty()) step.m = p.motion[args->timeStep];  // bounds() reads m only
+  Bounds3 b = step.bounds(p.shape->bounds());
   b.lo = max(b.lo, Vec3(-kMaxExtent));
   b.hi = min(b.hi, Vec3(kMaxExtent));
   RTCBounds* o = args->bounds_o;
@@ -99,11 +103,15 @@ void shapeIntersect(const RTCIntersectFunctionNArguments* args) {
   Ray ray{{rh->ray.org_x, rh->ray.org_y, rh->ray.org_z},
           {rh->ray.dir_x, rh->ray.dir_y, rh->ray.dir_z},
           rh->ray.tnear,
-          rh->ray.tfar};
+          rh->ray.tfar,
+          BlendRays::kStochastic,
+          rh->ray.time};
   if (args->context->filter) {
     // All-hits query: report every boundary crossing of the solid within the range.
     const Primitive& p = data->scene->primitives[data->primitive];
-    Ray local{p.toWorld.inversePoint(ray.o), p.toWorld.inverseVector(ray.d), ray.tmin, ray.tmax};
+    Transform toWorld;
+    if (!toWorldAt(p, ray.time, toWorld)) return;
+    Ray local{toWorld.inversePoint(ray.o), toWorld.inverseVector(ray.d), ray.tmin, ray.tmax};
     std::vector<Interval> spans;
     p.shape->intervals(local, spans);
     for (const Interval& s : spans)
@@ -127,7 +135,8 @@ void shapeOccluded(const RTCOccludedFunctionNArguments* args) {
   if (!args->valid[0]) return;
   auto* data = static_cast<const ShapeUserData*>(args->geometryUserPtr);
   RTCRay* r = reinterpret_cast<RTCRay*>(args->ray);
-  Ray ray{{r->org_x, r->org_y, r->org_z}, {r->dir_x, r->dir_y, r->dir_z}, r->tnear, r->tfar};
+  Ray ray{{r->org_x, r->org_y, r->org_z}, {r->dir_x, r->dir_y, r->dir_z},
+          r->tnear, r->tfar, BlendRays::kStochastic, r->time};
   Hit hit;
   if (data->scene->intersectShape(data->primitive, ray, hit)) r->tfar = -kInfinity;
 }
@@ -215,10 +224,11 @@ class EmbreeAccelerator final : public Accelerator {
 
   bool streamable() const { return batch_ != EmbreeBatch::kLoop && !hasUserGeometry_; }
 
-  /// A new Embree-owned buffer of `count` items of `stride` bytes, filled from `data`.
+  /// A new Embree-owned buffer of `count` items of `stride` bytes, filled from `data` (`slot`:
+  /// the time step of a vertex buffer).
   void copyToEmbree(RTCGeometry g, RTCBufferType type, RTCFormat format, const void* data,
-                    size_t stride, size_t count) {
-    void* dst = rtcSetNewGeometryBuffer(g, type, 0, format, stride, count);
+                    size_t stride, size_t count, unsigned slot = 0) {
+    void* dst = rtcSetNewGeometryBuffer(g, type, slot, format, stride, count);
     if (!dst) {
       checkError();
       throw Error("Embree: cannot allocate a geometry buffer", Error::Kind::kRender);
@@ -239,8 +249,15 @@ class EmbreeAccelerator final : public Accelerator {
     // 16-byte SSE load, so a shared float3 array needs padding after it (docs of
     // rtcSetSharedGeometryBuffer); the mesh's std::vector has none, and valgrind saw reads past
     // its end. Embree pads the buffers it allocates itself (rtcSetNewGeometryBuffer docs).
-    copyToEmbree(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, m.positions.data(), sizeof(Vec3),
-                 m.positions.size());
+    if (m.positionSteps.empty()) {
+      copyToEmbree(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, m.positions.data(), sizeof(Vec3),
+                   m.positions.size());
+    } else {  // a deforming mesh: one vertex buffer per time step, interpolated by Embree
+      rtcSetGeometryTimeStepCount(g, unsigned(m.positionSteps.size()));
+      for (unsigned k = 0; k < m.positionSteps.size(); ++k)
+        copyToEmbree(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, m.positionSteps[k].data(),
+                     sizeof(Vec3), m.positionSteps[k].size(), k);
+    }
     copyToEmbree(g, RTC_BUFFER_TYPE_INDEX, RTC_FORMAT_UINT3, m.indices.data(),
                  3 * sizeof(uint32_t), m.triangleCount());
     attachAlphaFilter(g, scene_, m);
@@ -250,6 +267,18 @@ class EmbreeAccelerator final : public Accelerator {
     rtcCommitScene(s);
     meshScenes_[meshIndex] = s;
     return s;
+  }
+
+  /// An instance's placement: its one transform, or for a moving primitive one per motion step,
+  /// which Embree interpolates linearly by the ray's time (core/motion.h does the same).
+  static void setInstanceMotion(RTCGeometry g, const Primitive& p) {
+    if (p.motion.empty()) {
+      rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, &p.toWorld.m.m[0][0]);
+      return;
+    }
+    rtcSetGeometryTimeStepCount(g, unsigned(p.motion.size()));
+    for (unsigned k = 0; k < p.motion.size(); ++k)
+      rtcSetGeometryTransform(g, k, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, &p.motion[k].m[0][0]);
   }
 
   void build() {
@@ -263,7 +292,7 @@ class EmbreeAccelerator final : public Accelerator {
         if (scene_.meshes[p.mesh].triangleCount() == 0) continue;
         g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
         rtcSetGeometryInstancedScene(g, meshScene(p.mesh));
-        rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, &p.toWorld.m.m[0][0]);
+        setInstanceMotion(g, p);
       } else {
         hasUserGeometry_ = true;
         userData_[i] = {&scene_, i};
@@ -273,6 +302,8 @@ class EmbreeAccelerator final : public Accelerator {
         rtcSetGeometryBoundsFunction(g, shapeBounds, nullptr);
         rtcSetGeometryIntersectFunction(g, shapeIntersect);
         rtcSetGeometryOccludedFunction(g, shapeOccluded);
+        // A moving shape: Embree asks shapeBounds for its box at each step.
+        if (!p.motion.empty()) rtcSetGeometryTimeStepCount(g, unsigned(p.motion.size()));
       }
       rtcCommitGeometry(g);
       rtcAttachGeometryByID(top_, g, i);

@@ -13,7 +13,7 @@ constexpr int kLanes = 8;
 /// Lane l of a packet from ray i (id i: the alpha filter's index into the batch's rays).
 void toLane(const Ray& r, uint32_t i, RTCRay8& p, int l) {
   p.org_x[l] = r.o.x, p.org_y[l] = r.o.y, p.org_z[l] = r.o.z, p.tnear[l] = r.tmin;
-  p.dir_x[l] = r.d.x, p.dir_y[l] = r.d.y, p.dir_z[l] = r.d.z, p.time[l] = 0.0f;
+  p.dir_x[l] = r.d.x, p.dir_y[l] = r.d.y, p.dir_z[l] = r.d.z, p.time[l] = r.time;
   p.tfar[l] = r.tmax, p.mask[l] = 0xffffffffu, p.id[l] = i, p.flags[l] = 0;
 }
 

@@ -18,7 +18,7 @@ inline void toEmbree(const Ray& r, RTCRay& ray) {
   ray.dir_x = r.d.x;
   ray.dir_y = r.d.y;
   ray.dir_z = r.d.z;
-  ray.time = 0.0f;
+  ray.time = r.time;
   ray.tfar = r.tmax;
   ray.mask = 0xffffffffu;
   ray.id = 0;

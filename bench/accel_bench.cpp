@@ -101,12 +101,12 @@ RaySet makeRays(const Scene& scene, int width, int height) {
       if (!embree->intersect(r, h)) continue;
       SurfacePoint sp = scene.surface(r, h);
       Vec3 ng = dot(sp.ng, r.d) < 0 ? sp.ng : -sp.ng;
-      rays.shadow.push_back(spawnRayTo(sp.p, ng, light));
+      rays.shadow.push_back(spawnRayTo(sp.p, ng, light, 0.0f));
       Vec3 t, s;
       orthonormalBasis(ng, t, s);
       float r1 = u(rng), r2 = u(rng), rad = std::sqrt(r1), phi = 2 * kPi * r2;
       Vec3 d = rad * std::cos(phi) * t + rad * std::sin(phi) * s + std::sqrt(1 - r1) * ng;
-      rays.bounce.push_back(spawnRay(sp.p, ng, d));
+      rays.bounce.push_back(spawnRay(sp.p, ng, d, 0.0f));
     }
   return rays;
 }

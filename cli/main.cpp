@@ -5,6 +5,7 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <algorithm>
 #include <filesystem>
 #include <new>
 #include <string>
@@ -77,6 +78,15 @@ tray::LoadOptions loadOptionsOf(const CliOptions& o) {
   loadOptions.allowAnyPath = o.allowAnyPath;
   loadOptions.time = tray::animationTime(o.settings);
   loadOptions.animation = o.settings.getString("animation");
+  if (const auto shutter = tray::shutterOf(o.settings); shutter && loadOptions.time) {
+    const float fps = o.settings.getFloat("fps");
+    loadOptions.shutterOpen = shutter->at(*loadOptions.time, fps, 0.0f);
+    loadOptions.shutterClose = shutter->at(*loadOptions.time, fps, 1.0f);
+    loadOptions.motionSteps = int(o.settings.getInt("motion-steps"));
+  }
+  const std::vector<std::string> aovs = tray::AovSet::parse(o.aovs);
+  if (loadOptions.time && std::count(aovs.begin(), aovs.end(), "motion"))
+    loadOptions.previousTime = *loadOptions.time - 1.0f / o.settings.getFloat("fps");
   const double maxMemoryMB = o.maxMemoryMB < 0 ? defaultMaxMemoryMB() : o.maxMemoryMB;
   loadOptions.maxMemoryBytes = uint64_t(maxMemoryMB * 1048576.0);
   loadOptions.textureCacheMB = o.textureMemoryMB;
@@ -127,7 +137,8 @@ void prepareScene(const CliOptions& o, const tray::GltfDocument* document, Prepa
   p.camera = tray::Camera::create(p.cam, p.width, p.height);
   {  // The accelerator's estimate, with what the loader counted, before it is built.
     tray::MemoryEstimate need = report.memory;
-    for (const auto& m : scene.meshes) need.geometry += m.triangleCount();
+    for (const auto& m : scene.meshes)  // a deforming mesh: its triangles at every motion step
+      need.geometry += m.triangleCount() * std::max<size_t>(1, m.positionSteps.size());
     need.geometry *= tray::kGeometryBytesPerTriangle;
     tray::checkMemory(o.scenePath, need, loadOptions.maxMemoryBytes);
   }
@@ -337,6 +348,9 @@ int main(int argc, char** argv) {
       if (o.settings.isSet("time"))
         throw tray::Error("--frames sets the time of each frame (frame / fps): drop --time");
     }
+    if (tray::shutterOf(o.settings) && o.frames.empty() && !tray::animationTime(o.settings))
+      throw tray::Error("--shutter needs an animation time to open around: add --time SECONDS "
+                        "or --frames (the static pose does not move)");
     tray::checkFramePatterns(o.outputs, !o.frames.empty());
     o.progressSettings.mode =
         o.quiet ? tray::ProgressMode::kNone : tray::parseProgressMode(o.progress);

@@ -23,6 +23,7 @@ const std::vector<AovSpec>& specs() {
       {"objectid", "objectid", {"id"}},
       {"materialid", "materialid", {"id"}},
       {"samples", "samples", {"count"}},
+      {"motion", "motion", {"u", "v"}},  // Nuke's motion layer (docs/aovs.md)
   };
   return s;
 }
@@ -96,7 +97,8 @@ std::vector<std::string> AovSet::parse(const std::string& list) {
   return out;
 }
 
-AovSet::AovSet(Film& film, const std::vector<std::string>& names) {
+AovSet::AovSet(Film& film, const std::vector<std::string>& names, const MotionVectors* vectors)
+    : vectors_(vectors) {
   for (const auto& n : names) {
     for (size_t i = 0; i < specs().size(); ++i)
       if (n == specs()[i].name) {
@@ -131,6 +133,11 @@ void AovSet::write(Film& film, int x, int y, const PixelValue& v, const AovSums*
       case Kind::kObjectId: p[0] = float(h.objectId); break;
       case Kind::kMaterialId: p[0] = float(h.materialId); break;
       case Kind::kSamples: p[0] = float(v.samples); break;
+      case Kind::kMotion: {
+        const Vec2 m = vectors_ ? vectors_->at(h) : Vec2{0, 0};
+        p[0] = m.x, p[1] = m.y;
+        break;
+      }
       case Kind::kPath: put(p, sums ? sums->path(s.path) : Color(0.0f)); break;
     }
   }

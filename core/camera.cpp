@@ -128,9 +128,13 @@ std::unique_ptr<Camera> Camera::create(const CameraDesc& d, int w, int h) {
   if (d.lensRadius > 0 && !(d.focusDistance > 0))
     throw Error("a thin-lens camera needs a focus distance > 0 (--focus-distance or "
                 "TRAY_camera focusDistance)");
+  std::unique_ptr<Camera> camera;
   if (d.type == CameraDesc::Type::kOrthographic)
-    return std::make_unique<OrthographicCamera>(d, w, h);
-  return std::make_unique<PerspectiveCamera>(d, w, h);
+    camera = std::make_unique<OrthographicCamera>(d, w, h);
+  else
+    camera = std::make_unique<PerspectiveCamera>(d, w, h);
+  camera->desc_ = d;
+  return camera;
 }
 
 CameraDesc Camera::framing(const Bounds3& b, float aspectRatio) {

@@ -1,6 +1,8 @@
 #pragma once
 #include <memory>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include "core/ray.h"
 #include "core/transform.h"
@@ -25,6 +27,13 @@ struct CameraDesc {
   float focusDistance = 0.0f;  ///< view depth of the plane in focus (> 0 when lensRadius > 0)
   int apertureBlades = 0;      ///< 0: a round aperture; N >= 3: a regular N-gon (bokeh shape)
   Transform toWorld;
+  int node = -1;  ///< the glTF node that places it (-1: not from a file)
+  /// Motion blur: toWorld at the motion steps, interpolated as a moving primitive's (core/
+  /// motion.h); empty: the camera holds still over the shutter.
+  std::vector<Mat4> motion;
+  /// Where the camera was one frame before (time - 1/fps), for motion vectors (core/
+  /// motion_vectors.h); empty: it did not move, or no previous frame was posed.
+  std::optional<Transform> previousToWorld;
 };
 
 /// A uniform point on the aperture of unit circumradius from u in [0,1)^2: the unit disk
@@ -58,6 +67,11 @@ class Camera {
   static std::unique_ptr<Camera> create(const CameraDesc& desc, int width, int height);
   /// A perspective camera framing the given bounds (used when a scene has no camera).
   static CameraDesc framing(const Bounds3& bounds, float aspectRatio);
+  /// The description create() built this camera from.
+  const CameraDesc& desc() const { return desc_; }
+
+ private:
+  CameraDesc desc_;
 };
 
 }  // namespace tray

@@ -31,6 +31,7 @@ struct SurfacePoint {
   Vec3 front;               ///< unit front-face normal (core/front_face.h: the winding, not
                             ///< vertex normals): the side one-sided emitters emit from
   bool frontFace = true;    ///< the ray arrived from the side ng points to
+  float time = 0.0f;        ///< the ray's shutter time (Ray::time): rays leaving here keep it
 };
 
 }  // namespace tray

@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "core/filter.h"
+#include "core/motion.h"
 #include "core/pixel_sampler.h"
 
 namespace tray {
@@ -27,7 +28,19 @@ Integrator::Integrator(const RenderContext& ctx)
       sequence_(Sampler::parse(ctx.settings.getString("sampler"))),
       pixelSampler_(pixelSamplerOf(ctx.settings, sequence_, filter_.radius())),
       seed_(uint64_t(ctx.settings.getInt64("seed"))),
-      transparent_(ctx.settings.getBool("transparent") || ctx.scene.environment.transparent) {}
+      transparent_(ctx.settings.getBool("transparent") || ctx.scene.environment.transparent),
+      moving_(ctx.scene.moving() || !ctx.camera.desc().motion.empty()),
+      cameraMotion_(ctx.camera.desc().motion),
+      cameraFrameInverse_(ctx.camera.desc().toWorld.inv) {}
+
+void Integrator::moveWithCamera(Ray& ray) const {
+  // From the camera at the frame's pose (where generateRay put the ray) to the camera at the
+  // ray's time: the ray keeps its place in camera space.
+  Transform move;
+  move.m = interpolateSteps(cameraMotion_, ray.time) * cameraFrameInverse_;  // point() reads m
+  ray.o = move.point(ray.o);
+  ray.d = move.vector(ray.d);
+}
 
 Color Integrator::cameraLi(const Ray& ray, Sampler& sampler, RayStats& stats,
                            PrimaryHit* primary) const {
@@ -61,9 +74,11 @@ Ray Integrator::cameraRay(int x, int y, int i, Sampler& sampler, Vec2& offset) c
   offset = pixelSampler_.offset(i, sampler.next2D());
   // A thin lens takes the next 2D point of the camera-ray group; a pinhole draws nothing
   // more, so its images keep every bit.
-  return ctx_.camera.hasLens()
-             ? ctx_.camera.generateLensRay(cx + offset.x, cy + offset.y, sampler.next2D())
-             : ctx_.camera.generateRay(cx + offset.x, cy + offset.y);
+  Ray ray = ctx_.camera.hasLens()
+                ? ctx_.camera.generateLensRay(cx + offset.x, cy + offset.y, sampler.next2D())
+                : ctx_.camera.generateRay(cx + offset.x, cy + offset.y);
+  setShutterTime(ray, sampler);  // static objects keep every bit (docs/scene-format.md)
+  return ray;
 }
 
 void Integrator::addSample(PixelSums& sums, IdCoverage* coverage, AovSums* aovSums,

@@ -40,6 +40,8 @@ struct PrimaryHit {
   Vec3 position, normal;
   Color albedo;
   int objectId = -1, materialId = -1;
+  uint32_t primitive = kNoPrimitive;  ///< Scene::primitives index (motion vectors)
+  float time = 0;                     ///< the sample's shutter time (Ray::time)
   /// Light-path AOVs: when not null, Li also adds each contribution to its path's category
   /// there (core/light_paths.h). Set by accumulate for the duration of one sample.
   LightPathRadiance* lightPaths = nullptr;
@@ -128,6 +130,14 @@ class Integrator {
   /// The camera ray of sample i of pixel (x, y), drawn from its sampler as accumulate does;
   /// `offset` receives the sample's position relative to the pixel centre.
   Ray cameraRay(int x, int y, int i, Sampler& sampler, Vec2& offset) const;
+  /// Motion blur: gives a camera ray its shutter time, from a dimension of the sample's own
+  /// (Sampler::kShutterDimension) so that no other number changes; nothing when nothing moves.
+  /// A moving camera then moves the ray (made at the frame's pose) to where it is at that time.
+  void setShutterTime(Ray& ray, const Sampler& sampler) const {
+    if (!moving_) return;
+    ray.time = sampler.reserved1D(Sampler::kShutterDimension);
+    if (!cameraMotion_.empty()) moveWithCamera(ray);
+  }
   /// Samples in the pixel sampler's pattern (accumulate's upper bound for `end`).
   int sampleCount() const { return pixelSampler_.count(); }
   /// Adds one sample, Li's radiance `L`, what it hit first and (when not null) its light-path
@@ -146,6 +156,10 @@ class Integrator {
   PixelSampler pixelSampler_;
   uint64_t seed_;
   bool transparent_;  ///< escaped camera rays give 0 (cameraLi)
+  bool moving_;       ///< something moves over the shutter: camera rays draw a time
+  std::vector<Mat4> cameraMotion_;  ///< the camera's motion steps (CameraDesc::motion)
+  Mat4 cameraFrameInverse_;         ///< world to camera at the frame's pose
+  void moveWithCamera(Ray& ray) const;
 };
 
 }  // namespace tray

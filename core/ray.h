@@ -18,6 +18,9 @@ struct Ray {
   float tmin = 0.0f;
   float tmax = kInfinity;
   BlendRays blend = BlendRays::kStochastic;
+  /// When in the shutter the ray travels, 0 (open) to 1 (close), as Embree's RTCRay::time:
+  /// moving primitives are placed at this time (core/motion.h). A path keeps its camera ray's.
+  float time = 0.0f;
 };
 
 /// Offsets a surface point along its geometric normal by a few float ULPs scaled with the
@@ -40,39 +43,43 @@ inline Vec3 offsetRayOrigin(const Vec3& p, const Vec3& n) {
   return {offsetRayOrigin(p.x, n.x), offsetRayOrigin(p.y, n.y), offsetRayOrigin(p.z, n.z)};
 }
 
-/// A ray leaving surface point p (geometric normal ng) in direction d, offset to the side d goes.
-inline Ray spawnRay(const Vec3& p, const Vec3& ng, const Vec3& d) {
+/// A ray leaving surface point p (geometric normal ng) in direction d, offset to the side d goes,
+/// at shutter time `time` (the path's: SurfacePoint::time).
+inline Ray spawnRay(const Vec3& p, const Vec3& ng, const Vec3& d, float time) {
   const Vec3 n = ng * (dot(d, ng) >= 0 ? 1.0f : -1.0f);  // exact, and a select, not a branch
-  return Ray{offsetRayOrigin(p, n), d, 0.0f, kInfinity};
+  return Ray{offsetRayOrigin(p, n), d, 0.0f, kInfinity, BlendRays::kStochastic, time};
 }
 
-/// A shadow ray from p towards target, stopping just before the target point.
-inline Ray spawnRayTo(const Vec3& p, const Vec3& ng, const Vec3& target) {
+/// A shadow ray from p towards target, stopping just before the target point, at `time`.
+inline Ray spawnRayTo(const Vec3& p, const Vec3& ng, const Vec3& target, float time) {
   Vec3 d = target - p;
   const Vec3 n = ng * (dot(d, ng) >= 0 ? 1.0f : -1.0f);
   Vec3 o = offsetRayOrigin(p, n);
-  return Ray{o, target - o, 0.0f, 1.0f - 1e-4f};
+  return Ray{o, target - o, 0.0f, 1.0f - 1e-4f, BlendRays::kStochastic, time};
 }
 
 // The same rays written field by field into an existing one. Assigning `r = spawnRay(...)`
 // makes the compiler build the ray in a temporary with narrow stores and copy it with 16-byte
 // loads, which cannot be forwarded from those stores: a store-forwarding stall per ray, which
 // perf showed as about 15% of the path tracer's per-vertex step (docs/wavefront.md).
-inline void setSpawnRay(Ray& r, const Vec3& p, const Vec3& ng, const Vec3& d) {
+inline void setSpawnRay(Ray& r, const Vec3& p, const Vec3& ng, const Vec3& d, float time) {
   const Vec3 n = ng * (dot(d, ng) >= 0 ? 1.0f : -1.0f);
   r.o = offsetRayOrigin(p, n);
   r.d = d;
   r.tmin = 0.0f;
   r.tmax = kInfinity;
   r.blend = BlendRays::kStochastic;
+  r.time = time;
 }
-inline void setSpawnRayTo(Ray& r, const Vec3& p, const Vec3& ng, const Vec3& target) {
+inline void setSpawnRayTo(Ray& r, const Vec3& p, const Vec3& ng, const Vec3& target,
+                          float time) {
   const Vec3 n = ng * (dot(target - p, ng) >= 0 ? 1.0f : -1.0f);
   r.o = offsetRayOrigin(p, n);
   r.d = target - r.o;
   r.tmin = 0.0f;
   r.tmax = 1.0f - 1e-4f;
   r.blend = BlendRays::kStochastic;
+  r.time = time;
 }
 
 }  // namespace tray

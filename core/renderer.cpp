@@ -4,9 +4,11 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <chrono>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <vector>
 
 #include "core/aov.h"
@@ -72,7 +74,10 @@ RenderStats renderImage(const Integrator& integrator, Film& film, RenderState& s
   if (AovSet::wantsLightPaths(options.aovs) && !integrator.splitsLightPaths())
     throw Error("--aov: the light-path layers (lightpaths, diffuse_direct, ...) need "
                 "--integrator path or path-wavefront");
-  const AovSet aovs(film, options.aovs);
+  std::optional<MotionVectors> vectors;  // only when the motion layer is asked for
+  if (std::count(options.aovs.begin(), options.aovs.end(), "motion"))
+    vectors.emplace(ctx.scene, ctx.camera.desc(), ctx.width, ctx.height);
+  const AovSet aovs(film, options.aovs, vectors ? &*vectors : nullptr);
   std::unique_ptr<std::atomic<uint8_t>[]> done(new std::atomic<uint8_t>[pixels]);
   for (size_t p = 0; p < pixels; ++p) {
     done[p].store(state.done[p], std::memory_order_relaxed);

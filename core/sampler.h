@@ -72,6 +72,19 @@ class Sampler {
             sobol::toUnit(sobol::scrambledDimension1(index, seedZ))};
   }
   uint32_t dimension() const { return dimension_; }
+  /// Dimensions set apart for one use each, far beyond any path's count: drawing them with
+  /// reserved1D leaves every other number of the sample as it was.
+  static constexpr uint32_t kShutterDimension = 0x40000000u;  ///< the camera ray's time
+  /// Uniform in [0, 1) at a fixed `dimension`, without advancing the counter: a feature that
+  /// is off draws nothing, and on it changes no other number (so images without it keep every
+  /// bit). With kSobol the values over a pixel's samples are one stratified 1D sequence.
+  float reserved1D(uint32_t dimension) const {
+    if (sequence_ == Sequence::kIndependent)
+      return toUnit(mix(key_ + 0xbf58476d1ce4e5b9ull * dimension));
+    const uint64_t h = dimensionHash(dimension);
+    const uint32_t index = sobol::shuffleReversed(reversedIndex_, uint32_t(h));
+    return sobol::toUnit(sobol::scrambledDimension0(index, uint32_t(h >> 32)));
+  }
 
  private:
   // SplitMix64 finaliser (Steele et al. 2014): a strong 64-bit mixing function.

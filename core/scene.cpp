@@ -2,6 +2,7 @@
 
 #include "core/error.h"
 #include "core/front_face.h"
+#include "core/motion.h"
 
 namespace tray {
 
@@ -28,18 +29,29 @@ void Scene::finalize() {
   }
 }
 
+bool Scene::moving() const {
+  for (const auto& p : primitives)
+    if (!p.motion.empty() || (p.kind == Primitive::Kind::kMesh && p.mesh < meshes.size() &&
+                              !meshes[p.mesh].positionSteps.empty()))
+      return true;
+  return false;
+}
+
 Bounds3 Scene::bounds() const {
   Bounds3 b;
   for (const auto& p : primitives) {
     Bounds3 local = p.kind == Primitive::Kind::kMesh ? meshes[p.mesh].bounds() : p.shape->bounds();
-    if (local.finite()) b.extend(p.toWorld.bounds(local));
+    if (local.finite()) b.extend(motionBounds(p, local));  // over the whole shutter
   }
   return b;
 }
 
 bool Scene::intersectShape(uint32_t i, const Ray& r, Hit& hit) const {
   const Primitive& prim = primitives[i];
-  Ray local{prim.toWorld.inversePoint(r.o), prim.toWorld.inverseVector(r.d), r.tmin, r.tmax};
+  Transform moved;
+  if (!prim.motion.empty() && !toWorldAt(prim, r.time, moved)) return false;
+  const Transform& toWorld = prim.motion.empty() ? prim.toWorld : moved;
+  Ray local{toWorld.inversePoint(r.o), toWorld.inverseVector(r.d), r.tmin, r.tmax};
   Hit h;
   if (!prim.shape->intersect(local, h)) return false;
   hit = h;
@@ -51,15 +63,21 @@ SurfacePoint Scene::surface(const Ray& ray, const Hit& hit) const {
   const Primitive& prim = primitives[hit.primitive];
   SurfacePoint s;
   s.primitive = hit.primitive;
+  s.time = ray.time;
+  // A moving primitive is shaded where the ray found it. Its matrix at the hit's time was
+  // invertible, or the accelerator would have reported no hit.
+  Transform moved;
+  if (!prim.motion.empty()) toWorldAt(prim, ray.time, moved);
+  const Transform& toWorld = prim.motion.empty() ? prim.toWorld : moved;
   if (prim.kind == Primitive::Kind::kShape) {
     // Recompute the point in object space and project it back onto the surface: the world
     // point o + t d loses precision far from the origin.
-    Ray local{prim.toWorld.inversePoint(ray.o), prim.toWorld.inverseVector(ray.d)};
+    Ray local{toWorld.inversePoint(ray.o), toWorld.inverseVector(ray.d)};
     Vec3 pl = prim.shape->refine(local.o + hit.t * local.d);
-    s.p = prim.toWorld.point(pl);
+    s.p = toWorld.point(pl);
     // Copied from a local, not from s.ng: reading back a just-stored Vec3 as one wider load
     // cannot be store-forwarded (a stall per hit; see setSpawnRay in core/ray.h).
-    const Vec3 ng = normalize(prim.toWorld.normal(hit.normal));
+    const Vec3 ng = normalize(toWorld.normal(hit.normal));
     s.ng = ng;
     s.n = ng;
     s.front = ng;  // outward
@@ -70,13 +88,15 @@ SurfacePoint Scene::surface(const Ray& ray, const Hit& hit) const {
     uint32_t i0 = m.indices[3 * hit.triangle], i1 = m.indices[3 * hit.triangle + 1],
              i2 = m.indices[3 * hit.triangle + 2];
     float b0 = 1.0f - hit.b1 - hit.b2;
-    const Vec3 &p0 = m.positions[i0], &p1 = m.positions[i1], &p2 = m.positions[i2];
-    s.p = prim.toWorld.point(b0 * p0 + hit.b1 * p1 + hit.b2 * p2);
-    const Vec3 ng = normalize(triangleFrontNormal(prim.toWorld, p0, p1, p2));
+    // A deforming mesh: its triangle where the ray found it.
+    const Vec3 p0 = vertexAt(m, i0, ray.time), p1 = vertexAt(m, i1, ray.time),
+               p2 = vertexAt(m, i2, ray.time);
+    s.p = toWorld.point(b0 * p0 + hit.b1 * p1 + hit.b2 * p2);
+    const Vec3 ng = normalize(triangleFrontNormal(toWorld, p0, p1, p2));
     s.front = ng;
     if (!m.normals.empty()) {
       Vec3 nl = b0 * m.normals[i0] + hit.b1 * m.normals[i1] + hit.b2 * m.normals[i2];
-      Vec3 nw = prim.toWorld.normal(nl);
+      Vec3 nw = toWorld.normal(nl);
       float len = length(nw);
       const Vec3 n = len > 0 && std::isfinite(len) ? nw / len : ng;
       s.n = n;

@@ -20,7 +20,10 @@ struct Primitive {
   Kind kind = Kind::kMesh;
   uint32_t mesh = 0;                   ///< kMesh: index into Scene::meshes
   std::shared_ptr<const Shape> shape;  ///< kShape
-  Transform toWorld;
+  Transform toWorld;  ///< at the frame's time; what lights and framing use
+  /// Motion blur (core/motion.h): toWorld at motion steps evenly spaced over the shutter (ray
+  /// time 0 to 1), linearly interpolated in between as Embree's instance motion. Empty: static.
+  std::vector<Mat4> motion;
   int material = 0;  ///< kShape: its material (meshes carry their own)
   int objectId = 0;  ///< glTF node index, for AOVs and mattes
   std::string name;
@@ -38,10 +41,18 @@ struct Scene {
   std::vector<TextureImage> textures;
   double textureCacheMB = 0;  ///< OIIO's texture tile cache (--texture-memory); 0: default
   Environment environment;
+  /// The shutter interval in seconds that ray time 0 to 1 spans (docs/scene-format.md,
+  /// "Motion blur"); both 0 without --shutter.
+  float shutterOpen = 0, shutterClose = 0;
+  /// Per primitive: its toWorld one frame before (time - 1/fps), for motion vectors (core/
+  /// motion_vectors.h); empty when no previous frame was posed (then toWorld stands for it).
+  std::vector<Mat4> previousToWorld;
 
   /// Adds the default material if none, checks indices; call after filling.
   void finalize();
-  /// World bounds of the finite primitives.
+  /// True when some primitive moves or deforms over the shutter: camera rays then draw a time.
+  bool moving() const;
+  /// World bounds of the finite primitives, moving ones over the whole shutter.
   Bounds3 bounds() const;
   /// Intersects primitive i (an analytic shape) with a world-space ray: hit.t, normal, uv.
   bool intersectShape(uint32_t i, const Ray& worldRay, Hit& hit) const;

@@ -146,6 +146,7 @@ class Adaptive final : public Integrator {
     const float rx = x / float(scale_), ry = y / float(scale_);
     Ray ray = ctx_.camera.hasLens() ? ctx_.camera.generateLensRay(rx, ry, sampler.next2D())
                                     : ctx_.camera.generateRay(rx, ry);
+    setShutterTime(ray, sampler);  // motion blur
     ++stats.cameraRays;
     LatticeSample s;
     s.L = cameraLi(ray, sampler, stats, &s.primary);  // Li is the inner integrator's

@@ -108,7 +108,7 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
     if (!iface.real) {
       st.media.cross(s.material, m, s.frontFace);
       if (++st.nullCrossings > kMaxNullCrossings) return PathStep::kDone;
-      setSpawnRay(st.ray, s.p, s.ng, st.ray.d);
+      setSpawnRay(st.ray, s.p, s.ng, st.ray.d, s.time);
       ++stats.secondaryRays;
       return PathStep::kContinue;
     }
@@ -122,6 +122,7 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
     primary->hit = true;
     primary->depth = length(s.p - st.cameraOrigin);
     primary->position = s.p;
+    primary->primitive = s.primitive, primary->time = s.time;
     primary->normal = sm.n;
     primary->albedo = sm.baseColor;
     primary->objectId = ctx_.scene.primitives[s.primitive].objectId;
@@ -180,9 +181,9 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
   Color f = bsdf.eval(v.wo, ls.wi, bsdfPdf) * std::fabs(dot(ls.wi, v.n));
   if (isBlack(f)) return false;
   if (ls.infinite)
-    setSpawnRay(shadow.ray, s.p, s.ng, ls.wi);
+    setSpawnRay(shadow.ray, s.p, s.ng, ls.wi, s.time);
   else
-    setSpawnRayTo(shadow.ray, s.p, s.ng, ls.p);
+    setSpawnRayTo(shadow.ray, s.p, s.ng, ls.p, s.time);
   float w = ls.delta ? 1.0f : powerHeuristic(ls.pdf, bsdfPdf);
   // An unoccluded shadow ray crossed one medium: the one on its side of s.
   const Color sigma = absorbingMedia_ && v.refractive && dot(ls.wi, v.n) < 0
@@ -225,7 +226,7 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
     st.paths.scattered(!st.paths.atFirstVertex() ? LobeSplit{}
                        : bs.delta                ? LightPathSplitter::deltaLobe(bs.transmission)
                                                  : bsdf.evalLobes(v.wo, bs.wi));
-  setSpawnRay(st.ray, s.p, s.ng, bs.wi);
+  setSpawnRay(st.ray, s.p, s.ng, bs.wi, s.time);
   ++stats.secondaryRays;
   ++st.depth;
 

@@ -51,8 +51,8 @@ class WhittedIntegrator final : public Integrator {
     if (alpha >= 1 || crossings >= kMaxBlendCrossings) return L;
     const SurfacePoint s = ctx_.scene.surface(r, hit);
     ++stats.secondaryRays;
-    return alpha * L +
-           (1 - alpha) * trace(spawnRay(s.p, s.ng, ray.d), depth, stats, nullptr, crossings + 1);
+    return alpha * L + (1 - alpha) * trace(spawnRay(s.p, s.ng, ray.d, s.time), depth, stats,
+                                           nullptr, crossings + 1);
   }
 
   /// Fraction of light that reaches the end of a shadow ray: 0 or 1, or through BLEND surfaces
@@ -71,7 +71,7 @@ class WhittedIntegrator final : public Integrator {
       // Continue with the same direction and what is left of the parameter range.
       const SurfacePoint s = ctx_.scene.surface(r, hit);
       const float left = r.tmax - hit.t;
-      r = spawnRay(s.p, s.ng, r.d);
+      r = spawnRay(s.p, s.ng, r.d, s.time);
       r.blend = BlendRays::kHit;
       r.tmax = left;
     }
@@ -93,6 +93,7 @@ class WhittedIntegrator final : public Integrator {
       primary->hit = true;
       primary->depth = hit.t * length(ray.d);
       primary->position = s.p;
+      primary->primitive = s.primitive, primary->time = s.time;
       primary->normal = sm.n;
       primary->albedo = ph.diffuse;
       primary->objectId = scene.primitives[s.primitive].objectId;
@@ -103,7 +104,7 @@ class WhittedIntegrator final : public Integrator {
     Color L = ph.ambient * scene.environment.ambient + sm.emissive;
     // Whitted's direct light: the delta lights only (area lights are seen by reflection).
     for (int i : lights_.delta())
-      L += directLight(lights_.light(size_t(i)), s.p, ng, n, wo, ph, stats);
+      L += directLight(lights_.light(size_t(i)), s.p, ng, s.time, n, wo, ph, stats);
 
     if (depth >= maxDepth_) return L;
     if (ph.reflectance > 0) {
@@ -111,7 +112,7 @@ class WhittedIntegrator final : public Integrator {
       // Fresnel-Schlick with F0 = mirrorF0: tinted by a metal's base colour, rising to white at
       // grazing angles; exactly 1 for white F0 (stated Phong kr), so those images keep their bits.
       const Color kr = ph.reflectance * fresnelSchlick(ph.mirrorF0, dot(n, wo));
-      L += kr * trace(spawnRay(s.p, ng, reflect(ray.d, n)), depth + 1, stats, nullptr);
+      L += kr * trace(spawnRay(s.p, ng, reflect(ray.d, n), s.time), depth + 1, stats, nullptr);
     }
     if (ph.transmittance > 0) {
       // Snell's law with eta = n_from / n_to; total internal reflection sends the light back.
@@ -119,7 +120,7 @@ class WhittedIntegrator final : public Integrator {
       Vec3 d = normalize(ray.d), t;
       Vec3 next = refract(d, n, eta, t) ? t : reflect(d, n);
       ++stats.secondaryRays;
-      L += ph.transmittance * trace(spawnRay(s.p, ng, next), depth + 1, stats, nullptr);
+      L += ph.transmittance * trace(spawnRay(s.p, ng, next, s.time), depth + 1, stats, nullptr);
     }
     return L;
   }
@@ -132,11 +133,12 @@ class WhittedIntegrator final : public Integrator {
   }
 
   /// A delta light's irradiance (exact: its one sample) through the Phong lobe.
-  Color directLight(const Light& light, const Vec3& p, const Vec3& ng, const Vec3& n,
+  Color directLight(const Light& light, const Vec3& p, const Vec3& ng, float time, const Vec3& n,
                     const Vec3& wo, const PhongParams& ph, RayStats& stats) const {
     const LightSample ls = light.sample({p, n, false}, {0.0f, 0.0f});
     if (!ls.valid() || dot(ls.wi, n) <= 0) return Color(0.0f);
-    const Ray shadow = ls.infinite ? spawnRay(p, ng, ls.wi) : spawnRayTo(p, ng, ls.p);
+    const Ray shadow =
+        ls.infinite ? spawnRay(p, ng, ls.wi, time) : spawnRayTo(p, ng, ls.p, time);
     ++stats.shadowRays;
     const float T = transmittance(shadow);
     if (T == 0) return Color(0.0f);

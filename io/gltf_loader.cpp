@@ -14,6 +14,7 @@
 #include "io/gltf_images.h"
 #include "io/gltf_materials.h"
 #include "io/gltf_meshes.h"
+#include "io/gltf_motion.h"
 #include "io/gltf_scene_graph.h"
 #include "io/gltf_textures.h"
 #include "io/gltf_unsupported.h"
@@ -125,9 +126,8 @@ void reportMeshStats(const GltfContext& ctx, const MeshStats& s) {
 /// The pose at options.time: animated nodes get new local matrices (the others keep theirs
 /// exactly, so unanimated files render bit for bit as without a time). Empty without a time.
 std::vector<NodePose> animate(const GltfContext& ctx, const LoadOptions& options,
+                              const std::vector<Animation>& animations, int which,
                               ObjectTable& objects) {
-  const std::vector<Animation> animations = readAnimations(ctx);  // checked, used or not
-  const int which = chooseAnimation(ctx, animations, options.animation);
   if (!options.time) return {};
   std::vector<NodePose> poses = poseAt(ctx, animations, which, *options.time);
   for (size_t i = 0; i < poses.size(); ++i)
@@ -144,7 +144,9 @@ Scene convert(const tinygltf::Model& model, const std::string& path, const LoadO
   warnUnsupported(ctx);
   // Cameras, lights, nodes and environments converted once, placed or not.
   ObjectTable objects = convertObjects(ctx);
-  const std::vector<NodePose> poses = animate(ctx, options, objects);
+  const std::vector<Animation> animations = readAnimations(ctx);  // checked, used or not
+  const int which = chooseAnimation(ctx, animations, options.animation);
+  const std::vector<NodePose> poses = animate(ctx, options, animations, which, objects);
   const Deformer deformer(ctx, poses, worldMatrices(ctx, objects.localMatrices));
   const int sceneIndex = chooseScene(ctx, options.scene);
 
@@ -164,8 +166,22 @@ Scene convert(const tinygltf::Model& model, const std::string& path, const LoadO
   meshes.moved.assign(model.meshes.size(), false);
   reportMeshStats(ctx, stats);
 
+  // Motion blur: skinned and morphed vertices posed at every step too.
+  const MotionSteps steps{options.shutterOpen, options.shutterClose,
+                          options.time ? options.motionSteps : 0};
+  std::vector<Deformer> stepDeformers;
+  for (float t : steps.count >= 2 ? steps.times() : std::vector<float>()) {
+    const PosedNodes posed = poseNodes(ctx, animations, which, objects.localMatrices, t);
+    stepDeformers.emplace_back(ctx, posed.poses, posed.world);
+  }
   if (sceneIndex >= 0)
-    addSceneNodes(ctx, objects, sceneIndex, defaultMaterial, meshes, deformer, stats, scene);
+    addSceneNodes(ctx, objects, sceneIndex, defaultMaterial, meshes, deformer, stats, scene,
+                  stepDeformers.empty() ? nullptr : &stepDeformers);
+  if (steps.count >= 2)
+    addMotionSteps(ctx, animations, which, objects.localMatrices, deformer, steps, scene);
+  if (options.time && options.previousTime)
+    addPreviousFrame(ctx, animations, which, objects.localMatrices, deformer,
+                     *options.previousTime, scene);
   if (deformer.renormalisedVertices())
     ctx.warn(std::to_string(deformer.renormalisedVertices()) +
              " skinned vertex(es) with weights not summing to 1: rescaled to 1");

@@ -20,6 +20,15 @@ struct LoadOptions {
   std::optional<float> time;
   /// Which animation plays at `time`: "all" (together), an index or a name.
   std::string animation = "all";
+  /// Motion blur (docs/scene-format.md, "Motion blur"), with a `time` only: the shutter in
+  /// seconds and the number of times (>= 2, evenly spaced over it) the animation is posed at.
+  /// Moving objects get Primitive::motion, deforming meshes positionSteps; 0 steps: none.
+  float shutterOpen = 0, shutterClose = 0;
+  int motionSteps = 0;
+  /// Motion vectors (--aov motion), with a `time` only: the previous frame's time (time -
+  /// 1/fps), at which every primitive's and camera's placement is also posed
+  /// (Scene::previousToWorld, CameraDesc::previousToWorld).
+  std::optional<float> previousTime;
   /// tray-render --max-memory in bytes (0: no limit): a scene whose buffers, textures and
   /// geometry need more is refused before they are allocated (io/memory_estimate.h).
   uint64_t maxMemoryBytes = 0;

@@ -76,7 +76,23 @@ struct Walker {
   const Deformer& deformer;
   MeshStats& stats;
   Scene& scene;
+  const std::vector<Deformer>* stepDeformers;
   size_t hiddenNodes = 0;
+
+  /// Motion blur: the vertices of primitive `primitive` of node `node`'s mesh (as read, in `m`)
+  /// deformed at each motion step, kept when they differ between steps.
+  void deformSteps(int node, size_t primitive, TriangleMesh& m) const {
+    if (!stepDeformers) return;
+    std::vector<std::vector<Vec3>> steps;
+    for (const Deformer& d : *stepDeformers) {
+      TriangleMesh step;  // positions only: the deformer leaves absent attributes alone
+      step.positions = m.positions;
+      d.apply(node, primitive, step);
+      steps.push_back(std::move(step.positions));
+    }
+    for (const auto& s : steps)
+      if (s != steps[0]) return void(m.positionSteps = std::move(steps));
+  }
 
   /// A deformed mesh is converted again for this node alone: its vertices depend on the node's
   /// weights and skin. Skinned ones are already in world space.
@@ -84,7 +100,10 @@ struct Walker {
     MeshStats copy = stats;  // the caps count the copies; the warnings counted the file once
     std::vector<TriangleMesh> converted = convertMesh(
         ctx, mesh, defaultMaterial, copy,
-        [&](size_t primitive, TriangleMesh& m) { deformer.apply(node, primitive, m); });
+        [&](size_t primitive, TriangleMesh& m) {
+          deformSteps(node, primitive, m);  // from the vertices as read, before the frame's
+          deformer.apply(node, primitive, m);
+        });
     stats.triangles = copy.triangles, stats.vertices = copy.vertices;
     const Transform placement = deformer.skinned(node) ? Transform() : toWorld;
     for (auto& m : converted) {
@@ -97,8 +116,17 @@ struct Walker {
     }
   }
 
+  /// The node's mesh deforms at the frame's time or, with motion blur, at some motion step.
+  bool deformsOverShutter(int node) const {
+    if (deformer.deforms(node)) return true;
+    if (stepDeformers)
+      for (const Deformer& d : *stepDeformers)
+        if (d.deforms(node)) return true;
+    return false;
+  }
+
   void placeMesh(int node, int mesh, const Transform& toWorld) {
-    if (deformer.deforms(node)) return placeDeformed(node, mesh, toWorld);
+    if (deformsOverShutter(node)) return placeDeformed(node, mesh, toWorld);
     if (!meshes.moved[size_t(mesh)]) {
       meshes.moved[size_t(mesh)] = true;
       for (auto& m : meshes.converted[size_t(mesh)]) {
@@ -136,6 +164,7 @@ struct Walker {
       if (c.name.empty()) c.name = node.name;
       c.nodeName = node.name;
       c.gltfIndex = node.camera;  // --camera N means the file's cameras[N] (docs/scene-format.md)
+      c.node = index;
       c.toWorld = toWorld;
       scene.cameras.push_back(c);
     }
@@ -224,8 +253,8 @@ ObjectTable convertObjects(const GltfContext& ctx) {
 
 void addSceneNodes(const GltfContext& ctx, const ObjectTable& objects, int sceneIndex,
                    int defaultMaterial, MeshTable& meshes, const Deformer& deformer,
-                   MeshStats& stats, Scene& scene) {
-  Walker walker{ctx, objects, defaultMaterial, meshes, deformer, stats, scene, 0};
+                   MeshStats& stats, Scene& scene, const std::vector<Deformer>* stepDeformers) {
+  Walker walker{ctx, objects, defaultMaterial, meshes, deformer, stats, scene, stepDeformers, 0};
   scene.environment = objects.environments[size_t(sceneIndex)];
   // Explicit stack of (node, parent's world matrix); children pushed in reverse so nodes are
   // visited in the order a recursive pre-order walk would (cameras keep the file's order).

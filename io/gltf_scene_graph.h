@@ -42,9 +42,12 @@ ObjectTable convertObjects(const GltfContext& ctx);
 /// appends primitives, cameras (in traversal order) and lights to `scene`, and sets its
 /// environment. Shapes and meshes without material get `defaultMaterial`. A node whose mesh
 /// `deformer` deforms (skin, non-zero morph weights) gets geometry of its own, converted again
-/// through the deformer; `stats` counts it against the vertex and triangle caps.
+/// through the deformer; `stats` counts it against the vertex and triangle caps. With
+/// `stepDeformers` (motion blur: one per motion step), such a mesh whose vertices differ between
+/// the steps gets their positions at each (TriangleMesh::positionSteps).
 void addSceneNodes(const GltfContext& ctx, const ObjectTable& objects, int sceneIndex,
                    int defaultMaterial, MeshTable& meshes, const Deformer& deformer,
-                   MeshStats& stats, Scene& scene);
+                   MeshStats& stats, Scene& scene,
+                   const std::vector<Deformer>* stepDeformers = nullptr);
 
 }  // namespace tray

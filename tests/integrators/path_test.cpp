@@ -142,7 +142,7 @@ TEST(Path, RayThroughConcentricSpheresFollowsSnellAtEveryInterface) {
       EXPECT_NEAR(bs.wi[k], out[k], 2e-5) << "crossing " << crossing << " axis " << k;
       o[k] = p[k], d[k] = out[k];
     }
-    ray = spawnRay(sp.p, sp.ng, bs.wi);
+    ray = spawnRay(sp.p, sp.ng, bs.wi, 0.0f);
   }
   EXPECT_EQ(media.size(), 0);
   // Concentric shells: the outgoing ray is the incoming one rotated, and leaves at 1.0 index.

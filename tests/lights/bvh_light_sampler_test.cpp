@@ -119,10 +119,10 @@ TEST(BvhLightSampler, ABsdfRayThatHitsAnEmitterGetsTheNextEventPdf) {
     const LightSample ls = lights.sample(ctx, r.u(), {r.u(), r.u()});
     if (!ls.valid() || ls.delta || ls.infinite) continue;
     Hit hit;
-    if (!accel->intersect(spawnRay(ctx.p, ctx.n, ls.wi), hit)) continue;
+    if (!accel->intersect(spawnRay(ctx.p, ctx.n, ls.wi, 0.0f), hit)) continue;
     const int light = lights.lightAt(hit.primitive, hit.triangle);
     if (light < 0) continue;  // an occluder in between
-    const Ray ray = spawnRay(ctx.p, ctx.n, ls.wi);
+    const Ray ray = spawnRay(ctx.p, ctx.n, ls.wi, 0.0f);
     const SurfacePoint sp = s.surface(ray, hit);
     if (length(sp.p - ls.p) > 1e-3f) continue;  // another emitter in front of the sampled one
     ++hits;

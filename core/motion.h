@@ -1,0 +1,38 @@
+#pragma once
+// Motion blur of placed primitives (docs/scene-format.md, "Motion blur"): a moving primitive
+// carries its object-to-world matrix at N steps evenly spaced over the shutter
+// (Primitive::motion), and a ray at shutter time t in [0, 1] sees it at the linear
+// interpolation between the two steps around t, matrix entry by entry, as Embree interpolates
+// an instance given one matrix per time step (rtcSetGeometryTimeStepCount and
+// rtcSetGeometryTransform; its quaternion form, which slerps rotations, is not used). A
+// deforming mesh's vertices move the same way (one vertex buffer per time step).
+#include "core/scene.h"
+
+namespace tray {
+
+/// Embree's time segments: of `count` >= 2 steps evenly spaced over [0, 1], the segment that
+/// holds t (clamped to [0, 1]) and the fraction of the way through it.
+void timeSegment(size_t count, float t, size_t& segment, float& fraction);
+
+/// Vertex v of `mesh` at shutter time t: its position, or for a deforming mesh the linear
+/// interpolation of its positionSteps.
+Vec3 vertexAt(const TriangleMesh& mesh, uint32_t v, float t);
+
+/// The matrix of `steps` (N >= 1, evenly spaced over time 0 to 1) at time t, clamped to [0, 1]:
+/// the segment floor(t (N - 1)) and the fraction within it, as Embree's time segments.
+Mat4 interpolateSteps(const std::vector<Mat4>& steps, float t);
+
+/// p's object-to-world transform at shutter time t: p.toWorld when p is static. False where the
+/// interpolated matrix is singular (between two steps a half turn passes through zero scale):
+/// the object is flat at that instant and rays miss it.
+bool toWorldAt(const Primitive& p, float t, Transform& out);
+
+/// World bounds of p's object-space `local` box over the whole shutter: the union of its boxes
+/// at every step, which holds every interpolated placement (a point's world position moves
+/// linearly between two steps, so it stays in the box of its two end positions).
+Bounds3 motionBounds(const Primitive& p, const Bounds3& local);
+
+/// True when `steps` are not all equal: a primitive with such steps moves.
+bool stepsMove(const std::vector<Mat4>& steps);
+
+}  // namespace tray
