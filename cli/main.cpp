@@ -94,8 +94,6 @@ tray::LoadOptions loadOptionsOf(const CliOptions& o) {
   return loadOptions;
 }
 
-/// One image. `document`, when given (--frames), is the file parsed once: the frame's scene
-/// is converted from it at the frame's time instead of reading the file again.
 /// What a render needs before its first pixel: the scene as loaded and lit, the camera, the
 /// image size and the accelerator. Filled in place: the accelerator refers to `scene`.
 struct PreparedScene {
@@ -162,83 +160,29 @@ void printSummary(const CliOptions& o, int width, int height, const tray::Render
   std::printf("\n");
 }
 
-int run(const CliOptions& o, const tray::GltfDocument* document = nullptr) {
-  // First: a signal while the scene loads also stops the render (at its first pixel).
-  const std::atomic<bool>& stop = tray::installInterruptHandlers();
-  checkOutputsOf(o);
-  PreparedScene prepared;
-  prepareScene(o, document, prepared);
-  const tray::Scene& scene = prepared.scene;
-  const tray::CameraDesc& cam = prepared.cam;
-  const int width = prepared.width, height = prepared.height, placedCamera = prepared.placedCamera;
-  const tray::Camera* camera = prepared.camera.get();
-  const tray::Accelerator* accel = prepared.accel.get();
-  gPhase = "rendering";
-  tray::RenderContext ctx{scene, *accel, *camera, o.settings, width, height};
-  auto integrator = tray::makeIntegrator(ctx);
-  const std::string integratorName = o.settings.getString("integrator");
-
-  const tray::PixelRegion region = tray::parseRegion(o.region, width, height);
-  const tray::SampleRange range =
-      tray::parseSampleRange(o.sampleRange, integrator->samplesPerPixel(), integratorName);
-  const std::vector<std::string> aovNames = tray::AovSet::parse(o.aovs);
-  if (!o.sampleRange.empty() && tray::Cryptomatte::requested(aovNames))
-    throw tray::Error(
-        "--sample-range with Cryptomatte AOVs: each part would keep only its own "
-        "top-ranked ids, which cannot be merged exactly (split by --region instead)");
-  const bool part = o.region.size() || o.sampleRange.size();
-  const std::string checkpointPath = tray::firstExr(o.outputs);
+/// The job signature of this render (tray:job): what decides its pixels but the region and
+/// sample range.
+std::string jobOf(const CliOptions& o, const PreparedScene& p) {
   const std::string output = std::string(o.floatOutput ? "float," : "half,") +
                              (o.outputColorspace.empty() ? "default" : o.outputColorspace);
-  const std::string job = tray::jobSignature(
-      o.settings, {o.scenePath, o.scene, placedCamera, width, height, o.accel,
+  return tray::jobSignature(
+      o.settings, {o.scenePath, o.scene, p.placedCamera, p.width, p.height, o.accel,
                    o.aovs + (o.aaHeatmap.empty() ? "" : "+samples"),
-                   o.sceneHash.empty() ? contentHashOf(o)
-                                       : o.sceneHash,
-                   output});
+                   o.sceneHash.empty() ? contentHashOf(o) : o.sceneHash, output});
+}
 
-  tray::Film film(region.width(), region.height());
-  tray::RenderState state;
-  double previousSeconds = 0;
-  if (o.resume) {
-    if (!std::filesystem::exists(checkpointPath)) {
-      std::fprintf(stderr, "warning: %s: no checkpoint to resume: rendering from the start\n",
-                   checkpointPath.c_str());
-    } else if (!tray::loadCheckpoint(checkpointPath, job, region, width, height, range, film, state,
-                                     previousSeconds)) {
-      if (!o.quiet)
-        std::printf("%s: already finished: nothing to resume\n", checkpointPath.c_str());
-      return 0;
-    }
-  }
-  tray::Progress progress(o.progressSettings);
-  tray::RenderOptions renderOptions;
-  renderOptions.threads = o.threads;
-  renderOptions.aovs = aovNames;
-  renderOptions.cryptomatteRanks = o.cryptomatteRanks;
-  if (!o.aaHeatmap.empty()) renderOptions.aovs.push_back("samples");  // the heatmap's source
-  renderOptions.x0 = region.x0, renderOptions.y0 = region.y0;
-  renderOptions.sampleBegin = range.begin, renderOptions.sampleEnd = range.end;
-  renderOptions.stop = &stop;
-  int tiles = 0;  // --test-interrupt-after-tiles: a real SIGINT at a chosen point
-  renderOptions.onProgress = [&](double f) {
-    if (!stop.load()) progress.update(f);  // tiles cut short by a stop are not progress
-    if (++tiles == o.testInterruptAfterTiles) std::raise(SIGINT);
-  };
+/// Writes a render's film with its metadata: the final outputs, or a checkpoint.
+struct ImageWriter {
+  const CliOptions& o;
+  tray::ImageOutputOptions out;  ///< the format and the metadata every write shares
+  std::string job;
+  tray::SampleRange range;
+  int samplesPerPixel = 0;  ///< the integrator's; 0: adaptive
+  bool part = false;        ///< --region or --sample-range: the state goes with the pixels
 
-  tray::ImageOutputOptions out;
-  out.halfFloat = !o.floatOutput;
-  out.colorspace = o.outputColorspace;
-  out.display = o.display;
-  out.view = o.view;
-  out.fullWidth = width, out.fullHeight = height;
-  out.xOffset = region.x0, out.yOffset = region.y0;
-  out.matrixMetadata = {{"worldToCamera", tray::exrWorldToCamera(cam)},
-                        {"worldToNDC", tray::exrWorldToNdc(cam, width, height)}};
-  // Writes `film` with the metadata of this render; partial renders and parts carry their state.
-  // `final`: the render's outputs, not a checkpoint (warned about once, at the end).
-  auto write = [&](tray::Film& image, const tray::RenderState& now, double seconds,
-                   const std::vector<std::string>& paths, bool final) {
+  /// `final`: the render's outputs, not a checkpoint (warned about once, at the end).
+  void write(tray::Film& image, const tray::RenderState& now, double seconds,
+             const std::vector<std::string>& paths, bool final) const {
     const size_t done = now.pixelsDone(), all = now.done.size();
     tray::ImageOutputOptions w = out;
     w.stringMetadata = {{"tray:version", TRAY_VERSION},
@@ -251,9 +195,9 @@ int run(const CliOptions& o, const tray::GltfDocument* document = nullptr) {
                        {"tray:pixelsTotal", float(all)},
                        {"tray:sampleBegin", float(range.begin)},
                        {"tray:sampleEnd", float(range.end)},
-                       {"tray:samplesPerPixel", float(integrator->samplesPerPixel())}};
+                       {"tray:samplesPerPixel", float(samplesPerPixel)}};
     tray::addOptionMetadata(o.settings, w);  // tray:integrator, tray:spp, tray:maxDepth, ...
-    if (integrator->samplesPerPixel() > 0)  // adaptive: the samples AOV counts them per pixel
+    if (samplesPerPixel > 0)  // adaptive: the samples AOV counts them per pixel
       w.floatMetadata.emplace_back("tray:samplesDone",
                                    float(done) * float(range.end - range.begin));
     if (part || done < all) tray::storeState(now, image);
@@ -261,6 +205,88 @@ int run(const CliOptions& o, const tray::GltfDocument* document = nullptr) {
     for (size_t i = 0; i < paths.size(); ++i)
       if (clamped[i] && final)
         std::fprintf(stderr, "warning: %s\n", tray::halfClampWarning(paths[i], clamped[i]).c_str());
+  }
+};
+
+/// The output format of a render of `p` covering `region`.
+tray::ImageOutputOptions outputOptionsOf(const CliOptions& o, const PreparedScene& p,
+                                         const tray::PixelRegion& region) {
+  tray::ImageOutputOptions out;
+  out.halfFloat = !o.floatOutput;
+  out.colorspace = o.outputColorspace;
+  out.display = o.display;
+  out.view = o.view;
+  out.fullWidth = p.width, out.fullHeight = p.height;
+  out.xOffset = region.x0, out.yOffset = region.y0;
+  out.matrixMetadata = {{"worldToCamera", tray::exrWorldToCamera(p.cam)},
+                        {"worldToNDC", tray::exrWorldToNdc(p.cam, p.width, p.height)}};
+  return out;
+}
+
+/// The renderer's options for this region, sample range and set of AOVs (progress and
+/// checkpoints are added by run()).
+tray::RenderOptions renderOptionsOf(const CliOptions& o, const std::vector<std::string>& aovs,
+                                    const tray::PixelRegion& region,
+                                    const tray::SampleRange& range,
+                                    const std::atomic<bool>& stop) {
+  tray::RenderOptions r;
+  r.threads = o.threads;
+  r.aovs = aovs;
+  r.cryptomatteRanks = o.cryptomatteRanks;
+  if (!o.aaHeatmap.empty()) r.aovs.push_back("samples");  // the heatmap's source
+  r.x0 = region.x0, r.y0 = region.y0;
+  r.sampleBegin = range.begin, r.sampleEnd = range.end;
+  r.stop = &stop;
+  return r;
+}
+
+/// One image. `document`, when given (--frames), is the file parsed once: the frame's scene
+/// is converted from it at the frame's time instead of reading the file again.
+int run(const CliOptions& o, const tray::GltfDocument* document = nullptr) {
+  // First: a signal while the scene loads also stops the render (at its first pixel).
+  const std::atomic<bool>& stop = tray::installInterruptHandlers();
+  checkOutputsOf(o);
+  PreparedScene prepared;
+  prepareScene(o, document, prepared);
+  gPhase = "rendering";
+  tray::RenderContext ctx{prepared.scene,  *prepared.accel, *prepared.camera,
+                          o.settings,      prepared.width,  prepared.height};
+  auto integrator = tray::makeIntegrator(ctx);
+  const std::string integratorName = o.settings.getString("integrator");
+
+  const tray::PixelRegion region = tray::parseRegion(o.region, prepared.width, prepared.height);
+  const tray::SampleRange range =
+      tray::parseSampleRange(o.sampleRange, integrator->samplesPerPixel(), integratorName);
+  const std::vector<std::string> aovNames = tray::AovSet::parse(o.aovs);
+  if (!o.sampleRange.empty() && tray::Cryptomatte::requested(aovNames))
+    throw tray::Error(
+        "--sample-range with Cryptomatte AOVs: each part would keep only its own "
+        "top-ranked ids, which cannot be merged exactly (split by --region instead)");
+  const ImageWriter writer{o,     outputOptionsOf(o, prepared, region), jobOf(o, prepared),
+                           range, integrator->samplesPerPixel(),
+                           !o.region.empty() || !o.sampleRange.empty()};
+  const std::string checkpointPath = tray::firstExr(o.outputs);
+
+  tray::Film film(region.width(), region.height());
+  tray::RenderState state;
+  double previousSeconds = 0;
+  if (o.resume) {
+    if (!std::filesystem::exists(checkpointPath)) {
+      std::fprintf(stderr, "warning: %s: no checkpoint to resume: rendering from the start\n",
+                   checkpointPath.c_str());
+    } else if (!tray::loadCheckpoint(checkpointPath, writer.job, region, prepared.width,
+                                     prepared.height, range, film, state, previousSeconds)) {
+      if (!o.quiet)
+        std::printf("%s: already finished: nothing to resume\n", checkpointPath.c_str());
+      return 0;
+    }
+  }
+  tray::Progress progress(o.progressSettings);
+  tray::RenderOptions renderOptions = renderOptionsOf(o, aovNames, region, range, stop);
+  int tiles = 0;  // --test-interrupt-after-tiles: a real SIGINT at a chosen point
+  renderOptions.onProgress = [&](double f) {
+    if (!stop.load()) progress.update(f);  // tiles cut short by a stop are not progress
+    if (++tiles == o.testInterruptAfterTiles) std::raise(SIGINT);
   };
   const auto started = std::chrono::steady_clock::now();
   if (o.checkpointSeconds > 0) {
@@ -270,7 +296,7 @@ int run(const CliOptions& o, const tray::GltfDocument* document = nullptr) {
       const double elapsed =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
       try {  // a failed checkpoint (full disk) costs the safety net, not the render
-        write(copy, s, previousSeconds + elapsed, {checkpointPath}, false);
+        writer.write(copy, s, previousSeconds + elapsed, {checkpointPath}, false);
       } catch (const tray::Error& e) {
         std::fprintf(stderr, "warning: checkpoint not written: %s\n", e.what());
       }
@@ -280,7 +306,7 @@ int run(const CliOptions& o, const tray::GltfDocument* document = nullptr) {
   progress.finish(!stats.interrupted);
 
   gPhase = "writing images";
-  write(film, state, previousSeconds + stats.seconds, o.outputs, true);
+  writer.write(film, state, previousSeconds + stats.seconds, o.outputs, true);
   if (!o.aaHeatmap.empty() && !stats.interrupted)
     tray::writeImage(tray::samplesHeatmap(film), o.aaHeatmap);
   if (stats.interrupted) {
@@ -291,7 +317,7 @@ int run(const CliOptions& o, const tray::GltfDocument* document = nullptr) {
     return 128 + (sig ? sig : SIGINT);
   }
 
-  if (!o.quiet) printSummary(o, width, height, stats);
+  if (!o.quiet) printSummary(o, prepared.width, prepared.height, stats);
   return 0;
 }
 
