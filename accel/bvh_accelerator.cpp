@@ -185,14 +185,22 @@ class TwoLevelAccelerator final : public Accelerator {
   /// motion places it); false where p is flat at that time (core/motion.h) and cannot be hit.
   static bool toObject(const Primitive& p, const Ray& ray, float tmax, Ray& local) {
     if (p.motion.empty()) {
-      local = Ray{p.toWorld.inversePoint(ray.o), p.toWorld.inverseVector(ray.d), ray.tmin, tmax,
-                  ray.blend, ray.time};  // the time places a deforming mesh's triangles
+      local = Ray{p.toWorld.inversePoint(ray.o),
+                  p.toWorld.inverseVector(ray.d),
+                  ray.tmin,
+                  tmax,
+                  ray.blend,
+                  ray.time};  // the time places a deforming mesh's triangles
       return true;
     }
     Transform toWorld;
     if (!toWorldAt(p, ray.time, toWorld)) return false;
-    local = Ray{toWorld.inversePoint(ray.o), toWorld.inverseVector(ray.d), ray.tmin, tmax,
-                ray.blend, ray.time};
+    local = Ray{toWorld.inversePoint(ray.o),
+                toWorld.inverseVector(ray.d),
+                ray.tmin,
+                tmax,
+                ray.blend,
+                ray.time};
     return true;
   }
 

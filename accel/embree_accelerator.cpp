@@ -135,8 +135,12 @@ void shapeOccluded(const RTCOccludedFunctionNArguments* args) {
   if (!args->valid[0]) return;
   auto* data = static_cast<const ShapeUserData*>(args->geometryUserPtr);
   RTCRay* r = reinterpret_cast<RTCRay*>(args->ray);
-  Ray ray{{r->org_x, r->org_y, r->org_z}, {r->dir_x, r->dir_y, r->dir_z},
-          r->tnear, r->tfar, BlendRays::kStochastic, r->time};
+  Ray ray{{r->org_x, r->org_y, r->org_z},
+          {r->dir_x, r->dir_y, r->dir_z},
+          r->tnear,
+          r->tfar,
+          BlendRays::kStochastic,
+          r->time};
   Hit hit;
   if (data->scene->intersectShape(data->primitive, ray, hit)) r->tfar = -kInfinity;
 }

@@ -2,10 +2,10 @@
 // Exit codes: 0 ok, 1 render error, 2 bad input or usage, 130 / 143 interrupted (SIGINT /
 // SIGTERM; the image so far is written).
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
-#include <algorithm>
 #include <filesystem>
 #include <new>
 #include <string>
@@ -165,10 +165,10 @@ void printSummary(const CliOptions& o, int width, int height, const tray::Render
 std::string jobOf(const CliOptions& o, const PreparedScene& p) {
   const std::string output = std::string(o.floatOutput ? "float," : "half,") +
                              (o.outputColorspace.empty() ? "default" : o.outputColorspace);
-  return tray::jobSignature(
-      o.settings, {o.scenePath, o.scene, p.placedCamera, p.width, p.height, o.accel,
-                   o.aovs + (o.aaHeatmap.empty() ? "" : "+samples"),
-                   o.sceneHash.empty() ? contentHashOf(o) : o.sceneHash, output});
+  return tray::jobSignature(o.settings,
+                            {o.scenePath, o.scene, p.placedCamera, p.width, p.height, o.accel,
+                             o.aovs + (o.aaHeatmap.empty() ? "" : "+samples"),
+                             o.sceneHash.empty() ? contentHashOf(o) : o.sceneHash, output});
 }
 
 /// Writes a render's film with its metadata: the final outputs, or a checkpoint.
@@ -190,14 +190,12 @@ struct ImageWriter {
                         {"tray:scene", o.scenePath},
                         {"tray:status", done == all ? "complete" : "partial"},
                         {"tray:job", job}};
-    w.floatMetadata = {{"tray:renderSeconds", float(seconds)},
-                       {"tray:pixelsDone", float(done)},
-                       {"tray:pixelsTotal", float(all)},
-                       {"tray:sampleBegin", float(range.begin)},
-                       {"tray:sampleEnd", float(range.end)},
-                       {"tray:samplesPerPixel", float(samplesPerPixel)}};
+    w.floatMetadata = {
+        {"tray:renderSeconds", float(seconds)}, {"tray:pixelsDone", float(done)},
+        {"tray:pixelsTotal", float(all)},       {"tray:sampleBegin", float(range.begin)},
+        {"tray:sampleEnd", float(range.end)},   {"tray:samplesPerPixel", float(samplesPerPixel)}};
     tray::addOptionMetadata(o.settings, w);  // tray:integrator, tray:spp, tray:maxDepth, ...
-    if (samplesPerPixel > 0)  // adaptive: the samples AOV counts them per pixel
+    if (samplesPerPixel > 0)                 // adaptive: the samples AOV counts them per pixel
       w.floatMetadata.emplace_back("tray:samplesDone",
                                    float(done) * float(range.end - range.begin));
     if (part || done < all) tray::storeState(now, image);
@@ -226,8 +224,7 @@ tray::ImageOutputOptions outputOptionsOf(const CliOptions& o, const PreparedScen
 /// The renderer's options for this region, sample range and set of AOVs (progress and
 /// checkpoints are added by run()).
 tray::RenderOptions renderOptionsOf(const CliOptions& o, const std::vector<std::string>& aovs,
-                                    const tray::PixelRegion& region,
-                                    const tray::SampleRange& range,
+                                    const tray::PixelRegion& region, const tray::SampleRange& range,
                                     const std::atomic<bool>& stop) {
   tray::RenderOptions r;
   r.threads = o.threads;
@@ -249,8 +246,8 @@ int run(const CliOptions& o, const tray::GltfDocument* document = nullptr) {
   PreparedScene prepared;
   prepareScene(o, document, prepared);
   gPhase = "rendering";
-  tray::RenderContext ctx{prepared.scene,  *prepared.accel, *prepared.camera,
-                          o.settings,      prepared.width,  prepared.height};
+  tray::RenderContext ctx{prepared.scene, *prepared.accel, *prepared.camera,
+                          o.settings,     prepared.width,  prepared.height};
   auto integrator = tray::makeIntegrator(ctx);
   const std::string integratorName = o.settings.getString("integrator");
 
@@ -262,9 +259,9 @@ int run(const CliOptions& o, const tray::GltfDocument* document = nullptr) {
     throw tray::Error(
         "--sample-range with Cryptomatte AOVs: each part would keep only its own "
         "top-ranked ids, which cannot be merged exactly (split by --region instead)");
-  const ImageWriter writer{o,     outputOptionsOf(o, prepared, region), jobOf(o, prepared),
-                           range, integrator->samplesPerPixel(),
-                           !o.region.empty() || !o.sampleRange.empty()};
+  const ImageWriter writer{
+      o,     outputOptionsOf(o, prepared, region), jobOf(o, prepared),
+      range, integrator->samplesPerPixel(),        !o.region.empty() || !o.sampleRange.empty()};
   const std::string checkpointPath = tray::firstExr(o.outputs);
 
   tray::Film film(region.width(), region.height());
@@ -375,8 +372,9 @@ int main(int argc, char** argv) {
         throw tray::Error("--frames sets the time of each frame (frame / fps): drop --time");
     }
     if (tray::shutterOf(o.settings) && o.frames.empty() && !tray::animationTime(o.settings))
-      throw tray::Error("--shutter needs an animation time to open around: add --time SECONDS "
-                        "or --frames (the static pose does not move)");
+      throw tray::Error(
+          "--shutter needs an animation time to open around: add --time SECONDS "
+          "or --frames (the static pose does not move)");
     tray::checkFramePatterns(o.outputs, !o.frames.empty());
     o.progressSettings.mode =
         o.quiet ? tray::ProgressMode::kNone : tray::parseProgressMode(o.progress);

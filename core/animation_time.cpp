@@ -47,9 +47,9 @@ std::optional<float> animationTime(const OptionValues& values) {
 std::optional<Shutter> shutterOf(const OptionValues& values) {
   const std::string text = values.getString("shutter");
   if (text == "off") return std::nullopt;
-  const std::string usage =
-      "--shutter " + text + ": expected OPEN,CLOSE in frames around the frame's time "
-      "(e.g. -0.25,0.25) or 'off'";
+  const std::string usage = "--shutter " + text +
+                            ": expected OPEN,CLOSE in frames around the frame's time "
+                            "(e.g. -0.25,0.25) or 'off'";
   const size_t comma = text.find(',');
   if (comma == std::string::npos) throw Error(usage);
   auto number = [&](const std::string& part) {

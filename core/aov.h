@@ -27,8 +27,7 @@ class AovSet {
   static std::vector<std::string> parse(const std::string& list);
   static const std::vector<std::string>& known();
   /// Adds the layers for `names` to the film. `vectors` fills the motion layer (null: zeros).
-  AovSet(Film& film, const std::vector<std::string>& names,
-         const MotionVectors* vectors = nullptr);
+  AovSet(Film& film, const std::vector<std::string>& names, const MotionVectors* vectors = nullptr);
   /// True when `names` asks for light-path layers.
   static bool wantsLightPaths(const std::vector<std::string>& names);
   /// What accumulate() must gather for these layers (clears the sums' flags otherwise).

@@ -71,8 +71,7 @@ inline void setSpawnRay(Ray& r, const Vec3& p, const Vec3& ng, const Vec3& d, fl
   r.blend = BlendRays::kStochastic;
   r.time = time;
 }
-inline void setSpawnRayTo(Ray& r, const Vec3& p, const Vec3& ng, const Vec3& target,
-                          float time) {
+inline void setSpawnRayTo(Ray& r, const Vec3& p, const Vec3& ng, const Vec3& target, float time) {
   const Vec3 n = ng * (dot(target - p, ng) >= 0 ? 1.0f : -1.0f);
   r.o = offsetRayOrigin(p, n);
   r.d = target - r.o;

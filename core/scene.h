@@ -20,7 +20,7 @@ struct Primitive {
   Kind kind = Kind::kMesh;
   uint32_t mesh = 0;                   ///< kMesh: index into Scene::meshes
   std::shared_ptr<const Shape> shape;  ///< kShape
-  Transform toWorld;  ///< at the frame's time; what lights and framing use
+  Transform toWorld;                   ///< at the frame's time; what lights and framing use
   /// Motion blur (core/motion.h): toWorld at motion steps evenly spaced over the shutter (ray
   /// time 0 to 1), linearly interpolated in between as Embree's instance motion. Empty: static.
   std::vector<Mat4> motion;

@@ -153,9 +153,9 @@ void PathWavefrontIntegrator::bounce(Wave& w, RayStats& stats) const {
   for (size_t j = 0; j < count; ++j) {
     const uint32_t k = w.live[j];
     bool wantsShadow;
-    const PathStep step = estimator_.step(w.paths[k], w.samplers[k], w.found[j], w.hits[j],
-                                          w.shadows[shadowCount], wantsShadow, stats,
-                                          &w.primary[k]);
+    const PathStep step =
+        estimator_.step(w.paths[k], w.samplers[k], w.found[j], w.hits[j], w.shadows[shadowCount],
+                        wantsShadow, stats, &w.primary[k]);
     if (wantsShadow) w.shadowPath[shadowCount++] = k;
     if (step == PathStep::kContinue) w.next.push_back(k);
   }

@@ -137,8 +137,7 @@ class WhittedIntegrator final : public Integrator {
                     const Vec3& wo, const PhongParams& ph, RayStats& stats) const {
     const LightSample ls = light.sample({p, n, false}, {0.0f, 0.0f});
     if (!ls.valid() || dot(ls.wi, n) <= 0) return Color(0.0f);
-    const Ray shadow =
-        ls.infinite ? spawnRay(p, ng, ls.wi, time) : spawnRayTo(p, ng, ls.p, time);
+    const Ray shadow = ls.infinite ? spawnRay(p, ng, ls.wi, time) : spawnRayTo(p, ng, ls.p, time);
     ++stats.shadowRays;
     const float T = transmittance(shadow);
     if (T == 0) return Color(0.0f);

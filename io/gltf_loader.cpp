@@ -180,8 +180,8 @@ Scene convert(const tinygltf::Model& model, const std::string& path, const LoadO
   if (steps.count >= 2)
     addMotionSteps(ctx, animations, which, objects.localMatrices, deformer, steps, scene);
   if (options.time && options.previousTime)
-    addPreviousFrame(ctx, animations, which, objects.localMatrices, deformer,
-                     *options.previousTime, scene);
+    addPreviousFrame(ctx, animations, which, objects.localMatrices, deformer, *options.previousTime,
+                     scene);
   if (deformer.renormalisedVertices())
     ctx.warn(std::to_string(deformer.renormalisedVertices()) +
              " skinned vertex(es) with weights not summing to 1: rescaled to 1");

@@ -50,8 +50,9 @@ void addMotionSteps(const GltfContext& ctx, const std::vector<Animation>& animat
     for (const auto& w : world) motion.push_back(w[size_t(node)]);
     if (stepsMove(motion)) {
       for (const Mat4& m : motion)
-        if (!m.isFinite()) ctx.fail("node " + std::to_string(node) +
-                                    " world transform overflows to infinity over the shutter");
+        if (!m.isFinite())
+          ctx.fail("node " + std::to_string(node) +
+                   " world transform overflows to infinity over the shutter");
       p.motion = std::move(motion);
     } else if (stepsMove({p.toWorld.m, motion[0]})) {
       // Static over a shutter that does not hold the frame: placed where the shutter sees it.
@@ -68,7 +69,7 @@ void addPreviousFrame(const GltfContext& ctx, const std::vector<Animation>& anim
   scene.previousToWorld.clear();
   for (const Primitive& p : scene.primitives)
     scene.previousToWorld.push_back(deformer.skinned(p.objectId) ? p.toWorld.m
-                                                                   : world[size_t(p.objectId)]);
+                                                                 : world[size_t(p.objectId)]);
   for (CameraDesc& c : scene.cameras) {
     if (c.node < 0 || !stepsMove({c.toWorld.m, world[size_t(c.node)]})) continue;
     Mat4 inv;

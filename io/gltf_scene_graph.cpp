@@ -98,9 +98,8 @@ struct Walker {
   /// weights and skin. Skinned ones are already in world space.
   void placeDeformed(int node, int mesh, const Transform& toWorld) {
     MeshStats copy = stats;  // the caps count the copies; the warnings counted the file once
-    std::vector<TriangleMesh> converted = convertMesh(
-        ctx, mesh, defaultMaterial, copy,
-        [&](size_t primitive, TriangleMesh& m) {
+    std::vector<TriangleMesh> converted =
+        convertMesh(ctx, mesh, defaultMaterial, copy, [&](size_t primitive, TriangleMesh& m) {
           deformSteps(node, primitive, m);  // from the vertices as read, before the frame's
           deformer.apply(node, primitive, m);
         });

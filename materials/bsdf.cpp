@@ -130,11 +130,16 @@ BsdfSample Bsdf::sampleLocal(const Vec3& wo, float uc, Vec2 u) const {
   // (see setSpawnRay in core/ray.h).
   const auto lobeSample = [&]() -> BsdfSample {
     switch (lobe) {
-      case 0: return metal_.sample(wo, u);
-      case 1: return glass_.sample(wo, ucLobe, u);
-      case 2: return coatLobe_.sample(wo, u);
-      case 3: return diffuse_.sample(wo, u);
-      default: return BsdfSample{};
+      case 0:
+        return metal_.sample(wo, u);
+      case 1:
+        return glass_.sample(wo, ucLobe, u);
+      case 2:
+        return coatLobe_.sample(wo, u);
+      case 3:
+        return diffuse_.sample(wo, u);
+      default:
+        return BsdfSample{};
     }
   };
   BsdfSample s = prob > 0 ? lobeSample() : BsdfSample{};

@@ -36,8 +36,8 @@ Scene movingScene() {
   addSphere(s, {0, 0.3f, -1}, 0.3f, grey);
   addMeshInstance(s, addMesh(s, quadMesh(3, grey)), Mat4());
   TriangleMesh flag;
-  flag.positions = {{-0.3f, 0.9f, -0.8f}, {0.3f, 0.9f, -0.8f}, {0.3f, 1.1f, -0.8f},
-                    {-0.3f, 1.1f, -0.8f}};
+  flag.positions = {
+      {-0.3f, 0.9f, -0.8f}, {0.3f, 0.9f, -0.8f}, {0.3f, 1.1f, -0.8f}, {-0.3f, 1.1f, -0.8f}};
   flag.indices = {0, 1, 2, 0, 2, 3};
   flag.material = red;
   flag.positionSteps = {flag.positions, flag.positions, flag.positions};
@@ -153,9 +153,10 @@ TEST(MovingHits, PathTracedImagesAgreeBetweenEmbreeAndBvh) {
       same += std::fabs(pa[0] - pb[0]) < 1e-4f;
     }
   const double n = 3.0 * kW * kH;
-  std::printf("Embree vs bvh, moving scene: means %.5f / %.5f, mean |diff| %.2e, %d of %d pixels "
-              "equal\n",
-              meanA / n, meanB / n, absDiff / n, same, kW * kH);
+  std::printf(
+      "Embree vs bvh, moving scene: means %.5f / %.5f, mean |diff| %.2e, %d of %d pixels "
+      "equal\n",
+      meanA / n, meanB / n, absDiff / n, same, kW * kH);
   EXPECT_NEAR(meanA / n, meanB / n, 1e-3 * meanA / n);
   EXPECT_GT(same, kW * kH * 95 / 100);
 }

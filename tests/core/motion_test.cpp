@@ -30,7 +30,7 @@ TEST(MotionSteps, InterpolateLinearlyWithinEachSegmentAsEmbree) {
   EXPECT_FLOAT_EQ(at(0.5f).x, 4.0f);
   EXPECT_FLOAT_EQ(at(0.5f).y, 0.0f);
   EXPECT_FLOAT_EQ(at(0.75f).y, 1.0f);
-  EXPECT_EQ(at(1.0f).y, 2.0f);  // the last segment's end, exactly
+  EXPECT_EQ(at(1.0f).y, 2.0f);   // the last segment's end, exactly
   EXPECT_EQ(at(-1.0f).x, 0.0f);  // clamped to the shutter
   EXPECT_EQ(at(7.0f).y, 2.0f);
   // Entry by entry, not a rotation's slerp: halfway through a quarter turn the matrix is the
@@ -78,8 +78,8 @@ TEST(MotionSteps, BoundsHoldEveryInterpolatedPlacement) {
 // --- A sphere, a square and a deforming square sweeping across the frame ----------------------
 
 constexpr int kW = 40, kH = 10;
-constexpr float kUnit = 0.1f;             // world units per pixel
-constexpr float kRadius = 4 * kUnit;      // 8 px across
+constexpr float kUnit = 0.1f;                          // world units per pixel
+constexpr float kRadius = 4 * kUnit;                   // 8 px across
 constexpr float kFrom = -10 * kUnit, kTo = 6 * kUnit;  // centre's x at open and close (16 px)
 
 /// What sweeps: a sphere (Embree user geometry, moved by its transform), a square mesh moved by
@@ -199,8 +199,8 @@ TEST_P(Swept, CoverageProfileIsTheOverlapOverTheTravel) {
         EXPECT_NEAR(got, want, bound) << "pixel " << x << "," << y << " steps " << steps;
         EXPECT_EQ(film.pixel(Film::kBeauty, x, y)[3], float(got));  // alpha: the same coverage
       }
-    std::printf("%s, sweep %d, %d steps: worst |coverage - analytic| %.4f (peak %.3f)\n",
-                c.accel, int(c.kind), steps, worst, peak);
+    std::printf("%s, sweep %d, %d steps: worst |coverage - analytic| %.4f (peak %.3f)\n", c.accel,
+                int(c.kind), steps, worst, peak);
     EXPECT_GT(peak, 0.4);  // the sweep is in the picture
   }
 }

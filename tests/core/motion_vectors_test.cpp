@@ -95,8 +95,8 @@ TEST(MotionVectors, ZeroWhereNothingMoves) {
   Shot shot = rigidShot();
   shot.scene.previousToWorld = {shot.boxNow, shot.scene.primitives[1].toWorld.m, Mat4()};
   shot.camera.previousToWorld.reset();
-  const Film film = renderFilm(shot.scene, shot.camera, kW, kH, RenderSettings(), nullptr,
-                               {"motion"});
+  const Film film =
+      renderFilm(shot.scene, shot.camera, kW, kH, RenderSettings(), nullptr, {"motion"});
   const int motion = film.findLayer("motion");
   for (int y = 0; y < kH; ++y)
     for (int x = 0; x < kW; ++x) {

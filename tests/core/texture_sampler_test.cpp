@@ -159,8 +159,7 @@ TEST(TextureSampler, DefaultBudgetHoldsEveryTileWhereASmallOneReadsThemAgain) {
   EXPECT_GE(byScene.cacheMB(), 16.0);
   EXPECT_EQ(readTwiceAcrossEveryTile(byScene, size, sized), 0);
   ASSERT_EQ(small.size(), sized.size());
-  for (size_t i = 0; i < small.size(); ++i)
-    ASSERT_TRUE(small[i] == sized[i]) << i;
+  for (size_t i = 0; i < small.size(); ++i) ASSERT_TRUE(small[i] == sized[i]) << i;
 }
 
 TEST(TextureSampler, BudgetIsEveryLevelAsFloatsWithinBounds) {

@@ -98,7 +98,7 @@ TEST(GltfMotion, PreviousFrameIsThePoseOneFrameBefore) {
     moved += stepsMove({scene.previousToWorld[i], scene.primitives[i].toWorld.m});
   }
   EXPECT_GT(moved, 0);
-  EXPECT_FALSE(scene.moving());  // no shutter: nothing blurs
+  EXPECT_FALSE(scene.moving());                                   // no shutter: nothing blurs
   EXPECT_TRUE(loadGltf(kBox, at(1.0f)).previousToWorld.empty());  // not asked: not posed
 }
 
