@@ -119,32 +119,27 @@ MeshBvh::MeshBvh(const TriangleMesh& mesh, const BvhBuildOptions& options, bool 
 
 template <bool kOrdered, class OnBlock>
 bool MeshBvh::forEachBlock(const Ray& ray, const float& tmax, OnBlock&& onBlock) const {
-  if (!stepBlocks_.empty()) return forEachBlockAtTime<kOrdered>(ray, tmax, onBlock);
-  const WatertightRay4 wr = prepareWatertight4(ray.o, ray.d);
-  auto leaf = [&](uint32_t first, uint32_t count) {
-    for (uint32_t k = first; k < first + count; ++k) {
-      const Triangle4& block = blocks_[k];
-      alignas(16) float t[4], b1[4], b2[4];
-      int mask = intersectWatertight4(wr, block, ray.tmin, tmax, t, b1, b2);
-      if (mask && onBlock(block, mask, t, b1, b2)) return true;
-    }
-    return false;
-  };
-  if (!hierarchy_) return leaf(0, uint32_t(blocks_.size()));
-  return traverseBvh4<kOrdered>(bvh_, prepareBvh4Ray(ray.o, ray.d), ray.tmin, tmax, leaf);
-}
-
-/// forEachBlock for a deforming mesh: each block interpolated at the ray's time before the test.
-/// Kept apart so that static meshes run the loop they ran before motion blur existed.
-template <bool kOrdered, class OnBlock>
-bool MeshBvh::forEachBlockAtTime(const Ray& ray, const float& tmax, OnBlock&& onBlock) const {
-  const WatertightRay4 wr = prepareWatertight4(ray.o, ray.d);
+  if (stepBlocks_.empty())
+    return traverseBlocks<kOrdered>(
+        ray, tmax, [&](uint32_t k) -> const Triangle4& { return blocks_[k]; }, onBlock);
+  // A deforming mesh: each block interpolated at the ray's time before the test. A getter of
+  // its own, so that static meshes run the loop they ran before motion blur existed.
   size_t segment = 0;
   float f = 0;
   timeSegment(stepBlocks_.size(), ray.time, segment, f);
+  return traverseBlocks<kOrdered>(
+      ray, tmax, [&](uint32_t k) { return blockAt(segment, f, k); }, onBlock);
+}
+
+/// The blocks of the leaves the ray enters, each as `block(k)` gives it, tested against the
+/// ray; `onBlock` sees the hits of each and returns true to stop.
+template <bool kOrdered, class BlockOf, class OnBlock>
+bool MeshBvh::traverseBlocks(const Ray& ray, const float& tmax, BlockOf&& blockOf,
+                             OnBlock&& onBlock) const {
+  const WatertightRay4 wr = prepareWatertight4(ray.o, ray.d);
   auto leaf = [&](uint32_t first, uint32_t count) {
     for (uint32_t k = first; k < first + count; ++k) {
-      const Triangle4 block = blockAt(segment, f, k);
+      decltype(auto) block = blockOf(k);  // a reference to a stored block, or a made one
       alignas(16) float t[4], b1[4], b2[4];
       int mask = intersectWatertight4(wr, block, ray.tmin, tmax, t, b1, b2);
       if (mask && onBlock(block, mask, t, b1, b2)) return true;

@@ -58,8 +58,9 @@ class MeshBvh {
   bool closestHit(const Ray& ray, float& tmax, Hit& hit, const Accept& accept) const;
   template <bool kOrdered, class OnBlock>
   bool forEachBlock(const Ray& ray, const float& tmax, OnBlock&& onBlock) const;
-  template <bool kOrdered, class OnBlock>
-  bool forEachBlockAtTime(const Ray& ray, const float& tmax, OnBlock&& onBlock) const;
+  template <bool kOrdered, class BlockOf, class OnBlock>
+  bool traverseBlocks(const Ray& ray, const float& tmax, BlockOf&& blockOf,
+                      OnBlock&& onBlock) const;
   /// Appends the block of triangles ids[0..n) to blocks_ and, for a deforming mesh, to every
   /// step's blocks.
   void pushBlock(const uint32_t* ids, uint32_t n);
