@@ -43,27 +43,14 @@ inline Vec3 offsetRayOrigin(const Vec3& p, const Vec3& n) {
   return {offsetRayOrigin(p.x, n.x), offsetRayOrigin(p.y, n.y), offsetRayOrigin(p.z, n.z)};
 }
 
-/// A ray leaving surface point p (geometric normal ng) in direction d, offset to the side d goes,
-/// at shutter time `time` (the path's: SurfacePoint::time).
-inline Ray spawnRay(const Vec3& p, const Vec3& ng, const Vec3& d, float time) {
-  const Vec3 n = ng * (dot(d, ng) >= 0 ? 1.0f : -1.0f);  // exact, and a select, not a branch
-  return Ray{offsetRayOrigin(p, n), d, 0.0f, kInfinity, BlendRays::kStochastic, time};
-}
-
-/// A shadow ray from p towards target, stopping just before the target point, at `time`.
-inline Ray spawnRayTo(const Vec3& p, const Vec3& ng, const Vec3& target, float time) {
-  Vec3 d = target - p;
-  const Vec3 n = ng * (dot(d, ng) >= 0 ? 1.0f : -1.0f);
-  Vec3 o = offsetRayOrigin(p, n);
-  return Ray{o, target - o, 0.0f, 1.0f - 1e-4f, BlendRays::kStochastic, time};
-}
-
-// The same rays written field by field into an existing one. Assigning `r = spawnRay(...)`
-// makes the compiler build the ray in a temporary with narrow stores and copy it with 16-byte
-// loads, which cannot be forwarded from those stores: a store-forwarding stall per ray, which
-// perf showed as about 15% of the path tracer's per-vertex step (docs/wavefront.md).
+/// Writes into `r` a ray leaving surface point p (geometric normal ng) in direction d, offset
+/// to the side d goes, at shutter time `time` (the path's: SurfacePoint::time). Field by field
+/// into an existing ray: assigning `r = Ray{...}` makes the compiler build the ray in a
+/// temporary with narrow stores and copy it with 16-byte loads, which cannot be forwarded from
+/// those stores: a store-forwarding stall per ray, which perf showed as about 15% of the path
+/// tracer's per-vertex step (docs/wavefront.md).
 inline void setSpawnRay(Ray& r, const Vec3& p, const Vec3& ng, const Vec3& d, float time) {
-  const Vec3 n = ng * (dot(d, ng) >= 0 ? 1.0f : -1.0f);
+  const Vec3 n = ng * (dot(d, ng) >= 0 ? 1.0f : -1.0f);  // exact, and a select, not a branch
   r.o = offsetRayOrigin(p, n);
   r.d = d;
   r.tmin = 0.0f;
@@ -71,6 +58,7 @@ inline void setSpawnRay(Ray& r, const Vec3& p, const Vec3& ng, const Vec3& d, fl
   r.blend = BlendRays::kStochastic;
   r.time = time;
 }
+/// A shadow ray from p towards target, stopping just before the target point, at `time`.
 inline void setSpawnRayTo(Ray& r, const Vec3& p, const Vec3& ng, const Vec3& target, float time) {
   const Vec3 n = ng * (dot(target - p, ng) >= 0 ? 1.0f : -1.0f);
   r.o = offsetRayOrigin(p, n);
@@ -79,6 +67,18 @@ inline void setSpawnRayTo(Ray& r, const Vec3& p, const Vec3& ng, const Vec3& tar
   r.tmax = 1.0f - 1e-4f;
   r.blend = BlendRays::kStochastic;
   r.time = time;
+}
+
+/// The same rays as new values.
+inline Ray spawnRay(const Vec3& p, const Vec3& ng, const Vec3& d, float time) {
+  Ray r;
+  setSpawnRay(r, p, ng, d, time);
+  return r;
+}
+inline Ray spawnRayTo(const Vec3& p, const Vec3& ng, const Vec3& target, float time) {
+  Ray r;
+  setSpawnRayTo(r, p, ng, target, time);
+  return r;
 }
 
 }  // namespace tray
