@@ -57,15 +57,21 @@ def pixel_directions(q):
     return dirs
 
 
+def write_env_maps(build, prefix):
+    """env_bench's maps (windows.exr, sky.exr) written into a new temporary folder, returned."""
+    tmp = tempfile.mkdtemp(prefix=prefix)
+    subprocess.run([os.path.join(build, "env_bench"), "--write-maps", tmp], check=True,
+                   stdout=subprocess.DEVNULL)
+    return tmp
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--build", default="build")
     ap.add_argument("--rotate", type=float, default=30.0)
     args = ap.parse_args()
     mi.set_variant("scalar_rgb")
-    tmp = tempfile.mkdtemp(prefix="envcheck_")
-    subprocess.run([os.path.join(args.build, "env_bench"), "--write-maps", tmp], check=True,
-                   stdout=subprocess.DEVNULL)
+    tmp = write_env_maps(args.build, "envcheck_")
     # The windows map is flat but for its sharp window edges; the sun sky has a gradient
     # everywhere and a 2-degree sun. Both are checked.
     for name in ("windows.exr", "sky.exr"):

@@ -19,7 +19,6 @@ import math
 import os
 import subprocess
 import sys
-import tempfile
 
 try:
     import mitsuba as mi
@@ -27,6 +26,8 @@ try:
 except ImportError as e:
     print(f"envmap_mitsuba_lit: {e}: run tools/setup-mitsuba.sh", file=sys.stderr)
     sys.exit(2)
+
+from envmap_mitsuba_check import write_env_maps  # noqa: E402 (after the import check)
 
 W, H, YFOV, ALBEDO = 64, 64, 0.6, 0.8
 
@@ -79,9 +80,7 @@ def main():
     ap.add_argument("--rotate", type=float, default=30.0)
     args = ap.parse_args()
     mi.set_variant("scalar_rgb")
-    tmp = tempfile.mkdtemp(prefix="envlit_")
-    subprocess.run([os.path.join(args.build, "env_bench"), "--write-maps", tmp], check=True,
-                   stdout=subprocess.DEVNULL)
+    tmp = write_env_maps(args.build, "envlit_")
     worst = 0.0
     for name in ("windows.exr", "sky.exr"):
         env_map = os.path.join(tmp, name)
