@@ -169,16 +169,19 @@ Scene convert(const tinygltf::Model& model, const std::string& path, const LoadO
   // Motion blur: skinned and morphed vertices posed at every step too.
   const MotionSteps steps{options.shutterOpen, options.shutterClose,
                           options.time ? options.motionSteps : 0};
+  // Each step posed once: its deformer for the vertices, its world matrices for placements.
   std::vector<Deformer> stepDeformers;
+  std::vector<std::vector<Mat4>> stepWorlds;
   for (float t : steps.count >= 2 ? steps.times() : std::vector<float>()) {
-    const PosedNodes posed = poseNodes(ctx, animations, which, objects.localMatrices, t);
+    PosedNodes posed = poseNodes(ctx, animations, which, objects.localMatrices, t);
     stepDeformers.emplace_back(ctx, posed.poses, posed.world);
+    stepWorlds.push_back(std::move(posed.world));
   }
   if (sceneIndex >= 0)
     addSceneNodes(ctx, objects, sceneIndex, defaultMaterial, meshes, deformer, stats, scene,
                   stepDeformers.empty() ? nullptr : &stepDeformers);
   if (steps.count >= 2)
-    addMotionSteps(ctx, animations, which, objects.localMatrices, deformer, steps, scene);
+    addMotionSteps(ctx, stepWorlds, deformer, steps, scene);
   if (options.time && options.previousTime)
     addPreviousFrame(ctx, animations, which, objects.localMatrices, deformer, *options.previousTime,
                      scene);

@@ -24,13 +24,10 @@ PosedNodes poseNodes(const GltfContext& ctx, const std::vector<Animation>& anima
   return posed;
 }
 
-void addMotionSteps(const GltfContext& ctx, const std::vector<Animation>& animations, int which,
-                    const std::vector<Mat4>& local, const Deformer& deformer,
-                    const MotionSteps& steps, Scene& scene) {
+void addMotionSteps(const GltfContext& ctx, const std::vector<std::vector<Mat4>>& world,
+                    const Deformer& deformer, const MotionSteps& steps, Scene& scene) {
   if (steps.count < 2) return;
   scene.shutterOpen = steps.open, scene.shutterClose = steps.close;
-  std::vector<std::vector<Mat4>> world;  // per step, per node
-  for (float t : steps.times()) world.push_back(poseNodes(ctx, animations, which, local, t).world);
   for (CameraDesc& c : scene.cameras) {  // an animated camera blurs the whole image
     if (c.node < 0) continue;
     std::vector<Mat4> motion;

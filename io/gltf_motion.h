@@ -27,16 +27,15 @@ struct PosedNodes {
 PosedNodes poseNodes(const GltfContext& ctx, const std::vector<Animation>& animations, int which,
                      std::vector<Mat4> local, float t);
 
-/// Poses animation `which` at each of `steps`' times: `local` holds every node's local matrix
-/// as placed (the frame's pose; unanimated nodes keep theirs). A primitive whose node's world
-/// matrix is not the same at every step gets those matrices as Primitive::motion; one that
-/// stays put over the shutter stays static. Skinned meshes are placed by their joints alone:
+/// Places what moves over `steps`: `world` holds every node's world matrix at each of the
+/// steps' times (poseNodes' `world`, per step). A primitive whose node's world matrix is not
+/// the same at every step gets those matrices as Primitive::motion; one that stays put over
+/// the shutter stays static. Skinned meshes are placed by their joints alone:
 /// their motion is their vertices' (TriangleMesh::positionSteps, set by addSceneNodes). An
 /// animated camera node gets its steps as CameraDesc::motion. Sets scene.shutterOpen and
 /// shutterClose.
-void addMotionSteps(const GltfContext& ctx, const std::vector<Animation>& animations, int which,
-                    const std::vector<Mat4>& local, const Deformer& deformer,
-                    const MotionSteps& steps, Scene& scene);
+void addMotionSteps(const GltfContext& ctx, const std::vector<std::vector<Mat4>>& world,
+                    const Deformer& deformer, const MotionSteps& steps, Scene& scene);
 
 /// Motion vectors: poses animation `which` at `time` (the previous frame) and records every
 /// primitive's placement then (Scene::previousToWorld; skinned meshes: their frame placement,
