@@ -110,15 +110,16 @@ const float* TexturePyramid::makeTile(int level, int tx, int ty) const {
   auto at = [&](int x, int y, int k) {
     return x >= 0 && x < upW && y >= 0 && y < upH ? texel(level - 1, x, y, scratch[k]) : kZero;
   };
+  int xlow[kTile];
+  float xfrac[kTile];
+  for (int i = 0; i < tw; ++i) xfrac[i] = sourceTexel(x0 + i, l.width, upW, &xlow[i]);
   for (int j = 0; j < th; ++j) {
     int ylow;
     const float yfrac = sourceTexel(y0 + j, l.height, upH, &ylow);
     for (int i = 0; i < tw; ++i) {
-      int xlow;
-      const float xfrac = sourceTexel(x0 + i, l.width, upW, &xlow);
-      OIIO::bilerp(at(xlow, ylow, 0), at(xlow + 1, ylow, 1), at(xlow, ylow + 1, 2),
-                   at(xlow + 1, ylow + 1, 3), xfrac, yfrac, 3,
-                   texels.get() + 3 * (size_t(j) * size_t(tw) + size_t(i)));
+      const int x = xlow[i];
+      OIIO::bilerp(at(x, ylow, 0), at(x + 1, ylow, 1), at(x, ylow + 1, 2), at(x + 1, ylow + 1, 3),
+                   xfrac[i], yfrac, 3, texels.get() + 3 * (size_t(j) * size_t(tw) + size_t(i)));
     }
   }
   std::atomic<const float*>& slot = l.tiles[size_t(ty) * size_t(l.tilesX) + size_t(tx)];
