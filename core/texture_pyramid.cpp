@@ -126,6 +126,8 @@ const float* TexturePyramid::makeTile(int level, int tx, int ty) const {
   const float* expected = nullptr;
   if (slot.compare_exchange_strong(expected, texels.get(), std::memory_order_acq_rel)) {
     tilesMade_.fetch_add(1, std::memory_order_relaxed);
+    tileBytes_.fetch_add(uint64_t(tw) * uint64_t(th) * 3 * sizeof(float),
+                         std::memory_order_relaxed);
     return texels.release();
   }
   return expected;  // another thread published the same tile first; ours is dropped

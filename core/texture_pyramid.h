@@ -62,8 +62,9 @@ class TexturePyramid {
   uint64_t storedBytes() const;
   /// Bytes that texel()'s tiles take once every one is made: levels 1..kComputed as floats.
   static uint64_t tileBytesAtMost(int width, int height);
-  /// Tiles texel() has made so far (each is made once, but for a lost race).
+  /// Tiles texel() has made so far (each is made once, but for a lost race), and their bytes.
   int64_t tilesMade() const { return tilesMade_.load(std::memory_order_relaxed); }
+  uint64_t tileBytes() const { return tileBytes_.load(std::memory_order_relaxed); }
 
  private:
   struct Level {
@@ -103,6 +104,7 @@ class TexturePyramid {
   int channels_ = 3;
   bool wide_ = false;
   mutable std::atomic<int64_t> tilesMade_{0};
+  mutable std::atomic<uint64_t> tileBytes_{0};
 };
 
 }  // namespace tray

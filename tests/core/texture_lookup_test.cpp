@@ -148,6 +148,21 @@ TEST(TextureLookup, AtTexelCentresEveryLevelGivesItsTexels) {
   }
 }
 
+TEST(TextureLookup, EveryTileMadeTakesTheBytesThatBoundTheBudget) {
+  // tileBytesAtMost is what decides between TRay's filter and OIIO's paged cache: reading every
+  // texel of every tiled level makes tiles of exactly that many bytes, and no more.
+  for (auto [w, h] : {std::pair{300, 200}, std::pair{1, 19}, std::pair{131, 67}}) {
+    const TextureImage im = floatImage(w, h, 5);
+    const TexturePyramid p(im);
+    float scratch[3];
+    for (int level = 1; level <= TexturePyramid::kComputed && level < p.levels(); ++level)
+      for (int y = 0; y < p.height(level); ++y)
+        for (int x = 0; x < p.width(level); ++x) p.texel(level, x, y, scratch);
+    EXPECT_EQ(p.tileBytes(), TexturePyramid::tileBytesAtMost(w, h)) << w << "x" << h;
+    EXPECT_GT(p.tileBytes(), 0u);
+  }
+}
+
 TEST(TextureLookup, TilesAreMadeOnceAndAnyThreadCountGivesTheSameValues) {
   const std::vector<TextureImage> images{floatImage(700, 500, 9)};
   // Footprints of 2 to 8 texels: levels 1 to 3, the ones made in tiles on first use.
