@@ -1,8 +1,10 @@
-// texture_bench: what textures cost. (1) ns per TextureSampler lookup on one thread: bilinear
-// magnification and trilinear minification of a 1024x1024 image; (2) a Whitted render of
+// texture_bench: what textures cost. (1) lookups per second on one thread, TRay's own filter
+// against OIIO's TextureSystem in the same run (ratio), bilinear magnification and trilinear
+// minification of a 2048x2048 8-bit sRGB image; (2) a Whitted render of
 // scenes/textured.gltf with its textures and with them stripped (factors only), and the
 // overhead. Usage: texture_bench [scene.gltf] [WxH] [threads]
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
@@ -25,30 +27,59 @@ double secondsOf(const std::function<void()>& f) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-void lookups() {
-  std::vector<TextureImage> images(1);
-  TextureImage& im = images[0];
-  im.name = "noise";
-  im.width = im.height = 1024;
-  im.pixels.resize(size_t(1024) * 1024 * 3);
+/// A 2048 x 2048 RGB image of 8-bit codes with the sRGB table, as the glTF loader keeps a
+/// DamagedHelmet texture.
+TextureImage codeImage(int size) {
+  auto codes = std::make_shared<TexelCodes>();
+  codes->bytes.resize(size_t(size) * size_t(size) * 3);
   uint32_t state = 1;
-  for (float& v : im.pixels) v = float((state = state * 1664525u + 1013904223u) >> 8) / 16777216.0f;
-  TextureSampler sampler(images);
+  for (auto& b : codes->bytes) b = (unsigned char)((state = state * 1664525u + 1013904223u) >> 24);
+  auto table = std::make_shared<std::vector<float>>(256);
+  for (int i = 0; i < 256; ++i) {
+    const float c = float(i) / 255.0f;
+    (*table)[size_t(i)] = c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+  }
+  TextureImage im;
+  im.name = "noise";
+  im.width = im.height = size;
+  im.codes = codes;
+  im.table = table;
+  return im;
+}
+
+/// Lookups per second on one thread, TRay's filter and OIIO's TextureSystem on the same image
+/// in the same run: magnified (bilinear in level 0) and minified (trilinear, 4 and 40 texels:
+/// levels 1-3 in tiles, then stored levels), uvs spread over the image as a path tracer's are.
+void lookups() {
+  const int size = 2048;
+  std::vector<TextureImage> images{codeImage(size)};
+  const TextureSampler tray(images, 0, TextureBackend::kTray),
+      oiio(images, 0, TextureBackend::kOiio);
   TextureRef ref;
   ref.image = 0;
-  const int n = 1 << 20;
-  for (float texels : {0.0f, 4.0f}) {
-    float d = texels / 1024, sum = 0;
-    sampler.sample(ref, {{0.5f, 0.5f}, {d, 0}, {0, d}});  // first touch builds the MIP levels
-    double s = secondsOf([&] {
-      for (int i = 0; i < n; ++i) {
-        float u = float(i % 977) / 977, v = float(i % 1013) / 1013;
-        sum += sampler.sample(ref, {{u, v}, {d, 0}, {0, d}}).x;
-      }
-    });
-    std::printf("lookup %-34s %6.0f ns  (checksum %.3f)\n",
-                texels == 0 ? "bilinear (magnified, no MIP):" : "trilinear (4-texel footprint):",
-                s / n * 1e9, sum / n);
+  const int n = 1 << 21;
+  for (float texels : {0.0f, 4.0f, 40.0f}) {
+    const float d = texels / float(size);
+    auto run = [&](const TextureSampler& sampler, float& checksum) {
+      for (int i = 0; i < n; i += 97)  // first touch: OIIO's tiles, TRay's MIP tiles
+        sampler.sample(ref, {{float(i % 977) / 977, float(i % 1013) / 1013}, {d, 0}, {0, d}});
+      return secondsOf([&] {
+        for (int i = 0; i < n; ++i) {
+          const float u = float(i % 977) / 977, v = float((i * 7) % 1013) / 1013;
+          checksum += sampler.sample(ref, {{u, v}, {d, 0}, {0, d}}).x;
+        }
+      });
+    };
+    float sumTray = 0, sumOiio = 0;
+    const double oiioSeconds = run(oiio, sumOiio), traySeconds = run(tray, sumTray);
+    std::printf(
+        "lookup %-30s TRay %6.1f M/s (%5.0f ns), OIIO %6.1f M/s (%5.0f ns): %.2fx  (checksums "
+        "%s)\n",
+        texels == 0 ? "bilinear (magnified, level 0):"
+                    : texels == 4 ? "trilinear (4-texel footprint):"
+                                  : "trilinear (40-texel footprint):",
+        n / traySeconds * 1e-6, traySeconds / n * 1e9, n / oiioSeconds * 1e-6,
+        oiioSeconds / n * 1e9, oiioSeconds / traySeconds, sumTray == sumOiio ? "equal" : "DIFFER");
   }
 }
 

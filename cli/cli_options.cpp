@@ -81,7 +81,8 @@ void addCliOptions(CLI::App& app, CliOptions& o) {
                  "(default: 80% of physical memory; 0: no limit)")
       ->check(CLI::NonNegativeNumber);
   app.add_option("--texture-memory", o.textureMemoryMB,
-                 "texture cache budget in MB (default: all the scene's texture levels as "
+                 "texture tile budget in MB: TRay filters when its MIP tiles fit, else OIIO's "
+                 "cache pages them within it (default: all the scene's texture levels as "
                  "float tiles, at least 128 and at most a quarter of physical memory; never "
                  "changes pixels)")
       ->check(CLI::NonNegativeNumber);

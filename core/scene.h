@@ -39,7 +39,7 @@ struct Scene {
   std::vector<PunctualLightDesc> lights;
   std::vector<CameraDesc> cameras;
   std::vector<TextureImage> textures;
-  double textureCacheMB = 0;  ///< OIIO's texture tile cache (--texture-memory); 0: default
+  double textureCacheMB = 0;  ///< texture tile budget (--texture-memory); 0: default
   Environment environment;
   /// The shutter interval in seconds that ray time 0 to 1 spans (docs/scene-format.md,
   /// "Motion blur"); both 0 without --shutter.

@@ -1,102 +1,16 @@
 #include "core/texture_sampler.h"
 
-#include <OpenImageIO/imagecache.h>
-#include <OpenImageIO/imageio.h>
 #include <OpenImageIO/sysutil.h>
-#include <OpenImageIO/texture.h>
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
-#include <string>
 
 #include "core/error.h"
+#include "core/oiio_texture_system.h"
+#include "core/texture_lookup.h"
 #include "core/texture_pyramid.h"
 
 namespace tray {
-
-namespace {
-
-using OIIO::TextureOpt;
-
-/// Serves one TextureImage's MIP pyramid to OIIO's ImageCache as a float RGB scanline image with
-/// one MIP level per pyramid level, made from the compact codes as OIIO asks for rows. The
-/// pyramid arrives as a pointer in the open() configuration (ImageCache::add_file passes it
-/// through), since an ImageInput::Creator is a plain function without state.
-class MemoryTextureInput final : public OIIO::ImageInput {
- public:
-  static constexpr const char* kImageAttribute = "tray:texturePyramid";
-  static constexpr const char* kLevelsAttribute = "tray:levels";  ///< 1: level 0 only
-  static OIIO::ImageInput* create() { return new MemoryTextureInput; }
-
-  const char* format_name() const override { return "tray-memory"; }
-  bool open(const std::string&, OIIO::ImageSpec&) override { return false; }
-  bool open(const std::string&, OIIO::ImageSpec& spec, const OIIO::ImageSpec& config) override {
-    void* ptr = nullptr;
-    config.getattribute(kImageAttribute, OIIO::TypeDesc::PTR, &ptr);
-    pyramid_ = static_cast<const TexturePyramid*>(ptr);
-    levels_ = pyramid_ ? config.get_int_attribute(kLevelsAttribute, pyramid_->levels()) : 0;
-    if (!pyramid_ || !seek_subimage(0, 0)) return false;
-    spec = m_spec;
-    return true;
-  }
-  bool close() override { return true; }
-  int current_miplevel() const override { return level_; }
-  bool seek_subimage(int subimage, int miplevel) override {
-    if (subimage != 0 || miplevel < 0 || miplevel >= levels_) return false;
-    level_ = miplevel;
-    m_spec = OIIO::ImageSpec(pyramid_->width(miplevel), pyramid_->height(miplevel), 3,
-                             OIIO::TypeDesc::FLOAT);
-    return true;
-  }
-  bool read_native_scanline(int subimage, int miplevel, int y, int, void* data) override {
-    if (subimage != 0 || miplevel < 0 || miplevel >= levels_ || y < 0 ||
-        y >= pyramid_->height(miplevel))
-      return false;
-    pyramid_->row(miplevel, y, static_cast<float*>(data));
-    return true;
-  }
-
- private:
-  const TexturePyramid* pyramid_ = nullptr;
-  int levels_ = 0, level_ = 0;
-};
-
-TextureOpt::Wrap wrapOf(TextureWrap w) {
-  switch (w) {
-    case TextureWrap::kClampToEdge:
-      return TextureOpt::WrapClamp;
-    case TextureWrap::kMirroredRepeat:
-      return TextureOpt::WrapMirror;
-    case TextureWrap::kRepeat:
-      break;
-  }
-  return TextureOpt::WrapPeriodic;
-}
-
-/// The glTF filter as OIIO's texel interpolation and MIP mode.
-void filterOf(TextureFilter f, TextureOpt& opt) {
-  using F = TextureFilter;
-  const bool nearestTexel =
-      f == F::kNearest || f == F::kNearestMipmapNearest || f == F::kNearestMipmapLinear;
-  opt.interpmode = nearestTexel ? TextureOpt::InterpClosest : TextureOpt::InterpBilinear;
-  switch (f) {
-    case F::kNearest:
-    case F::kLinear:
-      opt.mipmode = TextureOpt::MipModeNoMIP;
-      break;
-    case F::kNearestMipmapNearest:
-    case F::kLinearMipmapNearest:
-      opt.mipmode = TextureOpt::MipModeOneLevel;
-      break;
-    case F::kNearestMipmapLinear:
-    case F::kLinearMipmapLinear:
-      opt.mipmode = TextureOpt::MipModeTrilinear;
-      break;
-  }
-}
-
-}  // namespace
 
 Vec2 transformUv(const TextureRef& ref, Vec2 uv, bool vector) {
   // Rows of R: (cos, sin), (-sin, cos) -- the README's example (offset [0, 1], rotation pi/2,
@@ -111,43 +25,30 @@ Vec2 transformUv(const TextureRef& ref, Vec2 uv, bool vector) {
 }
 
 struct TextureSampler::Impl {
-  OIIO::TextureSystem* ts = nullptr;
-  std::vector<OIIO::TextureSystem::TextureHandle*> handles;
-  std::vector<std::unique_ptr<TexturePyramid>> pyramids;
   const std::vector<TextureImage>& images;
+  std::vector<std::unique_ptr<TexturePyramid>> pyramids;
+  std::unique_ptr<OiioTextureSystem> oiio;  ///< null: TRay's own filter
   explicit Impl(const std::vector<TextureImage>& im) : images(im) {}
 };
 
 TextureSampler::TextureSampler(const std::vector<TextureImage>& images, double cacheMB,
-                               bool oiioAutomip)
-    : impl_(std::make_unique<Impl>(images)) {
-  // A private TextureSystem (shared = false): its cache settings are TRay's alone.
-  OIIO::TextureSystem* ts = OIIO::TextureSystem::create(false);
-  impl_->ts = ts;
-  // Each image arrives MIP-mapped (TexturePyramid, OIIO's own automip arithmetic), read in
-  // 64-row strips (autotile); the cache holds tiles only, at most max_memory_MB. Which tiles
-  // are resident never changes a texel's value, so the budget does not change pixels.
-  // automip stays on for oiioAutomip (tests): OIIO then makes the levels itself.
-  ts->attribute("automip", 1);
-  ts->attribute("autotile", 64);
-  ts->attribute("deduplicate", 0);
-  ts->attribute("max_memory_MB", float(cacheMB > 0 ? cacheMB : budgetFor(images)));
-  OIIO::ImageCache* cache = ts->imagecache();
-  for (size_t i = 0; i < images.size(); ++i) {
-    const TextureImage& im = images[i];
+                               TextureBackend backend)
+    : impl_(std::make_unique<Impl>(images)), cacheMB_(cacheMB > 0 ? cacheMB : budgetFor(images)) {
+  for (const TextureImage& im : images) {
     if (!im.valid())
       throw Error("texture '" + im.name + "' has no pixels or a wrong pixel count");
-    OIIO::ImageSpec config;
     impl_->pyramids.push_back(std::make_unique<TexturePyramid>(im));
-    const void* ptr = impl_->pyramids.back().get();
-    config.attribute(MemoryTextureInput::kImageAttribute, OIIO::TypeDesc::PTR, &ptr);
-    if (oiioAutomip) config.attribute(MemoryTextureInput::kLevelsAttribute, 1);
-    OIIO::ustring name("tray:texture/" + std::to_string(i));
-    if (!cache->add_file(name, &MemoryTextureInput::create, &config))
-      throw Error("texture '" + im.name + "': OpenImageIO: " + cache->geterror());
-    impl_->handles.push_back(ts->get_texture_handle(name));
   }
+  // TRay's filter never evicts a tile, so it runs only when all the tiles it could make fit
+  // the budget; beyond that OIIO's cache pages them (same values, more time).
+  const bool oiio = backend == TextureBackend::kOiio || backend == TextureBackend::kOiioAutomip ||
+                    (backend == TextureBackend::kAuto && tileMBAtMost(images) > cacheMB_);
+  if (oiio)
+    impl_->oiio = std::make_unique<OiioTextureSystem>(impl_->pyramids, cacheMB_,
+                                                      backend == TextureBackend::kOiioAutomip);
 }
+
+TextureSampler::~TextureSampler() = default;
 
 double TextureSampler::budgetFor(const std::vector<TextureImage>& images) {
   double bytes = 0;
@@ -161,45 +62,42 @@ double TextureSampler::budgetFor(const std::vector<TextureImage>& images) {
   return std::max<double>(kMinCacheMB, std::min(needMB, quarterMB));
 }
 
-double TextureSampler::cacheMB() const {
-  float mb = 0;
-  impl_->ts->getattribute("max_memory_MB", OIIO::TypeFloat, &mb);
-  return mb;
+double TextureSampler::tileMBAtMost(const std::vector<TextureImage>& images) {
+  double bytes = 0;
+  for (const TextureImage& im : images)
+    bytes += double(TexturePyramid::tileBytesAtMost(im.width, im.height));
+  return bytes / (1024.0 * 1024.0);
+}
+
+bool TextureSampler::paged() const {
+  return impl_->oiio != nullptr;
 }
 
 int64_t TextureSampler::tilesReadAgain() const {
-  int64_t total = 0;
-  OIIO::ImageCache* cache = impl_->ts->imagecache();
-  for (size_t i = 0; i < impl_->handles.size(); ++i) {
-    int64_t n = 0;
-    if (cache->get_image_info(OIIO::ustring("tray:texture/" + std::to_string(i)), 0, 0,
-                              OIIO::ustring("stat:redundant_tiles"), OIIO::TypeInt64, &n))
-      total += n;
-  }
-  return total;
+  return impl_->oiio ? impl_->oiio->tilesReadAgain() : 0;
 }
 
-TextureSampler::~TextureSampler() {
-  OIIO::TextureSystem::destroy(impl_->ts);
+int64_t TextureSampler::tilesMade() const {
+  int64_t n = 0;
+  for (const auto& p : impl_->pyramids) n += p->tilesMade();
+  return n;
 }
 
 Color TextureSampler::sample(const TextureRef& ref, const UvFootprint& f) const {
-  if (ref.image < 0 || size_t(ref.image) >= impl_->handles.size()) return Color(1.0f);
+  if (ref.image < 0 || size_t(ref.image) >= impl_->pyramids.size()) return Color(1.0f);
   const TextureImage& im = impl_->images[size_t(ref.image)];
   const Vec2 uv = transformUv(ref, f.uv);
   const Vec2 dx = transformUv(ref, f.dx, true), dy = transformUv(ref, f.dy, true);
-  TextureOpt opt;
-  opt.swrap = wrapOf(ref.wrapS);
-  opt.twrap = wrapOf(ref.wrapT);
+  // OIIO's t runs down the image from its first row, as glTF's v does (glTF 2.0 §3.8.4.1), so
+  // uvs pass through unchanged.
+  TextureQuery q{uv.x, uv.y, dx.x, dx.y, dy.x, dy.y, ref.wrapS, ref.wrapT};
   // Footprint in texels of the finest level: under one texel the texture is magnified.
   const float w = float(im.width), h = float(im.height);
   const float texels = std::max(std::hypot(dx.x * w, dx.y * h), std::hypot(dy.x * w, dy.y * h));
-  filterOf(texels > 1.0f ? ref.minFilter : ref.magFilter, opt);
+  filtersOf(texels > 1.0f ? ref.minFilter : ref.magFilter, q.texel, q.mip);
+  if (!impl_->oiio) return lookupTexture(*impl_->pyramids[size_t(ref.image)], q);
   float rgb[3] = {0, 0, 0};
-  auto* perThread = impl_->ts->get_perthread_info();
-  // OIIO's t runs down the image from its first row, as glTF's v does (glTF 2.0 §3.8.4.1).
-  if (!impl_->ts->texture(impl_->handles[size_t(ref.image)], perThread, opt, uv.x, uv.y, dx.x, dx.y,
-                          dy.x, dy.y, 3, rgb))
+  if (!impl_->oiio->lookup(size_t(ref.image), q, rgb))
     return Color(1.0f);  // cannot happen for images registered above; shade untextured
   return {rgb[0], rgb[1], rgb[2]};
 }

@@ -1,6 +1,8 @@
 #pragma once
-// Filtered texture lookups through OpenImageIO's TextureSystem: TRay does no image filtering
-// of its own (docs/textures.md).
+// Filtered texture lookups: the glTF sampler and KHR_texture_transform turned into a lookup of
+// TRay's own filter (core/texture_lookup.h, OIIO 2.4.7's arithmetic over lazily made MIP tiles),
+// or of OpenImageIO's TextureSystem when the scene's MIP tiles would exceed the texture memory
+// budget (its cache pages them). Both give the same values bit for bit (docs/textures.md).
 #include <memory>
 #include <vector>
 
@@ -20,16 +22,19 @@ struct UvFootprint {
 /// counter-clockwise). `vector` applies only the linear part, for footprint derivatives.
 Vec2 transformUv(const TextureRef& ref, Vec2 uv, bool vector = false);
 
-/// Owns a TextureSystem whose images are the scene's decoded TextureImages, served from memory
-/// by a custom ImageInput with their MIP pyramids (TexturePyramid); OIIO filters. Thread-safe.
+/// Which implementation filters. kAuto: TRay's own unless the scene's MIP tiles could exceed
+/// the budget; the others force one (tests, benchmarks).
+enum class TextureBackend { kAuto, kTray, kOiio, kOiioAutomip };
+
+/// Owns the scene's texture pyramids and filters lookups in them. Thread-safe.
 class TextureSampler {
  public:
   /// `images` must outlive the sampler (they are read in place, never copied by TRay).
-  /// `cacheMB`: OIIO's tile cache budget (tray-render --texture-memory); 0: budgetFor(images).
-  /// `oiioAutomip` (tests only): hand OIIO the finest level alone and let it make the others,
-  /// the way TRay did before TexturePyramid (it then pins twice the finest level in memory).
+  /// `cacheMB`: the texture memory budget (tray-render --texture-memory); 0: budgetFor(images).
+  /// kOiioAutomip (tests only): OIIO makes the MIP levels itself from the finest one, the way
+  /// TRay did before TexturePyramid (it then pins twice the finest level in memory).
   explicit TextureSampler(const std::vector<TextureImage>& images, double cacheMB = 0,
-                          bool oiioAutomip = false);
+                          TextureBackend backend = TextureBackend::kAuto);
   ~TextureSampler();
   TextureSampler(const TextureSampler&) = delete;
   TextureSampler& operator=(const TextureSampler&) = delete;
@@ -39,23 +44,30 @@ class TextureSampler {
   /// minifies with minFilter: nearest/linear texels in the finest level, or one/two MIP levels.
   Color sample(const TextureRef& ref, const UvFootprint& f) const;
 
-  /// The budget when none is given: every level of every image as OIIO's float tiles, so
-  /// that no tile is ever evicted and made again, at least kMinCacheMB and at most a quarter
-  /// of physical memory. OIIO allocates tiles as they are used, so a scene costs what it
-  /// touches. Why not a fixed budget: the fixed 128 MB of before made DamagedHelmet (five
-  /// 2048^2 textures, 336 MB of float levels) re-make evicted tiles from the codes through up
-  /// to three computed levels, 10x slower at 160^2 and 64 spp (docs/textures.md, "Memory").
+  /// The budget when none is given: every level of every image as OIIO's float tiles, at
+  /// least kMinCacheMB and at most a quarter of physical memory. Why not a fixed budget: the
+  /// fixed 128 MB of before made DamagedHelmet (five 2048^2 textures, 336 MB of float levels)
+  /// re-make evicted OIIO tiles, 10x slower at 160^2 and 64 spp (docs/textures.md, "Memory").
   static double budgetFor(const std::vector<TextureImage>& images);
   static constexpr int kMinCacheMB = 128;
+  /// What TRay's own filter can allocate at most: every MIP tile it makes on demand (levels
+  /// 1..TexturePyramid::kComputed as floats), in MB. It is used when this fits the budget.
+  static double tileMBAtMost(const std::vector<TextureImage>& images);
+
   /// The budget in use (MB).
-  double cacheMB() const;
-  /// Tiles read again after the cache evicted them (OIIO's per-file stat:redundant_tiles,
-  /// summed): 0 when the budget holds every tile used; each one costs a re-decode.
+  double cacheMB() const { return cacheMB_; }
+  /// True when OpenImageIO's TextureSystem filters (its cache pages tiles within cacheMB()).
+  bool paged() const;
+  /// Tiles OIIO read again after its cache evicted them (stat:redundant_tiles, summed);
+  /// 0 for TRay's own filter, whose tiles are made once and never evicted.
   int64_t tilesReadAgain() const;
+  /// MIP tiles TRay's own filter has made so far (TexturePyramid::tilesMade, summed).
+  int64_t tilesMade() const;
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
+  double cacheMB_ = 0;
 };
 
 }  // namespace tray

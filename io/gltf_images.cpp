@@ -105,7 +105,7 @@ void decodeImage(const GltfContext& ctx, const ImageInfo& info, bool srgb, bool 
   const size_t pixels = size_t(info.pixels());
   // Keep the file's own 8- or 16-bit codes, shared by both views (decoded once); each view
   // maps them to linear floats through a table, one pow per code value instead of one per
-  // texel, when the texture cache asks for a row (TextureImage::row).
+  // texel, when the texture filter reads a texel (TexturePyramid::texel) or a row.
   const int nc = spec.nchannels;
   const bool wide = spec.format.size() > 1;
   const OIIO::TypeDesc type = wide ? OIIO::TypeDesc::UINT16 : OIIO::TypeDesc::UINT8;

@@ -32,7 +32,7 @@ struct LoadOptions {
   /// tray-render --max-memory in bytes (0: no limit): a scene whose buffers, textures and
   /// geometry need more is refused before they are allocated (io/memory_estimate.h).
   uint64_t maxMemoryBytes = 0;
-  /// OIIO's texture cache budget, stored in Scene::textureCacheMB (0: TRay's default).
+  /// The texture tile budget, stored in Scene::textureCacheMB (0: TRay's default).
   double textureCacheMB = 0;
   /// Render even if extensionsRequired names an extension TRay lacks (a warning instead of the
   /// error): the picture may then be wrong, e.g. missing geometry or materials.

@@ -1,5 +1,5 @@
 // Memory bounded by what the scene needs (issue 18, "Small files, big memory"): peak memory of
-// a render with one 8192 x 8192 texture, the texture cache budget that never changes pixels,
+// a render with one 8192 x 8192 texture, the texture memory budget that never changes pixels,
 // and --max-memory refusing a scene before it allocates.
 #include <gtest/gtest.h>
 #include <sys/resource.h>
@@ -66,7 +66,9 @@ TEST(CliMemory, An8192TextureRendersInBoundedMemoryWhateverTheCacheBudget) {
   ASSERT_EQ(code, 0);
   EXPECT_LT(peakMB, 600.0);
   RecordProperty("peak_MB", int(peakMB));
-  // The smallest cache OIIO accepts (10 MB) evicts tiles all the time: same pixels.
+  // The smallest cache OIIO accepts (10 MB): the MIP tiles TRay's filter could make (252 MiB)
+  // exceed it, so OIIO's TextureSystem filters, evicting tiles all the time; the same pixels
+  // as TRay's filter gave by default (TextureSampler::tileMBAtMost, texture_sampler_test).
   auto [tinyCode, tinyPeakMB] =
       renderPeak({scene, "--resolution", "64x48", "--threads", "2", "--texture-memory", "10",
                   "-o", (dir / "tiny.exr").string(), "-q"});

@@ -48,7 +48,8 @@ TEST(TexturePyramid, FilteredLookupsMatchOiioAutomipBitForBit) {
   std::vector<TextureImage> images{randomImage(37, 5, 1), randomImage(1, 19, 2),
                                    randomImage(64, 64, 3), randomImage(131, 67, 4),
                                    randomImage(300, 200, 5)};
-  const TextureSampler ours(images), oiio(images, 0, true);
+  const TextureSampler ours(images, 0, TextureBackend::kOiio),
+      oiio(images, 0, TextureBackend::kOiioAutomip);
   std::mt19937 rng(7);
   std::uniform_real_distribution<float> uv(-0.5f, 1.5f), logScale(-12.0f, 1.0f);
   const TextureFilter filters[] = {TextureFilter::kNearest,

@@ -1,5 +1,5 @@
-// TextureSampler: OIIO's filtering at known uvs of tiny images, the glTF wrap modes and
-// filters, and KHR_texture_transform.
+// TextureSampler: filtering at known uvs of tiny images, the glTF wrap modes and
+// filters, the texture memory budget and KHR_texture_transform.
 #include "core/texture_sampler.h"
 
 #include <gtest/gtest.h>
@@ -24,7 +24,7 @@ Color texel(const TextureImage& im, int x, int y) {
 }
 
 /// Bilinear interpolation written from its definition (texel centres at (i + 0.5) / size),
-/// with clamped texel indices: the reference OIIO must reproduce for CLAMP_TO_EDGE.
+/// with clamped texel indices: the reference the filter must reproduce for CLAMP_TO_EDGE.
 Color bilinearClamped(const TextureImage& im, float u, float v) {
   float x = u * im.width - 0.5f, y = v * im.height - 0.5f;
   int x0 = int(std::floor(x)), y0 = int(std::floor(y));
@@ -147,17 +147,22 @@ int64_t readTwiceAcrossEveryTile(const TextureSampler& s, int size, std::vector<
   return s.tilesReadAgain();
 }
 
-// The failure, then the fix: a budget under the texture's float tiles makes OIIO evict tiles
-// and make them again from the codes (DamagedHelmet at the former fixed 128 MB: 10x slower);
-// the default budget, sized from the scene's images, holds them all. Pixels never change.
-TEST(TextureSampler, DefaultBudgetHoldsEveryTileWhereASmallOneReadsThemAgain) {
-  const int size = 1024;  // the finest level alone: 12 MiB of float tiles
+// The budget decides who filters. TRay's own filter never evicts a MIP tile, so it runs when
+// every tile it could make fits the budget (the default always does, up to a quarter of RAM);
+// under a smaller budget OIIO's cache pages the levels, evicts tiles and makes them again from
+// the codes (DamagedHelmet at the former fixed 128 MB: 10x slower). Pixels never change.
+TEST(TextureSampler, ASmallBudgetPagesThroughOiioAndTheDefaultKeepsEveryTile) {
+  const int size = 2048;  // levels 1-3 as floats: 15.75 MiB; the finest level alone 48 MiB
   std::vector<TextureImage> images{gradient(size)};
   std::vector<Color> small, sized;
-  EXPECT_GT(readTwiceAcrossEveryTile(TextureSampler(images, 10), size, small), 0);
+  const TextureSampler paged(images, 10);
+  EXPECT_TRUE(paged.paged());
+  EXPECT_GT(readTwiceAcrossEveryTile(paged, size, small), 0);
   const TextureSampler byScene(images);
+  EXPECT_FALSE(byScene.paged());
   EXPECT_GE(byScene.cacheMB(), 16.0);
   EXPECT_EQ(readTwiceAcrossEveryTile(byScene, size, sized), 0);
+  EXPECT_EQ(byScene.tilesMade(), 0) << "the finest level is read from the image, not tiled";
   ASSERT_EQ(small.size(), sized.size());
   for (size_t i = 0; i < small.size(); ++i) ASSERT_TRUE(small[i] == sized[i]) << i;
 }
@@ -169,6 +174,8 @@ TEST(TextureSampler, BudgetIsEveryLevelAsFloatsWithinBounds) {
   helmetSized.width = helmetSized.height = 2048;
   const std::vector<TextureImage> helmet(5, helmetSized);
   EXPECT_EQ(TextureSampler::budgetFor(helmet), std::ceil(1.1 * 4.0 / 3.0 * 48 * 5));
+  // TRay's filter makes at most levels 1-3 in tiles: 12 + 3 + 0.75 MiB per image.
+  EXPECT_EQ(TextureSampler::tileMBAtMost(helmet), 5 * 15.75);
   // Never more than a quarter of physical memory, never under the minimum.
   TextureImage huge;
   huge.width = huge.height = 1 << 20;
