@@ -33,12 +33,12 @@ inline Bvh4Ray prepareBvh4Ray(const Vec3& o, const Vec3& d) {
   return r;
 }
 
-/// Slab test of a node's four children; bit c of the result is set when the ray enters child c
-/// within [tmin, tmax], and entry receives the entry distances. The far distance is enlarged by
-/// 2 gamma(3) (pbrt-v3, section 3.9.2) so rounding never culls a box that a watertight triangle
-/// test inside it would hit.
-inline int hitBoxes4(const Bvh4Node& n, const Bvh4Ray& r, simd::F4 tmin, simd::F4 tmax,
-                     simd::F4& entry) {
+/// Slab test of a node's four children; lane c of the mask (bit c of hitBoxes4's result) is set
+/// when the ray enters child c within [tmin, tmax], and entry receives the entry distances. The
+/// far distance is enlarged by 2 gamma(3) (pbrt-v3, section 3.9.2) so rounding never culls a box
+/// that a watertight triangle test inside it would hit.
+inline simd::M4 hitBoxes4Mask(const Bvh4Node& n, const Bvh4Ray& r, simd::F4 tmin, simd::F4 tmax,
+                              simd::F4& entry) {
   using namespace simd;
   constexpr float kEps = std::numeric_limits<float>::epsilon() * 0.5f;
   constexpr float kRobust = 1.0f + 2.0f * (3 * kEps) / (1 - 3 * kEps);
@@ -51,7 +51,11 @@ inline int hitBoxes4(const Bvh4Node& n, const Bvh4Ray& r, simd::F4 tmin, simd::F
   }
   tFar = min(tFar * set1(kRobust), tmax);
   entry = tNear;
-  return bits(tNear <= tFar);
+  return tNear <= tFar;
+}
+inline int hitBoxes4(const Bvh4Node& n, const Bvh4Ray& r, simd::F4 tmin, simd::F4 tmax,
+                     simd::F4& entry) {
+  return simd::bits(hitBoxes4Mask(n, r, tmin, tmax, entry));
 }
 
 // Every 4-wide level consumes at least one binary level and pushes at most three children; the

@@ -1,0 +1,159 @@
+#include "accel/bvh_batch.h"
+
+#include <algorithm>
+
+#include "accel/bvh4_packet.h"
+#include "accel/bvh_object_ray.h"
+#include "core/alpha.h"
+
+namespace tray {
+namespace {
+
+/// The alpha test of one mesh primitive for ray r of a group, on its world-space ray (the hash
+/// of stochastic transparency reads it), as the single-ray query's filter.
+struct PacketAlpha {
+  const Scene& scene;
+  const Ray* worldRays;
+  uint32_t primitive;
+  static bool accept(const void* self, int r, uint32_t triangle, float b1, float b2) {
+    auto* q = static_cast<const PacketAlpha*>(self);
+    return alphaAccepts(q->scene, q->worldRays[r], q->primitive, triangle, b1, b2);
+  }
+  PacketTriangleFilter filter() const { return {&PacketAlpha::accept, this}; }
+};
+
+/// One group of up to kMaxPacketRays rays of a batch, traced together.
+class Group {
+ public:
+  Group(const TwoLevelParts& parts, PacketRays& local, const Ray* rays, int n)
+      : parts_(parts), local_(local), rays_(rays), all_(n == 64 ? ~RayMask(0) : (RayMask(1) << n) - 1) {
+    for (int r = 0; r < n; ++r) tmin_[r] = rays[r].tmin, tmax_[r] = rays[r].tmax;
+  }
+
+  /// Closest hits into hits[0..n); bit r of the result: ray r hit something.
+  RayMask intersect(Hit* hits) {
+    RayMask found = 0;
+    for (uint32_t i : *parts_.unbounded)
+      for (RayMask m = all_; m; m &= m - 1)
+        if (parts_.intersectPrimitive(i, rays_[nextRay(m)], tmax_[nextRay(m)], hits[nextRay(m)]))
+          found |= m & -m;
+    forEachPrimitive<true>(all_, all_, [&](uint32_t i, RayMask m) {
+      found |= intersectPrimitive(i, m, hits);
+    });
+    return found;
+  }
+
+  /// Bit r of the result: ray r is blocked.
+  RayMask occluded() {
+    RayMask alive = all_;
+    for (uint32_t i : *parts_.unbounded)
+      for (RayMask m = alive; m; m &= m - 1)
+        if (parts_.occludedPrimitive(i, rays_[nextRay(m)])) alive &= ~(m & -m);
+    forEachPrimitive<false>(alive, alive, [&](uint32_t i, RayMask m) {
+      occludedPrimitive(i, m & alive, alive);
+    });
+    return all_ & ~alive;
+  }
+
+ private:
+  /// visit(i, rays) for each placed primitive with the rays that enter its box.
+  template <bool kOrdered, class Visit>
+  void forEachPrimitive(RayMask active, const RayMask& alive, Visit&& visit) {
+    if (!active) return;
+    if (parts_.single != kNoPrimitive) return visit(parts_.single, active);
+    for (RayMask m = active; m; m &= m - 1) {
+      const Ray& ray = rays_[nextRay(m)];
+      box_[nextRay(m)] = prepareBvh4Ray(ray.o, ray.d);
+    }
+    const Bvh4& top = *parts_.top;
+    traversePacketBvh4<kOrdered>(top, box_, tmin_, tmax_, active, alive,
+                                 [&](uint32_t first, uint32_t count, RayMask m) {
+                                   for (uint32_t k = first; k < first + count; ++k)
+                                     visit(top.primitives[k], m);
+                                 });
+  }
+
+  /// The mesh a packet can descend, or null (analytic shapes, deforming meshes).
+  const MeshBvh* packetMesh(const Primitive& p) const {
+    if (p.kind != Primitive::Kind::kMesh) return nullptr;
+    const MeshBvh* mesh = (*parts_.meshes)[p.mesh].get();
+    return mesh->deforming() ? nullptr : mesh;
+  }
+
+  /// The rays of m in p's object space, into local_; the result leaves out those that cannot
+  /// meet p (flat at their time).
+  RayMask enter(const Primitive& p, RayMask m) {
+    RayMask entered = 0;
+    for (; m; m &= m - 1) {
+      const int r = nextRay(m);
+      Ray ray;
+      if (!objectRay(p, rays_[r], tmax_[r], ray)) continue;
+      local_.set(r, ray);
+      entered |= m & -m;
+    }
+    return entered;
+  }
+
+  RayMask intersectPrimitive(uint32_t i, RayMask m, Hit* hits) {
+    const Primitive& p = parts_.scene->primitives[i];
+    RayMask found = 0;
+    if (const MeshBvh* mesh = packetMesh(p)) {
+      const PacketAlpha alpha{*parts_.scene, rays_, i};
+      const PacketTriangleFilter filter = alpha.filter();
+      found = mesh->intersectPacket(local_, enter(p, m), tmax_, hits,
+                                    (*parts_.alphaTested)[p.mesh] ? &filter : nullptr);
+      for (RayMask f = found; f; f &= f - 1) hits[nextRay(f)].primitive = i;
+      return found;
+    }
+    for (; m; m &= m - 1) {
+      const int r = nextRay(m);
+      if (parts_.intersectPrimitive(i, rays_[r], tmax_[r], hits[r])) found |= m & -m;
+    }
+    return found;
+  }
+
+  void occludedPrimitive(uint32_t i, RayMask m, RayMask& alive) {
+    const Primitive& p = parts_.scene->primitives[i];
+    if (const MeshBvh* mesh = packetMesh(p)) {
+      const PacketAlpha alpha{*parts_.scene, rays_, i};
+      const PacketTriangleFilter filter = alpha.filter();
+      return mesh->occludedPacket(local_, enter(p, m), alive, tmax_,
+                                  (*parts_.alphaTested)[p.mesh] ? &filter : nullptr);
+    }
+    for (; m; m &= m - 1)
+      if (parts_.occludedPrimitive(i, rays_[nextRay(m)])) alive &= ~(m & -m);
+  }
+
+  const TwoLevelParts& parts_;
+  PacketRays& local_;  ///< object-space rays of the mesh being entered
+  const Ray* rays_;
+  const RayMask all_;
+  Bvh4Ray box_[kMaxPacketRays];  ///< world-space rays for the top tree
+  float tmin_[kMaxPacketRays], tmax_[kMaxPacketRays];
+};
+
+}  // namespace
+
+void twoLevelIntersectBatch(const TwoLevelParts& parts, int group, std::span<const Ray> rays,
+                            std::span<Hit> hits, std::span<uint8_t> found) {
+  group = std::clamp(group, 1, kMaxPacketRays);
+  PacketRays local;
+  for (size_t b = 0; b < rays.size(); b += size_t(group)) {
+    const int n = int(std::min(rays.size() - b, size_t(group)));
+    const RayMask f = Group(parts, local, &rays[b], n).intersect(&hits[b]);
+    for (int r = 0; r < n; ++r) found[b + r] = (f >> r) & 1;
+  }
+}
+
+void twoLevelOccludedBatch(const TwoLevelParts& parts, int group, std::span<const Ray> rays,
+                           std::span<uint8_t> blocked) {
+  group = std::clamp(group, 1, kMaxPacketRays);
+  PacketRays local;
+  for (size_t b = 0; b < rays.size(); b += size_t(group)) {
+    const int n = int(std::min(rays.size() - b, size_t(group)));
+    const RayMask f = Group(parts, local, &rays[b], n).occluded();
+    for (int r = 0; r < n; ++r) blocked[b + r] = (f >> r) & 1;
+  }
+}
+
+}  // namespace tray
