@@ -20,17 +20,27 @@ struct Bvh4Ray {
   bool negative[3];
 };
 
-inline Bvh4Ray prepareBvh4Ray(const Vec3& o, const Vec3& d) {
+/// The reciprocal of a direction component. Like Embree's rcp_safe: a zero component becomes
+/// tiny, so 0 * inf never makes a NaN.
+inline float safeInverse(float d) {
+  return 1.0f / (std::fabs(d) < 1e-18f ? std::copysign(1e-18f, d) : d);
+}
+
+/// A Bvh4Ray from its origin and reciprocal direction.
+inline Bvh4Ray bvh4Ray(const float o[3], const float invD[3]) {
   Bvh4Ray r;
   for (int i = 0; i < 3; ++i) {
-    // Like Embree's rcp_safe: a zero component becomes tiny, so 0 * inf never makes a NaN.
-    float di = std::fabs(d[i]) < 1e-18f ? std::copysign(1e-18f, d[i]) : d[i];
-    float inv = 1.0f / di;
     r.o[i] = simd::set1(o[i]);
-    r.invD[i] = simd::set1(inv);
-    r.negative[i] = inv < 0;
+    r.invD[i] = simd::set1(invD[i]);
+    r.negative[i] = invD[i] < 0;
   }
   return r;
+}
+
+inline Bvh4Ray prepareBvh4Ray(const Vec3& o, const Vec3& d) {
+  const float origin[3] = {o.x, o.y, o.z};
+  const float inv[3] = {safeInverse(d.x), safeInverse(d.y), safeInverse(d.z)};
+  return bvh4Ray(origin, inv);
 }
 
 /// Slab test of a node's four children; lane c of the mask (bit c of hitBoxes4's result) is set
@@ -65,9 +75,11 @@ constexpr int kBvh4StackSize = 3 * 256;
 /// Calls leaf(first, count) for each leaf whose box the ray enters before `tmax`, nearest box
 /// first (kOrdered; else in slot order, cheaper for any-hit queries, where the first hit found
 /// ends the search wherever it lies). `leaf` may lower tmax (closest hit) and returns true to
-/// stop (any hit).
+/// stop (any hit). `root`: the subtree to traverse (packets hand a lone ray over,
+/// accel/bvh4_packet.h).
 template <bool kOrdered = true, class LeafFn>
-bool traverseBvh4(const Bvh4& bvh, const Bvh4Ray& r, float tmin, const float& tmax, LeafFn&& leaf) {
+bool traverseBvh4(const Bvh4& bvh, const Bvh4Ray& r, float tmin, const float& tmax, LeafFn&& leaf,
+                  uint32_t root = 0) {
   if (bvh.nodes.empty()) return false;
   const Bvh4Node* nodes = bvh.nodes.data();
   struct Item {
@@ -77,7 +89,7 @@ bool traverseBvh4(const Bvh4& bvh, const Bvh4Ray& r, float tmin, const float& tm
   Item stack[kBvh4StackSize];
   int top = 0;
   const simd::F4 tminv = simd::set1(tmin);
-  uint32_t current = 0;
+  uint32_t current = root;
   for (;;) {
     if (bvh4ref::leaf(current)) {
       if (leaf(bvh4ref::first(current), bvh4ref::count(current))) return true;

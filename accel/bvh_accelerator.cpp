@@ -122,17 +122,25 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
   }
 
   bool occluded(const Ray& ray) const override {
-    LastOccluder& cache = tLastOccluder;
-    if (options_.occluderCache && cache.accelerator == id_ &&
-        cache.primitive < scene_.primitives.size() && occludedBy(cache.primitive, cache.block, ray))
-      return true;
+    if (occludedByCached(ray)) return true;
     uint32_t block = 0;
     const float tmax = ray.tmax;
     return forEachPrimitive<false>(ray, tmax, [&](uint32_t i) {
       if (!occludedPrimitive(i, ray, block)) return false;
-      if (options_.occluderCache) cache = {id_, i, block};
+      cacheOccluder(i, block);
       return true;
     });
+  }
+
+  bool occludedByCached(const Ray& ray) const override {
+    const LastOccluder& cache = tLastOccluder;
+    return options_.occluderCache && cache.accelerator == id_ &&
+           cache.primitive < scene_.primitives.size() &&
+           occludedBy(cache.primitive, cache.block, ray);
+  }
+
+  void cacheOccluder(uint32_t i, uint32_t block) const override {
+    if (options_.occluderCache) tLastOccluder = {id_, i, block};
   }
 
   void intersectBatch(std::span<const Ray> rays, std::span<Hit> hits,
@@ -265,7 +273,9 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
 
   bool occludedPrimitive(uint32_t i, const Ray& ray) const override {
     uint32_t block;
-    return occludedPrimitive(i, ray, block);
+    if (!occludedPrimitive(i, ray, block)) return false;
+    cacheOccluder(i, block);
+    return true;
   }
 
   bool occludedBy(uint32_t i, uint32_t block, const Ray& ray) const {

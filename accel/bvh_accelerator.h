@@ -22,8 +22,9 @@ struct TwoLevelOptions {
   bool hierarchy = true;
   /// Test the primitive that blocked this thread's last shadow ray first (the seed's cache).
   bool occluderCache = true;
-  /// How batches are traced (the trees need a hierarchy: without one, batches loop).
-  BvhBatch batch = BvhBatch::kPacket8;
+  /// How batches are traced (the trees need a hierarchy: without one, batches loop). Streams of
+  /// 64: the fastest of the three in bench/path_bench and bench/batch_bench (docs/wavefront.md).
+  BvhBatch batch = BvhBatch::kStream64;
 };
 
 /// TRay's own two-level accelerator: a tree over the placed primitives (mesh instances and

@@ -26,7 +26,10 @@ struct PacketAlpha {
 class Group {
  public:
   Group(const TwoLevelParts& parts, PacketRays& local, const Ray* rays, int n)
-      : parts_(parts), local_(local), rays_(rays), all_(n == 64 ? ~RayMask(0) : (RayMask(1) << n) - 1) {
+      : parts_(parts),
+        local_(local),
+        rays_(rays),
+        all_(n == kMaxPacketRays ? ~RayMask(0) : (RayMask(1) << n) - 1) {
     for (int r = 0; r < n; ++r) tmin_[r] = rays[r].tmin, tmax_[r] = rays[r].tmax;
   }
 
@@ -46,6 +49,8 @@ class Group {
   /// Bit r of the result: ray r is blocked.
   RayMask occluded() {
     RayMask alive = all_;
+    for (RayMask m = alive; m; m &= m - 1)
+      if (parts_.occludedByCached(rays_[nextRay(m)])) alive &= ~(m & -m);
     for (uint32_t i : *parts_.unbounded)
       for (RayMask m = alive; m; m &= m - 1)
         if (parts_.occludedPrimitive(i, rays_[nextRay(m)])) alive &= ~(m & -m);
@@ -63,7 +68,7 @@ class Group {
     if (parts_.single != kNoPrimitive) return visit(parts_.single, active);
     for (RayMask m = active; m; m &= m - 1) {
       const Ray& ray = rays_[nextRay(m)];
-      box_[nextRay(m)] = prepareBvh4Ray(ray.o, ray.d);
+      box_[nextRay(m)] = PacketBoxRay(ray.o, ray.d);
     }
     const Bvh4& top = *parts_.top;
     traversePacketBvh4<kOrdered>(top, box_, tmin_, tmax_, active, alive,
@@ -117,19 +122,37 @@ class Group {
     if (const MeshBvh* mesh = packetMesh(p)) {
       const PacketAlpha alpha{*parts_.scene, rays_, i};
       const PacketTriangleFilter filter = alpha.filter();
-      return mesh->occludedPacket(local_, enter(p, m), alive, tmax_,
-                                  (*parts_.alphaTested)[p.mesh] ? &filter : nullptr);
+      const bool alphaTested = (*parts_.alphaTested)[p.mesh];
+      const RayMask before = alive;
+      uint32_t block = 0;
+      mesh->occludedPacket(local_, enter(p, m), alive, tmax_, block,
+                           alphaTested ? &filter : nullptr);
+      // The blocker of the group's highest-numbered blocked ray is cached: the next group's
+      // first rays are its neighbours. As in the single-ray query, an alpha-tested mesh's
+      // block is not (block 0 there: occludedBy refuses alpha-tested meshes).
+      const RayMask newlyBlocked = before & ~alive;
+      if (newlyBlocked && highestBit(newlyBlocked) >= lastBlocked_) {
+        lastBlocked_ = highestBit(newlyBlocked);
+        parts_.cacheOccluder(i, alphaTested ? 0 : block);
+      }
+      return;
     }
     for (; m; m &= m - 1)
-      if (parts_.occludedPrimitive(i, rays_[nextRay(m)])) alive &= ~(m & -m);
+      if (parts_.occludedPrimitive(i, rays_[nextRay(m)])) {  // caches its blocker
+        alive &= ~(m & -m);
+        lastBlocked_ = std::max(lastBlocked_, nextRay(m));
+      }
   }
+
+  static int highestBit(RayMask m) { return 63 - __builtin_clzll(m); }
 
   const TwoLevelParts& parts_;
   PacketRays& local_;  ///< object-space rays of the mesh being entered
   const Ray* rays_;
   const RayMask all_;
-  Bvh4Ray box_[kMaxPacketRays];  ///< world-space rays for the top tree
+  PacketBoxRay box_[kMaxPacketRays];  ///< world-space rays for the top tree
   float tmin_[kMaxPacketRays], tmax_[kMaxPacketRays];
+  int lastBlocked_ = -1;  ///< the highest-numbered ray whose blocker is in the cache
 };
 
 }  // namespace

@@ -23,7 +23,13 @@ class TwoLevelParts {
   virtual ~TwoLevelParts() = default;
   /// As the single-ray closest-hit query does for primitive i: lowers tmax and sets hit.
   virtual bool intersectPrimitive(uint32_t i, const Ray& ray, float& tmax, Hit& hit) const = 0;
+  /// As the single-ray any-hit query does for primitive i, remembering a blocker in the
+  /// last-occluder cache.
   virtual bool occludedPrimitive(uint32_t i, const Ray& ray) const = 0;
+  /// The last-occluder cache of the single-ray query (accel/bvh_accelerator.cpp): true if the
+  /// primitive and block that blocked this thread's last shadow ray block `ray`.
+  virtual bool occludedByCached(const Ray& ray) const = 0;
+  virtual void cacheOccluder(uint32_t primitive, uint32_t block) const = 0;
 
   const Scene* scene = nullptr;
   const Bvh4* top = nullptr;

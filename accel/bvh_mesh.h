@@ -26,11 +26,11 @@ struct TriangleFilter {
 /// The rays of a packet in a mesh's object space, prepared once for the box and triangle tests
 /// (the single-ray queries prepare the same values per query). Slot r holds ray r.
 struct PacketRays {
-  Bvh4Ray box[kMaxPacketRays];
+  PacketBoxRay box[kMaxPacketRays];
   WatertightRay4 triangle[kMaxPacketRays];
   float tmin[kMaxPacketRays];
   void set(int r, const Ray& ray) {
-    box[r] = prepareBvh4Ray(ray.o, ray.d);
+    box[r] = PacketBoxRay(ray.o, ray.d);
     triangle[r] = prepareWatertight4(ray.o, ray.d);
     tmin[r] = ray.tmin;
   }
@@ -69,9 +69,11 @@ class MeshBvh {
   /// same arithmetic), up to which of several triangles at exactly equal t is reported.
   RayMask intersectPacket(const PacketRays& rays, RayMask active, float* tmax, Hit* hits,
                           const PacketTriangleFilter* filter = nullptr) const;
-  /// Clears from `alive` the rays of `active` (a subset) blocked within (tmin, tmax[r]).
+  /// Clears from `alive` the rays of `active` (a subset) blocked within (tmin, tmax[r]); the
+  /// index of the block that blocked the highest-numbered of them goes to `block` (for
+  /// occludedBy: the next packet's first rays are that ray's neighbours).
   void occludedPacket(const PacketRays& rays, RayMask active, RayMask& alive, const float* tmax,
-                      const PacketTriangleFilter* filter = nullptr) const;
+                      uint32_t& block, const PacketTriangleFilter* filter = nullptr) const;
   /// Triangles move (TriangleMesh::positionSteps): packets do not apply.
   bool deforming() const { return !stepBlocks_.empty(); }
 
@@ -93,7 +95,7 @@ class MeshBvh {
                            const Accept& accept) const;
   template <class OnBlock>
   void anyHitPacket(const PacketRays& rays, RayMask active, RayMask& alive, const float* tmax,
-                    OnBlock&& onBlock) const;
+                    uint32_t& blocker, OnBlock&& onBlock) const;
   template <bool kOrdered, class OnBlock>
   bool forEachBlock(const Ray& ray, const float& tmax, OnBlock&& onBlock) const;
   template <bool kOrdered, class BlockOf, class OnBlock>

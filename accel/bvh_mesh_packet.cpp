@@ -56,7 +56,9 @@ template <class Accept>
 template <class OnBlock>
 [[gnu::always_inline]] inline void MeshBvh::anyHitPacket(const PacketRays& rays, RayMask active,
                                                          RayMask& alive, const float* tmax,
+                                                         uint32_t& blocker,
                                                          OnBlock&& blocks) const {
+  int lastBlocked = -1;
   forEachLeafBlock<false>(bvh_, hierarchy_, uint32_t(blocks_.size()), rays, active, alive, tmax,
                           [&](uint32_t k, RayMask m) {
                             const Triangle4& block = blocks_[k];
@@ -65,7 +67,9 @@ template <class OnBlock>
                               alignas(16) float t[4], b1[4], b2[4];
                               const int mask = intersectWatertight4(
                                   rays.triangle[r], block, rays.tmin[r], tmax[r], t, b1, b2);
-                              if (mask && blocks(r, block, mask, b1, b2)) alive &= ~(m & -m);
+                              if (!mask || !blocks(r, block, mask, b1, b2)) continue;
+                              alive &= ~(m & -m);
+                              if (r >= lastBlocked) blocker = k, lastBlocked = r;
                             }
                           });
 }
@@ -84,13 +88,14 @@ template <class OnBlock>
 
 [[gnu::flatten]] void MeshBvh::occludedPacket(const PacketRays& rays, RayMask active,
                                               RayMask& alive, const float* tmax,
+                                              uint32_t& block,
                                               const PacketTriangleFilter* filter) const {
   if (!filter)
-    return anyHitPacket(rays, active, alive, tmax,
+    return anyHitPacket(rays, active, alive, tmax, block,
                         [](int, const Triangle4&, int, const float*, const float*) {
                           return true;
                         });
-  anyHitPacket(rays, active, alive, tmax,
+  anyHitPacket(rays, active, alive, tmax, block,
                [&](int r, const Triangle4& block, int mask, const float* b1, const float* b2) {
                  for (; mask; mask &= mask - 1) {
                    const int i = __builtin_ctz(unsigned(mask));
