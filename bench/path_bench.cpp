@@ -163,6 +163,7 @@ class BatchTimingAccelerator final : public Accelerator {
 struct Measured {
   RenderStats stats;
   double cpu = 0, samples = 0, traversal = -1;
+  double shadowShare = 0;  ///< the part of `traversal` spent on shadow rays
   double perCpuSecond() const { return samples / cpu * 1e-6; }
 };
 
@@ -182,6 +183,7 @@ Measured measure(const Scene& scene, const Accelerator& accel, const Camera& cam
   m.samples = double(size) * size * settings.getInt("spp");
   const double batched = double(timed.closestNs + timed.shadowNs) * 1e-9;
   if (batched > 0) m.traversal = batched / (m.stats.seconds * threads);
+  if (batched > 0) m.shadowShare = double(timed.shadowNs) * 1e-9 / batched;
   return m;
 }
 
@@ -281,9 +283,9 @@ int run(const std::string& path, const std::string& accelName, int threads, int 
     for (const auto& [name, a] : modes) {
       const Measured m = measure(scene, *a, *camera, settings, "path-wavefront", size, threads);
       std::printf("  wavefront, %-26s %.3f Msamples per CPU-second (%.2fx scalar), traversal "
-                  "%.0f%%\n",
+                  "%.0f%% (%.0f%% of it shadow rays)\n",
                   name.c_str(), m.perCpuSecond(), m.perCpuSecond() / scalar.perCpuSecond(),
-                  100 * m.traversal);
+                  100 * m.traversal, 100 * m.shadowShare);
     }
   }
   double raw = rawTraversalMrays(*accel, scene.bounds(), threads);

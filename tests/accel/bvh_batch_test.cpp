@@ -182,9 +182,11 @@ TEST(BvhBatch, MotionBlur) {
   expectEveryModeSameAsSingleRays(movingScene(), "moving");
 }
 
-TEST(BvhBatch, CornellBoxAndAlphaTestedMeshes) {
-  for (const char* file :
-       {"/reference/cornell-box.gltf", "/gltf-features/AlphaBlendModeTest.glb"})
+// The Cornell box; alpha-tested meshes (MASK and BLEND); TransmissionTest, whose coincident
+// surfaces give ties at equal t.
+TEST(BvhBatch, SharedScenes) {
+  for (const char* file : {"/reference/cornell-box.gltf", "/gltf-features/AlphaBlendModeTest.glb",
+                           "/gltf-samples/TransmissionTest.glb"})
     expectEveryModeSameAsSingleRays(loadGltf(std::string(TRAY_SHARED_DIR) + file), file);
 }
 
