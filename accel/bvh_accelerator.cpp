@@ -146,12 +146,12 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
   void intersectBatch(std::span<const Ray> rays, std::span<Hit> hits,
                       std::span<uint8_t> found) const override {
     if (!batched()) return Accelerator::intersectBatch(rays, hits, found);
-    twoLevelIntersectBatch(*this, bvhBatchRays(options_.batch), rays, hits, found);
+    twoLevelIntersectBatch(*this, bvhBatchRays(options_.batch), byOctant(), rays, hits, found);
   }
 
   void occludedBatch(std::span<const Ray> rays, std::span<uint8_t> blocked) const override {
     if (!batched()) return Accelerator::occludedBatch(rays, blocked);
-    twoLevelOccludedBatch(*this, bvhBatchRays(options_.batch), rays, blocked);
+    twoLevelOccludedBatch(*this, bvhBatchRays(options_.batch), byOctant(), rays, blocked);
   }
 
   void allHits(const Ray& ray, std::vector<Hit>& hits) const override {
@@ -229,6 +229,7 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
   }
 
   bool batched() const { return options_.hierarchy && options_.batch != BvhBatch::kLoop; }
+  bool byOctant() const { return options_.batch == BvhBatch::kStream64; }
 
   bool intersectPrimitive(uint32_t i, const Ray& ray, float& tmax, Hit& hit) const override {
     const Primitive& p = scene_.primitives[i];

@@ -11,7 +11,7 @@ namespace tray {
 enum class BvhBatch {
   kLoop,      ///< the single-ray query per ray, as the default implementation
   kPacket8,   ///< groups of 8 consecutive rays traverse together (accel/bvh4_packet.h)
-  kStream64,  ///< the same with groups of 64: a small ray stream
+  kStream64,  ///< groups of 64 rays whose directions share an octant: small ray streams
 };
 /// Rays per group of a mode (1 for kLoop).
 int bvhBatchRays(BvhBatch batch);

@@ -1,6 +1,7 @@
 #include "accel/bvh_batch.h"
 
 #include <algorithm>
+#include <vector>
 
 #include "accel/bvh4_packet.h"
 #include "accel/bvh_object_ray.h"
@@ -155,27 +156,66 @@ class Group {
   int lastBlocked_ = -1;  ///< the highest-numbered ray whose blocker is in the cache
 };
 
+/// The rays of a batch in the order groups take them: stably sorted by direction octant (a
+/// counting sort) when `byOctant`, so that a group's rays agree on which side of every box is
+/// near and part later; as stream tracers order their streams (Tsakok 2009; Fuetterling et al.
+/// 2015). index[k]: the batch position of rays[k] (null: batch order).
+struct GroupOrder {
+  std::span<const Ray> rays;
+  const uint32_t* index = nullptr;
+};
+
+GroupOrder groupOrder(std::span<const Ray> rays, bool byOctant) {
+  if (!byOctant) return {rays};
+  static thread_local std::vector<uint32_t> index;
+  static thread_local std::vector<Ray> sorted;
+  auto octant = [](const Ray& r) {
+    return int(r.d.x < 0) | int(r.d.y < 0) << 1 | int(r.d.z < 0) << 2;
+  };
+  size_t start[9] = {};
+  for (const Ray& r : rays) ++start[octant(r) + 1];
+  for (int k = 1; k < 9; ++k) start[k] += start[k - 1];
+  index.resize(rays.size());
+  sorted.resize(rays.size());
+  for (uint32_t i = 0; i < rays.size(); ++i) {
+    const size_t k = start[octant(rays[i])]++;
+    index[k] = i;
+    sorted[k] = rays[i];
+  }
+  return {sorted, index.data()};
+}
+
 }  // namespace
 
-void twoLevelIntersectBatch(const TwoLevelParts& parts, int group, std::span<const Ray> rays,
-                            std::span<Hit> hits, std::span<uint8_t> found) {
+void twoLevelIntersectBatch(const TwoLevelParts& parts, int group, bool byOctant,
+                            std::span<const Ray> rays, std::span<Hit> hits,
+                            std::span<uint8_t> found) {
   group = std::clamp(group, 1, kMaxPacketRays);
+  const GroupOrder order = groupOrder(rays, byOctant);
+  static thread_local std::vector<Hit> sortedHits;
+  if (order.index) sortedHits.resize(rays.size());
+  Hit* groupHits = order.index ? sortedHits.data() : hits.data();
   PacketRays local;
   for (size_t b = 0; b < rays.size(); b += size_t(group)) {
     const int n = int(std::min(rays.size() - b, size_t(group)));
-    const RayMask f = Group(parts, local, &rays[b], n).intersect(&hits[b]);
-    for (int r = 0; r < n; ++r) found[b + r] = (f >> r) & 1;
+    const RayMask f = Group(parts, local, &order.rays[b], n).intersect(&groupHits[b]);
+    for (int r = 0; r < n; ++r) {
+      const size_t i = order.index ? order.index[b + r] : b + r;
+      found[i] = (f >> r) & 1;
+      if (order.index && found[i]) hits[i] = groupHits[b + r];
+    }
   }
 }
 
-void twoLevelOccludedBatch(const TwoLevelParts& parts, int group, std::span<const Ray> rays,
-                           std::span<uint8_t> blocked) {
+void twoLevelOccludedBatch(const TwoLevelParts& parts, int group, bool byOctant,
+                           std::span<const Ray> rays, std::span<uint8_t> blocked) {
   group = std::clamp(group, 1, kMaxPacketRays);
+  const GroupOrder order = groupOrder(rays, byOctant);
   PacketRays local;
   for (size_t b = 0; b < rays.size(); b += size_t(group)) {
     const int n = int(std::min(rays.size() - b, size_t(group)));
-    const RayMask f = Group(parts, local, &rays[b], n).occluded();
-    for (int r = 0; r < n; ++r) blocked[b + r] = (f >> r) & 1;
+    const RayMask f = Group(parts, local, &order.rays[b], n).occluded();
+    for (int r = 0; r < n; ++r) blocked[order.index ? order.index[b + r] : b + r] = (f >> r) & 1;
   }
 }
 

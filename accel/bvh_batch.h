@@ -40,11 +40,13 @@ class TwoLevelParts {
 };
 
 /// found[i] = intersect(rays[i], hits[i]) for each ray, traced `group` rays (at most
-/// kMaxPacketRays) at a time.
-void twoLevelIntersectBatch(const TwoLevelParts& parts, int group, std::span<const Ray> rays,
-                            std::span<Hit> hits, std::span<uint8_t> found);
-/// blocked[i] = occluded(rays[i]) for each ray, `group` rays at a time.
-void twoLevelOccludedBatch(const TwoLevelParts& parts, int group, std::span<const Ray> rays,
-                           std::span<uint8_t> blocked);
+/// kMaxPacketRays) at a time: consecutive rays of the batch, or with `byOctant` consecutive
+/// rays of those whose directions share an octant.
+void twoLevelIntersectBatch(const TwoLevelParts& parts, int group, bool byOctant,
+                            std::span<const Ray> rays, std::span<Hit> hits,
+                            std::span<uint8_t> found);
+/// blocked[i] = occluded(rays[i]) for each ray, grouped as twoLevelIntersectBatch does.
+void twoLevelOccludedBatch(const TwoLevelParts& parts, int group, bool byOctant,
+                           std::span<const Ray> rays, std::span<uint8_t> blocked);
 
 }  // namespace tray
