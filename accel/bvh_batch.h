@@ -1,6 +1,6 @@
 #pragma once
 // Batched queries of the two-level BVH (Accelerator::intersectBatch / occludedBatch): groups of
-// consecutive rays of the batch traverse the top tree and each mesh tree together
+// rays of the batch traverse the top tree and each mesh tree together
 // (accel/bvh4_packet.h). What packets do not cover, analytic shapes, unbounded shapes and
 // deforming meshes, each ray of the group queries on its own.
 #include <cstdint>
