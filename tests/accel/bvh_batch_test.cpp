@@ -190,5 +190,12 @@ TEST(BvhBatch, SharedScenes) {
     expectEveryModeSameAsSingleRays(loadGltf(std::string(TRAY_SHARED_DIR) + file), file);
 }
 
+// The registry's "bvh" (default options) traces batches in groups, not by the loop: what
+// path_wavefront_test's SameAsScalar on "bvh" relies on to compare the groups' images with the
+// single-ray path's.
+TEST(BvhBatch, DefaultTracesGroups) {
+  EXPECT_GT(bvhBatchRays(TwoLevelOptions{}.batch), 1);
+}
+
 }  // namespace
 }  // namespace tray
