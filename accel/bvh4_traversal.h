@@ -20,25 +20,35 @@ struct Bvh4Ray {
   bool negative[3];
 };
 
-inline Bvh4Ray prepareBvh4Ray(const Vec3& o, const Vec3& d) {
+/// The reciprocal of a direction component. Like Embree's rcp_safe: a zero component becomes
+/// tiny, so 0 * inf never makes a NaN.
+inline float safeInverse(float d) {
+  return 1.0f / (std::fabs(d) < 1e-18f ? std::copysign(1e-18f, d) : d);
+}
+
+/// A Bvh4Ray from its origin and reciprocal direction.
+inline Bvh4Ray bvh4Ray(const float o[3], const float invD[3]) {
   Bvh4Ray r;
   for (int i = 0; i < 3; ++i) {
-    // Like Embree's rcp_safe: a zero component becomes tiny, so 0 * inf never makes a NaN.
-    float di = std::fabs(d[i]) < 1e-18f ? std::copysign(1e-18f, d[i]) : d[i];
-    float inv = 1.0f / di;
     r.o[i] = simd::set1(o[i]);
-    r.invD[i] = simd::set1(inv);
-    r.negative[i] = inv < 0;
+    r.invD[i] = simd::set1(invD[i]);
+    r.negative[i] = invD[i] < 0;
   }
   return r;
 }
 
-/// Slab test of a node's four children; bit c of the result is set when the ray enters child c
-/// within [tmin, tmax], and entry receives the entry distances. The far distance is enlarged by
-/// 2 gamma(3) (pbrt-v3, section 3.9.2) so rounding never culls a box that a watertight triangle
-/// test inside it would hit.
-inline int hitBoxes4(const Bvh4Node& n, const Bvh4Ray& r, simd::F4 tmin, simd::F4 tmax,
-                     simd::F4& entry) {
+inline Bvh4Ray prepareBvh4Ray(const Vec3& o, const Vec3& d) {
+  const float origin[3] = {o.x, o.y, o.z};
+  const float inv[3] = {safeInverse(d.x), safeInverse(d.y), safeInverse(d.z)};
+  return bvh4Ray(origin, inv);
+}
+
+/// Slab test of a node's four children; lane c of the mask (bit c of hitBoxes4's result) is set
+/// when the ray enters child c within [tmin, tmax], and entry receives the entry distances. The
+/// far distance is enlarged by 2 gamma(3) (pbrt-v3, section 3.9.2) so rounding never culls a box
+/// that a watertight triangle test inside it would hit.
+inline simd::M4 hitBoxes4Mask(const Bvh4Node& n, const Bvh4Ray& r, simd::F4 tmin, simd::F4 tmax,
+                              simd::F4& entry) {
   using namespace simd;
   constexpr float kEps = std::numeric_limits<float>::epsilon() * 0.5f;
   constexpr float kRobust = 1.0f + 2.0f * (3 * kEps) / (1 - 3 * kEps);
@@ -51,7 +61,11 @@ inline int hitBoxes4(const Bvh4Node& n, const Bvh4Ray& r, simd::F4 tmin, simd::F
   }
   tFar = min(tFar * set1(kRobust), tmax);
   entry = tNear;
-  return bits(tNear <= tFar);
+  return tNear <= tFar;
+}
+inline int hitBoxes4(const Bvh4Node& n, const Bvh4Ray& r, simd::F4 tmin, simd::F4 tmax,
+                     simd::F4& entry) {
+  return simd::bits(hitBoxes4Mask(n, r, tmin, tmax, entry));
 }
 
 // Every 4-wide level consumes at least one binary level and pushes at most three children; the
@@ -61,9 +75,11 @@ constexpr int kBvh4StackSize = 3 * 256;
 /// Calls leaf(first, count) for each leaf whose box the ray enters before `tmax`, nearest box
 /// first (kOrdered; else in slot order, cheaper for any-hit queries, where the first hit found
 /// ends the search wherever it lies). `leaf` may lower tmax (closest hit) and returns true to
-/// stop (any hit).
+/// stop (any hit). `root`: the subtree to traverse (packets hand a lone ray over,
+/// accel/bvh4_packet.h).
 template <bool kOrdered = true, class LeafFn>
-bool traverseBvh4(const Bvh4& bvh, const Bvh4Ray& r, float tmin, const float& tmax, LeafFn&& leaf) {
+bool traverseBvh4(const Bvh4& bvh, const Bvh4Ray& r, float tmin, const float& tmax, LeafFn&& leaf,
+                  uint32_t root = 0) {
   if (bvh.nodes.empty()) return false;
   const Bvh4Node* nodes = bvh.nodes.data();
   struct Item {
@@ -73,7 +89,7 @@ bool traverseBvh4(const Bvh4& bvh, const Bvh4Ray& r, float tmin, const float& tm
   Item stack[kBvh4StackSize];
   int top = 0;
   const simd::F4 tminv = simd::set1(tmin);
-  uint32_t current = 0;
+  uint32_t current = root;
   for (;;) {
     if (bvh4ref::leaf(current)) {
       if (leaf(bvh4ref::first(current), bvh4ref::count(current))) return true;

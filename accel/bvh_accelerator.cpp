@@ -11,7 +11,9 @@
 #include <atomic>
 
 #include "accel/bvh4_traversal.h"
+#include "accel/bvh_batch.h"
 #include "accel/bvh_mesh.h"
+#include "accel/bvh_object_ray.h"
 #include "core/alpha.h"
 #include "core/motion.h"
 #include "core/scene.h"
@@ -53,7 +55,7 @@ void shapeCrossings(const Primitive& p, uint32_t i, const Ray& ray, std::vector<
       }
 }
 
-class TwoLevelAccelerator final : public Accelerator {
+class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
  public:
   TwoLevelAccelerator(const Scene& scene, const TwoLevelOptions& options)
       : scene_(scene), options_(options), id_(gNextAcceleratorId++) {
@@ -100,6 +102,13 @@ class TwoLevelAccelerator final : public Accelerator {
       // One placed primitive (a single mesh, say): its own tree culls, the top tree adds nothing.
       if (top_.primitives.size() == 1) single_ = top_.primitives[0];
     }
+    // What the batched queries read (accel/bvh_batch.h).
+    TwoLevelParts::scene = &scene_;
+    top = &top_;
+    meshes = &meshes_;
+    alphaTested = &alphaTested_;
+    unbounded = &unbounded_;
+    single = single_;
   }
 
   bool intersect(const Ray& ray, Hit& hit) const override {
@@ -113,17 +122,36 @@ class TwoLevelAccelerator final : public Accelerator {
   }
 
   bool occluded(const Ray& ray) const override {
-    LastOccluder& cache = tLastOccluder;
-    if (options_.occluderCache && cache.accelerator == id_ &&
-        cache.primitive < scene_.primitives.size() && occludedBy(cache.primitive, cache.block, ray))
-      return true;
+    if (occludedByCached(ray)) return true;
     uint32_t block = 0;
     const float tmax = ray.tmax;
     return forEachPrimitive<false>(ray, tmax, [&](uint32_t i) {
       if (!occludedPrimitive(i, ray, block)) return false;
-      if (options_.occluderCache) cache = {id_, i, block};
+      cacheOccluder(i, block);
       return true;
     });
+  }
+
+  bool occludedByCached(const Ray& ray) const override {
+    const LastOccluder& cache = tLastOccluder;
+    return options_.occluderCache && cache.accelerator == id_ &&
+           cache.primitive < scene_.primitives.size() &&
+           occludedBy(cache.primitive, cache.block, ray);
+  }
+
+  void cacheOccluder(uint32_t i, uint32_t block) const override {
+    if (options_.occluderCache) tLastOccluder = {id_, i, block};
+  }
+
+  void intersectBatch(std::span<const Ray> rays, std::span<Hit> hits,
+                      std::span<uint8_t> found) const override {
+    if (!batched()) return Accelerator::intersectBatch(rays, hits, found);
+    twoLevelIntersectBatch(*this, bvhBatchRays(options_.batch), byOctant(), rays, hits, found);
+  }
+
+  void occludedBatch(std::span<const Ray> rays, std::span<uint8_t> blocked) const override {
+    if (!batched()) return Accelerator::occludedBatch(rays, blocked);
+    twoLevelOccludedBatch(*this, bvhBatchRays(options_.batch), byOctant(), rays, blocked);
   }
 
   void allHits(const Ray& ray, std::vector<Hit>& hits) const override {
@@ -133,7 +161,7 @@ class TwoLevelAccelerator final : public Accelerator {
       const Primitive& p = scene_.primitives[i];
       if (p.kind == Primitive::Kind::kMesh) {
         Ray local;
-        if (toObject(p, ray, ray.tmax, local)) meshes_[p.mesh]->allHits(local, i, hits);
+        if (objectRay(p, ray, ray.tmax, local)) meshes_[p.mesh]->allHits(local, i, hits);
       } else {
         shapeCrossings(p, i, ray, hits);
       }
@@ -181,29 +209,6 @@ class TwoLevelAccelerator final : public Accelerator {
   }
 
  private:
-  /// The ray in p's object space (a moving p placed at the ray's time, as Embree's instance
-  /// motion places it); false where p is flat at that time (core/motion.h) and cannot be hit.
-  static bool toObject(const Primitive& p, const Ray& ray, float tmax, Ray& local) {
-    if (p.motion.empty()) {
-      local = Ray{p.toWorld.inversePoint(ray.o),
-                  p.toWorld.inverseVector(ray.d),
-                  ray.tmin,
-                  tmax,
-                  ray.blend,
-                  ray.time};  // the time places a deforming mesh's triangles
-      return true;
-    }
-    Transform toWorld;
-    if (!toWorldAt(p, ray.time, toWorld)) return false;
-    local = Ray{toWorld.inversePoint(ray.o),
-                toWorld.inverseVector(ray.d),
-                ray.tmin,
-                tmax,
-                ray.blend,
-                ray.time};
-    return true;
-  }
-
   /// Calls visit(i) for every primitive the ray may hit before tmax; stops when it returns true.
   template <bool kOrdered = true, class Visit>
   bool forEachPrimitive(const Ray& ray, const float& tmax, Visit&& visit) const {
@@ -223,12 +228,15 @@ class TwoLevelAccelerator final : public Accelerator {
                                   });
   }
 
-  bool intersectPrimitive(uint32_t i, const Ray& ray, float& tmax, Hit& hit) const {
+  bool batched() const { return options_.hierarchy && options_.batch != BvhBatch::kLoop; }
+  bool byOctant() const { return options_.batch == BvhBatch::kStream64; }
+
+  bool intersectPrimitive(uint32_t i, const Ray& ray, float& tmax, Hit& hit) const override {
     const Primitive& p = scene_.primitives[i];
     if (p.kind == Primitive::Kind::kMesh) {
       Hit h;
       Ray local;
-      if (!toObject(p, ray, tmax, local)) return false;
+      if (!objectRay(p, ray, tmax, local)) return false;
       if (alphaTested_[p.mesh]) {
         const AlphaQuery q{scene_, ray, i};
         if (!meshes_[p.mesh]->intersect(local, tmax, h, q.filter())) return false;
@@ -253,7 +261,7 @@ class TwoLevelAccelerator final : public Accelerator {
     const Primitive& p = scene_.primitives[i];
     block = 0;
     Ray local;
-    if (p.kind == Primitive::Kind::kMesh && !toObject(p, ray, ray.tmax, local)) return false;
+    if (p.kind == Primitive::Kind::kMesh && !objectRay(p, ray, ray.tmax, local)) return false;
     if (p.kind == Primitive::Kind::kMesh && alphaTested_[p.mesh]) {
       // block stays 0 and occludedBy refuses alpha-tested meshes: the cache never skips the test.
       const AlphaQuery q{scene_, ray, i};
@@ -264,11 +272,18 @@ class TwoLevelAccelerator final : public Accelerator {
     return scene_.intersectShape(i, ray, h);
   }
 
+  bool occludedPrimitive(uint32_t i, const Ray& ray) const override {
+    uint32_t block;
+    if (!occludedPrimitive(i, ray, block)) return false;
+    cacheOccluder(i, block);
+    return true;
+  }
+
   bool occludedBy(uint32_t i, uint32_t block, const Ray& ray) const {
     const Primitive& p = scene_.primitives[i];
     Ray local;
     if (p.kind == Primitive::Kind::kMesh)
-      return meshes_[p.mesh] && !alphaTested_[p.mesh] && toObject(p, ray, ray.tmax, local) &&
+      return meshes_[p.mesh] && !alphaTested_[p.mesh] && objectRay(p, ray, ray.tmax, local) &&
              meshes_[p.mesh]->occludedBy(local, block);
     Hit h;
     return scene_.intersectShape(i, ray, h);
@@ -301,6 +316,15 @@ class TwoLevelAccelerator final : public Accelerator {
 };
 
 }  // namespace
+
+int bvhBatchRays(BvhBatch batch) {
+  switch (batch) {
+    case BvhBatch::kLoop: return 1;
+    case BvhBatch::kPacket8: return 8;
+    case BvhBatch::kStream64: return 64;
+  }
+  return 1;
+}
 
 std::unique_ptr<Accelerator> makeTwoLevelAccelerator(const Scene& scene,
                                                      const TwoLevelOptions& options) {

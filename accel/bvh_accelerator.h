@@ -6,12 +6,25 @@
 
 namespace tray {
 
+/// How Accelerator::intersectBatch/occludedBatch trace a batch (bench/path_bench and
+/// bench/accel_bench measure them; docs/wavefront.md).
+enum class BvhBatch {
+  kLoop,      ///< the single-ray query per ray, as the default implementation
+  kPacket8,   ///< groups of 8 consecutive rays traverse together (accel/bvh4_packet.h)
+  kStream64,  ///< groups of 64 rays whose directions share an octant: small ray streams
+};
+/// Rays per group of a mode (1 for kLoop).
+int bvhBatchRays(BvhBatch batch);
+
 struct TwoLevelOptions {
   BvhBuildOptions build;
   /// false: no trees at either level, every query tests every primitive and triangle.
   bool hierarchy = true;
   /// Test the primitive that blocked this thread's last shadow ray first (the seed's cache).
   bool occluderCache = true;
+  /// How batches are traced (the trees need a hierarchy: without one, batches loop). Streams of
+  /// 64: the fastest of the three in bench/path_bench and bench/batch_bench (docs/wavefront.md).
+  BvhBatch batch = BvhBatch::kStream64;
 };
 
 /// TRay's own two-level accelerator: a tree over the placed primitives (mesh instances and

@@ -7,6 +7,7 @@
 
 #include "accel/bvh.h"
 #include "accel/bvh4.h"
+#include "accel/bvh4_packet.h"
 #include "accel/bvh_triangle4.h"
 #include "core/hit.h"
 #include "core/ray.h"
@@ -19,6 +20,25 @@ namespace tray {
 /// than a template, so that opaque meshes keep their own, unfiltered loops.
 struct TriangleFilter {
   bool (*accept)(const void* data, uint32_t triangle, float b1, float b2);
+  const void* data;
+};
+
+/// The rays of a packet in a mesh's object space, prepared once for the box and triangle tests
+/// (the single-ray queries prepare the same values per query). Slot r holds ray r.
+struct PacketRays {
+  PacketBoxRay box[kMaxPacketRays];
+  WatertightRay4 triangle[kMaxPacketRays];
+  float tmin[kMaxPacketRays];
+  void set(int r, const Ray& ray) {
+    box[r] = PacketBoxRay(ray.o, ray.d);
+    triangle[r] = prepareWatertight4(ray.o, ray.d);
+    tmin[r] = ray.tmin;
+  }
+};
+
+/// TriangleFilter for packets: false = ray `ray` of the packet passes through the triangle.
+struct PacketTriangleFilter {
+  bool (*accept)(const void* data, int ray, uint32_t triangle, float b1, float b2);
   const void* data;
 };
 
@@ -43,6 +63,20 @@ class MeshBvh {
   /// reading the mesh's index and vertex arrays instead costs more than the cache saves.
   bool occludedBy(const Ray& ray, uint32_t block) const;
 
+  /// Packets (accel/bvh4_packet.h; static meshes only, !deforming()). Closest hits of the rays
+  /// in `active`: where ray r meets a triangle before tmax[r], lowers tmax[r], fills hits[r] as
+  /// intersect() does and sets bit r of the result. Each ray gets its intersect() hit (the
+  /// same arithmetic), up to which of several triangles at exactly equal t is reported.
+  RayMask intersectPacket(const PacketRays& rays, RayMask active, float* tmax, Hit* hits,
+                          const PacketTriangleFilter* filter = nullptr) const;
+  /// Clears from `alive` the rays of `active` (a subset) blocked within (tmin, tmax[r]); the
+  /// index of the block that blocked the highest-numbered of them goes to `block` (for
+  /// occludedBy: the next packet's first rays are that ray's neighbours).
+  void occludedPacket(const PacketRays& rays, RayMask active, RayMask& alive, const float* tmax,
+                      uint32_t& block, const PacketTriangleFilter* filter = nullptr) const;
+  /// Triangles move (TriangleMesh::positionSteps): packets do not apply.
+  bool deforming() const { return !stepBlocks_.empty(); }
+
   Bounds3 bounds() const { return bounds_; }
   /// The binary tree's SAH cost (before collapsing to 4-wide), its node and triangle counts.
   double sahCost() const { return sahCost_; }
@@ -56,6 +90,12 @@ class MeshBvh {
  private:
   template <class Accept>
   bool closestHit(const Ray& ray, float& tmax, Hit& hit, const Accept& accept) const;
+  template <class Accept>
+  RayMask closestHitPacket(const PacketRays& rays, RayMask active, float* tmax, Hit* hits,
+                           const Accept& accept) const;
+  template <class OnBlock>
+  void anyHitPacket(const PacketRays& rays, RayMask active, RayMask& alive, const float* tmax,
+                    uint32_t& blocker, OnBlock&& onBlock) const;
   template <bool kOrdered, class OnBlock>
   bool forEachBlock(const Ray& ray, const float& tmax, OnBlock&& onBlock) const;
   template <bool kOrdered, class BlockOf, class OnBlock>

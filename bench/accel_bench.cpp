@@ -23,6 +23,7 @@
 #include "accel/bvh_accelerator.h"
 #include "accel/registry.h"
 #include "bench/bench_meshes.h"
+#include "bench/bench_rays.h"
 #include "core/accelerator.h"
 #include "core/camera.h"
 #include "core/sampling.h"
@@ -79,38 +80,6 @@ BenchScene meshScene(const std::string& name, TriangleMesh mesh) {
   return b;
 }
 
-/// The rays every accelerator traces: made once per scene (with Embree) so all trace the same.
-struct RaySet {
-  std::vector<Ray> camera, shadow, bounce;
-};
-
-RaySet makeRays(const Scene& scene, int width, int height) {
-  RaySet rays;
-  CameraDesc desc = Camera::framing(scene.bounds(), float(width) / float(height));
-  auto camera = Camera::create(desc, width, height);
-  auto embree = makeAccelerator("embree", scene);
-  Bounds3 b = scene.bounds();
-  Vec3 light = b.center() + Vec3(0.3f, 1.5f, 0.4f) * length(b.diagonal());
-  std::mt19937 rng(1234);
-  std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) {
-      Ray r = camera->generateRay(x + 0.5f, y + 0.5f);
-      rays.camera.push_back(r);
-      Hit h;
-      if (!embree->intersect(r, h)) continue;
-      SurfacePoint sp = scene.surface(r, h);
-      Vec3 ng = dot(sp.ng, r.d) < 0 ? sp.ng : -sp.ng;
-      rays.shadow.push_back(spawnRayTo(sp.p, ng, light, 0.0f));
-      Vec3 t, s;
-      orthonormalBasis(ng, t, s);
-      float r1 = u(rng), r2 = u(rng), rad = std::sqrt(r1), phi = 2 * kPi * r2;
-      Vec3 d = rad * std::cos(phi) * t + rad * std::sin(phi) * s + std::sqrt(1 - r1) * ng;
-      rays.bounce.push_back(spawnRay(sp.p, ng, d, 0.0f));
-    }
-  return rays;
-}
-
 enum class Query { kClosest, kOccluded };
 
 /// Mrays/s of one query over a ray set, all cores, repeated for at least `minSeconds`. On a
@@ -151,10 +120,11 @@ struct Row {
 struct Candidate {
   Row row;
   std::unique_ptr<Accelerator> accel;
-  RaySet rays;  ///< the naive accelerator traces a slice of the rays, or it would take minutes
+  bench::RaySet rays;  ///< naive traces a slice of the rays, or it would take minutes
 };
 
-Candidate build(const BenchScene& bs, const std::string& accelName, const RaySet& rays) {
+Candidate build(const BenchScene& bs, const std::string& accelName,
+                const bench::RaySet& rays) {
   Candidate c{{bs.name, accelName, bs.triangles}, nullptr, rays};
   // Best of three builds (first-touch and thread start-up dominate small scenes; other
   // processes on a shared machine add noise to large ones). One for the slow incremental build.
@@ -255,7 +225,7 @@ int main(int argc, char** argv) {
   std::vector<Row> rows;
   for (const BenchScene& bs : scenes) {
     if (!onlyScene.empty() && bs.name != onlyScene) continue;
-    RaySet rays = makeRays(bs.scene, 320, 240);
+    bench::RaySet rays = bench::makeRays(bs.scene, 320, 240);
     std::vector<Candidate> cands;
     // bvh-nocache: bvh without the last-occluder cache, to measure what the cache buys.
     for (const char* accel : {"embree", "bvh", "bvh-nocache", "bvh-gs", "naive"}) {

@@ -2,7 +2,7 @@
 // `path` and `path-wavefront` side by side, against raw Embree traversal of incoherent rays,
 // measured in the same run on the same threads.
 // Usage: path_bench [scene.gltf] [threads] [size] [spp] [--accel NAME] [--no-replay]
-//   [--embree-modes]
+//   [--batch-modes]
 //   (default: the shared Cornell box, 2 threads, 512, 64; smaller runs serve for profiling)
 #include <sys/resource.h>
 #include <tbb/parallel_for.h>
@@ -16,6 +16,7 @@
 #include <mutex>
 
 #include "bench/cpu_time.h"
+#include "accel/bvh_accelerator.h"
 #include "accel/embree_accelerator.h"
 #include "accel/registry.h"
 #include "bench/image_error.h"
@@ -162,6 +163,7 @@ class BatchTimingAccelerator final : public Accelerator {
 struct Measured {
   RenderStats stats;
   double cpu = 0, samples = 0, traversal = -1;
+  double shadowShare = 0;  ///< the part of `traversal` spent on shadow rays
   double perCpuSecond() const { return samples / cpu * 1e-6; }
 };
 
@@ -181,6 +183,7 @@ Measured measure(const Scene& scene, const Accelerator& accel, const Camera& cam
   m.samples = double(size) * size * settings.getInt("spp");
   const double batched = double(timed.closestNs + timed.shadowNs) * 1e-9;
   if (batched > 0) m.traversal = batched / (m.stats.seconds * threads);
+  if (batched > 0) m.shadowShare = double(timed.shadowNs) * 1e-9 / batched;
   return m;
 }
 
@@ -240,7 +243,7 @@ void replay(const Scene& scene, const Accelerator& accel, const RenderSettings& 
 }
 
 int run(const std::string& path, const std::string& accelName, int threads, int size, int spp,
-        bool replayRays, const std::string& sampler, bool error, bool embreeModes) {
+        bool replayRays, const std::string& sampler, bool error, bool batchModes) {
   Scene scene = benchScene(path);
   auto camera = Camera::create(chooseCamera(scene, -1), size, size);
   auto accel = makeAccelerator(accelName, scene);
@@ -258,19 +261,31 @@ int run(const std::string& path, const std::string& accelName, int threads, int 
   print("path-wavefront", wave, threads);
   std::printf("  wavefront / scalar: %.2fx samples per CPU-second\n",
               wave.perCpuSecond() / scalar.perCpuSecond());
-  if (embreeModes && accelName == "embree") {
-    // How the wavefront's batches reach Embree: per ray, or the stream API either way.
-    const std::pair<const char*, EmbreeBatch> modes[] = {
-        {"rtcIntersect1 loop", EmbreeBatch::kLoop},
-        {"rtcIntersect1M stream", EmbreeBatch::kStream},
-        {"rtcIntersect8 packets", EmbreeBatch::kPacket8}};
-    for (const auto& [name, mode] : modes) {
-      auto a = makeEmbreeAccelerator(scene, mode);
+  if (batchModes) {
+    // How the wavefront's batches are traced: per ray, or by the accelerator's batched ways.
+    std::vector<std::pair<std::string, std::unique_ptr<Accelerator>>> modes;
+    if (accelName == "embree") {
+      modes.emplace_back("rtcIntersect1 loop", makeEmbreeAccelerator(scene, EmbreeBatch::kLoop));
+      modes.emplace_back("rtcIntersect1M stream",
+                         makeEmbreeAccelerator(scene, EmbreeBatch::kStream));
+      modes.emplace_back("rtcIntersect8 packets",
+                         makeEmbreeAccelerator(scene, EmbreeBatch::kPacket8));
+    } else if (accelName == "bvh" || accelName == "bvh-gs") {
+      for (BvhBatch batch : {BvhBatch::kLoop, BvhBatch::kPacket8, BvhBatch::kStream64}) {
+        TwoLevelOptions options;
+        if (accelName == "bvh-gs") options.build.builder = BvhBuilder::kGoldsmithSalmon;
+        options.batch = batch;
+        const int rays = bvhBatchRays(batch);
+        modes.emplace_back(rays == 1 ? "single-ray loop" : std::to_string(rays) + "-ray groups",
+                           makeTwoLevelAccelerator(scene, options));
+      }
+    }
+    for (const auto& [name, a] : modes) {
       const Measured m = measure(scene, *a, *camera, settings, "path-wavefront", size, threads);
       std::printf("  wavefront, %-26s %.3f Msamples per CPU-second (%.2fx scalar), traversal "
-                  "%.0f%%\n",
-                  name, m.perCpuSecond(), m.perCpuSecond() / scalar.perCpuSecond(),
-                  100 * m.traversal);
+                  "%.0f%% (%.0f%% of it shadow rays)\n",
+                  name.c_str(), m.perCpuSecond(), m.perCpuSecond() / scalar.perCpuSecond(),
+                  100 * m.traversal, 100 * m.shadowShare);
     }
   }
   double raw = rawTraversalMrays(*accel, scene.bounds(), threads);
@@ -291,7 +306,7 @@ int main(int argc, char** argv) {
   std::string path = std::string(TRAY_SOURCE_DIR) + "/../shared/reference/cornell-box.gltf";
   std::string accelName = "embree";
   int threads = 2, size = 512, spp = 64;
-  bool replay = true, error = true, embreeModes = false;
+  bool replay = true, error = true, batchModes = false;
   std::string sampler = "independent";
   CLI::App app{"Path tracing throughput (Msamples/s, Mrays/s) against bare traversal"};
   app.add_option("scene", path, "glTF scene (default: the shared Cornell box)");
@@ -304,11 +319,13 @@ int main(int argc, char** argv) {
   app.add_flag("!--no-replay", replay, "skip the replay of the path's rays (profiling runs)");
   app.add_flag("!--no-error", error,
                "skip the equal-error comparison (needs SCENE.ref.exr beside the scene)");
-  app.add_flag("--embree-modes", embreeModes,
-               "also time path-wavefront with each way of batching Embree queries");
+  app.add_flag("--batch-modes,--embree-modes", batchModes,
+               "also time path-wavefront with each way the accelerator batches queries "
+               "(embree: loop, stream, packets; bvh, bvh-gs: loop, 8-ray packets, 64-ray "
+               "streams)");
   CLI11_PARSE(app, argc, argv);
   try {
-    return run(path, accelName, threads, size, spp, replay, sampler, error, embreeModes);
+    return run(path, accelName, threads, size, spp, replay, sampler, error, batchModes);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "path_bench: %s\n", e.what());
     return 2;

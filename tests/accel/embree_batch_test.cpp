@@ -1,5 +1,5 @@
 // Accelerator::intersectBatch / occludedBatch against the single-ray queries they batch:
-// every way of reaching Embree (loop, stream, 8-wide packets), the BVH's default loop, on
+// every way of reaching Embree (loop, stream, 8-wide packets), the BVH's default batch, on
 // opaque meshes and on alpha-tested ones (the filter finds each ray by its id in the batch).
 #include <gtest/gtest.h>
 

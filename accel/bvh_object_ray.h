@@ -1,0 +1,34 @@
+#pragma once
+// How a ray enters a placed mesh in the two-level BVH: the same arithmetic for single rays
+// (accel/bvh_accelerator.cpp) and packets (accel/bvh_batch.cpp), so both see the same hits.
+#include "core/motion.h"
+#include "core/ray.h"
+#include "core/scene.h"
+
+namespace tray {
+
+/// The ray in p's object space (a moving p placed at the ray's time, as Embree's instance motion
+/// places it), t unchanged (the direction is not normalised); false where p is flat at that time
+/// (core/motion.h) and cannot be hit.
+inline bool objectRay(const Primitive& p, const Ray& ray, float tmax, Ray& local) {
+  if (p.motion.empty()) {
+    local = Ray{p.toWorld.inversePoint(ray.o),
+                p.toWorld.inverseVector(ray.d),
+                ray.tmin,
+                tmax,
+                ray.blend,
+                ray.time};  // the time places a deforming mesh's triangles
+    return true;
+  }
+  Transform toWorld;
+  if (!toWorldAt(p, ray.time, toWorld)) return false;
+  local = Ray{toWorld.inversePoint(ray.o),
+              toWorld.inverseVector(ray.d),
+              ray.tmin,
+              tmax,
+              ray.blend,
+              ray.time};
+  return true;
+}
+
+}  // namespace tray
