@@ -34,6 +34,7 @@ struct ShapeUserData {
 /// traversal continues (Embree's tutorials/next_hit).
 struct AllHitsContext {
   RTCIntersectContext base;
+  const Scene* scene;
   std::vector<Hit>* hits;
 };
 
@@ -41,7 +42,7 @@ void allHitsFilter(const RTCFilterFunctionNArguments* args) {
   auto* ctx = reinterpret_cast<const AllHitsContext*>(args->context);
   const RTCHit* h = reinterpret_cast<const RTCHit*>(args->hit);
   const RTCRay* r = reinterpret_cast<const RTCRay*>(args->ray);
-  Hit hit = hitFromEmbree(*h, r->tfar);
+  Hit hit = hitFromEmbree(*h, r->tfar, *ctx->scene);
   // Embree may report a triangle more than once (RenderKit/embree#12): keep one.
   auto same = [&](const Hit& o) {
     return o.primitive == hit.primitive && o.triangle == hit.triangle && o.t == hit.t &&
@@ -165,7 +166,7 @@ class EmbreeAccelerator final : public Accelerator {
     RTCRayHit rh = toEmbree(ray);
     rtcIntersect1(top_, &ctx.base, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-    hit = hitFromEmbree(rh.hit, rh.ray.tfar);
+    hit = hitFromEmbree(rh.hit, rh.ray.tfar, scene_);
     return true;
   }
 
@@ -195,6 +196,7 @@ class EmbreeAccelerator final : public Accelerator {
     AllHitsContext ctx;
     rtcInitIntersectContext(&ctx.base);
     ctx.base.filter = allHitsFilter;
+    ctx.scene = &scene_;
     ctx.hits = &hits;
     RTCRayHit rh = toEmbree(ray);
     rtcIntersect1(top_, &ctx.base, &rh);
@@ -273,6 +275,21 @@ class EmbreeAccelerator final : public Accelerator {
     return s;
   }
 
+  /// Mesh primitive p's triangles in world space (its toWorld applied to each vertex), as
+  /// triangle geometry of the top scene; hits then carry its primitive index as geometry id.
+  RTCGeometry worldMeshGeometry(const Primitive& p) {
+    const TriangleMesh& m = scene_.meshes[p.mesh];
+    RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+    std::vector<Vec3> world(m.positions.size());
+    for (size_t k = 0; k < world.size(); ++k) world[k] = p.toWorld.point(m.positions[k]);
+    copyToEmbree(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, world.data(), sizeof(Vec3),
+                 world.size());
+    copyToEmbree(g, RTC_BUFFER_TYPE_INDEX, RTC_FORMAT_UINT3, m.indices.data(), 3 * sizeof(uint32_t),
+                 m.triangleCount());
+    attachAlphaFilter(g, scene_, m);
+    return g;
+  }
+
   /// An instance's placement: its one transform, or for a moving primitive one per motion step,
   /// which Embree interpolates linearly by the ray's time (core/motion.h does the same).
   static void setInstanceMotion(RTCGeometry g, const Primitive& p) {
@@ -289,10 +306,13 @@ class EmbreeAccelerator final : public Accelerator {
     top_ = rtcNewScene(device_);
     rtcSetSceneFlags(top_, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
     userData_.resize(scene_.primitives.size());
+    const std::vector<uint8_t> flat = embreeFlattenedMeshes(scene_);
     for (uint32_t i = 0; i < scene_.primitives.size(); ++i) {
       const Primitive& p = scene_.primitives[i];
       RTCGeometry g;
-      if (p.kind == Primitive::Kind::kMesh) {
+      if (flat[i]) {
+        g = worldMeshGeometry(p);
+      } else if (p.kind == Primitive::Kind::kMesh) {
         if (scene_.meshes[p.mesh].triangleCount() == 0) continue;
         g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
         rtcSetGeometryInstancedScene(g, meshScene(p.mesh));
@@ -331,6 +351,21 @@ class EmbreeAccelerator final : public Accelerator {
 };
 
 }  // namespace
+
+std::vector<uint8_t> embreeFlattenedMeshes(const Scene& scene) {
+  std::vector<int> uses(scene.meshes.size(), 0);
+  for (const Primitive& p : scene.primitives)
+    if (p.kind == Primitive::Kind::kMesh) ++uses[p.mesh];
+  std::vector<uint8_t> flat(scene.primitives.size(), 0);
+  for (size_t i = 0; i < flat.size(); ++i) {
+    const Primitive& p = scene.primitives[i];
+    if (p.kind != Primitive::Kind::kMesh) continue;
+    const TriangleMesh& m = scene.meshes[p.mesh];
+    flat[i] = uses[p.mesh] == 1 && p.motion.empty() && m.positionSteps.empty() &&
+              m.triangleCount() >= kEmbreeFlattenTriangles;
+  }
+  return flat;
+}
 
 std::unique_ptr<Accelerator> makeEmbreeAccelerator(const Scene& scene) {
   return makeEmbreeAccelerator(scene, EmbreeBatch::kPacket8);

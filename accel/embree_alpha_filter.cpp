@@ -12,7 +12,9 @@ void alphaFilter(const RTCFilterFunctionNArguments* args) {
   const auto* ctx = reinterpret_cast<const AlphaRayContext*>(args->context);
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] == 0) continue;
-    const uint32_t primitive = RTCHitN_instID(args->hit, args->N, i, 0);
+    // An instance's id, or for a mesh flattened into the top scene its geometry's.
+    uint32_t primitive = RTCHitN_instID(args->hit, args->N, i, 0);
+    if (primitive == RTC_INVALID_GEOMETRY_ID) primitive = RTCHitN_geomID(args->hit, args->N, i);
     const uint32_t triangle = RTCHitN_primID(args->hit, args->N, i);
     const float u = RTCHitN_u(args->hit, args->N, i), v = RTCHitN_v(args->hit, args->N, i);
     const Ray& ray =

@@ -22,8 +22,8 @@ void laneMask(size_t b, size_t n, int valid[kLanes]) {
   for (int l = 0; l < kLanes; ++l) valid[l] = b + size_t(l) < n ? -1 : 0;
 }
 
-void intersectPackets(RTCScene top, RTCIntersectContext* ctx, std::span<const Ray> rays,
-                      std::span<Hit> hits, std::span<uint8_t> found) {
+void intersectPackets(RTCScene top, const Scene& scene, RTCIntersectContext* ctx,
+                      std::span<const Ray> rays, std::span<Hit> hits, std::span<uint8_t> found) {
   const size_t n = rays.size();
   for (size_t b = 0; b < n; b += kLanes) {
     alignas(32) int valid[kLanes];
@@ -42,7 +42,7 @@ void intersectPackets(RTCScene top, RTCIntersectContext* ctx, std::span<const Ra
       h.Ng_x = p.hit.Ng_x[l], h.Ng_y = p.hit.Ng_y[l], h.Ng_z = p.hit.Ng_z[l];
       h.u = p.hit.u[l], h.v = p.hit.v[l];
       h.primID = p.hit.primID[l], h.geomID = p.hit.geomID[l], h.instID[0] = p.hit.instID[0][l];
-      hits[b + l] = hitFromEmbree(h, p.ray.tfar[l]);
+      hits[b + l] = hitFromEmbree(h, p.ray.tfar[l], scene);
     }
   }
 }
@@ -66,7 +66,8 @@ void embreeIntersectBatch(RTCScene top, const Scene& scene, EmbreeBatch mode,
                           std::span<const Ray> rays, std::span<Hit> hits,
                           std::span<uint8_t> found) {
   AlphaRayContext ctx(scene, rays.data());
-  if (mode == EmbreeBatch::kPacket8) return intersectPackets(top, &ctx.base, rays, hits, found);
+  if (mode == EmbreeBatch::kPacket8)
+    return intersectPackets(top, scene, &ctx.base, rays, hits, found);
   ctx.base.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
   static thread_local std::vector<RTCRayHit> queue;
   queue.resize(rays.size());
@@ -77,7 +78,7 @@ void embreeIntersectBatch(RTCScene top, const Scene& scene, EmbreeBatch mode,
   rtcIntersect1M(top, &ctx.base, queue.data(), unsigned(queue.size()), sizeof(RTCRayHit));
   for (size_t i = 0; i < rays.size(); ++i) {
     found[i] = queue[i].hit.geomID != RTC_INVALID_GEOMETRY_ID;
-    if (found[i]) hits[i] = hitFromEmbree(queue[i].hit, queue[i].ray.tfar);
+    if (found[i]) hits[i] = hitFromEmbree(queue[i].hit, queue[i].ray.tfar, scene);
   }
 }
 

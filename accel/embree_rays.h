@@ -5,6 +5,7 @@
 
 #include "core/hit.h"
 #include "core/ray.h"
+#include "core/scene.h"
 
 namespace tray {
 
@@ -32,13 +33,14 @@ inline RTCRayHit toEmbree(const Ray& r) {
   return rh;
 }
 
-
-/// TRay's hit from Embree's: an instance (a mesh) or user geometry (an analytic shape).
-inline Hit hitFromEmbree(const RTCHit& h, float t) {
+/// TRay's hit from Embree's: a mesh (an instance, or a mesh flattened into the top scene, whose
+/// geometry id is its primitive's) or user geometry (an analytic shape).
+inline Hit hitFromEmbree(const RTCHit& h, float t, const Scene& scene) {
   Hit hit;
   hit.t = t;
-  if (h.instID[0] != RTC_INVALID_GEOMETRY_ID) {
-    hit.primitive = h.instID[0];
+  const bool inTop = h.instID[0] == RTC_INVALID_GEOMETRY_ID;
+  if (!inTop || scene.primitives[h.geomID].kind == Primitive::Kind::kMesh) {
+    hit.primitive = inTop ? h.geomID : h.instID[0];
     hit.triangle = h.primID;
     hit.b1 = h.u;
     hit.b2 = h.v;
