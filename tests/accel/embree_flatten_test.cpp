@@ -79,6 +79,22 @@ void expectSameHit(const Scene& s, const Ray& r, const Hit& e, const Hit& b) {
   EXPECT_LT(length(pe.p - pb.p), 1e-4f);
 }
 
+/// Closest hits and occlusion of random rays on Embree and the BVH compared; `visit` sees each
+/// of Embree's hits.
+template <class Visit>
+void forEachHit(const Scene& s, Visit visit) {
+  auto embree = makeAccelerator("embree", s), bvh = makeAccelerator("bvh", s);
+  for (const Ray& r : rays(20000)) {
+    Hit e, b;
+    const bool he = embree->intersect(r, e), hb = bvh->intersect(r, b);
+    ASSERT_EQ(he, hb);
+    EXPECT_EQ(embree->occluded(r), bvh->occluded(r));
+    if (!he) continue;
+    expectSameHit(s, r, e, b);
+    visit(e);
+  }
+}
+
 TEST(EmbreeFlatten, OnlyBigStaticMeshesPlacedOnce) {
   Scene s = scene(diffuse(Color(0.5f)));
   EXPECT_EQ(embreeFlattenedMeshes(s), (std::vector<uint8_t>{1, 0, 0, 0}));
@@ -93,17 +109,10 @@ TEST(EmbreeFlatten, OnlyBigStaticMeshesPlacedOnce) {
 
 TEST(EmbreeFlatten, BigMeshPlacedOnceHitsAsTheInstancedTree) {
   Scene s = scene(diffuse(Color(0.5f)));
-  auto embree = makeAccelerator("embree", s), bvh = makeAccelerator("bvh", s);
   int meshHits[3] = {0, 0, 0};
-  for (const Ray& r : rays(20000)) {
-    Hit e, b;
-    const bool he = embree->intersect(r, e), hb = bvh->intersect(r, b);
-    ASSERT_EQ(he, hb);
-    EXPECT_EQ(embree->occluded(r), bvh->occluded(r));
-    if (!he) continue;
-    expectSameHit(s, r, e, b);
+  forEachHit(s, [&](const Hit& e) {
     if (e.primitive < 3) ++meshHits[e.primitive];
-  }
+  });
   // Each placement is met often: the flattened grid, and both instances of the shared one.
   for (int n : meshHits) EXPECT_GT(n, 500);
 }
@@ -136,20 +145,12 @@ TEST(EmbreeFlatten, AlphaTestAppliesToTheFlattenedMesh) {
   Material m;
   m.alphaMode = AlphaMode::kMask;  // vertex alpha: the x < 0 half is solid, x > 0 cut out
   Scene s = scene(m);
-  auto embree = makeAccelerator("embree", s), bvh = makeAccelerator("bvh", s);
   int flatHits = 0;
-  for (const Ray& r : rays(20000)) {
-    Hit e, b;
-    const bool he = embree->intersect(r, e), hb = bvh->intersect(r, b);
-    ASSERT_EQ(he, hb);
-    EXPECT_EQ(embree->occluded(r), bvh->occluded(r));
-    if (!he) continue;
-    expectSameHit(s, r, e, b);
-    if (e.primitive == 0) {
-      ++flatHits;
-      EXPECT_GE(vertexAlpha(s.meshes[0], e.triangle, e.b1, e.b2), 0.5f);  // never the cut half
-    }
-  }
+  forEachHit(s, [&](const Hit& e) {
+    if (e.primitive != 0) return;
+    ++flatHits;
+    EXPECT_GE(vertexAlpha(s.meshes[0], e.triangle, e.b1, e.b2), 0.5f);  // never the cut half
+  });
   EXPECT_GT(flatHits, 200);
 }
 

@@ -14,20 +14,10 @@
 
 #include "core/texture_pyramid.h"
 #include "core/texture_sampler.h"
+#include "tests/core/random_texture.h"
 
 namespace tray {
 namespace {
-
-TextureImage floatImage(int w, int h, uint32_t seed) {
-  TextureImage im;
-  im.name = std::to_string(w) + "x" + std::to_string(h);
-  im.width = w, im.height = h;
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  im.pixels.resize(size_t(w) * size_t(h) * 3);
-  for (float& p : im.pixels) p = u(rng);
-  return im;
-}
 
 /// Codes as the glTF loader keeps them, with an sRGB-like table (any increasing table will do).
 TextureImage codeImage(int w, int h, int channels, bool wide, uint32_t seed) {
@@ -50,11 +40,12 @@ TextureImage codeImage(int w, int h, int channels, bool wide, uint32_t seed) {
 }
 
 std::vector<TextureImage> testImages() {
-  return {floatImage(37, 5, 1),   floatImage(1, 19, 2),         floatImage(19, 1, 3),
-          floatImage(1, 1, 4),    floatImage(64, 64, 5),        floatImage(131, 67, 6),
-          floatImage(256, 96, 7), floatImage(300, 200, 8),      codeImage(97, 61, 3, false, 9),
-          codeImage(50, 33, 1, true, 10), codeImage(128, 128, 4, false, 11),
-          codeImage(45, 300, 2, false, 12)};
+  return {test::randomFloatImage(37, 5, 1),   test::randomFloatImage(1, 19, 2),
+          test::randomFloatImage(19, 1, 3),   test::randomFloatImage(1, 1, 4),
+          test::randomFloatImage(64, 64, 5),  test::randomFloatImage(131, 67, 6),
+          test::randomFloatImage(256, 96, 7), test::randomFloatImage(300, 200, 8),
+          codeImage(97, 61, 3, false, 9),     codeImage(50, 33, 1, true, 10),
+          codeImage(128, 128, 4, false, 11),  codeImage(45, 300, 2, false, 12)};
 }
 
 bool sameBits(const Color& a, const Color& b) {
@@ -127,7 +118,7 @@ TEST(TextureLookup, RandomLookupsEqualOiiosBitForBit) {
 TEST(TextureLookup, AtTexelCentresEveryLevelGivesItsTexels) {
   // A footprint that selects exactly one MIP level, at its texel centres: the pyramid's texels,
   // level by level.
-  const TextureImage im = floatImage(40, 24, 3);
+  const TextureImage im = test::randomFloatImage(40, 24, 3);
   const TexturePyramid p(im);
   for (int level = 0; level < p.levels(); ++level) {
     const int w = p.width(level), h = p.height(level);
@@ -152,7 +143,7 @@ TEST(TextureLookup, EveryTileMadeTakesTheBytesThatBoundTheBudget) {
   // tileBytesAtMost is what decides between TRay's filter and OIIO's paged cache: reading every
   // texel of every tiled level makes tiles of exactly that many bytes, and no more.
   for (auto [w, h] : {std::pair{300, 200}, std::pair{1, 19}, std::pair{131, 67}}) {
-    const TextureImage im = floatImage(w, h, 5);
+    const TextureImage im = test::randomFloatImage(w, h, 5);
     const TexturePyramid p(im);
     float scratch[3];
     for (int level = 1; level <= TexturePyramid::kComputed && level < p.levels(); ++level)
@@ -164,7 +155,7 @@ TEST(TextureLookup, EveryTileMadeTakesTheBytesThatBoundTheBudget) {
 }
 
 TEST(TextureLookup, TilesAreMadeOnceAndAnyThreadCountGivesTheSameValues) {
-  const std::vector<TextureImage> images{floatImage(700, 500, 9)};
+  const std::vector<TextureImage> images{test::randomFloatImage(700, 500, 9)};
   // Footprints of 2 to 8 texels: levels 1 to 3, the ones made in tiles on first use.
   std::vector<UvFootprint> lookups;
   RandomLookups random;

@@ -10,27 +10,17 @@
 #include <random>
 
 #include "core/texture_sampler.h"
+#include "tests/core/random_texture.h"
 
 namespace tray {
 namespace {
-
-TextureImage randomImage(int w, int h, uint32_t seed) {
-  TextureImage im;
-  im.name = std::to_string(w) + "x" + std::to_string(h);
-  im.width = w, im.height = h;
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  im.pixels.resize(size_t(w) * size_t(h) * 3);
-  for (float& p : im.pixels) p = u(rng);
-  return im;
-}
 
 bool sameBits(const Color& a, const Color& b) {
   return std::memcmp(&a, &b, sizeof(Color)) == 0;
 }
 
 TEST(TexturePyramid, LevelSizesAreOiiosAutomipSizes) {
-  const TextureImage im = randomImage(37, 5, 1);
+  const TextureImage im = test::randomFloatImage(37, 5, 1);
   const TexturePyramid p(im);
   // 37x5 -> 18x2 -> 9x1 -> 4x1 -> 2x1 -> 1x1
   ASSERT_EQ(p.levels(), 6);
@@ -45,9 +35,10 @@ TEST(TexturePyramid, LevelSizesAreOiiosAutomipSizes) {
 TEST(TexturePyramid, FilteredLookupsMatchOiioAutomipBitForBit) {
   // Odd, tall, wide and power-of-two sizes; levels past kComputed are stored, the others made
   // on demand, so both paths are compared.
-  std::vector<TextureImage> images{randomImage(37, 5, 1), randomImage(1, 19, 2),
-                                   randomImage(64, 64, 3), randomImage(131, 67, 4),
-                                   randomImage(300, 200, 5)};
+  std::vector<TextureImage> images{
+      test::randomFloatImage(37, 5, 1), test::randomFloatImage(1, 19, 2),
+      test::randomFloatImage(64, 64, 3), test::randomFloatImage(131, 67, 4),
+      test::randomFloatImage(300, 200, 5)};
   const TextureSampler ours(images, 0, TextureBackend::kOiio),
       oiio(images, 0, TextureBackend::kOiioAutomip);
   std::mt19937 rng(7);
