@@ -47,9 +47,7 @@ class TexturePyramid {
     if (level == 0) return texel0(x, y, scratch);
     if (l.stored) return l.stored + 3 * (size_t(y) * size_t(l.width) + size_t(x));
     const int tx = x / kTile, ty = y / kTile;
-    const float* tile = l.tiles[size_t(ty) * size_t(l.tilesX) + size_t(tx)].load(
-        std::memory_order_acquire);
-    if (!tile) tile = makeTile(level, tx, ty);
+    const float* tile = this->tile(level, tx, ty);
     const int tileWidth = std::min(kTile, l.width - tx * kTile);
     return tile + 3 * (size_t(y - ty * kTile) * size_t(tileWidth) + size_t(x - tx * kTile));
   }
@@ -93,7 +91,24 @@ class TexturePyramid {
     return scratch;
   }
   const float* makeTile(int level, int tx, int ty) const;
-  void compute(int level, int y, float* rgb) const;
+  /// The tile (tx, ty) of a tiled level, made if missing.
+  const float* tile(int level, int tx, int ty) const {
+    const Level& l = levels_[size_t(level)];
+    const float* t = l.tiles[size_t(ty) * size_t(l.tilesX) + size_t(tx)].load(
+        std::memory_order_acquire);
+    return t ? t : makeTile(level, tx, ty);
+  }
+  /// Texels [x0, x0 + w) x [y0, y0 + h) of `level` (>= 1) into `out` (row j at out + j *
+  /// stride floats), computed from the level below read as one block (readBlock): through
+  /// its tiles when `fromTiles`, else computed the same way in turn.
+  void computeBlock(int level, int x0, int y0, int w, int h, float* out, size_t stride,
+                    bool fromTiles) const;
+  /// Texels [x0, x0 + w) x [y0, y0 + h) of `level`, all inside it, into `out` (row stride
+  /// `stride` floats): level 0 from its floats or codes, stored levels copied, tiled levels
+  /// from their tiles or computed (computeBlock).
+  void readBlock(int level, int x0, int y0, int w, int h, float* out, size_t stride,
+                 bool fromTiles) const;
+  void readLevel0(int x0, int y0, int w, int h, float* out, size_t stride) const;
 
   const TextureImage& image_;
   std::vector<Level> levels_;
