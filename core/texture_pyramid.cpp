@@ -115,6 +115,20 @@ void codeRow(const unsigned char* bytes, const float* table, size_t first, int w
   }
 }
 
+/// Zeroes the texels of a w x h block of RGB floats outside [xa, xb) x [ya, yb).
+void zeroOutside(float* block, int w, int h, int xa, int xb, int ya, int yb) {
+  const size_t stride = size_t(w) * 3;
+  for (int y = 0; y < h; ++y) {
+    float* row = block + size_t(y) * stride;
+    if (y < ya || y >= yb || xa >= xb) {
+      std::fill(row, row + stride, 0.0f);
+      continue;
+    }
+    std::fill(row, row + 3 * size_t(xa), 0.0f);
+    std::fill(row + 3 * size_t(xb), row + stride, 0.0f);
+  }
+}
+
 template <bool kWide>
 void codeRowOf(int channels, const unsigned char* bytes, const float* table, size_t first, int w,
                float* out) {
@@ -179,15 +193,20 @@ void TexturePyramid::computeBlock(int level, int x0, int y0, int w, int h, float
   const int sx0 = xs.low.front(), sy0 = ys.low.front();
   const int sw = xs.low.back() + 2 - sx0, sh = ys.low.back() + 2 - sy0;
   const size_t srcStride = size_t(sw) * 3;
-  std::vector<float> src(srcStride * size_t(sh), 0.0f);
+  // One buffer per level and thread, kept: the recursion through the finer levels uses one
+  // each, and a tile's source block (200 KB) is not allocated and paged in again per tile.
+  thread_local std::vector<float> buffers[32];
+  std::vector<float>& buffer = buffers[level];
+  if (buffer.size() < srcStride * size_t(sh)) buffer.resize(srcStride * size_t(sh));
+  float* src = buffer.data();
   const int ax = std::max(sx0, 0), bx = std::min(sx0 + sw, upW);
   const int ay = std::max(sy0, 0), by = std::min(sy0 + sh, upH);
   if (ax < bx && ay < by)
     readBlock(level - 1, ax, ay, bx - ax, by - ay,
-              src.data() + size_t(ay - sy0) * srcStride + 3 * size_t(ax - sx0), srcStride,
-              fromTiles);
+              src + size_t(ay - sy0) * srcStride + 3 * size_t(ax - sx0), srcStride, fromTiles);
+  zeroOutside(src, sw, sh, ax - sx0, bx - sx0, ay - sy0, by - sy0);
   for (int j = 0; j < h; ++j) {
-    const float* r0 = src.data() + size_t(ys.low[size_t(j)] - sy0) * srcStride;
+    const float* r0 = src + size_t(ys.low[size_t(j)] - sy0) * srcStride;
     const float* r1 = r0 + srcStride;
     float* o = out + size_t(j) * stride;
     const float yfrac = ys.frac[size_t(j)];
