@@ -3,6 +3,7 @@
 #include <OpenImageIO/fmath.h>
 #include <tbb/parallel_for.h>
 
+#include <climits>
 #include <cstring>
 
 namespace tray {
@@ -193,21 +194,12 @@ void TexturePyramid::computeBlock(int level, int x0, int y0, int w, int h, float
   const int sx0 = xs.low.front(), sy0 = ys.low.front();
   const int sw = xs.low.back() + 2 - sx0, sh = ys.low.back() + 2 - sy0;
   const size_t srcStride = size_t(sw) * 3;
+  const int ax = std::max(sx0, 0), bx = std::min(sx0 + sw, upW);
   // One buffer per level and thread, kept: the recursion through the finer levels uses one
-  // each, and a tile's source block (200 KB) is not allocated and paged in again per tile.
+  // each, and a tile's source is not allocated and paged in again per tile.
   thread_local std::vector<float> buffers[32];
   std::vector<float>& buffer = buffers[level];
-  if (buffer.size() < srcStride * size_t(sh)) buffer.resize(srcStride * size_t(sh));
-  float* src = buffer.data();
-  const int ax = std::max(sx0, 0), bx = std::min(sx0 + sw, upW);
-  const int ay = std::max(sy0, 0), by = std::min(sy0 + sh, upH);
-  if (ax < bx && ay < by)
-    readBlock(level - 1, ax, ay, bx - ax, by - ay,
-              src + size_t(ay - sy0) * srcStride + 3 * size_t(ax - sx0), srcStride, fromTiles);
-  zeroOutside(src, sw, sh, ax - sx0, bx - sx0, ay - sy0, by - sy0);
-  for (int j = 0; j < h; ++j) {
-    const float* r0 = src + size_t(ys.low[size_t(j)] - sy0) * srcStride;
-    const float* r1 = r0 + srcStride;
+  auto bilerpRow = [&](int j, const float* r0, const float* r1) {
     float* o = out + size_t(j) * stride;
     const float yfrac = ys.frac[size_t(j)];
     for (int i = 0; i < w; ++i) {
@@ -215,6 +207,41 @@ void TexturePyramid::computeBlock(int level, int x0, int y0, int w, int h, float
       OIIO::bilerp(r0 + x, r0 + x + 3, r1 + x, r1 + x + 3, xs.frac[size_t(i)], yfrac, 3,
                    o + 3 * size_t(i));
     }
+  };
+  if (level - 1 == 0 || levels_[size_t(level - 1)].stored || fromTiles) {
+    // The finer level's rows are cheap to read: two at a time, kept in the first cache level.
+    if (buffer.size() < 2 * srcStride) buffer.resize(2 * srcStride);
+    float* rows[2] = {buffer.data(), buffer.data() + srcStride};
+    int rowY[2] = {INT_MIN, INT_MIN};
+    auto sourceRow = [&](int y) -> const float* {
+      for (int k = 0; k < 2; ++k)
+        if (rowY[k] == y) return rows[k];
+      const int k = rowY[0] == y - 1 ? 1 : 0;  // keep the row above
+      const bool inside = y >= 0 && y < upH && ax < bx;
+      if (inside)
+        readBlock(level - 1, ax, y, bx - ax, 1, rows[k] + 3 * size_t(ax - sx0), srcStride,
+                  fromTiles);
+      zeroOutside(rows[k], sw, 1, ax - sx0, bx - sx0, inside ? 0 : 1, 1);
+      rowY[k] = y;
+      return rows[k];
+    };
+    for (int j = 0; j < h; ++j) {
+      const float* r0 = sourceRow(ys.low[size_t(j)]);
+      bilerpRow(j, r0, sourceRow(ys.low[size_t(j)] + 1));
+    }
+    return;
+  }
+  // The finer level is computed itself: as one block, so that no texel of it is made twice.
+  if (buffer.size() < srcStride * size_t(sh)) buffer.resize(srcStride * size_t(sh));
+  float* src = buffer.data();
+  const int ay = std::max(sy0, 0), by = std::min(sy0 + sh, upH);
+  if (ax < bx && ay < by)
+    readBlock(level - 1, ax, ay, bx - ax, by - ay,
+              src + size_t(ay - sy0) * srcStride + 3 * size_t(ax - sx0), srcStride, false);
+  zeroOutside(src, sw, sh, ax - sx0, bx - sx0, ay - sy0, by - sy0);
+  for (int j = 0; j < h; ++j) {
+    const float* r0 = src + size_t(ys.low[size_t(j)] - sy0) * srcStride;
+    bilerpRow(j, r0, r0 + srcStride);
   }
 }
 
