@@ -52,6 +52,35 @@ class TexturePyramid {
     return tile + 3 * (size_t(y - ty * kTile) * size_t(tileWidth) + size_t(x - tx * kTile));
   }
 
+  /// The four texels bilinear filtering blends, (xa, ya), (xb, ya), (xa, yb), (xb, yb) of
+  /// `level` (>= 1, all inside it), into v[0..3] as texel() gives them, but with one dispatch
+  /// on the level's store, and one tile lookup when the four share a tile. (Level 0 is read by
+  /// texel(): sharing the row offsets of the codes measured no faster.)
+  void texels2x2(int level, int xa, int xb, int ya, int yb, float scratch[4][3],
+                 const float* v[4]) const {
+    const Level& l = levels_[size_t(level)];
+    if (l.stored) {
+      const float* base = l.stored;
+      const size_t rowA = size_t(ya) * size_t(l.width), rowB = size_t(yb) * size_t(l.width);
+      v[0] = base + 3 * (rowA + size_t(xa)), v[1] = base + 3 * (rowA + size_t(xb));
+      v[2] = base + 3 * (rowB + size_t(xa)), v[3] = base + 3 * (rowB + size_t(xb));
+      return;
+    }
+    const int tx = xa / kTile, ty = ya / kTile;
+    if (xb / kTile != tx || yb / kTile != ty) {  // across a tile edge, or wrapped
+      for (int k = 0; k < 4; ++k)
+        v[k] = texel(level, k & 1 ? xb : xa, k & 2 ? yb : ya, scratch[k]);
+      return;
+    }
+    const float* tile = this->tile(level, tx, ty);
+    const size_t tileWidth = size_t(std::min(kTile, l.width - tx * kTile));
+    const size_t rowA = size_t(ya - ty * kTile) * tileWidth;
+    const size_t rowB = size_t(yb - ty * kTile) * tileWidth;
+    const size_t x0 = size_t(xa - tx * kTile), x1 = size_t(xb - tx * kTile);
+    v[0] = tile + 3 * (rowA + x0), v[1] = tile + 3 * (rowA + x1);
+    v[2] = tile + 3 * (rowB + x0), v[3] = tile + 3 * (rowB + x1);
+  }
+
   /// Row y of `level` as width(level) * 3 linear floats, levels 1..kComputed made from the
   /// rows below each time (OIIO's tile cache keeps what it reads; no tile here is touched).
   void row(int level, int y, float* rgb) const;
