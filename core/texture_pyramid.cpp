@@ -19,8 +19,9 @@ float sourceTexel(int i, int size, int upSize, int* low) {
   return OIIO::floorfrac(f * upSize - 0.5, low);
 }
 
-/// Side of the blocks in which the stored levels are computed.
-constexpr int kBlock = 16;
+/// Width and height of the blocks in which the stored levels are computed: wide, so that the
+/// first stored level reads level 0 in long runs of a row (16 kBlockWidth texels).
+constexpr int kBlockWidth = 128, kBlockHeight = 4;
 
 }  // namespace
 
@@ -53,15 +54,15 @@ TexturePyramid::TexturePyramid(const TextureImage& image) : image_(image) {
       for (size_t t = 0; t < tiles; ++t) l.tiles[t].store(nullptr, std::memory_order_relaxed);
       continue;
     }
-    // In blocks of kBlock^2 texels, each computed from blocks of the levels below (no tile is
-    // made): the first stored level reads a (16 kBlock)^2 block of level 0 at most.
+    // In blocks, each computed from blocks of the levels below (no tile is made).
     const size_t rowFloats = size_t(l.width) * 3;
     std::vector<float> texels(rowFloats * size_t(l.height));
-    const int blocksX = (l.width + kBlock - 1) / kBlock;
-    const int blocksY = (l.height + kBlock - 1) / kBlock;
+    const int blocksX = (l.width + kBlockWidth - 1) / kBlockWidth;
+    const int blocksY = (l.height + kBlockHeight - 1) / kBlockHeight;
     tbb::parallel_for(0, blocksX * blocksY, [&](int b) {
-      const int x0 = b % blocksX * kBlock, y0 = b / blocksX * kBlock;
-      computeBlock(level, x0, y0, std::min(kBlock, l.width - x0), std::min(kBlock, l.height - y0),
+      const int x0 = b % blocksX * kBlockWidth, y0 = b / blocksX * kBlockHeight;
+      computeBlock(level, x0, y0, std::min(kBlockWidth, l.width - x0),
+                   std::min(kBlockHeight, l.height - y0),
                    texels.data() + size_t(y0) * rowFloats + 3 * size_t(x0), rowFloats, false);
     });
     l.storedTexels = std::move(texels);
