@@ -154,6 +154,13 @@ void TexturePyramid::readLevel0(int x0, int y0, int w, int h, float* out, size_t
       codeRowOf<true>(channels_, bytes_, table_, first, w, out);
     else
       codeRowOf<false>(channels_, bytes_, table_, first, w, out);
+    // The same run two rows down, which a tile or block reads next: short strided runs are
+    // what the hardware prefetcher misses.
+    const size_t bytesPerTexel = size_t(channels_) * (wide_ ? 2 : 1);
+    const size_t ahead = size_t(y0 + j + 2) * width0 + size_t(x0);
+    if (!pixels_ && y0 + j + 2 < levels_[0].height)
+      for (size_t b = 0; b < size_t(w) * bytesPerTexel; b += 64)
+        __builtin_prefetch(bytes_ + ahead * bytesPerTexel + b);
   }
 }
 
