@@ -99,7 +99,8 @@ struct Taps {
   }
 };
 
-/// Level-0 codes of `channels` (grey replicated) through `table`, texels [x0, x0 + w) of row y.
+/// Level-0 codes of kChannels (grey replicated) through `table`: w texels from row-major texel
+/// index `first` on, as RGB floats.
 template <bool kWide, int kChannels>
 void codeRow(const unsigned char* bytes, const float* table, size_t first, int w, float* out) {
   constexpr size_t g = kChannels >= 3 ? 1 : 0;
@@ -193,10 +194,10 @@ void TexturePyramid::readBlock(int level, int x0, int y0, int w, int h, float* o
 
 void TexturePyramid::computeBlock(int level, int x0, int y0, int w, int h, float* out,
                                   size_t stride, bool fromTiles) const {
-  // OIIO's read_unmipped, texel by texel, with the same float expressions (sourceTexel), over
-  // one block of the finer level read at once: texels outside the finer level are 0, as
-  // ImageCache::get_pixels gives (their weight is then exactly 0: only a 1-texel-wide level
-  // samples past its edge).
+  // OIIO's read_unmipped, texel by texel, with the same float expressions (sourceTexel and
+  // OIIO::bilerp), reading the finer level's texels that the block samples: texels outside the
+  // finer level are 0, as ImageCache::get_pixels gives (their weight is then exactly 0: only a
+  // 1-texel-wide level samples past its edge).
   const int upW = width(level - 1), upH = height(level - 1);
   const Taps xs(x0, w, width(level), upW), ys(y0, h, height(level), upH);
   const int sx0 = xs.low.front(), sy0 = ys.low.front();
@@ -204,7 +205,8 @@ void TexturePyramid::computeBlock(int level, int x0, int y0, int w, int h, float
   const size_t srcStride = size_t(sw) * 3;
   const int ax = std::max(sx0, 0), bx = std::min(sx0 + sw, upW);
   // One buffer per level and thread, kept: the recursion through the finer levels uses one
-  // each, and a tile's source is not allocated and paged in again per tile.
+  // each, and a tile's source is not allocated and paged in again per tile. (int sizes allow
+  // 32 levels at most.)
   thread_local std::vector<float> buffers[32];
   std::vector<float>& buffer = buffers[level];
   auto bilerpRow = [&](int j, const float* r0, const float* r1) {

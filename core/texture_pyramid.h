@@ -81,8 +81,8 @@ class TexturePyramid {
     v[2] = tile + 3 * (rowB + x0), v[3] = tile + 3 * (rowB + x1);
   }
 
-  /// Row y of `level` as width(level) * 3 linear floats, levels 1..kComputed made from the
-  /// rows below each time (OIIO's tile cache keeps what it reads; no tile here is touched).
+  /// Row y of `level` as width(level) * 3 linear floats, levels 1..kComputed computed from the
+  /// levels below each time (OIIO's tile cache keeps what it reads; no tile here is touched).
   void row(int level, int y, float* rgb) const;
 
   /// Bytes of the stored coarse levels.
