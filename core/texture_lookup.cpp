@@ -58,10 +58,14 @@ void bilinear(const TexturePyramid& p, int level, const TextureQuery& q, float o
   const int xa = wrap(s0, w, q.wrapS), xb = wrap(s0 + 1, w, q.wrapS);
   const int ya = wrap(t0, h, q.wrapT), yb = wrap(t0 + 1, h, q.wrapT);
   float scratch[4][3];
-  const float* v0 = p.texel(level, xa, ya, scratch[0]);
-  const float* v1 = p.texel(level, xb, ya, scratch[1]);
-  const float* v2 = p.texel(level, xa, yb, scratch[2]);
-  const float* v3 = p.texel(level, xb, yb, scratch[3]);
+  const float* v[4];
+  if (level == 0) {
+    v[0] = p.texel(0, xa, ya, scratch[0]), v[1] = p.texel(0, xb, ya, scratch[1]);
+    v[2] = p.texel(0, xa, yb, scratch[2]), v[3] = p.texel(0, xb, yb, scratch[3]);
+  } else {
+    p.texels2x2(level, xa, xb, ya, yb, scratch, v);
+  }
+  const float *v0 = v[0], *v1 = v[1], *v2 = v[2], *v3 = v[3];
   const float s1 = 1.0f - sfrac, t1 = 1.0f - tfrac;
   for (int c = 0; c < 3; ++c)
     out[c] = 0.0f + (t1 * (v0[c] * s1 + v1[c] * sfrac) + tfrac * (v2[c] * s1 + v3[c] * sfrac));

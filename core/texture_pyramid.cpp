@@ -3,6 +3,7 @@
 #include <OpenImageIO/fmath.h>
 #include <tbb/parallel_for.h>
 
+#include <climits>
 #include <cstring>
 
 namespace tray {
@@ -18,7 +19,9 @@ float sourceTexel(int i, int size, int upSize, int* low) {
   return OIIO::floorfrac(f * upSize - 0.5, low);
 }
 
-const float kZero[3] = {0, 0, 0};
+/// Width and height of the blocks in which the stored levels are computed: wide, so that the
+/// first stored level reads level 0 in long runs of a row (16 kBlockWidth texels).
+constexpr int kBlockWidth = 128, kBlockHeight = 4;
 
 }  // namespace
 
@@ -51,10 +54,16 @@ TexturePyramid::TexturePyramid(const TextureImage& image) : image_(image) {
       for (size_t t = 0; t < tiles; ++t) l.tiles[t].store(nullptr, std::memory_order_relaxed);
       continue;
     }
+    // In blocks, each computed from blocks of the levels below (no tile is made).
     const size_t rowFloats = size_t(l.width) * 3;
     std::vector<float> texels(rowFloats * size_t(l.height));
-    tbb::parallel_for(0, l.height, [&](int y) {
-      compute(level, y, texels.data() + size_t(y) * rowFloats);
+    const int blocksX = (l.width + kBlockWidth - 1) / kBlockWidth;
+    const int blocksY = (l.height + kBlockHeight - 1) / kBlockHeight;
+    tbb::parallel_for(0, blocksX * blocksY, [&](int b) {
+      const int x0 = b % blocksX * kBlockWidth, y0 = b / blocksX * kBlockHeight;
+      computeBlock(level, x0, y0, std::min(kBlockWidth, l.width - x0),
+                   std::min(kBlockHeight, l.height - y0),
+                   texels.data() + size_t(y0) * rowFloats + 3 * size_t(x0), rowFloats, false);
     });
     l.storedTexels = std::move(texels);
     l.stored = l.storedTexels.data();
@@ -72,56 +81,188 @@ TexturePyramid::~TexturePyramid() {
 void TexturePyramid::row(int level, int y, float* rgb) const {
   if (level == 0) return image_.row(y, rgb);
   const Level& l = levels_[size_t(level)];
-  if (!l.stored) return compute(level, y, rgb);
+  if (!l.stored) return computeBlock(level, 0, y, l.width, 1, rgb, size_t(l.width) * 3, false);
   const size_t n = size_t(l.width) * 3;
   std::memcpy(rgb, l.stored + size_t(y) * n, n * sizeof(float));
 }
 
-void TexturePyramid::compute(int level, int y, float* rgb) const {
-  // OIIO's read_unmipped, texel by texel, with the same float expressions (sourceTexel).
-  const int upW = width(level - 1), upH = height(level - 1), w = width(level);
-  int ylow;
-  const float yfrac = sourceTexel(y, height(level), upH, &ylow);
-  // The two finer rows; texels outside the finer level are 0, as ImageCache::get_pixels gives
-  // (their weight is then exactly 0: only a 1-texel-wide level samples past its edge).
-  std::vector<float> rows(size_t(upW) * 6, 0.0f);
-  float* r0 = rows.data();
-  float* r1 = rows.data() + size_t(upW) * 3;
-  if (ylow >= 0 && ylow < upH) row(level - 1, ylow, r0);
-  if (ylow + 1 >= 0 && ylow + 1 < upH) row(level - 1, ylow + 1, r1);
-  auto at = [&](const float* r, int x) { return x >= 0 && x < upW ? r + 3 * size_t(x) : kZero; };
-  for (int i = 0; i < w; ++i) {
-    int xlow;
-    const float xfrac = sourceTexel(i, w, upW, &xlow);
-    OIIO::bilerp(at(r0, xlow), at(r0, xlow + 1), at(r1, xlow), at(r1, xlow + 1), xfrac, yfrac, 3,
-                 rgb + 3 * size_t(i));
+namespace {
+
+/// Where texels [first, first + n) of a level of `size` texels sample the finer level of
+/// `upSize` (sourceTexel for each): the lower texels, monotonic, and the upper ones' weights.
+struct Taps {
+  std::vector<int> low;
+  std::vector<float> frac;
+  Taps(int first, int n, int size, int upSize) : low(size_t(n)), frac(size_t(n)) {
+    for (int i = 0; i < n; ++i)
+      frac[size_t(i)] = sourceTexel(first + i, size, upSize, &low[size_t(i)]);
+  }
+};
+
+/// Level-0 codes of kChannels (grey replicated) through `table`: w texels from row-major texel
+/// index `first` on, as RGB floats.
+template <bool kWide, int kChannels>
+void codeRow(const unsigned char* bytes, const float* table, size_t first, int w, float* out) {
+  constexpr size_t g = kChannels >= 3 ? 1 : 0;
+  for (int i = 0; i < w; ++i, out += 3) {
+    const size_t k = (first + size_t(i)) * kChannels;
+    if constexpr (kWide) {
+      uint16_t v[3];
+      __builtin_memcpy(&v[0], bytes + 2 * k, 2);
+      __builtin_memcpy(&v[1], bytes + 2 * (k + g), 2);
+      __builtin_memcpy(&v[2], bytes + 2 * (k + 2 * g), 2);
+      out[0] = table[v[0]], out[1] = table[v[1]], out[2] = table[v[2]];
+    } else {
+      out[0] = table[bytes[k]], out[1] = table[bytes[k + g]], out[2] = table[bytes[k + 2 * g]];
+    }
+  }
+}
+
+/// Zeroes the texels of a w x h block of RGB floats outside [xa, xb) x [ya, yb).
+void zeroOutside(float* block, int w, int h, int xa, int xb, int ya, int yb) {
+  const size_t stride = size_t(w) * 3;
+  for (int y = 0; y < h; ++y) {
+    float* row = block + size_t(y) * stride;
+    if (y < ya || y >= yb || xa >= xb) {
+      std::fill(row, row + stride, 0.0f);
+      continue;
+    }
+    std::fill(row, row + 3 * size_t(xa), 0.0f);
+    std::fill(row + 3 * size_t(xb), row + stride, 0.0f);
+  }
+}
+
+template <bool kWide>
+void codeRowOf(int channels, const unsigned char* bytes, const float* table, size_t first, int w,
+               float* out) {
+  switch (channels) {
+    case 1: return codeRow<kWide, 1>(bytes, table, first, w, out);
+    case 2: return codeRow<kWide, 2>(bytes, table, first, w, out);
+    case 3: return codeRow<kWide, 3>(bytes, table, first, w, out);
+    default: return codeRow<kWide, 4>(bytes, table, first, w, out);
+  }
+}
+
+}  // namespace
+
+void TexturePyramid::readLevel0(int x0, int y0, int w, int h, float* out, size_t stride) const {
+  const size_t width0 = size_t(levels_[0].width);
+  for (int j = 0; j < h; ++j, out += stride) {
+    const size_t first = size_t(y0 + j) * width0 + size_t(x0);
+    if (pixels_)
+      std::memcpy(out, pixels_ + 3 * first, size_t(w) * 3 * sizeof(float));
+    else if (wide_)
+      codeRowOf<true>(channels_, bytes_, table_, first, w, out);
+    else
+      codeRowOf<false>(channels_, bytes_, table_, first, w, out);
+    // The same run two rows down, which a tile or block reads next: short strided runs are
+    // what the hardware prefetcher misses.
+    const size_t bytesPerTexel = size_t(channels_) * (wide_ ? 2 : 1);
+    const size_t ahead = size_t(y0 + j + 2) * width0 + size_t(x0);
+    if (!pixels_ && y0 + j + 2 < levels_[0].height)
+      for (size_t b = 0; b < size_t(w) * bytesPerTexel; b += 64)
+        __builtin_prefetch(bytes_ + ahead * bytesPerTexel + b);
+  }
+}
+
+void TexturePyramid::readBlock(int level, int x0, int y0, int w, int h, float* out,
+                               size_t stride, bool fromTiles) const {
+  if (level == 0) return readLevel0(x0, y0, w, h, out, stride);
+  const Level& l = levels_[size_t(level)];
+  if (l.stored) {
+    for (int j = 0; j < h; ++j)
+      std::memcpy(out + size_t(j) * stride,
+                  l.stored + 3 * (size_t(y0 + j) * size_t(l.width) + size_t(x0)),
+                  size_t(w) * 3 * sizeof(float));
+    return;
+  }
+  if (!fromTiles) return computeBlock(level, x0, y0, w, h, out, stride, false);
+  // Row segments of each tile the block overlaps.
+  for (int ty = y0 / kTile; ty * kTile < y0 + h; ++ty)
+    for (int tx = x0 / kTile; tx * kTile < x0 + w; ++tx) {
+      const float* t = tile(level, tx, ty);
+      const int tileX = tx * kTile, tileY = ty * kTile;
+      const int tileWidth = std::min(kTile, l.width - tileX);
+      const int xa = std::max(x0, tileX), xb = std::min(x0 + w, tileX + tileWidth);
+      const int ya = std::max(y0, tileY), yb = std::min(y0 + h, tileY + kTile);
+      for (int y = ya; y < yb; ++y)
+        std::memcpy(out + size_t(y - y0) * stride + 3 * size_t(xa - x0),
+                    t + 3 * (size_t(y - tileY) * size_t(tileWidth) + size_t(xa - tileX)),
+                    size_t(xb - xa) * 3 * sizeof(float));
+    }
+}
+
+void TexturePyramid::computeBlock(int level, int x0, int y0, int w, int h, float* out,
+                                  size_t stride, bool fromTiles) const {
+  // OIIO's read_unmipped, texel by texel, with the same float expressions (sourceTexel and
+  // OIIO::bilerp), reading the finer level's texels that the block samples: texels outside the
+  // finer level are 0, as ImageCache::get_pixels gives (their weight is then exactly 0: only a
+  // 1-texel-wide level samples past its edge).
+  const int upW = width(level - 1), upH = height(level - 1);
+  const Taps xs(x0, w, width(level), upW), ys(y0, h, height(level), upH);
+  const int sx0 = xs.low.front(), sy0 = ys.low.front();
+  const int sw = xs.low.back() + 2 - sx0, sh = ys.low.back() + 2 - sy0;
+  const size_t srcStride = size_t(sw) * 3;
+  const int ax = std::max(sx0, 0), bx = std::min(sx0 + sw, upW);
+  // One buffer per level and thread, kept: the recursion through the finer levels uses one
+  // each, and a tile's source is not allocated and paged in again per tile. (int sizes allow
+  // 32 levels at most.)
+  thread_local std::vector<float> buffers[32];
+  std::vector<float>& buffer = buffers[level];
+  auto bilerpRow = [&](int j, const float* r0, const float* r1) {
+    float* o = out + size_t(j) * stride;
+    const float yfrac = ys.frac[size_t(j)];
+    for (int i = 0; i < w; ++i) {
+      const size_t x = 3 * size_t(xs.low[size_t(i)] - sx0);
+      OIIO::bilerp(r0 + x, r0 + x + 3, r1 + x, r1 + x + 3, xs.frac[size_t(i)], yfrac, 3,
+                   o + 3 * size_t(i));
+    }
+  };
+  if (level - 1 == 0 || levels_[size_t(level - 1)].stored || fromTiles) {
+    // The finer level's rows are cheap to read: two at a time, kept in the first cache level.
+    if (buffer.size() < 2 * srcStride) buffer.resize(2 * srcStride);
+    float* rows[2] = {buffer.data(), buffer.data() + srcStride};
+    int rowY[2] = {INT_MIN, INT_MIN};
+    auto sourceRow = [&](int y) -> const float* {
+      for (int k = 0; k < 2; ++k)
+        if (rowY[k] == y) return rows[k];
+      const int k = rowY[0] == y - 1 ? 1 : 0;  // keep the row above
+      const bool inside = y >= 0 && y < upH && ax < bx;
+      if (inside)
+        readBlock(level - 1, ax, y, bx - ax, 1, rows[k] + 3 * size_t(ax - sx0), srcStride,
+                  fromTiles);
+      zeroOutside(rows[k], sw, 1, ax - sx0, bx - sx0, inside ? 0 : 1, 1);
+      rowY[k] = y;
+      return rows[k];
+    };
+    for (int j = 0; j < h; ++j) {
+      const float* r0 = sourceRow(ys.low[size_t(j)]);
+      bilerpRow(j, r0, sourceRow(ys.low[size_t(j)] + 1));
+    }
+    return;
+  }
+  // The finer level is computed itself: as one block, so that no texel of it is made twice.
+  if (buffer.size() < srcStride * size_t(sh)) buffer.resize(srcStride * size_t(sh));
+  float* src = buffer.data();
+  const int ay = std::max(sy0, 0), by = std::min(sy0 + sh, upH);
+  if (ax < bx && ay < by)
+    readBlock(level - 1, ax, ay, bx - ax, by - ay,
+              src + size_t(ay - sy0) * srcStride + 3 * size_t(ax - sx0), srcStride, false);
+  zeroOutside(src, sw, sh, ax - sx0, bx - sx0, ay - sy0, by - sy0);
+  for (int j = 0; j < h; ++j) {
+    const float* r0 = src + size_t(ys.low[size_t(j)] - sy0) * srcStride;
+    bilerpRow(j, r0, r0 + srcStride);
   }
 }
 
 const float* TexturePyramid::makeTile(int level, int tx, int ty) const {
-  // compute()'s arithmetic, texel by texel, reading the finer level through texel() (which
-  // makes its tiles in turn when they are missing).
+  // computeBlock over the tile, reading the finer level through its tiles (made in turn when
+  // missing) or, for level 1, from the codes.
   const Level& l = levels_[size_t(level)];
-  const int upW = width(level - 1), upH = height(level - 1);
   const int x0 = tx * kTile, y0 = ty * kTile;
   const int tw = std::min(kTile, l.width - x0), th = std::min(kTile, l.height - y0);
   auto texels = std::make_unique<float[]>(size_t(tw) * size_t(th) * 3);
-  float scratch[4][3];
-  auto at = [&](int x, int y, int k) {
-    return x >= 0 && x < upW && y >= 0 && y < upH ? texel(level - 1, x, y, scratch[k]) : kZero;
-  };
-  int xlow[kTile];
-  float xfrac[kTile];
-  for (int i = 0; i < tw; ++i) xfrac[i] = sourceTexel(x0 + i, l.width, upW, &xlow[i]);
-  for (int j = 0; j < th; ++j) {
-    int ylow;
-    const float yfrac = sourceTexel(y0 + j, l.height, upH, &ylow);
-    for (int i = 0; i < tw; ++i) {
-      const int x = xlow[i];
-      OIIO::bilerp(at(x, ylow, 0), at(x + 1, ylow, 1), at(x, ylow + 1, 2), at(x + 1, ylow + 1, 3),
-                   xfrac[i], yfrac, 3, texels.get() + 3 * (size_t(j) * size_t(tw) + size_t(i)));
-    }
-  }
+  computeBlock(level, x0, y0, tw, th, texels.get(), size_t(tw) * 3, true);
   std::atomic<const float*>& slot = l.tiles[size_t(ty) * size_t(l.tilesX) + size_t(tx)];
   const float* expected = nullptr;
   if (slot.compare_exchange_strong(expected, texels.get(), std::memory_order_acq_rel)) {

@@ -47,15 +47,42 @@ class TexturePyramid {
     if (level == 0) return texel0(x, y, scratch);
     if (l.stored) return l.stored + 3 * (size_t(y) * size_t(l.width) + size_t(x));
     const int tx = x / kTile, ty = y / kTile;
-    const float* tile = l.tiles[size_t(ty) * size_t(l.tilesX) + size_t(tx)].load(
-        std::memory_order_acquire);
-    if (!tile) tile = makeTile(level, tx, ty);
+    const float* tile = this->tile(level, tx, ty);
     const int tileWidth = std::min(kTile, l.width - tx * kTile);
     return tile + 3 * (size_t(y - ty * kTile) * size_t(tileWidth) + size_t(x - tx * kTile));
   }
 
-  /// Row y of `level` as width(level) * 3 linear floats, levels 1..kComputed made from the
-  /// rows below each time (OIIO's tile cache keeps what it reads; no tile here is touched).
+  /// The four texels bilinear filtering blends, (xa, ya), (xb, ya), (xa, yb), (xb, yb) of
+  /// `level` (>= 1, all inside it), into v[0..3] as texel() gives them, but with one dispatch
+  /// on the level's store, and one tile lookup when the four share a tile. (Level 0 is read by
+  /// texel(): sharing the row offsets of the codes measured no faster.)
+  void texels2x2(int level, int xa, int xb, int ya, int yb, float scratch[4][3],
+                 const float* v[4]) const {
+    const Level& l = levels_[size_t(level)];
+    if (l.stored) {
+      const float* base = l.stored;
+      const size_t rowA = size_t(ya) * size_t(l.width), rowB = size_t(yb) * size_t(l.width);
+      v[0] = base + 3 * (rowA + size_t(xa)), v[1] = base + 3 * (rowA + size_t(xb));
+      v[2] = base + 3 * (rowB + size_t(xa)), v[3] = base + 3 * (rowB + size_t(xb));
+      return;
+    }
+    const int tx = xa / kTile, ty = ya / kTile;
+    if (xb / kTile != tx || yb / kTile != ty) {  // across a tile edge, or wrapped
+      for (int k = 0; k < 4; ++k)
+        v[k] = texel(level, k & 1 ? xb : xa, k & 2 ? yb : ya, scratch[k]);
+      return;
+    }
+    const float* tile = this->tile(level, tx, ty);
+    const size_t tileWidth = size_t(std::min(kTile, l.width - tx * kTile));
+    const size_t rowA = size_t(ya - ty * kTile) * tileWidth;
+    const size_t rowB = size_t(yb - ty * kTile) * tileWidth;
+    const size_t x0 = size_t(xa - tx * kTile), x1 = size_t(xb - tx * kTile);
+    v[0] = tile + 3 * (rowA + x0), v[1] = tile + 3 * (rowA + x1);
+    v[2] = tile + 3 * (rowB + x0), v[3] = tile + 3 * (rowB + x1);
+  }
+
+  /// Row y of `level` as width(level) * 3 linear floats, levels 1..kComputed computed from the
+  /// levels below each time (OIIO's tile cache keeps what it reads; no tile here is touched).
   void row(int level, int y, float* rgb) const;
 
   /// Bytes of the stored coarse levels.
@@ -93,7 +120,24 @@ class TexturePyramid {
     return scratch;
   }
   const float* makeTile(int level, int tx, int ty) const;
-  void compute(int level, int y, float* rgb) const;
+  /// The tile (tx, ty) of a tiled level, made if missing.
+  const float* tile(int level, int tx, int ty) const {
+    const Level& l = levels_[size_t(level)];
+    const float* t = l.tiles[size_t(ty) * size_t(l.tilesX) + size_t(tx)].load(
+        std::memory_order_acquire);
+    return t ? t : makeTile(level, tx, ty);
+  }
+  /// Texels [x0, x0 + w) x [y0, y0 + h) of `level` (>= 1) into `out` (row j at out + j *
+  /// stride floats), computed from the level below read as one block (readBlock): through
+  /// its tiles when `fromTiles`, else computed the same way in turn.
+  void computeBlock(int level, int x0, int y0, int w, int h, float* out, size_t stride,
+                    bool fromTiles) const;
+  /// Texels [x0, x0 + w) x [y0, y0 + h) of `level`, all inside it, into `out` (row stride
+  /// `stride` floats): level 0 from its floats or codes, stored levels copied, tiled levels
+  /// from their tiles or computed (computeBlock).
+  void readBlock(int level, int x0, int y0, int w, int h, float* out, size_t stride,
+                 bool fromTiles) const;
+  void readLevel0(int x0, int y0, int w, int h, float* out, size_t stride) const;
 
   const TextureImage& image_;
   std::vector<Level> levels_;

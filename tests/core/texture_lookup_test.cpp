@@ -19,33 +19,15 @@
 namespace tray {
 namespace {
 
-/// Codes as the glTF loader keeps them, with an sRGB-like table (any increasing table will do).
-TextureImage codeImage(int w, int h, int channels, bool wide, uint32_t seed) {
-  auto codes = std::make_shared<TexelCodes>();
-  codes->channels = channels;
-  codes->wide = wide;
-  codes->bytes.resize(size_t(w) * size_t(h) * size_t(channels) * (wide ? 2 : 1));
-  std::mt19937 rng(seed);
-  for (auto& b : codes->bytes) b = (unsigned char)(rng() & 0xff);
-  auto table = std::make_shared<std::vector<float>>(wide ? 65536 : 256);
-  for (size_t i = 0; i < table->size(); ++i)
-    (*table)[i] = std::pow(float(i) / float(table->size() - 1), 2.2f);
-  TextureImage im;
-  im.name = "codes";
-  im.width = w, im.height = h;
-  im.codes = codes;
-  im.table = table;
-  im.codesAlpha = channels == 2 || channels == 4;
-  return im;
-}
-
 std::vector<TextureImage> testImages() {
   return {test::randomFloatImage(37, 5, 1),   test::randomFloatImage(1, 19, 2),
           test::randomFloatImage(19, 1, 3),   test::randomFloatImage(1, 1, 4),
           test::randomFloatImage(64, 64, 5),  test::randomFloatImage(131, 67, 6),
           test::randomFloatImage(256, 96, 7), test::randomFloatImage(300, 200, 8),
-          codeImage(97, 61, 3, false, 9),     codeImage(50, 33, 1, true, 10),
-          codeImage(128, 128, 4, false, 11),  codeImage(45, 300, 2, false, 12)};
+          test::randomCodeImage(97, 61, 3, false, 9),
+          test::randomCodeImage(50, 33, 1, true, 10),
+          test::randomCodeImage(128, 128, 4, false, 11),
+          test::randomCodeImage(45, 300, 2, false, 12)};
 }
 
 bool sameBits(const Color& a, const Color& b) {

@@ -4,7 +4,9 @@
 // codes gives, row by row, the floats the loader used to store.
 #include "core/texture_pyramid.h"
 
+#include <OpenImageIO/fmath.h>
 #include <gtest/gtest.h>
+#include <tbb/parallel_for.h>
 
 #include <cstring>
 #include <random>
@@ -64,6 +66,79 @@ TEST(TexturePyramid, FilteredLookupsMatchOiioAutomipBitForBit) {
         differ += !sameBits(ours.sample(r, fp), oiio.sample(r, fp));
       }
   EXPECT_EQ(differ, 0u) << "of " << compared << " lookups";
+}
+
+/// The pyramid as OIIO's read_unmipped makes it, written plainly: each whole level from the
+/// whole level below (TextureImage::row for level 0), texel by texel with OIIO::floorfrac and
+/// OIIO::bilerp, texels outside the finer level 0. The arithmetic TRay's blocks and tiles must
+/// repeat bit for bit.
+std::vector<std::vector<float>> referenceLevels(const TextureImage& im) {
+  int w = im.width, h = im.height;
+  std::vector<std::vector<float>> levels(1, std::vector<float>(size_t(w) * size_t(h) * 3));
+  for (int y = 0; y < h; ++y) im.row(y, levels[0].data() + size_t(y) * size_t(w) * 3);
+  const float zero[3] = {0, 0, 0};
+  while (w > 1 || h > 1) {
+    const int upW = w, upH = h;
+    w = std::max(1, w / 2), h = std::max(1, h / 2);
+    const std::vector<float>& up = levels.back();
+    std::vector<float> level(size_t(w) * size_t(h) * 3);
+    auto at = [&](int x, int y) {
+      return x < upW && y < upH ? &up[3 * (size_t(y) * size_t(upW) + size_t(x))] : zero;
+    };
+    for (int j = 0; j < h; ++j)
+      for (int i = 0; i < w; ++i) {
+        int x, y;
+        const float xf = OIIO::floorfrac((i + 0.5f) / float(w) * upW - 0.5, &x);
+        const float yf = OIIO::floorfrac((j + 0.5f) / float(h) * upH - 0.5, &y);
+        OIIO::bilerp(at(x, y), at(x + 1, y), at(x, y + 1), at(x + 1, y + 1), xf, yf, 3,
+                     &level[3 * (size_t(j) * size_t(w) + size_t(i))]);
+      }
+    levels.push_back(std::move(level));
+  }
+  return levels;
+}
+
+TEST(TexturePyramid, EveryTexelOfEveryLevelIsTheReferences) {
+  // Tiles (texel(), made in any order on many threads) and rows (row(), OIIO's reader) against
+  // referenceLevels: floats, 8- and 16-bit codes with 1 to 4 channels, odd, even, non-square,
+  // 1xN and Nx1 sizes, several tiles per level with odd sizes at the tile edges.
+  std::vector<TextureImage> images{test::randomFloatImage(37, 5, 1),
+                                   test::randomFloatImage(1, 19, 2),
+                                   test::randomFloatImage(300, 200, 3),
+                                   test::randomCodeImage(19, 1, 3, false, 4),
+                                   test::randomCodeImage(531, 267, 3, false, 5),
+                                   test::randomCodeImage(256, 256, 4, false, 6),
+                                   test::randomCodeImage(97, 61, 1, true, 7),
+                                   test::randomCodeImage(45, 300, 2, false, 8),
+                                   test::randomCodeImage(130, 129, 4, true, 9),
+                                   test::randomCodeImage(259, 3, 2, true, 10),
+                                   test::randomCodeImage(1, 1, 3, true, 11)};
+  for (const TextureImage& im : images) {
+    const auto expected = referenceLevels(im);
+    const TexturePyramid p(im);
+    ASSERT_EQ(p.levels(), int(expected.size())) << im.width << "x" << im.height;
+    size_t differ = 0, rowsDiffer = 0;
+    // Coarsest first, so that each tiled level's tiles make the finer tiles they read.
+    for (int level = p.levels() - 1; level >= 0; --level) {
+      const int w = p.width(level), h = p.height(level);
+      std::vector<float> tiled(size_t(w) * size_t(h) * 3), row(size_t(w) * 3);
+      tbb::parallel_for(0, h, [&](int y) {
+        for (int x = w - 1; x >= 0; --x) {
+          float scratch[3];
+          const float* t = p.texel(level, x, h - 1 - y, scratch);
+          std::memcpy(&tiled[3 * (size_t(h - 1 - y) * size_t(w) + size_t(x))], t, 12);
+        }
+      });
+      differ += std::memcmp(tiled.data(), expected[size_t(level)].data(), tiled.size() * 4) != 0;
+      for (int y = 0; y < h; ++y) {
+        p.row(level, y, row.data());
+        rowsDiffer += std::memcmp(row.data(), &expected[size_t(level)][size_t(y) * row.size()],
+                                  row.size() * 4) != 0;
+      }
+    }
+    EXPECT_EQ(differ, 0u) << "levels differ, " << im.width << "x" << im.height;
+    EXPECT_EQ(rowsDiffer, 0u) << "rows differ, " << im.width << "x" << im.height;
+  }
 }
 
 TEST(TextureImage, CodeRowsAreTheTableValues) {
