@@ -2,16 +2,16 @@
 // traversing together, and the loop) against its single-ray queries: the same closest hits, field
 // by field, and the same occlusion, on incoherent and coherent rays over meshes, instances,
 // analytic and unbounded shapes, motion blur and alpha-tested meshes.
-#include "accel/bvh_accelerator.h"
-
 #include <gtest/gtest.h>
 
 #include <random>
 #include <string>
 
+#include "accel/bvh_accelerator.h"
 #include "core/sampler.h"
 #include "core/sampling.h"
 #include "io/gltf_loader.h"
+#include "tests/accel/batch_test_scenes.h"
 #include "tests/scene_builder.h"
 #include "tests/shapes/solid_meshes.h"
 
@@ -57,15 +57,7 @@ Scene instancedScene() {
 Scene movingScene() {
   Scene s;
   const int m = addMaterial(s, diffuse(Color(0.6f)));
-  const uint32_t cube = addMeshInstance(s, addMesh(s, boxMesh(Vec3(-0.4f), Vec3(0.4f), m)),
-                                        Mat4::translate({-0.8f, 0.4f, 0}));
-  s.primitives[cube].motion = {
-      Mat4::translate({-0.8f, 0.4f, 0}),
-      Mat4::translate({-0.7f, 0.7f, 0}) * Mat4::rotate(0, 0.3826834f, 0, 0.9238795f),
-      Mat4::translate({-0.5f, 1.0f, 0.2f}) * Mat4::rotate(0, 0.7071068f, 0, 0.7071068f)};
-  const uint32_t ball = addSphere(s, {0.6f, 0.35f, 0}, 0.35f, m);
-  s.primitives[ball].motion = {Mat4::translate({0.4f, 0.35f, 0}),
-                               Mat4::translate({1.2f, 0.35f, -0.3f}) * Mat4::scale({1, 1.5f, 1})};
+  addMovingCubeAndBall(s, m, m);
   addMeshInstance(s, addMesh(s, torusMesh(0.5f, 0.2f, 32, 16, m)), Mat4::translate({0, 0.3f, -1}));
   TriangleMesh flag;
   flag.positions = {
@@ -77,22 +69,6 @@ Scene movingScene() {
   addMeshInstance(s, addMesh(s, flag), Mat4());
   s.finalize();
   return s;
-}
-
-/// Rays from random points inside the scene's bounds in random directions (what bounces look
-/// like to a wavefront queue: neighbours share nothing), at random shutter times; a third short.
-std::vector<Ray> incoherentRays(const Scene& scene, int count) {
-  const Bounds3 b = scene.bounds();
-  std::vector<Ray> rays;
-  for (int i = 0; i < count; ++i) {
-    Sampler s(11, uint32_t(i), 3);
-    const Vec3 o = b.lo + Vec3(s.next1D(), s.next1D(), s.next1D()) * b.diagonal();
-    Ray r{o, sampleUniformSphere(s.next2D())};
-    r.time = s.next1D();
-    if (i % 3 == 0) r.tmax = 0.3f * length(b.diagonal()) * s.next1D();
-    rays.push_back(r);
-  }
-  return rays;
 }
 
 /// Camera rays: a pinhole outside the bounds looking at their centre, row by row (neighbours in
@@ -159,7 +135,7 @@ void expectSameAsSingleRays(const Accelerator& accel, const std::vector<Ray>& ra
 }
 
 void expectEveryModeSameAsSingleRays(const Scene& scene, const std::string& name) {
-  const std::vector<Ray> incoherent = incoherentRays(scene, 3000);
+  const std::vector<Ray> incoherent = randomRaysInBounds(scene, 3000, 11, true);
   const std::vector<Ray> coherent = coherentRays(scene, 48, 40);
   for (BvhBuilder builder : {BvhBuilder::kBinnedSah, BvhBuilder::kGoldsmithSalmon})
     for (BvhBatch batch : {BvhBatch::kLoop, BvhBatch::kPacket8, BvhBatch::kStream64}) {

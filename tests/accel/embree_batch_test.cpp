@@ -10,23 +10,10 @@
 #include "core/sampler.h"
 #include "core/sampling.h"
 #include "io/gltf_loader.h"
+#include "tests/accel/batch_test_scenes.h"
 
 namespace tray {
 namespace {
-
-/// Random rays from inside the scene bounds; a third of them short (occlusion at a distance).
-std::vector<Ray> randomRays(const Scene& scene, int count) {
-  const Bounds3 b = scene.bounds();
-  std::vector<Ray> rays;
-  for (int i = 0; i < count; ++i) {
-    Sampler s(7, uint32_t(i), 3);
-    const Vec3 o = b.lo + Vec3(s.next1D(), s.next1D(), s.next1D()) * b.diagonal();
-    Ray r{o, sampleUniformSphere(s.next2D())};
-    if (i % 3 == 0) r.tmax = 0.3f * length(b.diagonal()) * s.next1D();
-    rays.push_back(r);
-  }
-  return rays;
-}
 
 void expectSameAsSingleRays(const Accelerator& accel, const std::vector<Ray>& rays,
                             const std::string& what) {
@@ -66,7 +53,7 @@ TEST(EmbreeBatch, EveryModeEqualsSingleRayQueries) {
   for (const char* file :
        {"/reference/cornell-box.gltf", "/gltf-features/AlphaBlendModeTest.glb"}) {
     const Scene scene = loadGltf(std::string(TRAY_SHARED_DIR) + file);
-    const std::vector<Ray> rays = randomRays(scene, 2000);
+    const std::vector<Ray> rays = test::randomRaysInBounds(scene, 2000, 7, false);
     for (EmbreeBatch mode : {EmbreeBatch::kLoop, EmbreeBatch::kStream, EmbreeBatch::kPacket8})
       expectSameAsSingleRays(*makeEmbreeAccelerator(scene, mode), rays,
                              std::string(file) + " mode " + std::to_string(int(mode)));

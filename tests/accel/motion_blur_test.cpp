@@ -8,6 +8,7 @@
 
 #include "accel/registry.h"
 #include "core/motion.h"
+#include "tests/accel/batch_test_scenes.h"
 #include "tests/render_film.h"
 #include "tests/scene_builder.h"
 #include "tests/shapes/solid_meshes.h"
@@ -24,15 +25,7 @@ Scene movingScene() {
   Scene s;
   const int grey = addMaterial(s, diffuse(Color(0.6f)));
   const int red = addMaterial(s, diffuse(Color(0.8f, 0.2f, 0.2f)));
-  const uint32_t cube = addMeshInstance(s, addMesh(s, boxMesh(Vec3(-0.4f), Vec3(0.4f), red)),
-                                        Mat4::translate({-0.8f, 0.4f, 0}));
-  s.primitives[cube].motion = {
-      Mat4::translate({-0.8f, 0.4f, 0}),
-      Mat4::translate({-0.7f, 0.7f, 0}) * Mat4::rotate(0, 0.3826834f, 0, 0.9238795f),
-      Mat4::translate({-0.5f, 1.0f, 0.2f}) * Mat4::rotate(0, 0.7071068f, 0, 0.7071068f)};
-  const uint32_t ball = addSphere(s, {0.6f, 0.35f, 0}, 0.35f, grey);
-  s.primitives[ball].motion = {Mat4::translate({0.4f, 0.35f, 0}),
-                               Mat4::translate({1.2f, 0.35f, -0.3f}) * Mat4::scale({1, 1.5f, 1})};
+  addMovingCubeAndBall(s, red, grey);
   addSphere(s, {0, 0.3f, -1}, 0.3f, grey);
   addMeshInstance(s, addMesh(s, quadMesh(3, grey)), Mat4());
   TriangleMesh flag;
