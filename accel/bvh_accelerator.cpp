@@ -37,9 +37,10 @@ thread_local LastOccluder tLastOccluder;
 /// Every crossing of a shape's boundary inside the ray's range, as the Embree accelerator reports
 /// them for all-hits queries (accel/embree_accelerator.cpp, shapeIntersect).
 void shapeCrossings(const Primitive& p, uint32_t i, const Ray& ray, std::vector<Hit>& hits) {
-  Transform toWorld;
-  if (!toWorldAt(p, ray.time, toWorld)) return;
-  Ray local{toWorld.inversePoint(ray.o), toWorld.inverseVector(ray.d), ray.tmin, ray.tmax};
+  Transform moved;
+  const Transform* toWorld = placementAt(p, ray.time, moved);
+  if (!toWorld) return;
+  Ray local{toWorld->inversePoint(ray.o), toWorld->inverseVector(ray.d), ray.tmin, ray.tmax};
   std::vector<Interval> spans;
   p.shape->intervals(local, spans);
   for (const Interval& s : spans)

@@ -11,23 +11,15 @@ namespace tray {
 /// places it), t unchanged (the direction is not normalised); false where p is flat at that time
 /// (core/motion.h) and cannot be hit.
 inline bool objectRay(const Primitive& p, const Ray& ray, float tmax, Ray& local) {
-  if (p.motion.empty()) {
-    local = Ray{p.toWorld.inversePoint(ray.o),
-                p.toWorld.inverseVector(ray.d),
-                ray.tmin,
-                tmax,
-                ray.blend,
-                ray.time};  // the time places a deforming mesh's triangles
-    return true;
-  }
-  Transform toWorld;
-  if (!toWorldAt(p, ray.time, toWorld)) return false;
-  local = Ray{toWorld.inversePoint(ray.o),
-              toWorld.inverseVector(ray.d),
+  Transform moved;
+  const Transform* toWorld = placementAt(p, ray.time, moved);
+  if (!toWorld) return false;
+  local = Ray{toWorld->inversePoint(ray.o),
+              toWorld->inverseVector(ray.d),
               ray.tmin,
               tmax,
               ray.blend,
-              ray.time};
+              ray.time};  // the time places a deforming mesh's triangles
   return true;
 }
 

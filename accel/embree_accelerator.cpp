@@ -110,9 +110,10 @@ void shapeIntersect(const RTCIntersectFunctionNArguments* args) {
   if (args->context->filter) {
     // All-hits query: report every boundary crossing of the solid within the range.
     const Primitive& p = data->scene->primitives[data->primitive];
-    Transform toWorld;
-    if (!toWorldAt(p, ray.time, toWorld)) return;
-    Ray local{toWorld.inversePoint(ray.o), toWorld.inverseVector(ray.d), ray.tmin, ray.tmax};
+    Transform moved;
+    const Transform* toWorld = placementAt(p, ray.time, moved);
+    if (!toWorld) return;
+    Ray local{toWorld->inversePoint(ray.o), toWorld->inverseVector(ray.d), ray.tmin, ray.tmax};
     std::vector<Interval> spans;
     p.shape->intervals(local, spans);
     for (const Interval& s : spans)

@@ -36,13 +36,10 @@ Mat4 interpolateSteps(const std::vector<Mat4>& steps, float t) {
   return m;  // the last row stays 0 0 0 1: the steps are affine
 }
 
-bool toWorldAt(const Primitive& p, float t, Transform& out) {
-  if (p.motion.empty()) {
-    out = p.toWorld;
-    return true;
-  }
-  out.m = interpolateSteps(p.motion, t);
-  return invert(out.m, out.inv);
+const Transform* placementAt(const Primitive& p, float t, Transform& moved) {
+  if (p.motion.empty()) return &p.toWorld;
+  moved.m = interpolateSteps(p.motion, t);
+  return invert(moved.m, moved.inv) ? &moved : nullptr;
 }
 
 Bounds3 motionBounds(const Primitive& p, const Bounds3& local) {

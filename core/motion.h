@@ -22,10 +22,11 @@ Vec3 vertexAt(const TriangleMesh& mesh, uint32_t v, float t);
 /// the segment floor(t (N - 1)) and the fraction within it, as Embree's time segments.
 Mat4 interpolateSteps(const std::vector<Mat4>& steps, float t);
 
-/// p's object-to-world transform at shutter time t: p.toWorld when p is static. False where the
-/// interpolated matrix is singular (between two steps a half turn passes through zero scale):
-/// the object is flat at that instant and rays miss it.
-bool toWorldAt(const Primitive& p, float t, Transform& out);
+/// p's object-to-world transform at shutter time t: &p.toWorld when p is static (no copy), else
+/// `moved`, filled with the interpolated placement. Null where that matrix is singular (between
+/// two steps a half turn passes through zero scale): the object is flat at that instant and
+/// rays miss it; `moved.m` then holds the matrix.
+const Transform* placementAt(const Primitive& p, float t, Transform& moved);
 
 /// World bounds of p's object-space `local` box over the whole shutter: the union of its boxes
 /// at every step, which holds every interpolated placement (a point's world position moves

@@ -26,9 +26,10 @@ Vec2 MotionVectors::at(const PrimaryHit& hit) const {
   const Primitive& prim = scene_.primitives[hit.primitive];
   // The hit point on the object, found at the sample's shutter time, placed as the frame
   // shows it and as the previous frame did.
-  Transform atHit;
-  if (!toWorldAt(prim, hit.time, atHit)) return {0, 0};
-  const Vec3 local = atHit.inversePoint(hit.position);
+  Transform moved;
+  const Transform* atHit = placementAt(prim, hit.time, moved);
+  if (!atHit) return {0, 0};
+  const Vec3 local = atHit->inversePoint(hit.position);
   const Vec3 now = prim.toWorld.point(local);
   Transform before = prim.toWorld;
   if (hit.primitive < scene_.previousToWorld.size())

@@ -49,9 +49,9 @@ Bounds3 Scene::bounds() const {
 bool Scene::intersectShape(uint32_t i, const Ray& r, Hit& hit) const {
   const Primitive& prim = primitives[i];
   Transform moved;
-  if (!prim.motion.empty() && !toWorldAt(prim, r.time, moved)) return false;
-  const Transform& toWorld = prim.motion.empty() ? prim.toWorld : moved;
-  Ray local{toWorld.inversePoint(r.o), toWorld.inverseVector(r.d), r.tmin, r.tmax};
+  const Transform* toWorld = placementAt(prim, r.time, moved);
+  if (!toWorld) return false;
+  Ray local{toWorld->inversePoint(r.o), toWorld->inverseVector(r.d), r.tmin, r.tmax};
   Hit h;
   if (!prim.shape->intersect(local, h)) return false;
   hit = h;
@@ -67,8 +67,8 @@ SurfacePoint Scene::surface(const Ray& ray, const Hit& hit) const {
   // A moving primitive is shaded where the ray found it. Its matrix at the hit's time was
   // invertible, or the accelerator would have reported no hit.
   Transform moved;
-  if (!prim.motion.empty()) toWorldAt(prim, ray.time, moved);
-  const Transform& toWorld = prim.motion.empty() ? prim.toWorld : moved;
+  const Transform* placed = placementAt(prim, ray.time, moved);
+  const Transform& toWorld = placed ? *placed : moved;
   if (prim.kind == Primitive::Kind::kShape) {
     // Recompute the point in object space and project it back onto the surface: the world
     // point o + t d loses precision far from the origin.

@@ -46,12 +46,13 @@ TEST(MotionSteps, FlatInstantsAreMissedAndStaticPrimitivesKeepTheirTransform) {
   Primitive p;
   p.toWorld = Transform(Mat4::translate({1, 2, 3}));
   Transform t;
-  ASSERT_TRUE(toWorldAt(p, 0.7f, t));
-  EXPECT_EQ(t.m.m[1][3], 2.0f);
+  const Transform* placed = placementAt(p, 0.7f, t);
+  ASSERT_EQ(placed, &p.toWorld);  // the primitive's own transform, not a copy
+  EXPECT_EQ(placed->m.m[1][3], 2.0f);
   // A half turn about z between two steps passes through a matrix of zero scale in x and y.
   p.motion = {Mat4(), Mat4::rotate(0, 0, 1, 0)};
-  EXPECT_FALSE(toWorldAt(p, 0.5f, t));
-  EXPECT_TRUE(toWorldAt(p, 0.25f, t));
+  EXPECT_EQ(placementAt(p, 0.5f, t), nullptr);
+  EXPECT_EQ(placementAt(p, 0.25f, t), &t);
   EXPECT_TRUE(stepsMove(p.motion));
   EXPECT_FALSE(stepsMove({Mat4::translate({1, 0, 0}), Mat4::translate({1, 0, 0})}));
 }
@@ -64,7 +65,7 @@ TEST(MotionSteps, BoundsHoldEveryInterpolatedPlacement) {
   const Bounds3 box = motionBounds(p, local);
   for (int k = 0; k <= 100; ++k) {
     Transform t;
-    ASSERT_TRUE(toWorldAt(p, k / 100.0f, t));
+    ASSERT_EQ(placementAt(p, k / 100.0f, t), &t);
     for (int c = 0; c < 8; ++c) {
       const Vec3 q = t.point({c & 1 ? 1.0f : -1.0f, c & 2 ? 1.0f : -1.0f, c & 4 ? 1.0f : -1.0f});
       for (int a = 0; a < 3; ++a) {
