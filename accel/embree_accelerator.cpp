@@ -7,6 +7,7 @@
 #include <cstring>
 #include <mutex>
 #include <new>
+#include <span>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -251,23 +252,9 @@ class EmbreeAccelerator final : public Accelerator {
     // ROBUST: watertight traversal, no cracks on shared edges (RenderKit/embree#381).
     rtcSetSceneFlags(s, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
     rtcSetSceneBuildQuality(s, RTC_BUILD_QUALITY_HIGH);
-    RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-    // Copied into buffers Embree allocates, not shared: Embree reads the last vertex with a
-    // 16-byte SSE load, so a shared float3 array needs padding after it (docs of
-    // rtcSetSharedGeometryBuffer); the mesh's std::vector has none, and valgrind saw reads past
-    // its end. Embree pads the buffers it allocates itself (rtcSetNewGeometryBuffer docs).
-    if (m.positionSteps.empty()) {
-      copyToEmbree(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, m.positions.data(), sizeof(Vec3),
-                   m.positions.size());
-    } else {  // a deforming mesh: one vertex buffer per time step, interpolated by Embree
-      rtcSetGeometryTimeStepCount(g, unsigned(m.positionSteps.size()));
-      for (unsigned k = 0; k < m.positionSteps.size(); ++k)
-        copyToEmbree(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, m.positionSteps[k].data(),
-                     sizeof(Vec3), m.positionSteps[k].size(), k);
-    }
-    copyToEmbree(g, RTC_BUFFER_TYPE_INDEX, RTC_FORMAT_UINT3, m.indices.data(),
-                 3 * sizeof(uint32_t), m.triangleCount());
-    attachAlphaFilter(g, scene_, m);
+    // A deforming mesh: one vertex buffer per time step, interpolated by Embree.
+    RTCGeometry g = m.positionSteps.empty() ? triangleGeometry(m, {&m.positions, 1})
+                                            : triangleGeometry(m, m.positionSteps);
     rtcCommitGeometry(g);
     rtcAttachGeometryByID(s, g, 0);
     rtcReleaseGeometry(g);
@@ -276,19 +263,32 @@ class EmbreeAccelerator final : public Accelerator {
     return s;
   }
 
-  /// Mesh primitive p's triangles in world space (its toWorld applied to each vertex), as
-  /// triangle geometry of the top scene; hits then carry its primitive index as geometry id.
-  RTCGeometry worldMeshGeometry(const Primitive& p) {
-    const TriangleMesh& m = scene_.meshes[p.mesh];
+  /// Triangle geometry of mesh m: its triangles over the vertex buffers `steps` (one per time
+  /// step, which Embree interpolates by the ray's time; one for a static mesh), with its alpha
+  /// filter.
+  RTCGeometry triangleGeometry(const TriangleMesh& m, std::span<const std::vector<Vec3>> steps) {
     RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-    std::vector<Vec3> world(m.positions.size());
-    for (size_t k = 0; k < world.size(); ++k) world[k] = p.toWorld.point(m.positions[k]);
-    copyToEmbree(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, world.data(), sizeof(Vec3),
-                 world.size());
+    // Copied into buffers Embree allocates, not shared: Embree reads the last vertex with a
+    // 16-byte SSE load, so a shared float3 array needs padding after it (docs of
+    // rtcSetSharedGeometryBuffer); the mesh's std::vector has none, and valgrind saw reads past
+    // its end. Embree pads the buffers it allocates itself (rtcSetNewGeometryBuffer docs).
+    if (steps.size() > 1) rtcSetGeometryTimeStepCount(g, unsigned(steps.size()));
+    for (unsigned k = 0; k < steps.size(); ++k)
+      copyToEmbree(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, steps[k].data(), sizeof(Vec3),
+                   steps[k].size(), k);
     copyToEmbree(g, RTC_BUFFER_TYPE_INDEX, RTC_FORMAT_UINT3, m.indices.data(), 3 * sizeof(uint32_t),
                  m.triangleCount());
     attachAlphaFilter(g, scene_, m);
     return g;
+  }
+
+  /// Mesh primitive p's triangles in world space (its toWorld applied to each vertex), as
+  /// triangle geometry of the top scene; hits then carry its primitive index as geometry id.
+  RTCGeometry worldMeshGeometry(const Primitive& p) {
+    const TriangleMesh& m = scene_.meshes[p.mesh];
+    std::vector<Vec3> world(m.positions.size());
+    for (size_t k = 0; k < world.size(); ++k) world[k] = p.toWorld.point(m.positions[k]);
+    return triangleGeometry(m, {&world, 1});
   }
 
   /// An instance's placement: its one transform, or for a moving primitive one per motion step,
