@@ -159,19 +159,7 @@ template <class Accept>
   forEachBlock<true>(
       ray, tmax,
       [&](const Triangle4& block, int mask, const float* t, const float* b1, const float* b2) {
-        // Lanes in order with a strict test: the first of equally near triangles wins, as when
-        // they are tested one by one.
-        for (; mask; mask &= mask - 1) {
-          int i = __builtin_ctz(unsigned(mask));
-          if (!(t[i] < tmax) || !accept(block.index[i], b1[i], b2[i])) continue;
-          tmax = t[i];
-          hit = Hit{};
-          hit.t = t[i];
-          hit.triangle = block.index[i];
-          hit.b1 = b1[i];
-          hit.b2 = b2[i];
-          found = true;
-        }
+        found |= closestLane(block, mask, t, b1, b2, tmax, hit, accept);
         return false;
       });
   return found;
@@ -201,11 +189,9 @@ bool MeshBvh::occluded(const Ray& ray, const TriangleFilter& filter) const {
   return forEachBlock<false>(
       ray, ray.tmax,
       [&](const Triangle4& block, int mask, const float*, const float* b1, const float* b2) {
-        for (; mask; mask &= mask - 1) {
-          int i = __builtin_ctz(unsigned(mask));
-          if (filter.accept(filter.data, block.index[i], b1[i], b2[i])) return true;
-        }
-        return false;
+        return anyLaneAccepted(block, mask, b1, b2, [&](uint32_t triangle, float u, float v) {
+          return filter.accept(filter.data, triangle, u, v);
+        });
       });
 }
 

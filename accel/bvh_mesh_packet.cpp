@@ -33,21 +33,13 @@ template <class Accept>
         for (; m; m &= m - 1) {
           const int r = nextRay(m);
           alignas(16) float t[4], b1[4], b2[4];
-          int mask =
+          const int mask =
               intersectWatertight4(rays.triangle[r], block, rays.tmin[r], tmax[r], t, b1, b2);
-          // As MeshBvh::closestHit: lanes in order, strict test.
-          for (; mask; mask &= mask - 1) {
-            const int i = __builtin_ctz(unsigned(mask));
-            if (!(t[i] < tmax[r]) || !accept(r, block.index[i], b1[i], b2[i])) continue;
-            tmax[r] = t[i];
-            Hit& hit = hits[r];
-            hit = Hit{};
-            hit.t = t[i];
-            hit.triangle = block.index[i];
-            hit.b1 = b1[i];
-            hit.b2 = b2[i];
-            found |= m & -m;
-          }
+          // As MeshBvh::closestHit, with ray r's own tmax and filter.
+          const auto acceptFor = [&](uint32_t triangle, float u, float v) {
+            return accept(r, triangle, u, v);
+          };
+          if (closestLane(block, mask, t, b1, b2, tmax[r], hits[r], acceptFor)) found |= m & -m;
         }
       });
   return found;
@@ -97,12 +89,10 @@ template <class OnBlock>
                         });
   anyHitPacket(rays, active, alive, tmax, block,
                [&](int r, const Triangle4& block, int mask, const float* b1, const float* b2) {
-                 for (; mask; mask &= mask - 1) {
-                   const int i = __builtin_ctz(unsigned(mask));
-                   if (filter->accept(filter->data, r, block.index[i], b1[i], b2[i]))
-                     return true;
-                 }
-                 return false;
+                 return anyLaneAccepted(block, mask, b1, b2,
+                                        [&](uint32_t triangle, float u, float v) {
+                                          return filter->accept(filter->data, r, triangle, u, v);
+                                        });
                });
 }
 

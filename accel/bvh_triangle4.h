@@ -7,6 +7,7 @@
 
 #include "accel/bvh_triangle.h"
 #include "accel/simd4.h"
+#include "core/hit.h"
 
 namespace tray {
 
@@ -76,6 +77,41 @@ inline WatertightRay4 prepareWatertight4(const Vec3& o, const Vec3& d) {
       mask |= 1 << i;
   }
   return mask;
+}
+
+/// The closest-hit step over a block's hit lanes (`mask`, with intersectWatertight4's t, b1,
+/// b2): lanes in order with a strict test, so that the first of equally near triangles wins, as
+/// when they are tested one by one. Each accepted lane nearer than tmax lowers tmax and
+/// becomes `hit`; true if any did.
+template <class Accept>
+[[gnu::always_inline]] inline bool closestLane(const Triangle4& block, int mask, const float* t,
+                                               const float* b1, const float* b2, float& tmax,
+                                               Hit& hit, const Accept& accept) {
+  bool found = false;
+  for (; mask; mask &= mask - 1) {
+    const int i = __builtin_ctz(unsigned(mask));
+    if (!(t[i] < tmax) || !accept(block.index[i], b1[i], b2[i])) continue;
+    tmax = t[i];
+    hit = Hit{};
+    hit.t = t[i];
+    hit.triangle = block.index[i];
+    hit.b1 = b1[i];
+    hit.b2 = b2[i];
+    found = true;
+  }
+  return found;
+}
+
+/// The any-hit step over a block's hit lanes: true if `accept` takes one of them (an alpha test).
+template <class Accept>
+[[gnu::always_inline]] inline bool anyLaneAccepted(const Triangle4& block, int mask,
+                                                   const float* b1, const float* b2,
+                                                   const Accept& accept) {
+  for (; mask; mask &= mask - 1) {
+    const int i = __builtin_ctz(unsigned(mask));
+    if (accept(block.index[i], b1[i], b2[i])) return true;
+  }
+  return false;
 }
 
 }  // namespace tray
