@@ -13,18 +13,55 @@ bool TextureImage::valid() const {
          codes->bytes.size() == n * size_t(codes->channels) * (codes->wide ? 2 : 1);
 }
 
-void TextureImage::row(int y, float* rgb) const {
-  const size_t w = size_t(width);
+namespace {
+
+/// Codes of kChannels (grey replicated) through `table`: n texels from texel index `first` on,
+/// as RGB floats. Specialised per channel count and code width: MIP tiles read level 0 this
+/// way (core/texture_pyramid.cpp), and a loop that asks both per texel costs them twice.
+template <bool kWide, int kChannels>
+void decodeCodes(const unsigned char* bytes, const float* table, size_t first, int n, float* out) {
+  constexpr size_t g = kChannels >= 3 ? 1 : 0;
+  for (int i = 0; i < n; ++i, out += 3) {
+    const size_t k = (first + size_t(i)) * kChannels;
+    if constexpr (kWide) {
+      uint16_t v[3];
+      __builtin_memcpy(&v[0], bytes + 2 * k, 2);
+      __builtin_memcpy(&v[1], bytes + 2 * (k + g), 2);
+      __builtin_memcpy(&v[2], bytes + 2 * (k + 2 * g), 2);
+      out[0] = table[v[0]], out[1] = table[v[1]], out[2] = table[v[2]];
+    } else {
+      out[0] = table[bytes[k]], out[1] = table[bytes[k + g]], out[2] = table[bytes[k + 2 * g]];
+    }
+  }
+}
+
+template <bool kWide>
+void decodeCodes(int channels, const unsigned char* bytes, const float* table, size_t first, int n,
+                 float* out) {
+  switch (channels) {
+    case 1:
+      return decodeCodes<kWide, 1>(bytes, table, first, n, out);
+    case 2:
+      return decodeCodes<kWide, 2>(bytes, table, first, n, out);
+    case 3:
+      return decodeCodes<kWide, 3>(bytes, table, first, n, out);
+    default:
+      return decodeCodes<kWide, 4>(bytes, table, first, n, out);
+  }
+}
+
+}  // namespace
+
+void TextureImage::texels(size_t first, int count, float* rgb) const {
   if (!codes) {
-    std::memcpy(rgb, pixels.data() + size_t(y) * w * 3, w * 3 * sizeof(float));
+    std::memcpy(rgb, pixels.data() + 3 * first, size_t(count) * 3 * sizeof(float));
     return;
   }
-  const float* t = table->data();
-  const size_t nc = size_t(codes->channels);
-  const size_t first = size_t(y) * w * nc;
-  for (size_t x = 0; x < w; ++x)
-    for (size_t c = 0; c < 3; ++c)
-      rgb[3 * x + c] = t[codes->code(first + x * nc + (nc >= 3 ? c : 0))];
+  const unsigned char* bytes = codes->bytes.data();
+  if (codes->wide)
+    decodeCodes<true>(codes->channels, bytes, table->data(), first, count, rgb);
+  else
+    decodeCodes<false>(codes->channels, bytes, table->data(), first, count, rgb);
 }
 
 float TextureImage::alphaAt(size_t p) const {

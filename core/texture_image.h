@@ -47,7 +47,10 @@ struct TextureImage {
   bool valid() const;
   /// Row y as width * 3 linear floats: for codes, table[code] (grey fills all three channels),
   /// exactly the floats the loader stored in `pixels` before codes existed.
-  void row(int y, float* rgb) const;
+  void row(int y, float* rgb) const { texels(size_t(y) * size_t(width), width, rgb); }
+  /// `count` texels from row-major texel index `first` on (within one row or across rows),
+  /// as row() gives them, into rgb[0 .. 3 count).
+  void texels(size_t first, int count, float* rgb) const;
   bool hasAlpha() const { return !alpha.empty() || codesAlpha; }
   /// Linear alpha of pixel p (row-major); 1 when the image has none.
   float alphaAt(size_t p) const;

@@ -99,25 +99,6 @@ struct Taps {
   }
 };
 
-/// Level-0 codes of kChannels (grey replicated) through `table`: w texels from row-major texel
-/// index `first` on, as RGB floats.
-template <bool kWide, int kChannels>
-void codeRow(const unsigned char* bytes, const float* table, size_t first, int w, float* out) {
-  constexpr size_t g = kChannels >= 3 ? 1 : 0;
-  for (int i = 0; i < w; ++i, out += 3) {
-    const size_t k = (first + size_t(i)) * kChannels;
-    if constexpr (kWide) {
-      uint16_t v[3];
-      __builtin_memcpy(&v[0], bytes + 2 * k, 2);
-      __builtin_memcpy(&v[1], bytes + 2 * (k + g), 2);
-      __builtin_memcpy(&v[2], bytes + 2 * (k + 2 * g), 2);
-      out[0] = table[v[0]], out[1] = table[v[1]], out[2] = table[v[2]];
-    } else {
-      out[0] = table[bytes[k]], out[1] = table[bytes[k + g]], out[2] = table[bytes[k + 2 * g]];
-    }
-  }
-}
-
 /// Zeroes the texels of a w x h block of RGB floats outside [xa, xb) x [ya, yb).
 void zeroOutside(float* block, int w, int h, int xa, int xb, int ya, int yb) {
   const size_t stride = size_t(w) * 3;
@@ -132,29 +113,13 @@ void zeroOutside(float* block, int w, int h, int xa, int xb, int ya, int yb) {
   }
 }
 
-template <bool kWide>
-void codeRowOf(int channels, const unsigned char* bytes, const float* table, size_t first, int w,
-               float* out) {
-  switch (channels) {
-    case 1: return codeRow<kWide, 1>(bytes, table, first, w, out);
-    case 2: return codeRow<kWide, 2>(bytes, table, first, w, out);
-    case 3: return codeRow<kWide, 3>(bytes, table, first, w, out);
-    default: return codeRow<kWide, 4>(bytes, table, first, w, out);
-  }
-}
-
 }  // namespace
 
 void TexturePyramid::readLevel0(int x0, int y0, int w, int h, float* out, size_t stride) const {
   const size_t width0 = size_t(levels_[0].width);
   for (int j = 0; j < h; ++j, out += stride) {
     const size_t first = size_t(y0 + j) * width0 + size_t(x0);
-    if (pixels_)
-      std::memcpy(out, pixels_ + 3 * first, size_t(w) * 3 * sizeof(float));
-    else if (wide_)
-      codeRowOf<true>(channels_, bytes_, table_, first, w, out);
-    else
-      codeRowOf<false>(channels_, bytes_, table_, first, w, out);
+    image_.texels(first, w, out);
     // The same run two rows down, which a tile or block reads next: short strided runs are
     // what the hardware prefetcher misses.
     const size_t bytesPerTexel = size_t(channels_) * (wide_ ? 2 : 1);
