@@ -4,25 +4,23 @@
 
 namespace tray {
 
-Bsdf::Bsdf(const ShadingMaterial& m, const Vec3& n, float eta)
-    : frame_(Frame::fromNormal(n)),
-      wMetal_(std::clamp(m.metallic, 0.0f, 1.0f)),
-      wGlass_((1.0f - wMetal_) * std::clamp(m.transmission, 0.0f, 1.0f)),
-      wPlastic_(1.0f - wMetal_ - wGlass_),
-      coat_(std::clamp((1.0f - m.roughness) * 10.0f, 0.0f, 1.0f)),
-      metal_(GgxReflectionLobe::metal(m.roughness * m.roughness, m.baseColor)),
-      coatLobe_(m.specular != 1.0f || !(m.specularColor == Color(1.0f))
-                    ? GgxReflectionLobe::dielectric(m.roughness * m.roughness, eta, m.specular,
-                                                    m.specularColor)
-                    : GgxReflectionLobe::dielectric(m.roughness * m.roughness, eta)),
-      glass_(m.roughness * m.roughness, eta, m.baseColor),
-      diffuse_{m.baseColor},
-      coatEta_(eta),
-      coatTinted_(m.specular != 1.0f || !(m.specularColor == Color(1.0f))) {
+void Bsdf::initLobes(const ShadingMaterial& m, float eta) {
+  lambertOnly_ = false;
+  wMetal_ = std::clamp(m.metallic, 0.0f, 1.0f);
+  wGlass_ = (1.0f - wMetal_) * std::clamp(m.transmission, 0.0f, 1.0f);
+  wPlastic_ = 1.0f - wMetal_ - wGlass_;
+  coat_ = std::clamp((1.0f - m.roughness) * 10.0f, 0.0f, 1.0f);
+  const float alpha = m.roughness * m.roughness;
+  coatTinted_ = m.specular != 1.0f || !(m.specularColor == Color(1.0f));
+  metal_.value = GgxReflectionLobe::metal(alpha, m.baseColor);
+  coatLobe_.value = coatTinted_
+                        ? GgxReflectionLobe::dielectric(alpha, eta, m.specular, m.specularColor)
+                        : GgxReflectionLobe::dielectric(alpha, eta);
+  glass_.value = DielectricLobe(alpha, eta, m.baseColor);
   if (m.clearcoat > 0) initClearcoat(m);
   if (!isBlack(m.sheenColor)) initSheen(m);
-  hasNonDelta_ = (wMetal_ > 0 && !metal_.isDelta()) || (wGlass_ > 0 && !glass_.isDelta()) ||
-                 (wPlastic_ > 0 && (!isBlack(m.baseColor) || (coat_ > 0 && !coatLobe_.isDelta())));
+  hasNonDelta_ = (wMetal_ > 0 && !metal_->isDelta()) || (wGlass_ > 0 && !glass_->isDelta()) ||
+                 (wPlastic_ > 0 && (!isBlack(m.baseColor) || (coat_ > 0 && !coatLobe_->isDelta())));
   // Lobes that can scatter at all (probabilities() gives the others probability 0). The
   // albedo test is maxComponent > 0 spelled without std::max, whose branches depend on the
   // colour and are mispredicted when the material changes between bounces (callgrind
@@ -42,7 +40,7 @@ Bsdf::Bsdf(const ShadingMaterial& m, const Vec3& n, float eta)
 }
 
 float Bsdf::coatFresnel(const Vec3& wo) const {
-  if (coatTinted_) return coat_ > 0 ? coat_ * maxComponent(coatLobe_.fresnel(wo.z)) : 0.0f;
+  if (coatTinted_) return coat_ > 0 ? coat_ * maxComponent(coatLobe_->fresnel(wo.z)) : 0.0f;
   return coat_ > 0 ? coat_ * fresnelDielectric(absCosTheta(wo), coatEta_) : 0.0f;
 }
 
@@ -65,9 +63,9 @@ Bsdf::Probabilities Bsdf::probabilities(const Vec3& wo) const {
 Color Bsdf::evalLocal(const Vec3& wo, const Vec3& wi) const {
   switch (only_) {
     case Only::kMetal:
-      return metal_.eval(wo, wi);
+      return metal_->eval(wo, wi);
     case Only::kGlass:
-      return glass_.eval(wo, wi);
+      return glass_->eval(wo, wi);
     case Only::kDiffuse:
       return diffuse_.eval(wo, wi);
     case Only::kNothing:
@@ -75,10 +73,10 @@ Color Bsdf::evalLocal(const Vec3& wo, const Vec3& wi) const {
       break;
   }
   Color f(0.0f);
-  if (wMetal_ > 0 && includes(kSpecularLobes)) f += wMetal_ * metal_.eval(wo, wi);
-  if (wGlass_ > 0 && includesGlass(wo, wi)) f += wGlass_ * glass_.eval(wo, wi);
+  if (wMetal_ > 0 && includes(kSpecularLobes)) f += wMetal_ * metal_->eval(wo, wi);
+  if (wGlass_ > 0 && includesGlass(wo, wi)) f += wGlass_ * glass_->eval(wo, wi);
   if (wPlastic_ > 0) {
-    if (coat_ > 0 && includes(kSpecularLobes)) f += (wPlastic_ * coat_) * coatLobe_.eval(wo, wi);
+    if (coat_ > 0 && includes(kSpecularLobes)) f += (wPlastic_ * coat_) * coatLobe_->eval(wo, wi);
     if (includes(kDiffuseLobes))
       f += (wPlastic_ * (1.0f - coatFresnel(wo))) * diffuse_.eval(wo, wi);
   }
@@ -88,9 +86,9 @@ Color Bsdf::evalLocal(const Vec3& wo, const Vec3& wi) const {
 float Bsdf::pdfLocal(const Vec3& wo, const Vec3& wi) const {
   switch (only_) {
     case Only::kMetal:
-      return metal_.pdf(wo, wi);
+      return metal_->pdf(wo, wi);
     case Only::kGlass:
-      return glass_.pdf(wo, wi);
+      return glass_->pdf(wo, wi);
     case Only::kDiffuse:
       return diffuse_.pdf(wo, wi);
     case Only::kNothing:
@@ -100,9 +98,9 @@ float Bsdf::pdfLocal(const Vec3& wo, const Vec3& wi) const {
   }
   Probabilities p = probabilities(wo);
   float pdf = 0;
-  if (p.metal > 0) pdf += p.metal * metal_.pdf(wo, wi);
-  if (p.glass > 0) pdf += p.glass * glass_.pdf(wo, wi);
-  if (p.coat > 0) pdf += p.coat * coatLobe_.pdf(wo, wi);
+  if (p.metal > 0) pdf += p.metal * metal_->pdf(wo, wi);
+  if (p.glass > 0) pdf += p.glass * glass_->pdf(wo, wi);
+  if (p.coat > 0) pdf += p.coat * coatLobe_->pdf(wo, wi);
   if (p.diffuse > 0) pdf += p.diffuse * diffuse_.pdf(wo, wi);
   return pdf;
 }
@@ -131,11 +129,11 @@ BsdfSample Bsdf::sampleLocal(const Vec3& wo, float uc, Vec2 u) const {
   const auto lobeSample = [&]() -> BsdfSample {
     switch (lobe) {
       case 0:
-        return metal_.sample(wo, u);
+        return metal_->sample(wo, u);
       case 1:
-        return glass_.sample(wo, ucLobe, u);
+        return glass_->sample(wo, ucLobe, u);
       case 2:
-        return coatLobe_.sample(wo, u);
+        return coatLobe_->sample(wo, u);
       case 3:
         return diffuse_.sample(wo, u);
       default:
@@ -173,21 +171,17 @@ float Bsdf::pdf(const Vec3& wo, const Vec3& wi) const {
   return pdfLocal(frame_.toLocal(wo), frame_.toLocal(wi));
 }
 
-Color Bsdf::eval(const Vec3& wo, const Vec3& wi, float& pdf) const {
+Color Bsdf::layersEval(const Vec3& wo, const Vec3& wi, float& pdf) const {
   return clearcoat_ > 0 ? layeredEval(wo, wi, pdf) : innerEval(wo, wi, pdf);
 }
 
-BsdfSample Bsdf::sample(const Vec3& wo, float uc, Vec2 u) const {
+BsdfSample Bsdf::layersSample(const Vec3& wo, float uc, Vec2 u) const {
   return clearcoat_ > 0 ? layeredSample(wo, uc, u) : innerSample(wo, uc, u);
 }
 
 Color Bsdf::baseEval(const Vec3& wo, const Vec3& wi, float& pdf) const {
-  if (only_ == Only::kDiffuse) {  // Lambert needs only the cosines: skip the tangent axes
-    const float cosO = dot(wo, frame_.n), cosI = dot(wi, frame_.n);
-    const bool same = cosO * cosI > 0;
-    pdf = same ? cosineHemispherePdf(std::fabs(cosI)) : 0.0f;
-    return same ? diffuse_.albedo * (1.0f / kPi) : Color(0.0f);
-  }
+  // Lambert needs only the cosines: skip the tangent axes
+  if (only_ == Only::kDiffuse) return lambertEval(wo, wi, pdf);
   const Vec3 woLocal = frame_.toLocal(wo), wiLocal = frame_.toLocal(wi);
   pdf = pdfLocal(woLocal, wiLocal);
   return evalLocal(woLocal, wiLocal);
@@ -206,6 +200,7 @@ LobeSplit Bsdf::evalLobes(const Vec3& wo, const Vec3& wi) const {
   // The same sums as eval, one kind of lobe at a time (the lone-lobe shortcuts skip the masks).
   Bsdf part = *this;
   part.only_ = only_ == Only::kNothing ? Only::kNothing : Only::kMixture;
+  part.lambertOnly_ = false;
   LobeSplit out;
   part.lobeMask_ = kDiffuseLobes;
   out.diffuse = part.eval(wo, wi);

@@ -1,4 +1,5 @@
 #pragma once
+#include <cmath>
 #include <cstdint>
 
 #include "core/light_paths.h"
@@ -32,19 +33,43 @@ class Bsdf {
   /// MediumStack; for opaque materials simply ior / n_outside). The frame around n is built
   /// here, in place: taking a Frame the caller had just built cost a store-forwarding stall
   /// per vertex (see setSpawnRay in core/ray.h).
-  Bsdf(const ShadingMaterial& m, const Vec3& n, float eta);
+  Bsdf(const ShadingMaterial& m, const Vec3& n, float eta)
+      : frame_(Frame::fromNormal(n)), diffuse_{m.baseColor}, coatEta_(eta) {
+    // A lone Lambert lobe under no layer (matte: metallic 0, roughness 1, no transmission)
+    // with some albedo: nothing else is built. Building every lobe took 222 instructions per
+    // vertex (callgrind, Cornell box). The weights are the general path's up to the sign of
+    // zero, which only meets tests > 0 and sums with a positive term; coatTinted_ false:
+    // coatFresnel is 0 either way with coat_ 0 (evalLobes reads it). NaN factors go the general
+    // way, whose classification this test matches (coat_ > 0 iff roughness < 1; a NaN weight
+    // makes wPlastic_ NaN and the lobe inert).
+    const Color& a = m.baseColor;
+    if (m.metallic <= 0 && m.transmission <= 0 && !(m.roughness < 1.0f) &&
+        (a.x > 0 || a.y > 0 || a.z > 0) && !(m.clearcoat > 0) && isBlack(m.sheenColor)) {
+      wMetal_ = 0, wGlass_ = 0, wPlastic_ = 1, coat_ = 0;
+      coatTinted_ = false;
+      hasNonDelta_ = true;
+      lambertOnly_ = true;
+      only_ = Only::kDiffuse;
+      return;
+    }
+    initLobes(m, eta);
+  }
   /// The untextured material (tests).
   Bsdf(const Material& m, const Vec3& n, float eta) : Bsdf(ShadingMaterial::of(m, n), n, eta) {}
   Color eval(const Vec3& wo, const Vec3& wi) const;
   float pdf(const Vec3& wo, const Vec3& wi) const;
   /// eval and pdf together (next-event estimation needs both), with one change of frame.
-  Color eval(const Vec3& wo, const Vec3& wi, float& pdf) const;
+  Color eval(const Vec3& wo, const Vec3& wi, float& pdf) const {
+    return lambertOnly_ ? lambertEval(wo, wi, pdf) : layersEval(wo, wi, pdf);
+  }
   /// uc picks the lobe (and reflection vs refraction), u the direction. wi comes back in world
   /// space; an invalid sample has pdf 0.
-  BsdfSample sample(const Vec3& wo, float uc, Vec2 u) const;
+  BsdfSample sample(const Vec3& wo, float uc, Vec2 u) const {
+    return lambertOnly_ ? lambertSample(wo, u) : layersSample(wo, uc, u);
+  }
   /// False when every lobe is a delta: light sampling cannot help and MIS is off.
   bool hasNonDelta() const {
-    return hasNonDelta_ || sheenOn_ || (clearcoat_ > 0 && !ccLobe_.isDelta());
+    return hasNonDelta_ || sheenOn_ || (clearcoat_ > 0 && !ccLobe_->isDelta());
   }
   /// True when light can also scatter to the far side of the surface.
   bool transmits() const { return wGlass_ > 0; }
@@ -67,6 +92,40 @@ class Bsdf {
   /// sample, eval and pdf then skip the mixture's bookkeeping. Same values, fewer
   /// instructions (7% of the Cornell box render's, callgrind on bench/path_bench).
   enum class Only : uint8_t { kMixture, kMetal, kGlass, kDiffuse, kNothing };
+  /// Storage for a member that only some materials read: left unbuilt (no stores) until one
+  /// assigns it. The lone Lambert lobe (every matte surface, all of the Cornell box) builds
+  /// none of them; reads are guarded by the weights and flags that say the member is in use.
+  template <class T>
+  union Slot {
+    T value;
+    Slot() {}  // NOLINT: deliberately unbuilt
+    T* operator->() { return &value; }
+    const T* operator->() const { return &value; }
+  };
+  // Everything but the lone Lambert lobe, and the layers.
+  void initLobes(const ShadingMaterial& m, float eta);
+  Color layersEval(const Vec3& wo, const Vec3& wi, float& pdf) const;
+  BsdfSample layersSample(const Vec3& wo, float uc, Vec2 u) const;
+  /// The lone Lambert lobe in world space: only the cosines to n (and the frame to place the
+  /// sampled direction).
+  Color lambertEval(const Vec3& wo, const Vec3& wi, float& pdf) const {
+    const float cosO = dot(wo, frame_.n), cosI = dot(wi, frame_.n);
+    const bool same = cosO * cosI > 0;
+    pdf = same ? cosineHemispherePdf(std::fabs(cosI)) : 0.0f;
+    return same ? diffuse_.albedo * (1.0f / kPi) : Color(0.0f);
+  }
+  BsdfSample lambertSample(const Vec3& wo, Vec2 u) const {
+    // LambertLobe::sample on wo's side (its local z), then to world space, as baseSample and
+    // sampleLocal do it without the mixture's bookkeeping. No pdf check: z >= 2^-11 (even for
+    // a NaN disk point, std::max keeps the floor), so the pdf is positive and finite.
+    BsdfSample s;
+    Vec3 wi = sampleCosineHemisphere(u);
+    wi.z = dot(wo, frame_.n) < 0 ? -wi.z : wi.z;
+    s.pdf = cosineHemispherePdf(absCosTheta(wi));
+    s.f = diffuse_.albedo * (1.0f / kPi);
+    s.wi = frame_.toWorld(wi);
+    return s;
+  }
   Probabilities probabilities(const Vec3& wo) const;
   float coatFresnel(const Vec3& wo) const;
   // The base material (everything below the clearcoat), in world space.
@@ -93,20 +152,27 @@ class Bsdf {
   BsdfSample layeredSample(const Vec3& wo, float uc, Vec2 u) const;
   Frame frame_;
   float wMetal_, wGlass_, wPlastic_, coat_;
-  GgxReflectionLobe metal_, coatLobe_;
-  DielectricLobe glass_;
+  // Built by initLobes: read only where their weights (wMetal_, wGlass_, wPlastic_ x coat_)
+  // are positive, which the lone Lambert lobe's are not.
+  Slot<GgxReflectionLobe> metal_, coatLobe_;
+  Slot<DielectricLobe> glass_;
   LambertLobe diffuse_;
   float coatEta_;
   bool coatTinted_;  ///< KHR_materials_specular changed the coat's Fresnel
-  float clearcoat_ = 0, baseEstimate_ = 1;
-  GgxReflectionLobe ccLobe_ = GgxReflectionLobe::dielectric(1.0f, 1.5f);
-  Frame ccFrame_;
-  bool ccOwnFrame_ = false;  ///< the coat's normal differs from the base's
+  float clearcoat_ = 0;
+  // Set by initClearcoat and initSheen, read only while clearcoat_ > 0 or sheenOn_.
+  float baseEstimate_;
+  Slot<GgxReflectionLobe> ccLobe_;
+  Slot<Frame> ccFrame_;
+  bool ccOwnFrame_;  ///< the coat's normal differs from the base's
   bool sheenOn_ = false;
-  Color sheenColor_{0.0f};
-  float sheenMax_ = 0;  ///< max component of sheenColor_: the albedo scaling's weight
-  CharlieSheen sheen_{1.0f};
+  Slot<Color> sheenColor_;
+  float sheenMax_;  ///< max component of sheenColor_: the albedo scaling's weight
+  Slot<CharlieSheen> sheen_;
   bool hasNonDelta_;
+  /// Nothing but a Lambert lobe (no clearcoat, no sheen): eval and sample take the short path.
+  /// Set only by the constructor's early exit; the other members it leaves unbuilt.
+  bool lambertOnly_;
   Only only_;
   /// Lobe kinds eval includes (evalLobes evaluates a copy with one kind at a time).
   enum LobeKind : uint8_t { kDiffuseLobes = 1, kSpecularLobes = 2, kTransmissionLobes = 4 };

@@ -22,21 +22,21 @@ constexpr float kMinBaseEstimate = 0.05f;
 void Bsdf::initClearcoat(const ShadingMaterial& m) {
   clearcoat_ = std::clamp(m.clearcoat, 0.0f, 1.0f);
   const float r = std::clamp(m.clearcoatRoughness, 0.0f, 1.0f);
-  ccLobe_ = GgxReflectionLobe::dielectric(r * r, kClearcoatIor);
+  ccLobe_.value = GgxReflectionLobe::dielectric(r * r, kClearcoatIor);
   // The coat's normal on the side of the base's frame (the side wo arrives from).
   Vec3 n = m.clearcoatN;
   const float len = length(n);
   if (!(len > 0) || !std::isfinite(len)) n = frame_.n;
   if (dot(n, frame_.n) < 0) n = -n;
   ccOwnFrame_ = !(n == frame_.n) && !(-n == frame_.n);
-  ccFrame_ = ccOwnFrame_ ? Frame::fromNormal(normalize(n)) : frame_;
+  ccFrame_.value = ccOwnFrame_ ? Frame::fromNormal(normalize(n)) : frame_;
   // How much the base reflects, roughly: its colour (metals, diffuse and glass all scale with
   // it). Only the sampling choice depends on it.
   baseEstimate_ = std::clamp(maxComponent(m.baseColor), kMinBaseEstimate, 1.0f);
 }
 
 float Bsdf::clearcoatFresnel(const Vec3& wo) const {
-  return clearcoat_ * fresnelDielectric(std::fabs(dot(wo, ccFrame_.n)), kClearcoatIor);
+  return clearcoat_ * fresnelDielectric(std::fabs(dot(wo, ccFrame_->n)), kClearcoatIor);
 }
 
 float Bsdf::clearcoatProbability(float cFc) const {
@@ -48,8 +48,8 @@ float Bsdf::clearcoatProbability(float cFc) const {
 
 Color Bsdf::layeredEval(const Vec3& wo, const Vec3& wi, float& pdf) const {
   const float cFc = clearcoatFresnel(wo), pc = clearcoatProbability(cFc);
-  const Vec3 woC = ccFrame_.toLocal(wo), wiC = ccFrame_.toLocal(wi);
-  Color coat = includes(kSpecularLobes) ? ccLobe_.eval(woC, wiC) * clearcoat_ : Color(0.0f);
+  const Vec3 woC = ccFrame_->toLocal(wo), wiC = ccFrame_->toLocal(wi);
+  Color coat = includes(kSpecularLobes) ? ccLobe_->eval(woC, wiC) * clearcoat_ : Color(0.0f);
   // The integrator multiplies by the base normal's cosine; the coat's BRDF goes with its own.
   if (ccOwnFrame_ && !isBlack(coat)) {
     const float cosBase = std::fabs(dot(wi, frame_.n));
@@ -57,7 +57,7 @@ Color Bsdf::layeredEval(const Vec3& wo, const Vec3& wi, float& pdf) const {
   }
   float basePdf;
   const Color base = innerEval(wo, wi, basePdf);
-  pdf = pc * ccLobe_.pdf(woC, wiC) + (1.0f - pc) * basePdf;
+  pdf = pc * ccLobe_->pdf(woC, wiC) + (1.0f - pc) * basePdf;
   return coat + (1.0f - cFc) * base;
 }
 
@@ -65,15 +65,15 @@ BsdfSample Bsdf::layeredSample(const Vec3& wo, float uc, Vec2 u) const {
   const float cFc = clearcoatFresnel(wo), pc = clearcoatProbability(cFc);
   BsdfSample s;
   if (uc < pc) {
-    s = ccLobe_.sample(ccFrame_.toLocal(wo), u);
+    s = ccLobe_->sample(ccFrame_->toLocal(wo), u);
     if (!s.valid()) return s;
-    s.wi = ccFrame_.toWorld(s.wi);
+    s.wi = ccFrame_->toWorld(s.wi);
     if (s.delta) {
       // The mirror's coefficient F / |cos_coat| becomes c F / |cos_base| (the integrator
       // multiplies by the base normal's cosine), chosen with probability pc.
       const float cosBase = std::fabs(dot(s.wi, frame_.n));
       if (!(cosBase > 0)) return BsdfSample{};
-      s.f *= clearcoat_ * (absCosTheta(ccFrame_.toLocal(s.wi)) / cosBase);
+      s.f *= clearcoat_ * (absCosTheta(ccFrame_->toLocal(s.wi)) / cosBase);
       s.pdf *= pc;
       return s;
     }

@@ -15,9 +15,9 @@ constexpr float kMinBaseEstimate = 0.05f;
 
 void Bsdf::initSheen(const ShadingMaterial& m) {
   sheenOn_ = true;
-  sheenColor_ = max(m.sheenColor, Color(0.0f));
-  sheenMax_ = std::min(maxComponent(sheenColor_), 1.0f);
-  sheen_ = CharlieSheen(m.sheenRoughness);
+  sheenColor_.value = max(m.sheenColor, Color(0.0f));
+  sheenMax_ = std::min(maxComponent(sheenColor_.value), 1.0f);
+  sheen_.value = CharlieSheen(m.sheenRoughness);
   if (clearcoat_ == 0)  // otherwise initClearcoat set it
     baseEstimate_ = std::clamp(maxComponent(m.baseColor), kMinBaseEstimate, 1.0f);
 }
@@ -30,19 +30,20 @@ float Bsdf::sheenProbability(float sE) const {
 
 Color Bsdf::sheenEval(const Vec3& wo, const Vec3& wi, float& pdf) const {
   const Vec3 woL = frame_.toLocal(wo), wiL = frame_.toLocal(wi);
-  const float sEo = sheenMax_ * sheen_.albedo(woL.z), sEi = sheenMax_ * sheen_.albedo(wiL.z);
+  const float sEo = sheenMax_ * sheen_->albedo(woL.z), sEi = sheenMax_ * sheen_->albedo(wiL.z);
   const float ps = sheenProbability(sEo);
   float basePdf;
   const Color base = baseEval(wo, wi, basePdf);
   const float sheenPdf = sameHemisphere(woL, wiL) ? cosineHemispherePdf(absCosTheta(wiL)) : 0.0f;
   pdf = ps * sheenPdf + (1.0f - ps) * basePdf;
-  const Color sheen = includes(kDiffuseLobes) ? sheenColor_ * sheen_.eval(woL, wiL) : Color(0.0f);
+  const Color sheen =
+      includes(kDiffuseLobes) ? sheenColor_.value * sheen_->eval(woL, wiL) : Color(0.0f);
   return sheen + base * std::min(1.0f - sEo, 1.0f - sEi);
 }
 
 BsdfSample Bsdf::sheenSample(const Vec3& wo, float uc, Vec2 u) const {
   const Vec3 woL = frame_.toLocal(wo);
-  const float sEo = sheenMax_ * sheen_.albedo(woL.z), ps = sheenProbability(sEo);
+  const float sEo = sheenMax_ * sheen_->albedo(woL.z), ps = sheenProbability(sEo);
   BsdfSample s;
   if (uc < ps) {  // the sheen lobe is broad: cosine-weighted directions on wo's side
     if (woL.z == 0) return s;
@@ -54,7 +55,7 @@ BsdfSample Bsdf::sheenSample(const Vec3& wo, float uc, Vec2 u) const {
     s = baseSample(wo, ucBase, u);
     if (!s.valid()) return s;
     if (s.delta) {
-      const float sEi = sheenMax_ * sheen_.albedo(dot(s.wi, frame_.n));
+      const float sEi = sheenMax_ * sheen_->albedo(dot(s.wi, frame_.n));
       s.f *= std::min(1.0f - sEo, 1.0f - sEi);
       s.pdf *= 1.0f - ps;
       return s;
