@@ -38,6 +38,9 @@ MaterialEvaluator::MaterialEvaluator(const Scene& scene, const Camera& camera, i
       footprintScale_(std::max(0.125f, 1.0f / std::sqrt(float(std::max(spp, 1))))) {
   if (!scene.textures.empty())
     sampler_ = std::make_unique<TextureSampler>(scene.textures, scene.textureCacheMB);
+  prebuilt_.reserve(scene.materials.size());
+  for (const Material& m : scene.materials)
+    prebuilt_.push_back({ShadingMaterial::of(m, Vec3()), sampler_ && m.hasTextures()});
 }
 
 MaterialEvaluator::~MaterialEvaluator() = default;
@@ -69,7 +72,10 @@ Vec3 MaterialEvaluator::normalMapped(const ShadingMaterial& out, const UvFrame& 
 
 ShadingMaterial MaterialEvaluator::evaluate(const Hit& hit, const SurfacePoint& s) const {
   const Material& m = scene_.material(s.material);
-  ShadingMaterial out = ShadingMaterial::of(m, s.n);
+  const Prebuilt& pre = prebuilt_[size_t(s.material)];
+  ShadingMaterial out = pre.factors;  // ShadingMaterial::of(m, s.n)
+  out.n = s.n;
+  out.clearcoatN = s.n;
   // COLOR_0 multiplies the base colour (glTF 2.0 §3.9.2); a CSG override material has none.
   const TriangleMesh* mesh = nullptr;
   if (const Primitive& p = scene_.primitives[hit.primitive];
@@ -79,7 +85,7 @@ ShadingMaterial MaterialEvaluator::evaluate(const Hit& hit, const SurfacePoint& 
   const Color vertex = vertexColored ? vertexColor(*mesh, hit.triangle, hit.b1, hit.b2) : Color(1.0f);
   if (vertexColored) out.baseColor *= vertex;
   if (mesh && m.alphaMode == AlphaMode::kBlend) out.alpha = coverage(scene_, hit);
-  if (!sampler_ || !m.hasTextures()) {
+  if (!pre.textured) {
     if (vertexColored) finishPhong(m, out, vertex);
     return out;
   }

@@ -2,6 +2,7 @@
 // "Evaluate the material at a surface point": the one place where textures meet shading.
 // Integrators (Whitted's Phong, the path tracer's BSDF) and the albedo AOV read the result.
 #include <memory>
+#include <vector>
 
 #include "core/camera.h"
 #include "core/hit.h"
@@ -23,7 +24,8 @@ UvFootprint pixelFootprint(const UvFrame& frame, const Vec3& p, const Vec3& ng,
 class MaterialEvaluator {
  public:
   /// samplesPerPixel narrows the footprint (pbrt-v4: max(1/8, 1/sqrt(spp)) of a pixel), since
-  /// the pixel's samples already average over its area.
+  /// the pixel's samples already average over its area. The scene's materials are read once
+  /// here: they must not change while the evaluator lives.
   MaterialEvaluator(const Scene& scene, const Camera& camera, int samplesPerPixel);
   ~MaterialEvaluator();
   ShadingMaterial evaluate(const Hit& hit, const SurfacePoint& s) const;
@@ -37,6 +39,14 @@ class MaterialEvaluator {
   const Camera& camera_;
   float footprintScale_;
   std::unique_ptr<TextureSampler> sampler_;
+  /// Per material: ShadingMaterial::of it (normal unset), and whether textures are sampled.
+  /// Copying the prebuilt factors rather than ShadingMaterial::of's field by field: evaluate()
+  /// of an untextured material 103 -> 83 instructions per vertex (callgrind, Cornell box).
+  struct Prebuilt {
+    ShadingMaterial factors;
+    bool textured = false;
+  };
+  std::vector<Prebuilt> prebuilt_;
 };
 
 }  // namespace tray
