@@ -15,8 +15,7 @@ void timeSegment(size_t count, float t, size_t& segment, float& fraction) {
   fraction = scaled - index;
 }
 
-Vec3 vertexAt(const TriangleMesh& mesh, uint32_t v, float t) {
-  if (mesh.positionSteps.empty()) return mesh.positions[v];
+Vec3 deformedVertexAt(const TriangleMesh& mesh, uint32_t v, float t) {
   size_t k;
   float f;
   timeSegment(mesh.positionSteps.size(), t, k, f);
@@ -36,8 +35,7 @@ Mat4 interpolateSteps(const std::vector<Mat4>& steps, float t) {
   return m;  // the last row stays 0 0 0 1: the steps are affine
 }
 
-const Transform* placementAt(const Primitive& p, float t, Transform& moved) {
-  if (p.motion.empty()) return &p.toWorld;
+const Transform* movedPlacementAt(const Primitive& p, float t, Transform& moved) {
   moved.m = interpolateSteps(p.motion, t);
   return invert(moved.m, moved.inv) ? &moved : nullptr;
 }

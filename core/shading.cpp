@@ -38,6 +38,16 @@ MaterialEvaluator::MaterialEvaluator(const Scene& scene, const Camera& camera, i
       footprintScale_(std::max(0.125f, 1.0f / std::sqrt(float(std::max(spp, 1))))) {
   if (!scene.textures.empty())
     sampler_ = std::make_unique<TextureSampler>(scene.textures, scene.textureCacheMB);
+  prebuilt_.reserve(scene.materials.size());
+  for (const Material& m : scene.materials) {
+    const bool textured = sampler_ && m.hasTextures();
+    prebuilt_.push_back(
+        {ShadingMaterial::of(m, Vec3()), textured, !textured && m.alphaMode != AlphaMode::kBlend});
+  }
+  coloredMesh_.reserve(scene.primitives.size());
+  for (const Primitive& p : scene.primitives)
+    coloredMesh_.push_back(p.kind == Primitive::Kind::kMesh && p.mesh < scene.meshes.size() &&
+                           !scene.meshes[p.mesh].colors.empty());
 }
 
 MaterialEvaluator::~MaterialEvaluator() = default;
@@ -68,8 +78,19 @@ Vec3 MaterialEvaluator::normalMapped(const ShadingMaterial& out, const UvFrame& 
 }
 
 ShadingMaterial MaterialEvaluator::evaluate(const Hit& hit, const SurfacePoint& s) const {
+  const Prebuilt& pre = prebuilt_[size_t(s.material)];
+  ShadingMaterial out = pre.factors;  // ShadingMaterial::of(material, s.n)
+  out.n = s.n;
+  out.clearcoatN = s.n;
+  // Most vertices: the factors alone (no vertex colour, blend coverage or texture).
+  if (pre.plain && !(hit.material < 0 && coloredMesh_[hit.primitive])) return out;
+  modulate(hit, s, out);
+  return out;
+}
+
+void MaterialEvaluator::modulate(const Hit& hit, const SurfacePoint& s,
+                                 ShadingMaterial& out) const {
   const Material& m = scene_.material(s.material);
-  ShadingMaterial out = ShadingMaterial::of(m, s.n);
   // COLOR_0 multiplies the base colour (glTF 2.0 §3.9.2); a CSG override material has none.
   const TriangleMesh* mesh = nullptr;
   if (const Primitive& p = scene_.primitives[hit.primitive];
@@ -79,9 +100,9 @@ ShadingMaterial MaterialEvaluator::evaluate(const Hit& hit, const SurfacePoint& 
   const Color vertex = vertexColored ? vertexColor(*mesh, hit.triangle, hit.b1, hit.b2) : Color(1.0f);
   if (vertexColored) out.baseColor *= vertex;
   if (mesh && m.alphaMode == AlphaMode::kBlend) out.alpha = coverage(scene_, hit);
-  if (!sampler_ || !m.hasTextures()) {
+  if (!prebuilt_[size_t(s.material)].textured) {
     if (vertexColored) finishPhong(m, out, vertex);
-    return out;
+    return;
   }
 
   // One uv frame per uv set in use (glTF allows TEXCOORD_0 and _1 to differ per texture).
@@ -136,7 +157,6 @@ ShadingMaterial MaterialEvaluator::evaluate(const Hit& hit, const SurfacePoint& 
     }
   }
   finishPhong(m, out, base * vertex);
-  return out;
 }
 
 void MaterialEvaluator::finishPhong(const Material& m, ShadingMaterial& out, const Color& base) {
