@@ -2,10 +2,6 @@
 #include "core/bounds.h"
 #include "core/math.h"
 
-#if defined(__SSE2__)
-#include <xmmintrin.h>
-#endif
-
 namespace tray {
 
 /// Row-major 4x4 matrix (m[row][col]); points are column vectors: p' = M p.
@@ -37,22 +33,9 @@ struct Transform {
   Vec3 vector(const Vec3& v) const { return apply(m, v, 0.0f); }
   /// Normals transform by the inverse transpose (stay perpendicular under non-uniform scale).
   Vec3 normal(const Vec3& n) const {
-#if defined(__SSE2__)
-    // n.x row 0 + n.y row 1 + n.z row 2 of the inverse, four lanes at once: each lane adds the
-    // scalar products below in their order (SSE2 has no FMA), so the bits are the same. Three
-    // row loads where the compiler loaded nine entries and, in Scene::surface, spilled them:
-    // Scene::surface 259 -> 241 instructions per hit (callgrind, Cornell box).
-    const __m128 r = _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_loadu_ps(inv.m[0]), _mm_set1_ps(n.x)),
-                                           _mm_mul_ps(_mm_loadu_ps(inv.m[1]), _mm_set1_ps(n.y))),
-                                _mm_mul_ps(_mm_loadu_ps(inv.m[2]), _mm_set1_ps(n.z)));
-    alignas(16) float out[4];
-    _mm_store_ps(out, r);
-    return {out[0], out[1], out[2]};
-#else
     return {inv.m[0][0] * n.x + inv.m[1][0] * n.y + inv.m[2][0] * n.z,
             inv.m[0][1] * n.x + inv.m[1][1] * n.y + inv.m[2][1] * n.z,
             inv.m[0][2] * n.x + inv.m[1][2] * n.y + inv.m[2][2] * n.z};
-#endif
   }
   Vec3 inversePoint(const Vec3& p) const { return apply(inv, p, 1.0f); }
   Vec3 inverseVector(const Vec3& v) const { return apply(inv, v, 0.0f); }
