@@ -6,6 +6,7 @@
 #include "core/light.h"
 #include "core/scene.h"
 #include "lights/area_light.h"
+#include "lights/bvh_light_sampler.h"
 #include "lights/environment_light.h"
 #include "lights/image_environment_light.h"
 #include "lights/light_sampler.h"
@@ -44,11 +45,15 @@ class LightSet {
   float pdf(int index, const LightSampleContext& ctx, const Vec3& wi, const Vec3& p,
             const Vec3& n) const {
     if (index < 0 || size_t(index) >= lights_.size()) return 0.0f;
-    const float pmf = chooser_->pmf(ctx, index);
-    return pmf > 0 ? pmf * lights_[size_t(index)]->pdf(ctx, wi, p, n) : 0.0f;
+    const float pmf = this->pmf(ctx, index);
+    if (!(pmf > 0)) return 0.0f;
+    const size_t i = size_t(index);
+    return pmf * (i < area_.size() ? area_[i].pdf(ctx, wi, p, n) : lights_[i]->pdf(ctx, wi, p, n));
   }
   /// The probability that sample() from ctx chooses light `index`.
-  float pmf(const LightSampleContext& ctx, int index) const { return chooser_->pmf(ctx, index); }
+  float pmf(const LightSampleContext& ctx, int index) const {
+    return bvh_ ? bvh_->pmf(ctx, index) : chooser_->pmf(ctx, index);
+  }
   /// Indices of the lights that rays escaping the scene see (Light::Le): the environment.
   const std::vector<int>& infinite() const { return infinite_; }
   /// Indices of the delta lights (point, spot, directional), in the scene's order.
@@ -69,6 +74,8 @@ class LightSet {
   size_t triangleCount_ = 0;
   bool anyPower_ = false;
   std::unique_ptr<LightSampler> chooser_;
+  /// chooser_ when it is the BVH (the default): called through its final class, inline.
+  const BvhLightSampler* bvh_ = nullptr;
 };
 
 }  // namespace tray
