@@ -88,20 +88,4 @@ LightSet::LightSet(const Scene& scene, LightSamplerKind kind) {
   bvh_ = dynamic_cast<const BvhLightSampler*>(chooser_.get());
 }
 
-LightSample LightSet::sample(const LightSampleContext& ctx, float u1, Vec2 u2) const {
-  float pmf;
-  // The BVH chooser and area lights through their final classes: inline, no virtual calls
-  // (callgrind, Cornell box: LightSet::sample ~248 -> ~188 instructions per vertex).
-  const int i = bvh_ ? bvh_->sample(ctx, u1, pmf) : chooser_->sample(ctx, u1, pmf);
-  const bool chosen = i >= 0 && pmf > 0;
-  // One named result built in place (no `return {}` beside it, which stops the compiler's
-  // NRVO): copying the light's sample out of a temporary after writing its pdf cost a
-  // store-forwarding stall per sample (see setSpawnRay in core/ray.h).
-  LightSample s = !chosen                    ? LightSample{}
-                  : size_t(i) < area_.size() ? area_[size_t(i)].sample(ctx, u2)
-                                             : lights_[size_t(i)]->sample(ctx, u2);
-  if (chosen) s.pdf *= pmf;
-  return s;
-}
-
 }  // namespace tray
