@@ -54,8 +54,11 @@ class AreaLight final : public Light {
     float dist2 = lengthSquared(d);
     if (!(dist2 > 0)) return s;
     s.wi = d / std::sqrt(dist2);
-    if (!emitsToward(n_, -s.wi, doubleSided_)) return s;
-    s.pdf = trianglePdf(dist2, -dot(n_, s.wi));
+    // emitsToward(n_, -s.wi, doubleSided_) on the cosine the pdf needs anyway: dot(n_, -wi)
+    // and -dot(n_, wi) are equal but for the sign of a zero, which neither test sees.
+    const float cosL = -dot(n_, s.wi);
+    if (!(doubleSided_ || cosL > 0)) return s;
+    s.pdf = trianglePdf(dist2, cosL);
     s.L = Le_;
     return s;
   }

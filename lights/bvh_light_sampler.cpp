@@ -70,6 +70,9 @@ BvhLightSampler::BvhLightSampler(const std::vector<LightBounds>& bounds) {
   }
   if (items.size() > (size_t(1) << 40)) throw Error("too many lights for the light BVH");
   if (!items.empty()) build(items, 0, items.size(), 0, 0);
+  // sampleTop would give it pmf phi / phi = 1 (phi is finite and positive here), any u.
+  if (items.empty() && infinite_.size() == 1 && infinite_[0].kind == LightBounds::Kind::kAmbient)
+    soleAmbient_ = infiniteLight_[0];
 }
 
 uint32_t BvhLightSampler::build(std::vector<Item>& items, size_t begin, size_t end, int depth,

@@ -26,6 +26,8 @@ class BvhLightSampler final : public LightSampler {
   /// infinite light the tree takes all of u (callgrind, Cornell box: ~95 -> ~30 instructions
   /// per choice).
   int sample(const LightSampleContext& ctx, float u, float& pmf) const override {
+    // An environment alone: importance phi of a total phi, wherever the receiver is.
+    if (soleAmbient_ >= 0) return pmf = 1.0f, soleAmbient_;
     if (!infinite_.empty() || nodes_.empty()) return sampleTop(ctx, u, pmf);
     // The tree alone: weight 1 of a total 1. u x 1, u / 1 and 1 / 1 are exact, so the choice
     // and the pmf are sampleTop's, bit for bit.
@@ -35,6 +37,7 @@ class BvhLightSampler final : public LightSampler {
     return descend(ctx, u, pmf);
   }
   float pmf(const LightSampleContext& ctx, int light) const override {
+    if (soleAmbient_ >= 0) return light == soleAmbient_ ? 1.0f : 0.0f;
     if (!infinite_.empty()) return pmfTop(ctx, light);
     if (light < 0 || size_t(light) >= trail_.size() || !inTree_[size_t(light)]) return 0.0f;
     return pmfInTree(ctx, trail_[size_t(light)], 1.0f);  // the tree alone: as above
@@ -115,6 +118,8 @@ class BvhLightSampler final : public LightSampler {
   std::vector<uint64_t> trail_;        ///< per light: bit k set = right turn at depth k
   std::vector<bool> inTree_;           ///< per light
   int depth_ = 0;
+  /// The light when the only one that can be chosen is an environment (kAmbient), else -1.
+  int soleAmbient_ = -1;
 };
 
 }  // namespace tray

@@ -49,7 +49,7 @@ class LightSet {
     const float pmf = this->pmf(ctx, index);
     if (!(pmf > 0)) return 0.0f;
     const size_t i = size_t(index);
-    return pmf * (i < area_.size() ? area_[i].pdf(ctx, wi, p, n) : lights_[i]->pdf(ctx, wi, p, n));
+    return pmf * (i < area_.size() ? area_[i].pdf(ctx, wi, p, n) : pdfOther(index, ctx, wi, p, n));
   }
   /// The probability that sample() from ctx chooses light `index`.
   float pmf(const LightSampleContext& ctx, int index) const {
@@ -63,6 +63,12 @@ class LightSet {
   size_t triangleCount() const { return triangleCount_; }
 
  private:
+  /// Light i's sample when it is not an area light (out of line: LightSet::sample stays
+  /// small enough to be inlined).
+  LightSample sampleOther(int i, const LightSampleContext& ctx, Vec2 u) const;
+  /// Light i's pdf when it is not an area light (out of line, as sampleOther).
+  float pdfOther(int i, const LightSampleContext& ctx, const Vec3& wi, const Vec3& p,
+                 const Vec3& n) const;
   void addPrimitive(const Scene& scene, size_t i, std::vector<float>& power);
   std::vector<AreaLight> area_;
   std::vector<PunctualLight> punctual_;
@@ -72,6 +78,7 @@ class LightSet {
   std::vector<int> firstLight_;       ///< per primitive: its first light index, or -1
   std::vector<bool> isTriangles_;     ///< per primitive: lights are per triangle
   std::vector<int> infinite_, delta_;
+  int constantEnvironment_ = -1;  ///< environment_[0]'s index (sampled inline), or -1
   size_t triangleCount_ = 0;
   bool anyPower_ = false;
   std::unique_ptr<LightSampler> chooser_;
@@ -90,7 +97,7 @@ inline LightSample LightSet::sample(const LightSampleContext& ctx, float u1, Vec
   // store-forwarding stall per sample (see setSpawnRay in core/ray.h).
   LightSample s = !chosen                    ? LightSample{}
                   : size_t(i) < area_.size() ? area_[size_t(i)].sample(ctx, u2)
-                                             : lights_[size_t(i)]->sample(ctx, u2);
+                                             : sampleOther(i, ctx, u2);
   if (chosen) s.pdf *= pmf;
   return s;
 }
