@@ -70,6 +70,8 @@ BvhLightSampler::BvhLightSampler(const std::vector<LightBounds>& bounds) {
   }
   if (items.size() > (size_t(1) << 40)) throw Error("too many lights for the light BVH");
   if (!items.empty()) build(items, 0, items.size(), 0, 0);
+  fixedTree_ = std::all_of(nodes_.begin(), nodes_.end(),
+                           [](const Node& n) { return n.leaf || n.fixedLeft >= 0; });
   // sampleTop would give it pmf phi / phi = 1 (phi is finite and positive here), any u.
   if (items.empty() && infinite_.size() == 1 && infinite_[0].kind == LightBounds::Kind::kAmbient)
     soleAmbient_ = infiniteLight_[0];
@@ -201,7 +203,7 @@ int BvhLightSampler::sampleTop(const LightSampleContext& ctx, float u, float& pm
   float p = root / total;
   u = std::min((target - before) / root, kOneMinusEpsilon);
   u = std::max(u, 0.0f);
-  const int light = descend(ctx, u, p);
+  const int light = descendAny(ctx, u, p);
   pmf = p;
   return light;
 }
@@ -214,7 +216,15 @@ float BvhLightSampler::pmfTop(const LightSampleContext& ctx, int light) const {
   if (infiniteSlot_[size_t(light)] >= 0)
     return infinite_[size_t(infiniteSlot_[size_t(light)])].importance(ctx) / total;
   if (!inTree_[size_t(light)]) return 0.0f;
-  return pmfInTree(ctx, trail_[size_t(light)], root / total);
+  return pmfAny(ctx, trail_[size_t(light)], root / total);
+}
+
+int BvhLightSampler::descendAny(const LightSampleContext& ctx, float u, float& p) const {
+  return descend<false>(ctx, u, p);
+}
+
+float BvhLightSampler::pmfAny(const LightSampleContext& ctx, uint64_t trail, float p) const {
+  return pmfInTree<false>(ctx, trail, p);
 }
 
 }  // namespace tray
