@@ -1,8 +1,6 @@
 #include "lights/area_light.h"
 
-#include "core/front_face.h"
 #include "core/light_bounds.h"
-#include "core/sampling.h"
 
 namespace tray {
 
@@ -49,22 +47,7 @@ LightBounds AreaLight::bounds() const {
   return LightBounds::finite(box, n_, L * area_, 1.0f, 0.0f, doubleSided_);
 }
 
-LightSample AreaLight::sampleTriangle(const Vec3& ref, Vec2 u) const {
-  LightSample s;
-  Vec3 b = sampleUniformTriangle(u);
-  s.p = p0_ + b.y * e1_ + b.z * e2_;
-  Vec3 d = s.p - ref;
-  float dist2 = lengthSquared(d);
-  if (!(dist2 > 0)) return s;
-  s.wi = d / std::sqrt(dist2);
-  if (!emitsToward(n_, -s.wi, doubleSided_)) return s;
-  s.pdf = trianglePdf(dist2, -dot(n_, s.wi));
-  s.L = Le_;
-  return s;
-}
-
-LightSample AreaLight::sample(const LightSampleContext& ctx, Vec2 u) const {
-  if (!shape_) return sampleTriangle(ctx.p, u);
+LightSample AreaLight::sampleShape(const LightSampleContext& ctx, Vec2 u) const {
   LightSample s;
   std::optional<ShapeSample> ss = shape_->sample({*toWorld_, ctx.p}, u);
   if (!ss || !emitsToward(ss->n, -ss->wi, doubleSided_)) return s;
@@ -75,12 +58,9 @@ LightSample AreaLight::sample(const LightSampleContext& ctx, Vec2 u) const {
   return s;
 }
 
-float AreaLight::pdf(const LightSampleContext& ctx, const Vec3&, const Vec3& p,
-                     const Vec3& n) const {
-  if (shape_) return shape_->pdf({*toWorld_, ctx.p}, p, n);
-  Vec3 d = p - ctx.p;
-  float dist2 = lengthSquared(d);
-  return trianglePdf(dist2, dot(n_, d) / std::sqrt(dist2));
+float AreaLight::shapePdf(const LightSampleContext& ctx, const Vec3&, const Vec3& p,
+                          const Vec3& n) const {
+  return shape_->pdf({*toWorld_, ctx.p}, p, n);
 }
 
 }  // namespace tray

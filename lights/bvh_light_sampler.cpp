@@ -10,7 +10,6 @@ namespace tray {
 
 namespace {
 
-constexpr float kOneMinusEpsilon = 0.99999994f;
 constexpr int kBuckets = 12;
 
 /// The orientation measure M_Omega of a cone of normals theta_o emitting within theta_e
@@ -71,6 +70,11 @@ BvhLightSampler::BvhLightSampler(const std::vector<LightBounds>& bounds) {
   }
   if (items.size() > (size_t(1) << 40)) throw Error("too many lights for the light BVH");
   if (!items.empty()) build(items, 0, items.size(), 0, 0);
+  fixedTree_ = std::all_of(nodes_.begin(), nodes_.end(),
+                           [](const Node& n) { return n.leaf || n.fixedLeft >= 0; });
+  // sampleTop would give it pmf phi / phi = 1 (phi is finite and positive here), any u.
+  if (items.empty() && infinite_.size() == 1 && infinite_[0].kind == LightBounds::Kind::kAmbient)
+    soleAmbient_ = infiniteLight_[0];
 }
 
 uint32_t BvhLightSampler::build(std::vector<Item>& items, size_t begin, size_t end, int depth,
@@ -170,8 +174,7 @@ float BvhLightSampler::topTotal(const LightSampleContext& ctx, float& root) cons
   return total + root;
 }
 
-float BvhLightSampler::leftProbability(uint32_t node, const LightSampleContext& ctx) const {
-  if (nodes_[node].fixedLeft >= 0) return nodes_[node].fixedLeft;
+float BvhLightSampler::leftByImportance(uint32_t node, const LightSampleContext& ctx) const {
   const float left = nodes_[node + 1].bounds.importance(ctx);
   const float right = nodes_[nodes_[node].index].bounds.importance(ctx);
   const float sum = left + right;
@@ -180,7 +183,7 @@ float BvhLightSampler::leftProbability(uint32_t node, const LightSampleContext& 
   return sum > 0 && std::isfinite(sum) ? left / sum : 0.5f;
 }
 
-int BvhLightSampler::sample(const LightSampleContext& ctx, float u, float& pmf) const {
+int BvhLightSampler::sampleTop(const LightSampleContext& ctx, float u, float& pmf) const {
   pmf = 0;
   float root;
   const float total = topTotal(ctx, root);
@@ -200,24 +203,12 @@ int BvhLightSampler::sample(const LightSampleContext& ctx, float u, float& pmf) 
   float p = root / total;
   u = std::min((target - before) / root, kOneMinusEpsilon);
   u = std::max(u, 0.0f);
-  uint32_t n = 0;
-  while (!nodes_[n].leaf) {
-    const float pLeft = leftProbability(n, ctx);
-    if (u < pLeft) {
-      u = std::min(u / pLeft, kOneMinusEpsilon);
-      p *= pLeft;
-      n = n + 1;
-    } else {
-      u = std::min((u - pLeft) / (1.0f - pLeft), kOneMinusEpsilon);
-      p *= 1.0f - pLeft;
-      n = nodes_[n].index;
-    }
-  }
+  const int light = descendAny(ctx, u, p);
   pmf = p;
-  return int(nodes_[n].index);
+  return light;
 }
 
-float BvhLightSampler::pmf(const LightSampleContext& ctx, int light) const {
+float BvhLightSampler::pmfTop(const LightSampleContext& ctx, int light) const {
   if (light < 0 || size_t(light) >= trail_.size()) return 0.0f;
   float root;
   const float total = topTotal(ctx, root);
@@ -225,20 +216,15 @@ float BvhLightSampler::pmf(const LightSampleContext& ctx, int light) const {
   if (infiniteSlot_[size_t(light)] >= 0)
     return infinite_[size_t(infiniteSlot_[size_t(light)])].importance(ctx) / total;
   if (!inTree_[size_t(light)]) return 0.0f;
-  float p = root / total;
-  const uint64_t trail = trail_[size_t(light)];
-  uint32_t n = 0;
-  for (int level = 0; !nodes_[n].leaf; ++level) {
-    const float pLeft = leftProbability(n, ctx);
-    if (trail & (uint64_t(1) << level)) {
-      p *= 1.0f - pLeft;
-      n = nodes_[n].index;
-    } else {
-      p *= pLeft;
-      n = n + 1;
-    }
-  }
-  return p;
+  return pmfAny(ctx, trail_[size_t(light)], root / total);
+}
+
+int BvhLightSampler::descendAny(const LightSampleContext& ctx, float u, float& p) const {
+  return descend<false>(ctx, u, p);
+}
+
+float BvhLightSampler::pmfAny(const LightSampleContext& ctx, uint64_t trail, float p) const {
+  return pmfInTree<false>(ctx, trail, p);
 }
 
 }  // namespace tray

@@ -26,7 +26,8 @@ class EnvironmentLight final : public Light {
     LightSample s;
     const float share = ctx.transmits ? kCosineShareTwoSided : 1.0f;
     if (u.x < share) {
-      u.x = std::min(u.x / share, 0.99999994f);
+      // A share of 1 leaves u.x as it was (u.x / 1 = u.x < 1): no division.
+      if (ctx.transmits) u.x = std::min(u.x / share, 0.99999994f);
       s.wi = Frame::fromNormal(ctx.n).toWorld(sampleCosineHemisphere(u));
     } else {
       u.x = (u.x - share) / (1.0f - share);

@@ -70,6 +70,7 @@ LightSet::LightSet(const Scene& scene, LightSamplerKind kind) {
     }
   } else if (!isBlack(bg) && isFinite(bg)) {
     environment_.emplace_back(bg, radius);
+    constantEnvironment_ = int(power.size());
     infinite_.push_back(int(power.size()));
     power.push_back(environment_.back().power());
   }
@@ -85,18 +86,19 @@ LightSet::LightSet(const Scene& scene, LightSamplerKind kind) {
   if (kind == LightSamplerKind::kBvh)
     for (const Light* l : lights_) bounds.push_back(l->bounds());
   chooser_ = makeLightSampler(kind, power, bounds);
+  bvh_ = dynamic_cast<const BvhLightSampler*>(chooser_.get());
 }
 
-LightSample LightSet::sample(const LightSampleContext& ctx, float u1, Vec2 u2) const {
-  float pmf;
-  const int i = chooser_->sample(ctx, u1, pmf);
-  const bool chosen = i >= 0 && pmf > 0;
-  // One named result built in place (no `return {}` beside it, which stops the compiler's
-  // NRVO): copying the light's sample out of a temporary after writing its pdf cost a
-  // store-forwarding stall per sample (see setSpawnRay in core/ray.h).
-  LightSample s = chosen ? lights_[size_t(i)]->sample(ctx, u2) : LightSample{};
-  if (chosen) s.pdf *= pmf;
-  return s;
+LightSample LightSet::sampleOther(int i, const LightSampleContext& ctx, Vec2 u) const {
+  // The constant environment through its final class: its sample() inline, no virtual call.
+  return i == constantEnvironment_ ? environment_[0].sample(ctx, u)
+                                   : lights_[size_t(i)]->sample(ctx, u);
+}
+
+float LightSet::pdfOther(int i, const LightSampleContext& ctx, const Vec3& wi, const Vec3& p,
+                         const Vec3& n) const {
+  return i == constantEnvironment_ ? environment_[0].pdf(ctx, wi, p, n)
+                                   : lights_[size_t(i)]->pdf(ctx, wi, p, n);
 }
 
 }  // namespace tray
