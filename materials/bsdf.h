@@ -87,6 +87,7 @@ class Bsdf {
  private:
   struct Probabilities {
     float metal = 0, glass = 0, coat = 0, diffuse = 0;
+    float coatFresnel = 0;  ///< coatFresnel(wo), which the Lambert lobe's weight also reads
   };
   /// The one lobe with any weight, when there is only one (matte, pure metal, pure glass):
   /// sample, eval and pdf then skip the mixture's bookkeeping. Same values, fewer
@@ -127,6 +128,14 @@ class Bsdf {
     return s;
   }
   Probabilities probabilities(const Vec3& wo) const;
+  /// evalLocal and pdfLocal of a mixture in one pass, given p = probabilities(wo); ggx gets the
+  /// metal and coat lobes' shared terms (default ones when neither lobe is in use).
+  Color mixtureEvalPdf(const Vec3& wo, const Vec3& wi, const Probabilities& p, float& pdf,
+                       GgxReflectionLobe::Terms& ggx) const;
+  /// sampleLocal's mixture choosing a non-delta GGX lobe (metal or coat): only the direction,
+  /// then the mixture's f and pdf, whose pass also gives the lobe's own pdf.
+  BsdfSample mixtureGgxSample(const GgxReflectionLobe& lobe, const Vec3& wo, Vec2 u,
+                              const Probabilities& p) const;
   float coatFresnel(const Vec3& wo) const;
   // The base material (everything below the clearcoat), in world space.
   Color baseEval(const Vec3& wo, const Vec3& wi, float& pdf) const;
