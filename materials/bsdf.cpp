@@ -6,6 +6,7 @@ namespace tray {
 
 void Bsdf::initLobes(const ShadingMaterial& m, float eta) {
   lambertOnly_ = false;
+  probCached_ = false;
   wMetal_ = std::clamp(m.metallic, 0.0f, 1.0f);
   wGlass_ = (1.0f - wMetal_) * std::clamp(m.transmission, 0.0f, 1.0f);
   wPlastic_ = 1.0f - wMetal_ - wGlass_;
@@ -44,7 +45,7 @@ float Bsdf::coatFresnel(const Vec3& wo) const {
   return coat_ > 0 ? coat_ * fresnelDielectric(absCosTheta(wo), coatEta_) : 0.0f;
 }
 
-Bsdf::Probabilities Bsdf::probabilities(const Vec3& wo) const {
+Bsdf::Probabilities Bsdf::computeProbabilities(const Vec3& wo) const {
   // Roughly each lobe's share of the reflected energy; any positive choice is unbiased.
   Probabilities p;
   float fc = coatFresnel(wo);
@@ -97,7 +98,7 @@ float Bsdf::pdfLocal(const Vec3& wo, const Vec3& wi) const {
     case Only::kMixture:
       break;
   }
-  Probabilities p = probabilities(wo);
+  const Probabilities& p = probabilities(wo);
   float pdf = 0;
   if (p.metal > 0) pdf += p.metal * metal_->pdf(wo, wi);
   if (p.glass > 0) pdf += p.glass * glass_->pdf(wo, wi);
@@ -154,9 +155,8 @@ BsdfSample Bsdf::sampleLocal(const Vec3& wo, float uc, Vec2 u) const {
              : only_ == Only::kDiffuse ? 3
                                        : -1;
   float prob = 1.0f, ucLobe = uc;
-  Probabilities p;
   if (only_ == Only::kMixture) {
-    p = probabilities(wo);
+    const Probabilities& p = probabilities(wo);
     const float cdf[4] = {p.metal, p.metal + p.glass, p.metal + p.glass + p.coat, 1.0f};
     lobe = 0;
     while (lobe < 3 && uc >= cdf[lobe]) ++lobe;
@@ -202,7 +202,7 @@ BsdfSample Bsdf::sampleLocal(const Vec3& wo, float uc, Vec2 u) const {
     return s;
   }
   GgxReflectionLobe::Terms unused;
-  s.f = mixtureEvalPdf(wo, s.wi, p, s.pdf, unused);
+  s.f = mixtureEvalPdf(wo, s.wi, probabilities(wo), s.pdf, unused);
   if (!(s.pdf > 0) || !std::isfinite(s.pdf)) s.pdf = 0;
   return s;
 }

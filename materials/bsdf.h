@@ -1,4 +1,5 @@
 #pragma once
+#include <bit>
 #include <cmath>
 #include <cstdint>
 
@@ -49,6 +50,7 @@ class Bsdf {
       coatTinted_ = false;
       hasNonDelta_ = true;
       lambertOnly_ = true;
+      probCached_ = false;
       only_ = Only::kDiffuse;
       return;
     }
@@ -127,7 +129,17 @@ class Bsdf {
     s.wi = frame_.toWorld(wi);
     return s;
   }
-  Probabilities probabilities(const Vec3& wo) const;
+  /// Depends on wo.z alone. NEE's eval and the sample at one vertex ask at the same wo: the
+  /// last answer is kept (see probWoZ_).
+  const Probabilities& probabilities(const Vec3& wo) const {
+    if (!probCached_ || std::bit_cast<uint32_t>(wo.z) != probWoZ_) {
+      prob_.value = computeProbabilities(wo);
+      probWoZ_ = std::bit_cast<uint32_t>(wo.z);
+      probCached_ = true;
+    }
+    return prob_.value;
+  }
+  Probabilities computeProbabilities(const Vec3& wo) const;
   /// evalLocal and pdfLocal of a mixture in one pass, given p = probabilities(wo); ggx gets the
   /// metal and coat lobes' shared terms (default ones when neither lobe is in use).
   Color mixtureEvalPdf(const Vec3& wo, const Vec3& wi, const Probabilities& p, float& pdf,
@@ -179,6 +191,11 @@ class Bsdf {
   float sheenMax_;  ///< max component of sheenColor_: the albedo scaling's weight
   Slot<CharlieSheen> sheen_;
   bool hasNonDelta_;
+  // probabilities()' last answer and the bits of its wo.z: one computation per vertex instead
+  // of two (callgrind spheres 96x96 16spp: trace 613.2M -> 606.7M).
+  mutable bool probCached_;
+  mutable uint32_t probWoZ_;
+  mutable Slot<Probabilities> prob_;
   /// Nothing but a Lambert lobe (no clearcoat, no sheen): eval and sample take the short path.
   /// Set only by the constructor's early exit; the other members it leaves unbuilt.
   bool lambertOnly_;
