@@ -108,13 +108,15 @@ float Bsdf::pdfLocal(const Vec3& wo, const Vec3& wi) const {
 }
 
 Color Bsdf::mixtureEvalPdf(const Vec3& wo, const Vec3& wi, const Probabilities& p, float& pdf,
-                           GgxReflectionLobe::Terms& ggx) const {
+                           float& ggxPdf) const {
   // evalLocal's sum and pdfLocal's, each in its own order. The metal and coat lobes are built
   // with one alpha (initLobes), so the metal lobe's terms (half vector, D, G, pdf) are the
   // coat's too: only Fresnel differs.
   const bool metalF = wMetal_ > 0 && includes(kSpecularLobes);
   const bool coatF = wPlastic_ > 0 && coat_ > 0 && includes(kSpecularLobes);
+  GgxReflectionLobe::Terms ggx;
   if (metalF || coatF || p.metal > 0 || p.coat > 0) ggx = metal_->terms(wo, wi);
+  ggxPdf = ggx.pdf;
   Color f(0.0f);
   if (metalF) f += wMetal_ * metal_->eval(ggx);
   if (wGlass_ > 0 && includesGlass(wo, wi)) f += wGlass_ * glass_->eval(wo, wi);
@@ -136,10 +138,10 @@ BsdfSample Bsdf::mixtureGgxSample(const GgxReflectionLobe& lobe, const Vec3& wo,
   Vec3 wi;
   if (wo.z == 0 || !lobe.sampleDirection(wo, u, wi)) return s;
   s.wi = wi;
-  GgxReflectionLobe::Terms t;
-  s.f = mixtureEvalPdf(wo, wi, p, s.pdf, t);
-  if (!(t.pdf > 0)) {  // the lobe's own sample is invalid: return it as lobe.sample would
-    s.f = lobe.eval(t);
+  float lobePdf;
+  s.f = mixtureEvalPdf(wo, wi, p, s.pdf, lobePdf);
+  if (!(lobePdf > 0)) {  // the lobe's own sample is invalid (rare): return it as lobe.sample would
+    s.f = lobe.eval(wo, wi);
     s.pdf = 0;
     return s;
   }
@@ -201,7 +203,7 @@ BsdfSample Bsdf::sampleLocal(const Vec3& wo, float uc, Vec2 u) const {
     s.pdf *= prob;
     return s;
   }
-  GgxReflectionLobe::Terms unused;
+  float unused;
   s.f = mixtureEvalPdf(wo, s.wi, probabilities(wo), s.pdf, unused);
   if (!(s.pdf > 0) || !std::isfinite(s.pdf)) s.pdf = 0;
   return s;
@@ -238,7 +240,7 @@ Color Bsdf::baseEval(const Vec3& wo, const Vec3& wi, float& pdf) const {
     return metal_->eval(t);
   }
   if (only_ == Only::kMixture) {
-    GgxReflectionLobe::Terms unused;
+    float unused;
     return mixtureEvalPdf(woLocal, wiLocal, probabilities(woLocal), pdf, unused);
   }
   pdf = pdfLocal(woLocal, wiLocal);

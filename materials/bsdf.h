@@ -140,10 +140,11 @@ class Bsdf {
     return prob_.value;
   }
   Probabilities computeProbabilities(const Vec3& wo) const;
-  /// evalLocal and pdfLocal of a mixture in one pass, given p = probabilities(wo); ggx gets the
-  /// metal and coat lobes' shared terms (default ones when neither lobe is in use).
+  /// evalLocal and pdfLocal of a mixture in one pass, given p = probabilities(wo); ggxPdf gets
+  /// the metal and coat lobes' own pdf (0 when neither lobe is in use). A float rather than
+  /// the whole GgxReflectionLobe::Terms: copying that out cost a store-forwarding stall.
   Color mixtureEvalPdf(const Vec3& wo, const Vec3& wi, const Probabilities& p, float& pdf,
-                       GgxReflectionLobe::Terms& ggx) const;
+                       float& ggxPdf) const;
   /// sampleLocal's mixture choosing a non-delta GGX lobe (metal or coat): only the direction,
   /// then the mixture's f and pdf, whose pass also gives the lobe's own pdf.
   BsdfSample mixtureGgxSample(const GgxReflectionLobe& lobe, const Vec3& wo, Vec2 u,
