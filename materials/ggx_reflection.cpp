@@ -30,6 +30,37 @@ float GgxReflectionLobe::pdf(const Vec3& wo, const Vec3& wi) const {
   return dist_.visibleD(wo, wm) / (4.0f * std::fabs(dot(wo, wm)));
 }
 
+GgxReflectionLobe::Terms GgxReflectionLobe::terms(const Vec3& wo, const Vec3& wi) const {
+  // eval and pdf below, step for step: G1(wo) = 1 / (1 + Lambda(wo)) and
+  // G = 1 / ((1 + Lambda(wo)) + Lambda(wi)) share 1 + Lambda(wo).
+  Terms t;
+  if (isDelta() || !sameHemisphere(wo, wi)) return t;
+  Vec3 wm = wi + wo;
+  if (lengthSquared(wm) == 0) return t;
+  wm = normalize(wm);
+  if (wm.z < 0) wm = -wm;
+  const float d = dist_.D(wm), onePlusLambdaO = 1.0f + dist_.lambda(wo);
+  t.cosOM = dot(wo, wm);
+  const float c = std::fabs(wo.z);  // visibleD(wo, wm)
+  const float visible = c == 0 ? 0.0f : 1.0f / onePlusLambdaO / c * d * std::fabs(t.cosOM);
+  t.pdf = visible / (4.0f * std::fabs(t.cosOM));
+  const float cosO = absCosTheta(wo), cosI = absCosTheta(wi);
+  if (cosO == 0 || cosI == 0) return t;
+  t.scale = d * (1.0f / (onePlusLambdaO + dist_.lambda(wi))) / (4.0f * cosO * cosI);
+  t.nonzero = true;
+  return t;
+}
+
+bool GgxReflectionLobe::sampleDirection(const Vec3& wo, Vec2 u, Vec3& wi) const {
+  // Sample visible normals on the upper side and mirror the answer for wo below.
+  const Vec3 woUp = wo.z < 0 ? -wo : wo;
+  const Vec3 wm = dist_.sampleVisibleNormal(woUp, u);
+  wi = -woUp + 2.0f * dot(woUp, wm) * wm;
+  if (wi.z <= 0) return false;  // shadowed by the microsurface: no sample (pbrt-v4 does the same)
+  if (wo.z < 0) wi = -wi;
+  return true;
+}
+
 BsdfSample GgxReflectionLobe::sample(const Vec3& wo, Vec2 u) const {
   BsdfSample s;
   if (wo.z == 0) return s;
@@ -40,15 +71,12 @@ BsdfSample GgxReflectionLobe::sample(const Vec3& wo, Vec2 u) const {
     s.delta = true;
     return s;
   }
-  // Sample visible normals on the upper side and mirror the answer for wo below.
-  Vec3 woUp = wo.z < 0 ? -wo : wo;
-  Vec3 wm = dist_.sampleVisibleNormal(woUp, u);
-  Vec3 wi = -woUp + 2.0f * dot(woUp, wm) * wm;
-  if (wi.z <= 0) return s;  // shadowed by the microsurface: no sample (pbrt-v4 does the same)
-  if (wo.z < 0) wi = -wi;
+  Vec3 wi;
+  if (!sampleDirection(wo, u, wi)) return s;
   s.wi = wi;
-  s.pdf = pdf(wo, wi);
-  s.f = eval(wo, wi);
+  const Terms t = terms(wo, wi);  // eval and pdf in one pass
+  s.pdf = t.pdf;
+  s.f = eval(t);
   if (!(s.pdf > 0)) s.pdf = 0;
   return s;
 }

@@ -38,6 +38,22 @@ class GgxReflectionLobe {
   float pdf(const Vec3& wo, const Vec3& wi) const;
   BsdfSample sample(const Vec3& wo, Vec2 u) const;
 
+  /// What eval and pdf share at one (wo, wi), computed once: the half vector, D and Lambda(wo)
+  /// (with the same operations as eval and pdf, so the same floats). They depend on alpha
+  /// alone, so two lobes of one roughness (the mixture's metal and coat) share them and differ
+  /// only in eval(Terms)'s Fresnel factor.
+  struct Terms {
+    float cosOM = 0;       ///< wo . wm, Fresnel's cosine
+    float scale = 0;       ///< D G / (4 |cos_o cos_i|)
+    float pdf = 0;         ///< pdf(wo, wi)
+    bool nonzero = false;  ///< false: eval is its early-out zero
+  };
+  Terms terms(const Vec3& wo, const Vec3& wi) const;
+  /// eval(wo, wi) from terms(wo, wi).
+  Color eval(const Terms& t) const { return t.nonzero ? fresnel(t.cosOM) * t.scale : Color(0.0f); }
+  /// sample's direction alone (for a non-delta lobe and wo.z != 0); false: no sample.
+  bool sampleDirection(const Vec3& wo, Vec2 u, Vec3& wi) const;
+
  private:
   GgxReflectionLobe(float alpha, const Color& f0, float eta) : dist_(alpha), f0_(f0), eta_(eta) {}
   float fresnelDielectricAbs(float cosI) const;
