@@ -107,6 +107,43 @@ TEST_P(BsdfLobes, WorldSpaceQueriesMatchTheLocalFrame) {
   }
 }
 
+TEST_P(BsdfLobes, ShortPathsGiveTheGeneralPathsBits) {
+  // The world-space entry points take short paths (a lone Lambert lobe skips the mixture; a
+  // mixture samples a GGX lobe's direction, then evaluates all lobes in one pass sharing the GGX
+  // terms): each must give the bits of the general local computation, which the path tracer's
+  // images rely on (docs/path-tracing.md, "Per-vertex work cut, same pixels").
+  const Case c = GetParam();
+  const Frame frame = Frame::fromNormal(normalize(Vec3(0.3f, -0.5f, 0.8f)));
+  const Bsdf bsdf(materialOf(c, Color(0.8f, 0.5f, 0.3f)), frame.n, c.eta);
+  for (float angle : kAngles) {
+    const Vec3 woWorld = frame.toWorld(direction(angle)), wo = frame.toLocal(woWorld);
+    for (int i = 0; i < 500; ++i) {
+      const float a = (i * 0.618034f) - std::floor(i * 0.618034f);
+      const float b = (i * 0.754878f) - std::floor(i * 0.754878f);
+      const float uc = (i * 0.569840f) - std::floor(i * 0.569840f);
+      const BsdfSample world = bsdf.sample(woWorld, uc, {a, b});
+      const BsdfSample local = bsdf.sampleLocal(wo, uc, {a, b});
+      ASSERT_EQ(world.valid(), local.valid()) << c.name << " " << angle << " " << i;
+      if (!local.valid()) continue;
+      EXPECT_EQ(world.pdf, local.pdf) << c.name << " " << angle << " " << i;
+      EXPECT_EQ(world.delta, local.delta) << c.name;
+      const Vec3 wi = frame.toWorld(local.wi);
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_EQ(world.f[k], local.f[k]) << c.name << " " << angle << " " << i;
+        EXPECT_EQ(world.wi[k], wi[k]) << c.name << " " << angle << " " << i;
+      }
+      // Next-event estimation's eval-with-pdf toward the sampled direction: the general
+      // local eval and pdf of the same local directions, bit for bit.
+      if (local.delta) continue;
+      float pdf = -1;
+      const Color f = bsdf.eval(woWorld, wi, pdf);
+      const Vec3 wiLocal = frame.toLocal(wi);
+      EXPECT_EQ(pdf, bsdf.pdfLocal(wo, wiLocal)) << c.name << " " << angle << " " << i;
+      for (int k = 0; k < 3; ++k) EXPECT_EQ(f[k], bsdf.evalLocal(wo, wiLocal)[k]) << c.name;
+    }
+  }
+}
+
 TEST_P(BsdfLobes, ReflectsAtMostTheEnergyItReceives) {
   // White furnace for one scattering: E[f |cos| / pdf] <= 1 for a white material. Refraction
   // into a denser medium carries 1/eta^2 radiance scaling, so it is measured without it.
