@@ -138,7 +138,7 @@ void placedSurface(const Scene& scene, const Primitive& prim, const Transform& t
 [[gnu::noinline]] void movingSurface(const Scene& scene, const Primitive& prim, const Ray& ray,
                                      const Hit& hit, SurfacePoint& s) {
   Transform moved;
-  const Transform* placed = placementAt(prim, ray.time, moved);
+  const Transform* placed = movedPlacementAt(prim, ray.time, moved);
   placedSurface(scene, prim, placed ? *placed : moved, ray, hit, s);
 }
 

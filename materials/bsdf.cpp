@@ -249,9 +249,8 @@ Color Bsdf::baseEval(const Vec3& wo, const Vec3& wi, float& pdf) const {
 
 BsdfSample Bsdf::baseSample(const Vec3& wo, float uc, Vec2 u) const {
   // Lambert reads only the side of wo (its local z): skip the tangent axes.
-  const Vec3 woLocal =
-      only_ == Only::kDiffuse ? Vec3(0.0f, 0.0f, dot(wo, frame_.n)) : frame_.toLocal(wo);
-  BsdfSample s = sampleLocal(woLocal, uc, u);
+  if (only_ == Only::kDiffuse) return lambertSample(wo, u);
+  BsdfSample s = sampleLocal(frame_.toLocal(wo), uc, u);
   s.wi = frame_.toWorld(s.wi);
   return s;
 }

@@ -118,15 +118,11 @@ class Bsdf {
     return same ? diffuse_.albedo * (1.0f / kPi) : Color(0.0f);
   }
   BsdfSample lambertSample(const Vec3& wo, Vec2 u) const {
-    // LambertLobe::sample on wo's side (its local z), then to world space, as baseSample and
-    // sampleLocal do it without the mixture's bookkeeping. No pdf check: z >= 2^-11 (even for
-    // a NaN disk point, std::max keeps the floor), so the pdf is positive and finite.
-    BsdfSample s;
-    Vec3 wi = sampleCosineHemisphere(u);
-    wi.z = dot(wo, frame_.n) < 0 ? -wi.z : wi.z;
-    s.pdf = cosineHemispherePdf(absCosTheta(wi));
-    s.f = diffuse_.albedo * (1.0f / kPi);
-    s.wi = frame_.toWorld(wi);
+    // LambertLobe::sample on wo's side (its local z: Lambert reads nothing else), then to world
+    // space, without sampleLocal's mixture bookkeeping. No pdf check: z >= 2^-11 (even for a
+    // NaN disk point, std::max keeps the floor), so the pdf is positive and finite.
+    BsdfSample s = diffuse_.sample(Vec3(0.0f, 0.0f, dot(wo, frame_.n)), u);
+    s.wi = frame_.toWorld(s.wi);
     return s;
   }
   /// Depends on wo.z alone. NEE's eval and the sample at one vertex ask at the same wo: the

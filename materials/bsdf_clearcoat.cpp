@@ -49,7 +49,8 @@ float Bsdf::clearcoatProbability(float cFc) const {
 Color Bsdf::layeredEval(const Vec3& wo, const Vec3& wi, float& pdf) const {
   const float cFc = clearcoatFresnel(wo), pc = clearcoatProbability(cFc);
   const Vec3 woC = ccFrame_->toLocal(wo), wiC = ccFrame_->toLocal(wi);
-  Color coat = includes(kSpecularLobes) ? ccLobe_->eval(woC, wiC) * clearcoat_ : Color(0.0f);
+  const GgxReflectionLobe::Terms coatTerms = ccLobe_->terms(woC, wiC);  // its eval and pdf
+  Color coat = includes(kSpecularLobes) ? ccLobe_->eval(coatTerms) * clearcoat_ : Color(0.0f);
   // The integrator multiplies by the base normal's cosine; the coat's BRDF goes with its own.
   if (ccOwnFrame_ && !isBlack(coat)) {
     const float cosBase = std::fabs(dot(wi, frame_.n));
@@ -57,7 +58,7 @@ Color Bsdf::layeredEval(const Vec3& wo, const Vec3& wi, float& pdf) const {
   }
   float basePdf;
   const Color base = innerEval(wo, wi, basePdf);
-  pdf = pc * ccLobe_->pdf(woC, wiC) + (1.0f - pc) * basePdf;
+  pdf = pc * coatTerms.pdf + (1.0f - pc) * basePdf;
   return coat + (1.0f - cFc) * base;
 }
 

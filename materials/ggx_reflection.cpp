@@ -10,29 +10,19 @@ float GgxReflectionLobe::fresnelDielectricAbs(float cosI) const {
 }
 
 Color GgxReflectionLobe::eval(const Vec3& wo, const Vec3& wi) const {
-  if (isDelta() || !sameHemisphere(wo, wi)) return Color(0.0f);
-  float cosO = absCosTheta(wo), cosI = absCosTheta(wi);
-  if (cosO == 0 || cosI == 0) return Color(0.0f);
-  Vec3 wm = wi + wo;
-  if (lengthSquared(wm) == 0) return Color(0.0f);
-  wm = normalize(wm);
-  if (wm.z < 0) wm = -wm;
-  return fresnel(dot(wo, wm)) * (dist_.D(wm) * dist_.G(wo, wi) / (4.0f * cosO * cosI));
+  return eval(terms(wo, wi));
 }
 
 float GgxReflectionLobe::pdf(const Vec3& wo, const Vec3& wi) const {
-  if (isDelta() || !sameHemisphere(wo, wi)) return 0.0f;
-  Vec3 wm = wi + wo;
-  if (lengthSquared(wm) == 0) return 0.0f;
-  wm = normalize(wm);
-  if (wm.z < 0) wm = -wm;
-  // Reflection's Jacobian dwm/dwi = 1 / (4 |wo.wm|) (Walter et al. eq. 14).
-  return dist_.visibleD(wo, wm) / (4.0f * std::fabs(dot(wo, wm)));
+  return terms(wo, wi).pdf;
 }
 
 GgxReflectionLobe::Terms GgxReflectionLobe::terms(const Vec3& wo, const Vec3& wi) const {
-  // eval and pdf below, step for step: G1(wo) = 1 / (1 + Lambda(wo)) and
-  // G = 1 / ((1 + Lambda(wo)) + Lambda(wi)) share 1 + Lambda(wo).
+  // f = F D G / (4 |cos_o cos_i|) with height-correlated G = 1 / ((1 + Lambda(wo)) +
+  // Lambda(wi)), and pdf = D_wo(wm) / (4 |wo.wm|) (Walter et al. eq. 14) with the visible
+  // normals' density D_wo = G1(wo) D |wo.wm| / |cos_o| (GgxDistribution::visibleD, operation
+  // for operation), G1(wo) = 1 / (1 + Lambda(wo)): the two share the half vector, D and
+  // 1 + Lambda(wo).
   Terms t;
   if (isDelta() || !sameHemisphere(wo, wi)) return t;
   Vec3 wm = wi + wo;
