@@ -6,12 +6,17 @@
 // incoherent diffuse bounce rays (bench/bench_rays.h). The modes take turns over the rounds and
 // each keeps its best, so load from other processes slows all alike. Figures only, not a test.
 //
-//   batch_bench [SCENE.gltf ...] [--size W H] [--rounds N]
+//   batch_bench [SCENE.gltf ...] [--size W H] [--rounds N] [--camera] [--save-rays DIR]
 // (default: the shared Cornell box and MetalRoughSpheresNoTextures, 320 x 240, 5 rounds)
+// --camera: camera rays from the scene's own camera (as the renderer's), not a framing of its
+// bounds. --save-rays: each ray set as DIR/SCENE-{camera,shadow,bounce}.f32, eight float32 per
+// ray (origin, direction, tmin, tmax), so that another renderer traces the very same rays
+// (bench/mitsuba_traversal.py).
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <string>
 #include <vector>
@@ -20,6 +25,7 @@
 #include "accel/embree_accelerator.h"
 #include "bench/bench_rays.h"
 #include "bench/cpu_time.h"
+#include "core/error.h"
 #include "io/gltf_loader.h"
 
 using namespace tray;
@@ -75,9 +81,26 @@ std::vector<Mode> modes(const Scene& scene) {
   return m;
 }
 
-void benchScene(const std::string& path, int width, int height, int rounds) {
+/// A ray set as float32 (o, d, tmin, tmax) per ray, for bench/mitsuba_traversal.py.
+void saveRays(const std::vector<Ray>& rays, const std::filesystem::path& file) {
+  std::ofstream out(file, std::ios::binary);
+  for (const Ray& r : rays) {
+    const float v[8] = {r.o.x, r.o.y, r.o.z, r.d.x, r.d.y, r.d.z, r.tmin, r.tmax};
+    out.write(reinterpret_cast<const char*>(v), sizeof v);
+  }
+  if (!out) throw Error("cannot write " + file.string());
+}
+
+void benchScene(const std::string& path, int width, int height, int rounds, bool sceneCamera,
+                const std::string& saveDir) {
   const Scene scene = loadGltf(path);
-  const bench::RaySet rays = bench::makeRays(scene, width, height);
+  const bench::RaySet rays = bench::makeRays(scene, width, height, sceneCamera);
+  if (!saveDir.empty()) {
+    const std::string stem = std::filesystem::path(path).stem().string();
+    saveRays(rays.camera, std::filesystem::path(saveDir) / (stem + "-camera.f32"));
+    saveRays(rays.shadow, std::filesystem::path(saveDir) / (stem + "-shadow.f32"));
+    saveRays(rays.bounce, std::filesystem::path(saveDir) / (stem + "-bounce.f32"));
+  }
   std::vector<Mode> all = modes(scene);
   for (int r = 0; r < rounds; ++r)
     for (Mode& m : all) {
@@ -104,7 +127,17 @@ void benchScene(const std::string& path, int width, int height, int rounds) {
 int main(int argc, char** argv) {
   std::vector<std::string> scenes;
   int width = 320, height = 240, rounds = 5;
+  bool sceneCamera = false;
+  std::string saveDir;
   for (int i = 1; i < argc; ++i) {
+    if (!std::strcmp(argv[i], "--camera")) {
+      sceneCamera = true;
+      continue;
+    }
+    if (!std::strcmp(argv[i], "--save-rays") && i + 1 < argc) {
+      saveDir = argv[++i];
+      continue;
+    }
     if (!std::strcmp(argv[i], "--size") && i + 2 < argc) {
       width = std::atoi(argv[++i]);
       height = std::atoi(argv[++i]);
@@ -120,7 +153,7 @@ int main(int argc, char** argv) {
               shared + "/gltf-samples/MetalRoughSpheresNoTextures.glb"};
   std::printf("(ratios: each accelerator's batched ways over its own single-ray loop)\n");
   try {
-    for (const std::string& s : scenes) benchScene(s, width, height, rounds);
+    for (const std::string& s : scenes) benchScene(s, width, height, rounds, sceneCamera, saveDir);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "batch_bench: %s\n", e.what());
     return 2;

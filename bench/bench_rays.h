@@ -9,6 +9,7 @@
 
 #include "accel/registry.h"
 #include "core/camera.h"
+#include "core/render_setup.h"
 #include "core/ray.h"
 #include "core/sampling.h"
 #include "core/scene.h"
@@ -20,9 +21,12 @@ struct RaySet {
   std::vector<Ray> camera, shadow, bounce;
 };
 
-inline RaySet makeRays(const Scene& scene, int width, int height) {
+/// `sceneCamera`: camera rays from the scene's own camera (as rendered), else from a framing of
+/// its bounds.
+inline RaySet makeRays(const Scene& scene, int width, int height, bool sceneCamera = false) {
   RaySet rays;
-  CameraDesc desc = Camera::framing(scene.bounds(), float(width) / float(height));
+  CameraDesc desc = sceneCamera ? chooseCamera(scene, -1)
+                                : Camera::framing(scene.bounds(), float(width) / float(height));
   auto camera = Camera::create(desc, width, height);
   auto embree = makeAccelerator("embree", scene);
   Bounds3 b = scene.bounds();
