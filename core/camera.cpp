@@ -52,6 +52,10 @@ class PerspectiveCamera final : public Camera {
     return r;
   }
   bool hasLens() const override { return lens_.radius > 0; }
+  std::optional<PinholeProjection> pinhole() const override {
+    if (hasLens()) return std::nullopt;
+    return PinholeProjection{toWorld_, w_, h_, znear_, tanHalfX_, tanHalfY_};
+  }
   Ray generateLensRay(float x, float y, const Vec2& u) const override {
     if (!hasLens()) return generateRay(x, y);
     const Vec3 dirCam{(2.0f * x / w_ - 1.0f) * tanHalfX_, (1.0f - 2.0f * y / h_) * tanHalfY_,

@@ -40,6 +40,14 @@ struct CameraDesc {
 /// (blades 0, Shirley-Chiu concentric map) or a regular `blades`-gon with a vertex straight up.
 Vec2 sampleAperture(const Vec2& u, int blades);
 
+/// What a pinhole perspective camera's generateRay computes from: batch kernels (core/
+/// camera_batch.h) repeat its arithmetic operation for operation.
+struct PinholeProjection {
+  Transform toWorld;
+  float width = 0, height = 0;  ///< the image's size in pixels
+  float znear = 0, tanHalfX = 0, tanHalfY = 0;
+};
+
 /// Generates primary rays for raster positions (x right, y down, in pixels).
 class Camera {
  public:
@@ -63,6 +71,8 @@ class Camera {
     dx = dy = Vec3(0.0f);
     dir = {0.0f, 0.0f, -1.0f};
   }
+  /// A perspective camera without a lens: its projection; any other camera: nothing.
+  virtual std::optional<PinholeProjection> pinhole() const { return std::nullopt; }
   /// Builds the camera for an image of width x height pixels.
   static std::unique_ptr<Camera> create(const CameraDesc& desc, int width, int height);
   /// A perspective camera framing the given bounds (used when a scene has no camera).

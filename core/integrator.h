@@ -140,6 +140,12 @@ class Integrator {
   }
   /// Samples in the pixel sampler's pattern (accumulate's upper bound for `end`).
   int sampleCount() const { return pixelSampler_.count(); }
+  /// What sampler() and cameraRay() draw from, for batch kernels that repeat them
+  /// (core/camera_batch.h): the pixel sampler, seed, sequence, and whether rays draw a time.
+  const PixelSampler& pixelSampler() const { return pixelSampler_; }
+  uint64_t seed() const { return seed_; }
+  Sampler::Sequence sequence() const { return sequence_; }
+  bool moving() const { return moving_; }
   /// Adds one sample, Li's radiance `L`, what it hit first and (when not null) its light-path
   /// split, to a pixel's sums, ids and averaged AOVs as accumulate does: the
   /// transparent-background rule of cameraLi, NaN samples counted and dropped (their split

@@ -32,6 +32,9 @@ class PixelSampler {
   Pattern pattern() const { return pattern_; }
   /// Camera rays per pixel.
   int count() const { return count_; }
+  /// Strata per side of grid and jitter (n), and the filter support's radius.
+  int strata() const { return strata_; }
+  float radius() const { return radius_; }
   /// Offset from the pixel centre of sample i < count(); `u` is uniform in [0,1)^2 and is only
   /// used by jitter and sequence.
   Vec2 offset(int i, const Vec2& u) const;

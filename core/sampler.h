@@ -72,6 +72,14 @@ class Sampler {
             sobol::toUnit(sobol::scrambledDimension1(index, seedZ))};
   }
   uint32_t dimension() const { return dimension_; }
+  /// The sampler whose state a batch kernel computed (core/camera_batch.cpp repeats the
+  /// constructor's and next2D's hashes over many samples at once).
+  static Sampler fromState(uint64_t key, uint32_t reversedIndex, uint32_t dimension,
+                           Sequence sequence) {
+    return Sampler(StateTag{}, key, reversedIndex, dimension, sequence);
+  }
+  /// The same state: every number drawn from here on is the same.
+  bool operator==(const Sampler&) const = default;
   /// Dimensions set apart for one use each, far beyond any path's count: drawing them with
   /// reserved1D leaves every other number of the sample as it was.
   static constexpr uint32_t kShutterDimension = 0x40000000u;  ///< the camera ray's time
@@ -87,6 +95,9 @@ class Sampler {
   }
 
  private:
+  struct StateTag {};  // apart from the public constructor's overloads
+  Sampler(StateTag, uint64_t key, uint32_t reversedIndex, uint32_t dimension, Sequence sequence)
+      : key_(key), reversedIndex_(reversedIndex), dimension_(dimension), sequence_(sequence) {}
   // SplitMix64 finaliser (Steele et al. 2014): a strong 64-bit mixing function.
   static uint64_t mix(uint64_t z) {
     z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;

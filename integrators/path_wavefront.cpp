@@ -3,11 +3,15 @@
 #include <algorithm>
 #include <vector>
 
+#include "core/camera_batch.h"
 #include "integrators/path.h"
 #include "integrators/path_estimator.h"
 
 namespace tray {
 namespace {
+
+/// Camera rays made per call of the SIMD kernel (core/camera_batch.h).
+constexpr size_t kCameraChunk = 256;
 
 /// The paths of one wave, their ray queues (structure of arrays: one array per field, so the
 /// accelerator reads rays and writes hits contiguously) and their shadow queue. Reused by a
@@ -30,6 +34,10 @@ struct Wave {
   std::vector<uint32_t> shadowPath;
   std::vector<Ray> shadowRays;
   std::vector<uint8_t> blocked;
+  // The camera-ray kernel's inputs (a chunk's pixels and sample indices) and results.
+  int32_t cameraX[kCameraChunk], cameraY[kCameraChunk];
+  uint32_t cameraSample[kCameraChunk];
+  CameraRayLanes cameraLanes;
 
   void clear() {
     paths.clear(), samplers.clear(), primary.clear(), offsets.clear();
@@ -39,7 +47,10 @@ struct Wave {
 class PathWavefrontIntegrator final : public Integrator {
  public:
   explicit PathWavefrontIntegrator(const RenderContext& ctx)
-      : Integrator(ctx), estimator_(ctx_) {}
+      : Integrator(ctx),
+        estimator_(ctx_),
+        cameraBatch_(CameraRayBatch::make(ctx_.camera, pixelSampler(), seed(), sequence(), moving(),
+                                          ctx_.width)) {}
 
   /// A 16 x 16 tile (the renderer's default) at once.
   int pixelBatch() const override { return 256; }
@@ -57,6 +68,10 @@ class PathWavefrontIntegrator final : public Integrator {
 
   void accumulatePixels(std::span<PixelTask> tasks, int begin, int end,
                         RayStats& stats) const override;
+  /// The wave's paths g0 <= g < g1 of the batch (sample begin + g % n of tasks[g / n]'s pixel),
+  /// from the camera-ray kernel: what accumulatePixels' scalar loop makes, bit for bit.
+  void beginPathsInSimd(Wave& w, std::span<const PixelTask> tasks, int begin, size_t n, size_t g0,
+                        size_t g1) const;
 
   /// One path on its own (adaptive's inner integrator): a wave of one.
   Color Li(const Ray& ray, Sampler& sampler, RayStats& stats,
@@ -87,6 +102,7 @@ class PathWavefrontIntegrator final : public Integrator {
   void trace(Wave& w, RayStats& stats) const;
   void bounce(Wave& w, RayStats& stats) const;
   PathEstimator estimator_;
+  std::optional<CameraRayBatch> cameraBatch_;  ///< nothing: cameras the kernel does not cover
 };
 
 void PathWavefrontIntegrator::accumulatePixels(std::span<PixelTask> tasks, int begin, int end,
@@ -105,18 +121,23 @@ void PathWavefrontIntegrator::accumulatePixels(std::span<PixelTask> tasks, int b
     w.clear();
     // Sized before the paths point into it; zero, as accumulate() clears a sample's split.
     w.lightPaths.assign(anySplit ? g1 - g0 : 0, LightPathRadiance{});
-    for (size_t g = g0; g < g1; ++g) {
-      const PixelTask& t = tasks[g / n];
-      const int i = begin + int(g % n);
-      Sampler s = sampler(t.x, t.y, i);
-      Vec2 offset;
-      const Ray ray = cameraRay(t.x, t.y, i, s, offset);
-      ++stats.cameraRays;
-      w.paths.emplace_back().beginCamera(ray, t.x, t.y,
-                                         splits(t) ? &w.lightPaths[g - g0] : nullptr);
-      w.samplers.push_back(s);
-      w.primary.emplace_back();
-      w.offsets.push_back(offset);
+    if (cameraBatch_) {
+      beginPathsInSimd(w, tasks, begin, n, g0, g1);
+      stats.cameraRays += g1 - g0;
+    } else {
+      for (size_t g = g0; g < g1; ++g) {
+        const PixelTask& t = tasks[g / n];
+        const int i = begin + int(g % n);
+        Sampler s = sampler(t.x, t.y, i);
+        Vec2 offset;
+        const Ray ray = cameraRay(t.x, t.y, i, s, offset);
+        ++stats.cameraRays;
+        w.paths.emplace_back().beginCamera(ray, t.x, t.y,
+                                           splits(t) ? &w.lightPaths[g - g0] : nullptr);
+        w.samplers.push_back(s);
+        w.primary.emplace_back();
+        w.offsets.push_back(offset);
+      }
     }
     trace(w, stats);
     for (size_t g = g0; g < g1; ++g) {
@@ -125,6 +146,34 @@ void PathWavefrontIntegrator::accumulatePixels(std::span<PixelTask> tasks, int b
       if (g % n == 0) t.first = w.primary[k];
       addSample(t.sums, t.coverage, t.aovSums, w.offsets[k], PathEstimator::result(w.paths[k]),
                 w.primary[k], splits(t) ? &w.lightPaths[k] : nullptr, stats);
+    }
+  }
+}
+
+void PathWavefrontIntegrator::beginPathsInSimd(Wave& w, std::span<const PixelTask> tasks, int begin,
+                                               size_t n, size_t g0, size_t g1) const {
+  // In chunks whose kernel inputs and results stay in the L1 cache; pixel and sample counted
+  // along (no division per path).
+  size_t task = g0 / n, sample = g0 % n;
+  for (size_t c0 = g0; c0 < g1; c0 += kCameraChunk) {
+    const size_t c1 = std::min(g1, c0 + kCameraChunk);
+    const size_t chunkTask = task, chunkSample = sample;
+    for (size_t k = 0; k < c1 - c0; ++k) {
+      w.cameraX[k] = tasks[task].x, w.cameraY[k] = tasks[task].y;
+      w.cameraSample[k] = uint32_t(begin + int(sample));
+      if (++sample == n) sample = 0, ++task;
+    }
+    cameraBatch_->generate(c1 - c0, w.cameraX, w.cameraY, w.cameraSample, w.cameraLanes);
+    task = chunkTask, sample = chunkSample;
+    for (size_t k = 0; k < c1 - c0; ++k) {
+      const PixelTask& t = tasks[task];
+      const bool split = t.aovSums && t.aovSums->lightPaths;
+      w.paths.emplace_back().beginCamera(cameraBatch_->ray(w.cameraLanes, k), t.x, t.y,
+                                         split ? &w.lightPaths[c0 + k - g0] : nullptr);
+      w.samplers.push_back(cameraBatch_->sampler(w.cameraLanes, k));
+      w.primary.emplace_back();
+      w.offsets.push_back(CameraRayBatch::offset(w.cameraLanes, k));
+      if (++sample == n) sample = 0, ++task;
     }
   }
 }
