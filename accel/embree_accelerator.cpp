@@ -186,12 +186,7 @@ class EmbreeAccelerator final : public Accelerator {
   void intersectBatch(std::span<const Ray> rays, std::span<Hit> hits,
                       std::span<uint8_t> found) const override {
     if (!streamable()) return Accelerator::intersectBatch(rays, hits, found);
-    embreeIntersectBatch(top_, scene_, batch_, rays, hits, found, false);
-  }
-  void intersectCoherentBatch(std::span<const Ray> rays, std::span<Hit> hits,
-                              std::span<uint8_t> found) const override {
-    if (!streamable()) return Accelerator::intersectBatch(rays, hits, found);
-    embreeIntersectBatch(top_, scene_, batch_, rays, hits, found, true);
+    embreeIntersectBatch(top_, scene_, batch_, rays, hits, found);
   }
   void occludedBatch(std::span<const Ray> rays, std::span<uint8_t> blocked) const override {
     if (!streamable()) return Accelerator::occludedBatch(rays, blocked);

@@ -80,13 +80,10 @@ void occludedPackets(RTCScene top, RTCIntersectContext* ctx, std::span<const Ray
 }  // namespace
 
 void embreeIntersectBatch(RTCScene top, const Scene& scene, EmbreeBatch mode,
-                          std::span<const Ray> rays, std::span<Hit> hits, std::span<uint8_t> found,
-                          bool coherent) {
+                          std::span<const Ray> rays, std::span<Hit> hits,
+                          std::span<uint8_t> found) {
   AlphaRayContext ctx(scene, rays.data());
-  if (mode == EmbreeBatch::kPacket8) {
-    if (coherent) ctx.base.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    return intersectPackets(top, &ctx.base, rays, hits, found);
-  }
+  if (mode == EmbreeBatch::kPacket8) return intersectPackets(top, &ctx.base, rays, hits, found);
   ctx.base.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
   static thread_local std::vector<RTCRayHit> queue;
   queue.resize(rays.size());

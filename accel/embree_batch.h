@@ -14,10 +14,9 @@
 namespace tray {
 
 /// found[i]: rays[i] hit something in top, hits[i] its closest hit (as rtcIntersect1 would).
-/// `coherent`: the rays are a camera's, and packets are traced with Embree's coherent flag.
 void embreeIntersectBatch(RTCScene top, const Scene& scene, EmbreeBatch mode,
-                          std::span<const Ray> rays, std::span<Hit> hits, std::span<uint8_t> found,
-                          bool coherent);
+                          std::span<const Ray> rays, std::span<Hit> hits,
+                          std::span<uint8_t> found);
 /// blocked[i]: something lies on rays[i].
 void embreeOccludedBatch(RTCScene top, const Scene& scene, EmbreeBatch mode,
                          std::span<const Ray> rays, std::span<uint8_t> blocked);

@@ -143,12 +143,6 @@ class BatchTimingAccelerator final : public Accelerator {
     inner_.intersectBatch(rays, hits, found);
     add(closestNs, start);
   }
-  void intersectCoherentBatch(std::span<const Ray> rays, std::span<Hit> hits,
-                              std::span<uint8_t> found) const override {
-    const auto start = std::chrono::steady_clock::now();
-    inner_.intersectCoherentBatch(rays, hits, found);
-    add(closestNs, start);
-  }
   void occludedBatch(std::span<const Ray> rays, std::span<uint8_t> blocked) const override {
     const auto start = std::chrono::steady_clock::now();
     inner_.occludedBatch(rays, blocked);

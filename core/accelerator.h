@@ -29,13 +29,6 @@ class Accelerator {
                               std::span<uint8_t> found) const {
     for (size_t i = 0; i < rays.size(); ++i) found[i] = intersect(rays[i], hits[i]);
   }
-  /// intersectBatch() for a batch of coherent rays (a camera's: neighbouring origins and
-  /// directions), which an accelerator may trace with a traversal suited to them (Embree's
-  /// coherent flag: a packet goes down the tree together). The same hits.
-  virtual void intersectCoherentBatch(std::span<const Ray> rays, std::span<Hit> hits,
-                                      std::span<uint8_t> found) const {
-    intersectBatch(rays, hits, found);
-  }
   /// occluded() for each ray of a batch: blocked[i] = occluded(rays[i]).
   virtual void occludedBatch(std::span<const Ray> rays, std::span<uint8_t> blocked) const {
     for (size_t i = 0; i < rays.size(); ++i) blocked[i] = occluded(rays[i]);

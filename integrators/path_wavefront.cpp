@@ -1,7 +1,6 @@
 #include "integrators/path_wavefront.h"
 
 #include <algorithm>
-#include <utility>
 #include <vector>
 
 #include "integrators/path.h"
@@ -86,7 +85,7 @@ class PathWavefrontIntegrator final : public Integrator {
     return wave;
   }
   void trace(Wave& w, RayStats& stats) const;
-  void bounce(Wave& w, RayStats& stats, bool cameraRays) const;
+  void bounce(Wave& w, RayStats& stats) const;
   PathEstimator estimator_;
 };
 
@@ -134,21 +133,16 @@ void PathWavefrontIntegrator::trace(Wave& w, RayStats& stats) const {
   if (estimator_.maxDepth() == 0) return;  // nothing is traced: black, nothing hit
   w.live.resize(w.paths.size());
   for (size_t k = 0; k < w.live.size(); ++k) w.live[k] = uint32_t(k);
-  // The first segments are the camera's rays: coherent (neighbouring pixels and samples).
-  bool cameraRays = true;
-  while (!w.live.empty()) bounce(w, stats, std::exchange(cameraRays, false));
+  while (!w.live.empty()) bounce(w, stats);
 }
 
 /// One segment of every live path: trace the queue, shade each hit (emission, light sample,
 /// BSDF sample), then trace the shadow queue and add the unoccluded estimates.
-void PathWavefrontIntegrator::bounce(Wave& w, RayStats& stats, bool cameraRays) const {
+void PathWavefrontIntegrator::bounce(Wave& w, RayStats& stats) const {
   const size_t count = w.live.size();
   w.rays.resize(count), w.hits.resize(count), w.found.resize(count);
   for (size_t j = 0; j < count; ++j) w.rays[j] = w.paths[w.live[j]].ray;
-  if (cameraRays)
-    ctx_.accel.intersectCoherentBatch(w.rays, w.hits, w.found);
-  else
-    ctx_.accel.intersectBatch(w.rays, w.hits, w.found);
+  ctx_.accel.intersectBatch(w.rays, w.hits, w.found);
 
   w.next.clear();
   // step() writes a next-event estimate straight into the queue's next slot, setting what

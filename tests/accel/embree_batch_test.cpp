@@ -3,7 +3,6 @@
 // opaque meshes and on alpha-tested ones (the filter finds each ray by its id in the batch).
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <string>
 
 #include "accel/embree_accelerator.h"
@@ -17,7 +16,7 @@ namespace tray {
 namespace {
 
 void expectSameAsSingleRays(const Accelerator& accel, const std::vector<Ray>& rays,
-                            const std::string& what, bool coherent = false) {
+                            const std::string& what) {
   // Odd sizes leave part of the last packet empty (13: a full packet then a partial one over
   // it; 5: a batch's only packet, partial).
   for (size_t n : {rays.size(), size_t(13), size_t(5)}) {
@@ -27,10 +26,7 @@ void expectSameAsSingleRays(const Accelerator& accel, const std::vector<Ray>& ra
     stale.normal = Vec3(1, 2, 3), stale.uv = {4, 5}, stale.material = 6;
     std::vector<Hit> hits(n, stale);
     std::vector<uint8_t> found(n), blocked(n);
-    if (coherent)
-      accel.intersectCoherentBatch(batch, hits, found);
-    else
-      accel.intersectBatch(batch, hits, found);
+    accel.intersectBatch(batch, hits, found);
     accel.occludedBatch(batch, blocked);
     size_t hitCount = 0, ties = 0;
     for (size_t i = 0; i < n; ++i) {
@@ -40,19 +36,14 @@ void expectSameAsSingleRays(const Accelerator& accel, const std::vector<Ray>& ra
       EXPECT_EQ(bool(blocked[i]), accel.occluded(rays[i])) << what << " ray " << i;
       if (!single) continue;
       ++hitCount;
+      EXPECT_EQ(hits[i].t, h.t) << what << " ray " << i;
       // Coincident surfaces (the Cornell box's blocks stand on the floor, and these rays start
       // anywhere, inside blocks too): among hits at the same t, which one is reported depends
-      // on traversal order, so another primitive at the same t is as closest. The coherent
-      // traversal (other box tests, another order) may also report one of two surfaces a few
-      // ulps apart that the single ray does not (seen: 5 ulps, the Cornell box's floor under
-      // a block, a random ray grazing it from inside the block; never on camera rays).
+      // on traversal order, so another primitive at the same t is as closest.
       if (hits[i].primitive != h.primitive) {
-        EXPECT_LE(std::fabs(hits[i].t - h.t), coherent ? 1e-6f * h.t : 0.0f)
-            << what << " ray " << i;
         ++ties;
         continue;
       }
-      EXPECT_EQ(hits[i].t, h.t) << what << " ray " << i;
       EXPECT_EQ(hits[i].triangle, h.triangle) << what << " ray " << i;
       EXPECT_EQ(hits[i].b1, h.b1) << what << " ray " << i;
       EXPECT_EQ(hits[i].b2, h.b2) << what << " ray " << i;
@@ -76,36 +67,6 @@ TEST(EmbreeBatch, EveryModeEqualsSingleRayQueries) {
       expectSameAsSingleRays(*makeEmbreeAccelerator(scene, mode), rays,
                              std::string(file) + " mode " + std::to_string(int(mode)));
     expectSameAsSingleRays(*makeAccelerator("bvh", scene), rays, std::string(file) + " bvh");
-  }
-}
-
-/// Rays from one point outside the scene through a grid over its far side, neighbours next to
-/// each other: a camera's rays, what intersectCoherentBatch is for.
-std::vector<Ray> cameraLikeRays(const Scene& scene, int side) {
-  const Bounds3 b = scene.bounds();
-  const Vec3 d = b.diagonal();
-  const Vec3 eye = b.lo + Vec3(0.5f * d.x, 0.5f * d.y, -1.5f * d.z);
-  std::vector<Ray> rays;
-  for (int y = 0; y < side; ++y)
-    for (int x = 0; x < side; ++x) {
-      const Vec3 target = b.lo + Vec3((x + 0.5f) / side * d.x, (y + 0.5f) / side * d.y, 0.5f * d.z);
-      rays.push_back(Ray{eye, target - eye});
-    }
-  return rays;
-}
-
-// Embree's coherent flag traverses whole packets (another order than single rays): the same
-// hits all the same, on camera-like rays and on random ones (any batch may be passed).
-TEST(EmbreeBatch, CoherentBatchEqualsSingleRayQueries) {
-  for (const char* file :
-       {"/reference/cornell-box.gltf", "/gltf-features/AlphaBlendModeTest.glb"}) {
-    const Scene scene = loadGltf(std::string(TRAY_SHARED_DIR) + file);
-    const auto embree = makeEmbreeAccelerator(scene, EmbreeBatch::kPacket8);
-    expectSameAsSingleRays(*embree, cameraLikeRays(scene, 48), std::string(file) + " camera", true);
-    expectSameAsSingleRays(*embree, test::randomRaysInBounds(scene, 2000, 11, false),
-                           std::string(file) + " random", true);
-    expectSameAsSingleRays(*makeAccelerator("bvh", scene), cameraLikeRays(scene, 48),
-                           std::string(file) + " bvh camera", true);
   }
 }
 
