@@ -1,5 +1,6 @@
 #include "accel/embree_batch.h"
 
+#include <algorithm>
 #include <vector>
 
 #include "accel/embree_alpha_filter.h"
@@ -22,27 +23,41 @@ void laneMask(size_t b, size_t n, int valid[kLanes]) {
   for (int l = 0; l < kLanes; ++l) valid[l] = b + size_t(l) < n ? -1 : 0;
 }
 
-void intersectPackets(RTCScene top, const Scene& scene, RTCIntersectContext* ctx,
-                      std::span<const Ray> rays, std::span<Hit> hits, std::span<uint8_t> found) {
+/// A batch's mesh hit from lane l of a traced packet, field by field into its slot (building a
+/// Hit and copying it in stalls on store forwarding, core/ray.h). Packets are only used on
+/// scenes without user geometry (EmbreeAccelerator::streamable), so every hit is a mesh's:
+/// hitFromEmbree's look-up of the primitive's kind is not needed.
+void meshHitFromLane(const RTCRayHit8& p, int l, Hit& hit) {
+  const uint32_t inst = p.hit.instID[0][l];
+  hit.t = p.ray.tfar[l];
+  hit.primitive = inst == RTC_INVALID_GEOMETRY_ID ? p.hit.geomID[l] : inst;
+  hit.triangle = p.hit.primID[l];
+  hit.b1 = p.hit.u[l], hit.b2 = p.hit.v[l];
+  hit.normal = Vec3(), hit.uv = Vec2(), hit.material = -1;
+}
+
+void intersectPackets(RTCScene top, RTCIntersectContext* ctx, std::span<const Ray> rays,
+                      std::span<Hit> hits, std::span<uint8_t> found) {
   const size_t n = rays.size();
+  // One packet for the whole batch, not zero-filled per group: Embree reads every lane, active
+  // or not ("only active rays are processed", rtcIntersect8(3)), so an inactive lane need only
+  // hold harmless numbers: the previous group's rays, or zeros in a batch's only, partial one.
+  alignas(32) RTCRayHit8 p;
+  if (n < size_t(kLanes)) p = {};
   for (size_t b = 0; b < n; b += kLanes) {
     alignas(32) int valid[kLanes];
-    alignas(32) RTCRayHit8 p{};  // inactive lanes too: Embree's SIMD code reads every lane
     laneMask(b, n, valid);
-    for (int l = 0; l < kLanes && b + l < n; ++l) {
+    const int lanes = int(std::min(n - b, size_t(kLanes)));
+    for (int l = 0; l < lanes; ++l) {
       toLane(rays[b + l], uint32_t(b + l), p.ray, l);
       p.hit.geomID[l] = RTC_INVALID_GEOMETRY_ID;
       p.hit.instID[0][l] = RTC_INVALID_GEOMETRY_ID;
     }
     rtcIntersect8(valid, top, ctx, &p);
-    for (int l = 0; l < kLanes && b + l < n; ++l) {
-      found[b + l] = p.hit.geomID[l] != RTC_INVALID_GEOMETRY_ID;
-      if (!found[b + l]) continue;
-      RTCHit h;
-      h.Ng_x = p.hit.Ng_x[l], h.Ng_y = p.hit.Ng_y[l], h.Ng_z = p.hit.Ng_z[l];
-      h.u = p.hit.u[l], h.v = p.hit.v[l];
-      h.primID = p.hit.primID[l], h.geomID = p.hit.geomID[l], h.instID[0] = p.hit.instID[0][l];
-      hits[b + l] = hitFromEmbree(h, p.ray.tfar[l], scene);
+    for (int l = 0; l < lanes; ++l) {
+      const bool hit = p.hit.geomID[l] != RTC_INVALID_GEOMETRY_ID;
+      found[b + l] = hit;
+      if (hit) meshHitFromLane(p, l, hits[b + l]);
     }
   }
 }
@@ -50,13 +65,15 @@ void intersectPackets(RTCScene top, const Scene& scene, RTCIntersectContext* ctx
 void occludedPackets(RTCScene top, RTCIntersectContext* ctx, std::span<const Ray> rays,
                      std::span<uint8_t> blocked) {
   const size_t n = rays.size();
+  alignas(32) RTCRay8 p;  // as in intersectPackets: inactive lanes keep earlier rays
+  if (n < size_t(kLanes)) p = {};
   for (size_t b = 0; b < n; b += kLanes) {
     alignas(32) int valid[kLanes];
-    alignas(32) RTCRay8 p{};  // inactive lanes too: Embree's SIMD code reads every lane
     laneMask(b, n, valid);
-    for (int l = 0; l < kLanes && b + l < n; ++l) toLane(rays[b + l], uint32_t(b + l), p, l);
+    const int lanes = int(std::min(n - b, size_t(kLanes)));
+    for (int l = 0; l < lanes; ++l) toLane(rays[b + l], uint32_t(b + l), p, l);
     rtcOccluded8(valid, top, ctx, &p);
-    for (int l = 0; l < kLanes && b + l < n; ++l) blocked[b + l] = p.tfar[l] < 0;
+    for (int l = 0; l < lanes; ++l) blocked[b + l] = p.tfar[l] < 0;
   }
 }
 
@@ -66,8 +83,7 @@ void embreeIntersectBatch(RTCScene top, const Scene& scene, EmbreeBatch mode,
                           std::span<const Ray> rays, std::span<Hit> hits,
                           std::span<uint8_t> found) {
   AlphaRayContext ctx(scene, rays.data());
-  if (mode == EmbreeBatch::kPacket8)
-    return intersectPackets(top, scene, &ctx.base, rays, hits, found);
+  if (mode == EmbreeBatch::kPacket8) return intersectPackets(top, &ctx.base, rays, hits, found);
   ctx.base.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
   static thread_local std::vector<RTCRayHit> queue;
   queue.resize(rays.size());
