@@ -7,7 +7,7 @@ compilation is excluded, then best of --repeats), and TRay's path_bench on the s
 (best of --repeats). Error: both at the reference's 256x256 and --error-spp against Mitsuba's
 converged render (/work/shared/reference/cornell-box.ref.exr); TRay with its default (Sobol'
 numbers, jittered pixel positions), with independent numbers, and independent throughout like
-Mitsuba's independent sampler. TRay's figures cover both the scalar `path` and `path-wavefront`.
+Mitsuba's independent sampler. TRay's figures cover both `path-scalar` and `path` (the wavefront driver).
 Then the heavier scenes (bench/mitsuba_heavy.py): scenes/bench/heavy-*.gltf, converted for
 Mitsuba by bench/gltf_to_mitsuba.py. --quick: small sizes and one repeat, a few minutes in all.
 
@@ -98,7 +98,7 @@ def cornell_speed(a):
     for name in ("llvm_ad_rgb", "scalar_rgb"):
         m = mi_speed[name]
         say(f"  TRay independent / Mitsuba {name:12s} {tray[0]['wall'] / m[0]:.2f} (wall clock), "
-            f"{tray[0]['cpu'] / m[1]:.2f} (per CPU-second); path-wavefront "
+            f"{tray[0]['cpu'] / m[1]:.2f} (per CPU-second) with path-scalar; path (wavefront) "
             f"{tray[1]['wall'] / m[0]:.2f}, {tray[1]['cpu'] / m[1]:.2f}")
     say(f"  (load at the end of the speed runs: {os.getloadavg()[0]:.2f}; per CPU-second figures"
         " depend less on other jobs)")
@@ -139,7 +139,7 @@ def cornell_error(a):
         say(f"  RMSE TRay / Mitsuba {name:12s} {err['tray_indep'] / err[name]:.3f} (independent)"
             f", {err['tray_jitter'] / err[name]:.3f} (jitter), {err['tray'] / err[name]:.3f}"
             " (TRay's default)")
-    say("  (1 = the same error at equal spp; both renderers are unbiased; path-wavefront renders "
+    say("  (1 = the same error at equal spp; both renderers are unbiased; path-scalar renders "
         "the same pixels as path, so the same errors)")
     return err
 

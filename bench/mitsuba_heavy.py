@@ -9,7 +9,7 @@ Per scene, in one run:
 2. Error at equal spp: each configuration's RMSE against its own renderer's converged render
    (their material models differ slightly, so not pixel against pixel across renderers).
 3. Speed per CPU-second: Mitsuba llvm_ad_rgb (independent, stratified, ldsampler) and
-   scalar_rgb, warm-up excluded; TRay's path_bench (scalar `path` and `path-wavefront`).
+   scalar_rgb, warm-up excluded; TRay's path_bench (`path-scalar` and `path`, the wavefront).
 4. Ratios TRay / Mitsuba per sample and to equal error.
 """
 import hashlib
@@ -145,10 +145,10 @@ def equal_spp_errors(a, gltf, staged, mi_ref, tr_ref, tmp):
         err[key] = rmse(img, tr_ref)
         say(f"  TRay {label:31s} RMSE {err[key]:.5f}")
         if key == "tray":
-            wave = tray_image(a, staged, size, spp, ["--integrator", "path-wavefront"], tmp)
-            same = int(np.sum(np.any(wave != img, axis=2)))
-            say(f"  TRay path-wavefront (default): {same} of {size * size} pixels differ from "
-                "path's (same random numbers, so the same error)")
+            scalar = tray_image(a, staged, size, spp, ["--integrator", "path-scalar"], tmp)
+            same = int(np.sum(np.any(scalar != img, axis=2)))
+            say(f"  TRay path-scalar (default sampler): {same} of {size * size} pixels differ "
+                "from path's (same random numbers, so the same error)")
     return err
 
 
@@ -162,8 +162,8 @@ def speed(a, gltf, staged):
     tray_sobol = tray_speed(a.tray_bench, staged, a.threads, size, spp, a.repeats, "sobol")
     for name in ("llvm_ad_rgb", "scalar_rgb"):
         m = mi_speed[name]
-        say(f"  per sample, TRay independent / Mitsuba {name:12s}: path {tray[0]['cpu'] / m[1]:.2f}"
-            f", path-wavefront {tray[1]['cpu'] / m[1]:.2f} (per CPU-second)")
+        say(f"  per sample, TRay independent / Mitsuba {name:12s}: path-scalar "
+            f"{tray[0]['cpu'] / m[1]:.2f}, path {tray[1]['cpu'] / m[1]:.2f} (per CPU-second)")
     say(f"  (load at the end of the speed runs: {os.getloadavg()[0]:.2f})")
     return mi_speed, tray, tray_sobol
 

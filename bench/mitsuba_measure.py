@@ -42,7 +42,7 @@ def mitsuba_speed(variant, size, spp, depth, repeats, sampler, make_scene):
 
 
 def tray_speed(bench, gltf, threads, size, spp, repeats, sampler):
-    """Best of `repeats` path_bench runs of the scalar `path` and of `path-wavefront` (path_bench
+    """Best of `repeats` path_bench runs of `path-scalar` and of `path` (the wavefront; path_bench
     measures both in each run, in that order): per integrator a dict of Msamples/s (`wall`),
     Msamples per CPU-second (`cpu`), Mrays per CPU-second (`rays`) and, for the wavefront, the
     share of its time in batched traversal (`traversal`, from the fastest run)."""
@@ -58,13 +58,13 @@ def tray_speed(bench, gltf, threads, size, spp, repeats, sampler):
         traversal = re.findall(r"traversal\s+([0-9.]+)% of the render", r.stdout)
         if len(wall) < 2 or len(cpu) < 2 or len(rays) < 2 or not traversal:
             fail(f"{bench}: expected 'Msamples/s', 'Msamples per CPU-second', 'Mrays per "
-                 f"CPU-second' for path and path-wavefront, and its traversal share:\n{r.stdout}")
+                 f"CPU-second' for path-scalar and path, and the wavefront's traversal share:\n{r.stdout}")
         for k, b in enumerate(best):
             if float(cpu[k]) > b["cpu"]:
                 b.update(cpu=float(cpu[k]), rays=float(rays[k]),
                          traversal=float(traversal[0]) if k == 1 else -1.0)
             b["wall"] = max(b["wall"], float(wall[k]))
-    for label, b in zip(("", " wavefront"), best):
+    for label, b in zip((" scalar", ""), best):
         share = f", traversal {b['traversal']:.0f}%" if b["traversal"] >= 0 else ""
         say(f"  TRay{label:10s} {sampler:12s} best {size * size * spp / b['wall'] * 1e-6:7.2f} s  "
             f"{b['wall']:7.3f} Msamples/s  {b['cpu']:7.3f} per CPU-s  ({threads} threads; "
@@ -78,7 +78,7 @@ def equal_error_lines(mi_speed, mi_err, tray_speeds, tray_err):
     efficiency (1 / (variance x time)) ratio is speed ratio / rmse ratio^2. `tray_speeds`:
     (label, tray_speed result, key of tray_err); Mitsuba's: by sampler or variant name."""
     for label, speed, key in tray_speeds:
-        for k, integrator in enumerate(("path", "path-wavefront")):
+        for k, integrator in enumerate(("path-scalar", "path")):
             cells = []
             for name, m in mi_speed.items():
                 q = (tray_err[key] / mi_err[name]) ** 2

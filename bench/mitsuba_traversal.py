@@ -12,7 +12,7 @@ Per scene, in one run, one thread each (Dr.Jit's pool set to one thread):
    `ray_intersect_preliminary` (closest hit, traversal only; camera rays as `coherent`) and
    `ray_test` (shadow rays), best of --repeats, in Mrays per CPU-second.
 3. Both render the scene (max depth 8, independent numbers): Mitsuba's `path`, warm-up
-   excluded, best of --repeats; TRay's path_bench (`path` and `path-wavefront`, best of
+   excluded, best of --repeats; TRay's path_bench (`path-scalar` and `path`, the wavefront, best of
    --repeats), which also prints its rays per sample and the wavefront's measured share of
    time in traversal.
 4. From these, per sample: TRay's traversal time (its measured share of the wavefront's time)
@@ -168,8 +168,8 @@ def one_scene(a, name, path, tmp):
     tray_trav = t["share"] * tray_us
     at_rates = lambda r: cam / r[0] + closest / r[2] + shadow / r[1]  # noqa: E731
     mi_trav, tray_rates = at_rates(mits), at_rates(packets)
-    say(f"  render, Msamples per CPU-second: Mitsuba {mi_rate:.3f}, TRay path {t['path']:.3f}, "
-        f"path-wavefront {t['wave']:.3f} ({t['wave'] / mi_rate:.2f}x Mitsuba)")
+    say(f"  render, Msamples per CPU-second: Mitsuba {mi_rate:.3f}, TRay path-scalar "
+        f"{t['path']:.3f}, path (wavefront) {t['wave']:.3f} ({t['wave'] / mi_rate:.2f}x Mitsuba)")
     say(f"  rays per sample (TRay's counts): camera {cam:.2f}, closest after it "
         f"{closest:.2f}, shadow {shadow:.2f}")
     say(f"  per sample: TRay {tray_us:.3f} us = traversal {tray_trav:.3f} (measured, "

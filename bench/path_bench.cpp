@@ -248,17 +248,17 @@ int run(const std::string& path, const std::string& accelName, int threads, int 
   auto camera = Camera::create(chooseCamera(scene, -1), size, size);
   auto accel = makeAccelerator(accelName, scene);
   RenderSettings settings;
-  settings.set("integrator", "path");
+  settings.set("integrator", "path-scalar");  // the replay records the scalar driver's rays
   settings.set("spp", spp);
   settings.set("max-depth", 8);
   settings.set("sampler", sampler);
   std::printf("path tracing %s: %dx%d, %d spp, max depth 8, %d threads, %s sampler, %s\n",
               path.c_str(), size, size, spp, threads, sampler.c_str(), accelName.c_str());
-  const Measured scalar = measure(scene, *accel, *camera, settings, "path", size, threads);
-  print("path (scalar)", scalar, threads);
+  const Measured scalar = measure(scene, *accel, *camera, settings, "path-scalar", size, threads);
+  print("path-scalar (one path at a time)", scalar, threads);
   if (replayRays) replay(scene, *accel, settings, size);
-  const Measured wave = measure(scene, *accel, *camera, settings, "path-wavefront", size, threads);
-  print("path-wavefront", wave, threads);
+  const Measured wave = measure(scene, *accel, *camera, settings, "path", size, threads);
+  print("path (the wavefront driver, path-wavefront)", wave, threads);
   std::printf("  wavefront / scalar: %.2fx samples per CPU-second\n",
               wave.perCpuSecond() / scalar.perCpuSecond());
   if (batchModes) {

@@ -23,21 +23,7 @@ class PathIntegrator final : public Integrator {
 
   Color Li(const Ray& cameraRay, Sampler& sampler, RayStats& stats,
            PrimaryHit* primary) const override {
-    if (estimator_.maxDepth() == 0) return Color(0.0f);
-    PathState state = PathState::camera(cameraRay, pixelX_, pixelY_,
-                                         primary ? primary->lightPaths : nullptr);
-    ShadowQuery shadow;  // step() sets what resolveShadow reads: not re-initialised per vertex
-    for (;;) {
-      Hit hit;
-      const bool found = ctx_.accel.intersect(state.ray, hit);
-      bool wantsShadow;
-      const PathStep step =
-          estimator_.step(state, sampler, found, hit, shadow, wantsShadow, stats, primary);
-      if (wantsShadow)
-        estimator_.resolveShadow(state, shadow, ctx_.accel.occluded(shadow.ray));
-      if (step == PathStep::kDone) break;
-    }
-    return PathEstimator::result(state);
+    return estimator_.tracePath(ctx_.accel, cameraRay, sampler, stats, primary, pixelX_, pixelY_);
   }
 
  private:

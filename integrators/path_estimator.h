@@ -90,6 +90,24 @@ class PathEstimator {
   /// The sample's radiance once the path is done (NaN when the throughput became non-finite:
   /// counted and discarded upstream).
   static Color result(const PathState& state);
+  /// One path traced to its end, one ray at a time: the scalar driver (`path-scalar`), and
+  /// what the wavefront's Li does too (a lone path has nothing to batch with; adaptive calls
+  /// Li sample by sample). (x, y): the pixel, for --debug-nan reports (-1 when unknown).
+  Color tracePath(const Accelerator& accel, const Ray& cameraRay, Sampler& sampler, RayStats& stats,
+                  PrimaryHit* primary, int x, int y) const {
+    if (maxDepth_ == 0) return Color(0.0f);
+    PathState state = PathState::camera(cameraRay, x, y, primary ? primary->lightPaths : nullptr);
+    ShadowQuery shadow;  // step() sets what resolveShadow reads: not re-initialised per vertex
+    for (;;) {
+      Hit hit;
+      const bool found = accel.intersect(state.ray, hit);
+      bool wantsShadow;
+      const PathStep next = step(state, sampler, found, hit, shadow, wantsShadow, stats, primary);
+      if (wantsShadow) resolveShadow(state, shadow, accel.occluded(shadow.ray));
+      if (next == PathStep::kDone) break;
+    }
+    return result(state);
+  }
 
  private:
   struct Vertex;

@@ -73,22 +73,13 @@ class PathWavefrontIntegrator final : public Integrator {
   void beginPathsInSimd(Wave& w, std::span<const PixelTask> tasks, int begin, size_t n, size_t g0,
                         size_t g1) const;
 
-  /// One path on its own (adaptive's inner integrator): a wave of one.
+  /// One path on its own (adaptive's inner integrator): nothing to batch it with, so the
+  /// scalar driver's loop (PathEstimator::tracePath), which `path-scalar` runs too: the same
+  /// pixels under `adaptive --inner path` as under `--inner path-scalar`. (A wave of one did
+  /// not keep a PrimaryHit the caller had filled, and was 30% slower.)
   Color Li(const Ray& ray, Sampler& sampler, RayStats& stats,
            PrimaryHit* primary) const override {
-    Wave& w = scratch();
-    w.clear();
-    w.paths.push_back(PathState::camera(ray, -1, -1, primary ? primary->lightPaths : nullptr));
-    w.samplers.push_back(sampler);
-    w.primary.emplace_back();
-    trace(w, stats);
-    sampler = w.samplers[0];
-    if (primary) {
-      LightPathRadiance* split = primary->lightPaths;  // the caller's, not the wave's
-      *primary = w.primary[0];
-      primary->lightPaths = split;
-    }
-    return PathEstimator::result(w.paths[0]);
+    return estimator_.tracePath(ctx_.accel, ray, sampler, stats, primary, -1, -1);
   }
 
  private:

@@ -19,10 +19,16 @@ std::vector<IntegratorEntry>& table() {
        makeWhitted, whittedOptions(), ""},
       {"adaptive", "adaptive supersampling around --inner: corners, subdivide where they differ",
        makeAdaptive, adaptiveOptions(), "inner"},
-      {"path", "path tracing: MIS next-event estimation, GGX/dielectric BSDFs, area lights",
-       makePath, pathOptions(), ""},
-      {"path-wavefront", "path's estimator, every bounce of a tile's samples traced as one batch",
+      // `path` runs the wavefront driver (issue 16: the same pixels, faster on every bench
+      // scene, docs/wavefront.md); `path-scalar` traces one path at a time, the reference.
+      {"path",
+       "path tracing: MIS next-event estimation, GGX/dielectric BSDFs, area lights; each "
+       "bounce of a tile's samples traced as one batch",
        makePathWavefront, pathOptions(), ""},
+      {"path-scalar", "path's estimator one path at a time (the reference: the same pixels)",
+       makePath, pathOptions(), ""},
+      {"path-wavefront", "another name for path (its wavefront driver)", makePathWavefront,
+       pathOptions(), ""},
   };
   return entries;
 }

@@ -1,8 +1,9 @@
 #pragma once
 // Which path tracer the path-tracer tests run. ctest runs each of their executables twice:
-// as is ("path", the scalar reference) and with TRAY_TEST_PATH_INTEGRATOR=path-wavefront
-// (tests/CMakeLists.txt, prefix "wavefront."), so their closed forms, references and
-// stability scenes check both integrators.
+// as is ("path-scalar", the one-path-at-a-time reference) and with
+// TRAY_TEST_PATH_INTEGRATOR=path (the default path tracer, its wavefront driver;
+// tests/CMakeLists.txt, prefix "wavefront."), so their closed forms, references and stability
+// scenes check both drivers.
 #include <cstdlib>
 #include <string>
 
@@ -10,7 +11,7 @@ namespace tray::test {
 
 inline std::string pathUnderTest() {
   const char* name = std::getenv("TRAY_TEST_PATH_INTEGRATOR");
-  return name && *name ? name : "path";
+  return name && *name ? name : "path-scalar";
 }
 
 /// `name`, with "path" standing for the path tracer under test (tests listing integrators).
