@@ -30,6 +30,7 @@ struct Render {
 
 struct Job {
   std::string integrator = "path-scalar";  ///< the reference; `path` runs the wavefront
+  std::string inner;  ///< adaptive's inner integrator, when set
   std::string accel = "embree";
   std::string sampler = "sobol";
   int size = 24, spp = 8, threads = 1, tileSize = 16;
@@ -43,6 +44,7 @@ Render render(const Scene& scene, const Job& job, RenderState* state = nullptr) 
   auto accel = makeAccelerator(job.accel, scene);
   RenderSettings settings;
   settings.set("integrator", job.integrator);
+  if (!job.inner.empty()) settings.set("inner", job.inner);
   settings.set("spp", job.spp);
   settings.set("sampler", job.sampler);
   settings.set("seed", int64_t(job.seed));
@@ -192,20 +194,10 @@ TEST(PathWavefront, PathRunsTheWavefrontDriver) {
 // ran a wave of one (18 of 4096 pixels differed: the caller's PrimaryHit was overwritten).
 TEST(PathWavefront, AdaptiveInnerPathEqualsScalar) {
   const Scene scene = cornell();
-  auto camera = Camera::create(chooseCamera(scene, -1), 32, 32);
-  auto accel = makeAccelerator("embree", scene);
   auto image = [&](const std::string& inner) {
-    RenderSettings settings;
-    settings.set("integrator", "adaptive");
-    settings.set("inner", inner);
-    settings.set("spp", 4);
-    RenderContext ctx{scene, *accel, *camera, settings, 32, 32};
-    auto integrator = makeIntegrator(ctx);
-    Film film(32, 32);
-    RenderOptions options;
-    options.threads = 1;
-    renderImage(*integrator, film, options);
-    return film;
+    Job job;
+    job.integrator = "adaptive", job.inner = inner, job.size = 32, job.spp = 4;
+    return render(scene, job).film;
   };
   const Film scalar = image("path-scalar");
   EXPECT_EQ(differingValues(scalar, image("path")), 0u);
