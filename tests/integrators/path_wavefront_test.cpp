@@ -30,7 +30,7 @@ struct Render {
 
 struct Job {
   std::string integrator = "path-scalar";  ///< the reference; `path` runs the wavefront
-  std::string inner;  ///< adaptive's inner integrator, when set
+  std::string inner;                       ///< adaptive's inner integrator, when set
   std::string accel = "embree";
   std::string sampler = "sobol";
   int size = 24, spp = 8, threads = 1, tileSize = 16;
