@@ -9,8 +9,8 @@
 
 #include "accel/registry.h"
 #include "core/camera.h"
-#include "core/render_setup.h"
 #include "core/ray.h"
+#include "core/render_setup.h"
 #include "core/sampling.h"
 #include "core/scene.h"
 

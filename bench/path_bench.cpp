@@ -195,11 +195,11 @@ void print(const std::string& integrator, const Measured& m, int threads) {
       "    CPU time        %.2f s: %.3f Msamples per CPU-second (x %d threads = %.3f "
       "Msamples/s on idle cores)\n",
       m.cpu, m.perCpuSecond(), threads, m.perCpuSecond() * threads);
-  std::printf("    Mrays/s         %.2f, %.2f Mrays per CPU-second (camera %.3fM, bounce %.3fM, "
-              "shadow %.3fM)\n",
-              m.stats.mraysPerSecond(), m.stats.rays.total() / m.cpu * 1e-6,
-              m.stats.rays.cameraRays * 1e-6, m.stats.rays.secondaryRays * 1e-6,
-              m.stats.rays.shadowRays * 1e-6);
+  std::printf(
+      "    Mrays/s         %.2f, %.2f Mrays per CPU-second (camera %.3fM, bounce %.3fM, "
+      "shadow %.3fM)\n",
+      m.stats.mraysPerSecond(), m.stats.rays.total() / m.cpu * 1e-6, m.stats.rays.cameraRays * 1e-6,
+      m.stats.rays.secondaryRays * 1e-6, m.stats.rays.shadowRays * 1e-6);
   if (m.traversal >= 0)
     std::printf("    traversal       %.0f%% of the render (time in batched queries)\n",
                 100 * m.traversal);
