@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""Thread scaling of the path tracers (issue 16): wall-clock Msamples/s of `path` and
-`path-wavefront` at 1, 2, 4, ... threads, from build/path_bench, with the speed-up and the
+"""Thread scaling of the path tracers (issue 16): wall-clock Msamples/s of `path-scalar` and
+`path` (the wavefront) at 1, 2, 4, ... threads, from build/path_bench, with the speed-up and the
 parallel efficiency (speed-up / threads) against one thread measured in the same run.
 
     python3 bench/thread_scaling.py                      # Cornell box, 1..nproc threads
@@ -23,7 +23,7 @@ RATE = re.compile(r"^\s+Msamples/s\s+([0-9.]+)", re.M)
 
 
 def wall_rates(bench, scene, threads, size, spp, accel):
-    """(path, path-wavefront) wall-clock Msamples/s of one path_bench run."""
+    """(path-scalar, path) wall-clock Msamples/s of one path_bench run (in that order)."""
     cmd = [bench, scene, str(threads), str(size), str(spp), "--no-replay", "--no-error",
            "--accel", accel]
     out = subprocess.run(cmd, capture_output=True, text=True)
@@ -65,7 +65,7 @@ def main():
     for scene in scenes:
         load = os.getloadavg()[0]
         print(f"\n{os.path.basename(scene)} (load average {load:.1f} before)")
-        print("threads | path Msamples/s | speed-up | efficiency | wavefront Msamples/s | "
+        print("threads | path-scalar Msamples/s | speed-up | efficiency | path Msamples/s | "
               "speed-up | efficiency")
         base = None
         for t in counts:
