@@ -256,15 +256,6 @@ HWY_AFTER_NAMESPACE();
 namespace tray {
 HWY_EXPORT(GenerateCameraRays);
 
-namespace {
-/// Sampler::mix (SplitMix64's finaliser), for the key's first hash.
-uint64_t mix(uint64_t z) {
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-  return z ^ (z >> 31);
-}
-}  // namespace
-
 void CameraRayLanes::resize(size_t n) {
   // Whole vectors of the widest target: the kernel's last store may run past n.
   const size_t padded = (n + kMaxLanes - 1) / kMaxLanes * kMaxLanes;
@@ -292,7 +283,7 @@ std::optional<CameraRayBatch> CameraRayBatch::make(const Camera& camera, const P
   p.radius = pixels.radius(), p.strata = pixels.strata(), p.pattern = int32_t(pixels.pattern());
   p.sobol = sequence == Sampler::Sequence::kSobol;
   p.imageWidth = uint32_t(imageWidth);
-  p.seedKey = mix(seed ^ 0x9e3779b97f4a7c15ull);
+  p.seedKey = Sampler::seedKey(seed);
   b.origin_ = pinhole->toWorld.point(Vec3(0.0f));
   b.sequence_ = sequence;
   return b;

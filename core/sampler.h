@@ -28,10 +28,9 @@ class Sampler {
           Sequence sequence = Sequence::kIndependent)
       // Independent: one key per sample. Sobol': one per pixel, the same for all its samples
       // (they form one scrambled sequence), with the sample index kept apart.
-      : key_(mix(mix(seed ^ 0x9e3779b97f4a7c15ull) ^
-                 (sequence == Sequence::kIndependent
-                      ? uint64_t(pixelIndex) << 32 | sampleIndex
-                      : uint64_t(pixelIndex) << 32 ^ 0x5851f42d4c957f2dull))),
+      : key_(mix(seedKey(seed) ^ (sequence == Sequence::kIndependent
+                                      ? uint64_t(pixelIndex) << 32 | sampleIndex
+                                      : uint64_t(pixelIndex) << 32 ^ 0x5851f42d4c957f2dull))),
         reversedIndex_(sobol::reverseBits(sampleIndex)),
         sequence_(sequence) {}
   /// Uniform in [0, 1).
@@ -72,6 +71,9 @@ class Sampler {
             sobol::toUnit(sobol::scrambledDimension1(index, seedZ))};
   }
   uint32_t dimension() const { return dimension_; }
+  /// The seed's own hash, the first step of every sample's key (the constructor's, and the
+  /// batch kernel's in core/camera_batch.cpp, which computes it once per render).
+  static uint64_t seedKey(uint64_t seed) { return mix(seed ^ 0x9e3779b97f4a7c15ull); }
   /// The sampler whose state a batch kernel computed (core/camera_batch.cpp repeats the
   /// constructor's and next2D's hashes over many samples at once).
   static Sampler fromState(uint64_t key, uint32_t reversedIndex, uint32_t dimension,
