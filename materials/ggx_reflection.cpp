@@ -20,9 +20,8 @@ float GgxReflectionLobe::pdf(const Vec3& wo, const Vec3& wi) const {
 GgxReflectionLobe::Terms GgxReflectionLobe::terms(const Vec3& wo, const Vec3& wi) const {
   // f = F D G / (4 |cos_o cos_i|) with height-correlated G = 1 / ((1 + Lambda(wo)) +
   // Lambda(wi)), and pdf = D_wo(wm) / (4 |wo.wm|) (Walter et al. eq. 14) with the visible
-  // normals' density D_wo = G1(wo) D |wo.wm| / |cos_o| (GgxDistribution::visibleD, operation
-  // for operation), G1(wo) = 1 / (1 + Lambda(wo)): the two share the half vector, D and
-  // 1 + Lambda(wo).
+  // normals' density D_wo = G1(wo) D |wo.wm| / |cos_o| (GgxDistribution::visibleD),
+  // G1(wo) = 1 / (1 + Lambda(wo)): the two share the half vector, D and 1 + Lambda(wo).
   Terms t;
   if (isDelta() || !sameHemisphere(wo, wi)) return t;
   Vec3 wm = wi + wo;
@@ -31,9 +30,7 @@ GgxReflectionLobe::Terms GgxReflectionLobe::terms(const Vec3& wo, const Vec3& wi
   if (wm.z < 0) wm = -wm;
   const float d = dist_.D(wm), onePlusLambdaO = 1.0f + dist_.lambda(wo);
   t.cosOM = dot(wo, wm);
-  const float c = std::fabs(wo.z);  // visibleD(wo, wm)
-  const float visible = c == 0 ? 0.0f : 1.0f / onePlusLambdaO / c * d * std::fabs(t.cosOM);
-  t.pdf = visible / (4.0f * std::fabs(t.cosOM));
+  t.pdf = dist_.visibleD(wo, wm, d, onePlusLambdaO) / (4.0f * std::fabs(t.cosOM));
   const float cosO = absCosTheta(wo), cosI = absCosTheta(wi);
   if (cosO == 0 || cosI == 0) return t;
   t.scale = d * (1.0f / (onePlusLambdaO + dist_.lambda(wi))) / (4.0f * cosO * cosI);

@@ -38,9 +38,15 @@ class GgxDistribution {
   float G(const Vec3& wo, const Vec3& wi) const { return 1.0f / (1.0f + lambda(wo) + lambda(wi)); }
   /// Density of visible normals from direction w: G1(w) max(0, w.wm) D(wm) / cos(w).
   float visibleD(const Vec3& w, const Vec3& wm) const {
+    if (w.z == 0) return 0;
+    return visibleD(w, wm, D(wm), 1.0f + lambda(w));
+  }
+  /// The same from D(wm) and 1 + Lambda(w), for callers that have them already (the GGX
+  /// reflection lobe's terms: its G shares 1 + Lambda(wo)).
+  float visibleD(const Vec3& w, const Vec3& wm, float d, float onePlusLambda) const {
     float c = std::fabs(w.z);
     if (c == 0) return 0;
-    return G1(w) / c * D(wm) * std::fabs(dot(w, wm));
+    return 1.0f / onePlusLambda / c * d * std::fabs(dot(w, wm));
   }
   /// Samples a visible microfacet normal from direction w (Heitz 2018, as in pbrt-v4 9.6.4).
   Vec3 sampleVisibleNormal(const Vec3& w, Vec2 u) const {
