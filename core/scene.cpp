@@ -123,9 +123,11 @@ void shapeSurface(const Primitive& prim, const Transform& toWorld, const Ray& ra
   s.material = hit.material >= 0 ? hit.material : m.material;
 }
 
-// Scene::surface of prim placed by toWorld: all of s but frontFace.
-void placedSurface(const Scene& scene, const Primitive& prim, const Transform& toWorld,
-                   const Ray& ray, const Hit& hit, SurfacePoint& s) {
+// Scene::surface of prim placed by toWorld: all of s but frontFace. Inlined into both callers,
+// so that the static path keeps meshSurface inline (see there).
+[[gnu::always_inline]] inline void placedSurface(const Scene& scene, const Primitive& prim,
+                                                 const Transform& toWorld, const Ray& ray,
+                                                 const Hit& hit, SurfacePoint& s) {
   if (prim.kind == Primitive::Kind::kShape)
     shapeSurface(prim, toWorld, ray, hit, s);
   else
@@ -151,10 +153,8 @@ SurfacePoint Scene::surface(const Ray& ray, const Hit& hit) const {
   s.time = ray.time;
   if (!prim.motion.empty())
     movingSurface(*this, prim, ray, hit, s);
-  else if (prim.kind == Primitive::Kind::kShape)
-    shapeSurface(prim, prim.toWorld, ray, hit, s);
   else
-    meshSurface(meshes[prim.mesh], prim.toWorld, ray, hit, s);
+    placedSurface(*this, prim, prim.toWorld, ray, hit, s);
   s.frontFace = dot(ray.d, s.ng) < 0;  // after the stores above retire: no stall measured
   return s;
 }
