@@ -42,7 +42,20 @@ struct Wave {
   void clear() {
     paths.clear(), samplers.clear(), primary.clear(), offsets.clear();
   }
+  /// A path from its camera ray; `split`: its light-path radiance, or null.
+  void addPath(const Ray& ray, int x, int y, LightPathRadiance* split, const Sampler& sampler,
+               const Vec2& offset) {
+    paths.emplace_back().beginCamera(ray, x, y, split);
+    samplers.push_back(sampler);
+    primary.emplace_back();
+    offsets.push_back(offset);
+  }
 };
+
+/// A pixel whose light-path AOVs are asked for.
+bool wantsLightPaths(const PixelTask& t) {
+  return t.aovSums && t.aovSums->lightPaths;
+}
 
 class PathWavefrontIntegrator final : public Integrator {
  public:
@@ -103,8 +116,7 @@ void PathWavefrontIntegrator::accumulatePixels(std::span<PixelTask> tasks, int b
   for (PixelTask& t : tasks) t.samples = uint32_t(n);
   const size_t total = tasks.size() * n;
   Wave& w = scratch();
-  auto splits = [](const PixelTask& t) { return t.aovSums && t.aovSums->lightPaths; };
-  const bool anySplit = std::any_of(tasks.begin(), tasks.end(), splits);
+  const bool anySplit = std::any_of(tasks.begin(), tasks.end(), wantsLightPaths);
   // Paths in (pixel, sample) order, cut into waves: each pixel's samples are added to its sums
   // in sample order, as accumulate() does, so the sums are the same bits.
   for (size_t g0 = 0; g0 < total; g0 += kWaveSize) {
@@ -123,11 +135,7 @@ void PathWavefrontIntegrator::accumulatePixels(std::span<PixelTask> tasks, int b
         Vec2 offset;
         const Ray ray = cameraRay(t.x, t.y, i, s, offset);
         ++stats.cameraRays;
-        w.paths.emplace_back().beginCamera(ray, t.x, t.y,
-                                           splits(t) ? &w.lightPaths[g - g0] : nullptr);
-        w.samplers.push_back(s);
-        w.primary.emplace_back();
-        w.offsets.push_back(offset);
+        w.addPath(ray, t.x, t.y, wantsLightPaths(t) ? &w.lightPaths[g - g0] : nullptr, s, offset);
       }
     }
     trace(w, stats);
@@ -136,7 +144,7 @@ void PathWavefrontIntegrator::accumulatePixels(std::span<PixelTask> tasks, int b
       const size_t k = g - g0;
       if (g % n == 0) t.first = w.primary[k];
       addSample(t.sums, t.coverage, t.aovSums, w.offsets[k], PathEstimator::result(w.paths[k]),
-                w.primary[k], splits(t) ? &w.lightPaths[k] : nullptr, stats);
+                w.primary[k], wantsLightPaths(t) ? &w.lightPaths[k] : nullptr, stats);
     }
   }
 }
@@ -158,12 +166,9 @@ void PathWavefrontIntegrator::beginPathsInSimd(Wave& w, std::span<const PixelTas
     task = chunkTask, sample = chunkSample;
     for (size_t k = 0; k < c1 - c0; ++k) {
       const PixelTask& t = tasks[task];
-      const bool split = t.aovSums && t.aovSums->lightPaths;
-      w.paths.emplace_back().beginCamera(cameraBatch_->ray(w.cameraLanes, k), t.x, t.y,
-                                         split ? &w.lightPaths[c0 + k - g0] : nullptr);
-      w.samplers.push_back(cameraBatch_->sampler(w.cameraLanes, k));
-      w.primary.emplace_back();
-      w.offsets.push_back(CameraRayBatch::offset(w.cameraLanes, k));
+      w.addPath(cameraBatch_->ray(w.cameraLanes, k), t.x, t.y,
+                wantsLightPaths(t) ? &w.lightPaths[c0 + k - g0] : nullptr,
+                cameraBatch_->sampler(w.cameraLanes, k), CameraRayBatch::offset(w.cameraLanes, k));
       if (++sample == n) sample = 0, ++task;
     }
   }
