@@ -110,8 +110,8 @@ void Integrator::addSample(PixelSums& sums, IdCoverage* coverage, AovSums* aovSu
 // Flattened: the sampler, camera ray and addSample pieces inline here as in one function
 // (measured: their calls cost the scalar path about 0.5% of its instructions).
 [[gnu::flatten]] uint32_t Integrator::accumulate(int x, int y, int begin, int end, PixelSums& sums,
-                                PrimaryHit& first, RayStats& stats, IdCoverage* coverage,
-                                AovSums* aovSums) const {
+                                                 PrimaryHit& first, RayStats& stats,
+                                                 IdCoverage* coverage, AovSums* aovSums) const {
   // Filter-weighted sums, normalised by the weight sum at the end (pbrt-v4 8.8's weighted
   // estimator): each pixel owns its samples, so tiles never share film writes. Doubles keep the
   // mean accurate at very high sample counts and let sums of sample ranges be combined.
@@ -134,11 +134,13 @@ void Integrator::addSample(PixelSums& sums, IdCoverage* coverage, AovSums* aovSu
   return uint32_t(std::max(0, end - begin));
 }
 
-void Integrator::accumulatePixels(std::span<PixelTask> tasks, int begin, int end,
-                                  RayStats& stats) const {
-  for (PixelTask& t : tasks)
-    t.samples =
-        accumulate(t.x, t.y, begin, end, t.sums, t.first, stats, t.coverage, t.aovSums);
+void Integrator::accumulatePixels(std::span<PixelTask> tasks, int begin, int end, RayStats& stats,
+                                  const std::atomic<bool>* stop) const {
+  for (PixelTask& t : tasks) {
+    if (stop && stop->load(std::memory_order_relaxed)) return;
+    t.samples = accumulate(t.x, t.y, begin, end, t.sums, t.first, stats, t.coverage, t.aovSums);
+    t.finished = true;
+  }
 }
 
 PixelValue Integrator::renderPixel(int x, int y, RayStats& stats, IdCoverage* coverage) const {

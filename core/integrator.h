@@ -9,9 +9,9 @@
 #include "core/accelerator.h"
 #include "core/aov_sums.h"
 #include "core/camera.h"
+#include "core/filter.h"
 #include "core/id_coverage.h"
 #include "core/math.h"
-#include "core/filter.h"
 #include "core/pixel_sampler.h"
 #include "core/pixel_sums.h"
 #include "core/render_options.h"
@@ -63,6 +63,9 @@ struct PixelTask {
   IdCoverage* coverage = nullptr;  ///< Cryptomatte's ids, when not null
   AovSums* aovSums = nullptr;      ///< the AOVs averaged over all samples, when not null
   uint32_t samples = 0;            ///< camera rays traced
+  /// Set by accumulatePixels once all of the pixel's samples are in `sums`; a pixel left
+  /// unfinished by a stop is not written (its sums hold only some samples).
+  bool finished = false;
 };
 
 /// What every integrator sees: the scene, its accelerator, the camera and the settings.
@@ -116,11 +119,14 @@ class Integrator {
   /// Pixels the renderer gives accumulatePixels at once: 1 (the default) for integrators that
   /// trace one sample at a time; a wavefront integrator asks for a tile's worth.
   virtual int pixelBatch() const { return 1; }
-  /// accumulate() over samples [begin, end) of every task's pixel. The default calls it pixel
-  /// by pixel; a wavefront integrator overrides it to trace the batch's samples together, with
-  /// the same sums per pixel (each sample drawing the same numbers).
-  virtual void accumulatePixels(std::span<PixelTask> tasks, int begin, int end,
-                                RayStats& stats) const;
+  /// accumulate() over samples [begin, end) of every task's pixel, setting each task's
+  /// `finished`. The default calls it pixel by pixel; a wavefront integrator overrides it to
+  /// trace the batch's samples together, with the same sums per pixel (each sample drawing the
+  /// same numbers). Once `*stop` (when not null) is true it returns early: between pixels, or
+  /// (wavefront) between waves, so that a signal ends a render whose batch holds hours of
+  /// samples within milliseconds.
+  virtual void accumulatePixels(std::span<PixelTask> tasks, int begin, int end, RayStats& stats,
+                                const std::atomic<bool>* stop = nullptr) const;
   const RenderContext& context() const { return ctx_; }
 
  protected:
@@ -161,8 +167,8 @@ class Integrator {
   Sampler::Sequence sequence_;
   PixelSampler pixelSampler_;
   uint64_t seed_;
-  bool transparent_;  ///< escaped camera rays give 0 (cameraLi)
-  bool moving_;       ///< something moves over the shutter: camera rays draw a time
+  bool transparent_;                ///< escaped camera rays give 0 (cameraLi)
+  bool moving_;                     ///< something moves over the shutter: camera rays draw a time
   std::vector<Mat4> cameraMotion_;  ///< the camera's motion steps (CameraDesc::motion)
   Mat4 cameraFrameInverse_;         ///< world to camera at the frame's pose
   void moveWithCamera(Ray& ray) const;

@@ -72,8 +72,9 @@ RenderStats renderImage(const Integrator& integrator, Film& film, RenderState& s
   if (state.sums.size() != pixels || state.done.size() != pixels)
     throw Error("the render state does not match the film", Error::Kind::kRender);
   if (AovSet::wantsLightPaths(options.aovs) && !integrator.splitsLightPaths())
-    throw Error("--aov: the light-path layers (lightpaths, diffuse_direct, ...) need "
-                "--integrator path or path-wavefront");
+    throw Error(
+        "--aov: the light-path layers (lightpaths, diffuse_direct, ...) need "
+        "--integrator path or path-wavefront");
   std::optional<MotionVectors> vectors;  // only when the motion layer is asked for
   if (std::count(options.aovs.begin(), options.aovs.end(), "motion"))
     vectors.emplace(ctx.scene, ctx.camera.desc(), ctx.width, ctx.height);
@@ -123,8 +124,9 @@ RenderStats renderImage(const Integrator& integrator, Film& film, RenderState& s
   const size_t batch = size_t(std::max(1, integrator.pixelBatch()));
   auto renderBatch = [&](std::vector<PixelTask>& tasks, RayStats& stats) {
     if (tasks.empty()) return;
-    integrator.accumulatePixels(tasks, options.sampleBegin, sampleEnd, stats);
+    integrator.accumulatePixels(tasks, options.sampleBegin, sampleEnd, stats, options.stop);
     for (const PixelTask& t : tasks) {
+      if (!t.finished) continue;  // stopped before its last sample: left to a resume
       PixelValue v;
       v.primary = t.first;
       v.samples = t.samples;

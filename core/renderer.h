@@ -25,7 +25,8 @@ struct RenderOptions {
   /// Renders samples [sampleBegin, sampleEnd) of each pixel; sampleEnd 0: to the last. Other
   /// than the whole range needs an integrator with samplesPerPixel() > 0.
   int sampleBegin = 0, sampleEnd = 0;
-  /// When it becomes true (a signal handler), workers stop after their current pixel.
+  /// When it becomes true (a signal handler), workers stop after their current pixel (the
+  /// wavefront: its current wave of paths); only whole pixels are written.
   const std::atomic<bool>* stop = nullptr;
   /// Every checkpointSeconds (> 0), onCheckpoint gets a copy of the film and state with the
   /// pixels finished so far (called from a worker thread, one call at a time).

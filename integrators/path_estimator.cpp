@@ -29,8 +29,9 @@ Color farSideAbsorption(const MediumStack& media, int id, const Material& m, boo
 /// The scattering vertex being shaded: what NEE and BSDF sampling both read.
 struct PathEstimator::Vertex {
   /// The surface is built in place (not assigned from a returned temporary: a
-  /// store-forwarding stall, see setSpawnRay in core/ray.h).
-  Vertex(const Scene& scene, const Ray& ray, const Hit& hit) : s(scene.surface(ray, hit)) {}
+  /// store-forwarding stall, see setSpawnRay in core/ray.h), or copied from the caller's.
+  Vertex(const Scene& scene, const Ray& ray, const Hit& hit, const SurfacePoint* known)
+      : s(known ? *known : scene.surface(ray, hit)) {}
   SurfacePoint s;
   const Material* m;
   Vec3 n;         ///< shading normal on the side the ray arrived from
@@ -77,7 +78,7 @@ void PathEstimator::escape(PathState& st) const {
 
 PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const Hit& hit,
                              ShadowQuery& shadow, bool& wantsShadow, RayStats& stats,
-                             PrimaryHit* primary) const {
+                             PrimaryHit* primary, const SurfacePoint* surface) const {
   wantsShadow = false;
   // KHR_materials_volume: the segment crosses the medium in effect, which absorbs.
   const Color sigmaA = st.media.currentAbsorption();
@@ -91,7 +92,7 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
     st.beta *= transmittance(sigmaA, hit.t * length(st.ray.d));
     if (isBlack(st.beta)) return PathStep::kDone;
   }
-  Vertex v(ctx_.scene, st.ray, hit);
+  Vertex v(ctx_.scene, st.ray, hit, surface);
   v.sigmaA = sigmaA;
   const SurfacePoint& s = v.s;
   v.m = &ctx_.scene.material(s.material);

@@ -17,7 +17,7 @@ class Bsdf;
 
 /// Everything a path carries from one vertex to the next (the locals of a recursive Li).
 struct PathState {
-  Ray ray;       ///< the segment to trace next
+  Ray ray;  ///< the segment to trace next
   Color L{0.0f}, beta{1.0f};
   int depth = 1;  ///< segments so far, counting the one being traced
   int nullCrossings = 0;
@@ -78,9 +78,11 @@ class PathEstimator {
   /// Processes the result of tracing state.ray (`found`: `hit` is its closest hit): emission,
   /// NEE (sets `shadow` and returns true in `wantsShadow` when a shadow ray must be tested),
   /// BSDF sampling and Russian roulette. Fills `primary` at the first surface if not null.
-  PathStep step(PathState& state, Sampler& sampler, bool found, const Hit& hit,
-                ShadowQuery& shadow, bool& wantsShadow, RayStats& stats,
-                PrimaryHit* primary) const;
+  /// `surface`: Scene::surface(state.ray, hit) when the caller has it (the wavefront computes
+  /// its queue's in SIMD, core/surface_batch.h); null: computed here.
+  PathStep step(PathState& state, Sampler& sampler, bool found, const Hit& hit, ShadowQuery& shadow,
+                bool& wantsShadow, RayStats& stats, PrimaryHit* primary,
+                const SurfacePoint* surface = nullptr) const;
   /// Adds a next-event estimate whose shadow ray was traced.
   void resolveShadow(PathState& state, const ShadowQuery& shadow, bool occluded) const {
     if (occluded) return;

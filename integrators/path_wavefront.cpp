@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/camera_batch.h"
+#include "core/surface_batch.h"
 #include "integrators/path.h"
 #include "integrators/path_estimator.h"
 
@@ -21,13 +22,15 @@ struct Wave {
   std::vector<PathState> paths;
   std::vector<Sampler> samplers;
   std::vector<PrimaryHit> primary;
-  std::vector<Vec2> offsets;  ///< pixel-sampler offset, for the filter weight
+  std::vector<Vec2> offsets;                  ///< pixel-sampler offset, for the filter weight
   std::vector<LightPathRadiance> lightPaths;  ///< when light-path AOVs are asked for
   // The queue of live paths and its rays, hits.
   std::vector<uint32_t> live, next;
   std::vector<Ray> rays;
   std::vector<Hit> hits;
   std::vector<uint8_t> found;
+  std::vector<SurfacePoint> surfaces;  ///< at the found hits (when SurfaceBatch is useful)
+  SurfaceBatch::Scratch surfaceScratch;
   // The shadow queue: next-event estimates waiting for their rays (slots kept from one bounce
   // to the next; bounce() says how many are in use).
   std::vector<ShadowQuery> shadows;
@@ -39,9 +42,7 @@ struct Wave {
   uint32_t cameraSample[kCameraChunk];
   CameraRayLanes cameraLanes;
 
-  void clear() {
-    paths.clear(), samplers.clear(), primary.clear(), offsets.clear();
-  }
+  void clear() { paths.clear(), samplers.clear(), primary.clear(), offsets.clear(); }
   /// A path from its camera ray; `split`: its light-path radiance, or null.
   void addPath(const Ray& ray, int x, int y, LightPathRadiance* split, const Sampler& sampler,
                const Vec2& offset) {
@@ -62,6 +63,7 @@ class PathWavefrontIntegrator final : public Integrator {
   explicit PathWavefrontIntegrator(const RenderContext& ctx)
       : Integrator(ctx),
         estimator_(ctx_),
+        surfaces_(ctx_.scene),
         cameraBatch_(CameraRayBatch::make(ctx_.camera, pixelSampler(), seed(), sequence(), moving(),
                                           ctx_.width)) {}
 
@@ -73,14 +75,14 @@ class PathWavefrontIntegrator final : public Integrator {
     PixelTask task;
     task.x = x, task.y = y, task.sums = sums, task.first = first, task.coverage = coverage;
     task.aovSums = aovSums;
-    accumulatePixels({&task, 1}, begin, end, stats);
+    accumulatePixels({&task, 1}, begin, end, stats, nullptr);
     sums = task.sums, first = task.first;
     return task.samples;
   }
   bool splitsLightPaths() const override { return true; }
 
-  void accumulatePixels(std::span<PixelTask> tasks, int begin, int end,
-                        RayStats& stats) const override;
+  void accumulatePixels(std::span<PixelTask> tasks, int begin, int end, RayStats& stats,
+                        const std::atomic<bool>* stop) const override;
   /// The wave's paths g0 <= g < g1 of the batch (sample begin + g % n of tasks[g / n]'s pixel),
   /// from the camera-ray kernel: what accumulatePixels' scalar loop makes, bit for bit.
   void beginPathsInSimd(Wave& w, std::span<const PixelTask> tasks, int begin, size_t n, size_t g0,
@@ -90,8 +92,7 @@ class PathWavefrontIntegrator final : public Integrator {
   /// scalar driver's loop (PathEstimator::tracePath), which `path-scalar` runs too: the same
   /// pixels under `adaptive --inner path` as under `--inner path-scalar`. (A wave of one did
   /// not keep a PrimaryHit the caller had filled, and was 30% slower.)
-  Color Li(const Ray& ray, Sampler& sampler, RayStats& stats,
-           PrimaryHit* primary) const override {
+  Color Li(const Ray& ray, Sampler& sampler, RayStats& stats, PrimaryHit* primary) const override {
     return estimator_.tracePath(ctx_.accel, ray, sampler, stats, primary, -1, -1);
   }
 
@@ -106,20 +107,24 @@ class PathWavefrontIntegrator final : public Integrator {
   void trace(Wave& w, RayStats& stats) const;
   void bounce(Wave& w, RayStats& stats) const;
   PathEstimator estimator_;
+  SurfaceBatch surfaces_;
   std::optional<CameraRayBatch> cameraBatch_;  ///< nothing: cameras the kernel does not cover
 };
 
 void PathWavefrontIntegrator::accumulatePixels(std::span<PixelTask> tasks, int begin, int end,
-                                               RayStats& stats) const {
+                                               RayStats& stats,
+                                               const std::atomic<bool>* stop) const {
   end = std::min(end, sampleCount());
   const size_t n = size_t(std::max(0, end - begin));
-  for (PixelTask& t : tasks) t.samples = uint32_t(n);
+  for (PixelTask& t : tasks) t.samples = uint32_t(n), t.finished = n == 0;  // none: done
   const size_t total = tasks.size() * n;
   Wave& w = scratch();
   const bool anySplit = std::any_of(tasks.begin(), tasks.end(), wantsLightPaths);
   // Paths in (pixel, sample) order, cut into waves: each pixel's samples are added to its sums
   // in sample order, as accumulate() does, so the sums are the same bits.
   for (size_t g0 = 0; g0 < total; g0 += kWaveSize) {
+    // A stop between waves: the pixels whose samples all came before are finished.
+    if (stop && stop->load(std::memory_order_relaxed)) break;
     const size_t g1 = std::min(total, g0 + kWaveSize);
     w.clear();
     // Sized before the paths point into it; zero, as accumulate() clears a sample's split.
@@ -145,6 +150,7 @@ void PathWavefrontIntegrator::accumulatePixels(std::span<PixelTask> tasks, int b
       if (g % n == 0) t.first = w.primary[k];
       addSample(t.sums, t.coverage, t.aovSums, w.offsets[k], PathEstimator::result(w.paths[k]),
                 w.primary[k], wantsLightPaths(t) ? &w.lightPaths[k] : nullptr, stats);
+      if (g % n == n - 1) t.finished = true;
     }
   }
 }
@@ -188,6 +194,12 @@ void PathWavefrontIntegrator::bounce(Wave& w, RayStats& stats) const {
   w.rays.resize(count), w.hits.resize(count), w.found.resize(count);
   for (size_t j = 0; j < count; ++j) w.rays[j] = w.paths[w.live[j]].ray;
   ctx_.accel.intersectBatch(w.rays, w.hits, w.found);
+  // The hits' surfaces in SIMD, the first shading stage over the queue.
+  const bool surfacesKnown = surfaces_.useful();
+  if (surfacesKnown) {
+    w.surfaces.resize(count);
+    surfaces_.compute(w.rays, w.hits, w.found, w.surfaces, w.surfaceScratch);
+  }
 
   w.next.clear();
   // step() writes a next-event estimate straight into the queue's next slot, setting what
@@ -198,9 +210,9 @@ void PathWavefrontIntegrator::bounce(Wave& w, RayStats& stats) const {
   for (size_t j = 0; j < count; ++j) {
     const uint32_t k = w.live[j];
     bool wantsShadow;
-    const PathStep step =
-        estimator_.step(w.paths[k], w.samplers[k], w.found[j], w.hits[j], w.shadows[shadowCount],
-                        wantsShadow, stats, &w.primary[k]);
+    const PathStep step = estimator_.step(w.paths[k], w.samplers[k], w.found[j], w.hits[j],
+                                          w.shadows[shadowCount], wantsShadow, stats, &w.primary[k],
+                                          surfacesKnown ? &w.surfaces[j] : nullptr);
     if (wantsShadow) w.shadowPath[shadowCount++] = k;
     if (step == PathStep::kContinue) w.next.push_back(k);
   }

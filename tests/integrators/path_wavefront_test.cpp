@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <string>
 
@@ -136,15 +137,16 @@ INSTANTIATE_TEST_SUITE_P(
                     Case{"gltf-features/AlphaBlendModeTest.glb", "bvh", "sobol"},
                     Case{"gltf-samples/TransmissionTest.glb", "embree", "sobol"}),
     [](const testing::TestParamInfo<Case>& info) {
-      std::string s = std::string(info.param.scene) + "_" + info.param.accel + "_" +
-                      info.param.sampler;
+      std::string s =
+          std::string(info.param.scene) + "_" + info.param.accel + "_" + info.param.sampler;
       for (char& ch : s)
         if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
       return s;
     });
 
 // Motion blur: each camera ray's time travels with its path through Embree's packets (RTCRay8
-// time) and the BVH's (per-ray instance transforms) as through the scalar queries, so a moving object changes nothing of the equality.
+// time) and the BVH's (per-ray instance transforms) as through the scalar queries, so a moving
+// object changes nothing of the equality.
 TEST(PathWavefront, MotionBlurredSameAsScalar) {
   Scene scene = cornell();
   Primitive& mover = scene.primitives.back();
@@ -273,6 +275,64 @@ TEST(PathWavefront, ResumedFromCheckpointEqualsUninterrupted) {
   const Render resumed = render(cornell(), job, &half);
   EXPECT_EQ(resumed.stats.pixelsDone, state.done.size());
   EXPECT_EQ(differingValues(whole.film, resumed.film), 0u);
+}
+
+/// Embree, raising `stop` during the render's first batched query (in its first wave): a
+/// signal arriving mid-wave, at a point the test chooses.
+class StoppingAccelerator final : public Accelerator {
+ public:
+  StoppingAccelerator(const Accelerator& inner, std::atomic<bool>& stop)
+      : inner_(inner), stop_(stop) {}
+  bool intersect(const Ray& r, Hit& h) const override { return inner_.intersect(r, h); }
+  bool occluded(const Ray& r) const override { return inner_.occluded(r); }
+  void intersectBatch(std::span<const Ray> rays, std::span<Hit> hits,
+                      std::span<uint8_t> found) const override {
+    stop_ = true;
+    inner_.intersectBatch(rays, hits, found);
+  }
+  void allHits(const Ray& r, std::vector<Hit>& hits) const override { inner_.allHits(r, hits); }
+
+ private:
+  const Accelerator& inner_;
+  std::atomic<bool>& stop_;
+};
+
+// A stop (SIGINT, SIGTERM) ends a batch between waves: its first wave (4096 paths: four
+// whole pixels of 1000 samples, and part of a fifth) is finished, and only the pixels whose
+// samples all came before the stop are written, with the uninterrupted render's values. (The
+// wavefront used to check nothing within a batch: a render with hours of samples per batch
+// ignored the signal; Farm.RealSignalsExit130And143WithThePartialImage waited on it.)
+TEST(PathWavefront, StopBetweenWavesWritesOnlyWholePixels) {
+  const Scene& scene = cornell();
+  auto camera = Camera::create(chooseCamera(scene, -1), 16, 16);
+  auto embree = makeAccelerator("embree", scene);
+  RenderSettings settings;
+  settings.set("integrator", "path");
+  settings.set("spp", 1000);
+  auto renderWith = [&](const Accelerator& accel, const std::atomic<bool>* stop, Film& film) {
+    RenderContext ctx{scene, accel, *camera, settings, 16, 16};
+    auto integrator = makeIntegrator(ctx);
+    RenderOptions options;
+    options.threads = 1;
+    options.stop = stop;
+    RenderState state;
+    RenderStats stats = renderImage(*integrator, film, state, options);
+    return std::make_pair(stats, state);
+  };
+  std::atomic<bool> stop{false};
+  const StoppingAccelerator stopping(*embree, stop);
+  Film stopped(16, 16);
+  const auto [stoppedStats, stoppedState] = renderWith(stopping, &stop, stopped);
+  EXPECT_TRUE(stoppedStats.interrupted);
+  EXPECT_EQ(stoppedStats.pixelsDone, 4u);  // 4096 / 1000 whole pixels
+  Film whole(16, 16);
+  const auto [wholeStats, wholeState] = renderWith(*embree, nullptr, whole);
+  EXPECT_EQ(wholeStats.pixelsDone, 256u);
+  for (size_t p = 0; p < 256; ++p) {
+    EXPECT_EQ(stoppedState.done[p], p < 4 ? 1 : 0) << p;
+    if (!stoppedState.done[p]) continue;
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(stoppedState.sums[p].rgb[c], wholeState.sums[p].rgb[c]);
+  }
 }
 
 }  // namespace
