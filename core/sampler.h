@@ -71,6 +71,14 @@ class Sampler {
             sobol::toUnit(sobol::scrambledDimension1(index, seedZ))};
   }
   uint32_t dimension() const { return dimension_; }
+  Sequence sequence() const { return sequence_; }
+  uint32_t reversedIndex() const { return reversedIndex_; }
+  /// key + step * dimension (mod 2^64): the next draws' hashes are of drawBase() + step * j,
+  /// j = 1, 2, ... (core/sampler_batch.h makes them ahead in SIMD).
+  uint64_t drawBase() const { return key_ + 0xbf58476d1ce4e5b9ull * dimension_; }
+  /// Advances past a next3D() whose value was drawn ahead (core/sampler_batch.h): both
+  /// sequences take three dimensions per 3D draw.
+  void skip3D() { dimension_ += 3; }
   /// The seed's own hash, the first step of every sample's key (the constructor's, and the
   /// batch kernel's in core/camera_batch.cpp, which computes it once per render).
   static uint64_t seedKey(uint64_t seed) { return mix(seed ^ 0x9e3779b97f4a7c15ull); }

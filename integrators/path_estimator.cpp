@@ -34,12 +34,26 @@ struct PathEstimator::Vertex {
       : s(known ? *known : scene.surface(ray, hit)) {}
   SurfacePoint s;
   const Material* m;
-  Vec3 n;         ///< shading normal on the side the ray arrived from
-  Vec3 wo;        ///< towards where the ray came from
+  Vec3 n;   ///< shading normal on the side the ray arrived from
+  Vec3 wo;  ///< towards where the ray came from
   bool refractive;
-  Color sigmaA;   ///< absorption of the medium the arriving segment crossed
+  Color sigmaA;  ///< absorption of the medium the arriving segment crossed
   /// What light sampling knows of the receiver; BSDF sampling's MIS weights use the same.
   LightSampleContext here;
+};
+
+/// The vertex's 3D draws: those made ahead while they last, then the sampler's own.
+struct PathEstimator::VertexDraws {
+  Sampler& sampler;
+  const Vec3* ahead[2];
+  int used = 0;
+  Vec3 next3D() {
+    if (used < 2 && ahead[used]) {
+      sampler.skip3D();
+      return *ahead[used++];
+    }
+    return sampler.next3D();
+  }
 };
 
 PathEstimator::PathEstimator(const RenderContext& ctx)
@@ -78,7 +92,8 @@ void PathEstimator::escape(PathState& st) const {
 
 PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const Hit& hit,
                              ShadowQuery& shadow, bool& wantsShadow, RayStats& stats,
-                             PrimaryHit* primary, const SurfacePoint* surface) const {
+                             PrimaryHit* primary, const SurfacePoint* surface,
+                             DrawsAhead ahead) const {
   wantsShadow = false;
   // KHR_materials_volume: the segment crosses the medium in effect, which absorbs.
   const Color sigmaA = st.media.currentAbsorption();
@@ -159,9 +174,10 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
   v.here.n = v.n;
   v.here.transmits = bsdf.transmits();
   v.here.belowMatters = bsdf.transmits() || !(dot(v.wo, v.n) > 0) || sm.clearcoat > 0;
-  wantsShadow = nextEvent(st, v, bsdf, sampler, shadow);
+  VertexDraws draws{sampler, {ahead.first, ahead.second}};
+  wantsShadow = nextEvent(st, v, bsdf, draws, shadow);
   if (wantsShadow) ++stats.shadowRays;
-  return scatter(st, v, bsdf, sampler, stats);
+  return scatter(st, v, bsdf, draws, stats);
 }
 
 // nextEvent and scatter are parts of step, kept apart to be read: inlined into it (measured:
@@ -170,12 +186,12 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
 /// Next-event estimation: one light sample, MIS-weighted against BSDF sampling. Returns true
 /// with `shadow` set when the estimate needs its shadow ray traced.
 [[gnu::always_inline]] inline bool PathEstimator::nextEvent(const PathState& st, const Vertex& v,
-                                                            const Bsdf& bsdf, Sampler& sampler,
+                                                            const Bsdf& bsdf, VertexDraws& draws,
                                                             ShadowQuery& shadow) const {
   if (!bsdf.hasNonDelta() || lights_.empty()) return false;
   const SurfacePoint& s = v.s;
   // The light choice and the point on it as one 3D sample (stratified jointly by Sobol').
-  const Vec3 u = sampler.next3D();
+  const Vec3 u = draws.next3D();
   LightSample ls = lights_.sample(v.here, u.x, {u.y, u.z});
   if (!ls.valid() || isBlack(ls.L)) return false;
   float bsdfPdf;
@@ -201,10 +217,10 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
 
 /// BSDF sampling continues the path, then Russian roulette.
 [[gnu::always_inline]] inline PathStep PathEstimator::scatter(PathState& st, const Vertex& v,
-                                                              const Bsdf& bsdf, Sampler& sampler,
+                                                              const Bsdf& bsdf, VertexDraws& draws,
                                                               RayStats& stats) const {
   const SurfacePoint& s = v.s;
-  const Vec3 u = sampler.next3D();  // the lobe choice, then the direction
+  const Vec3 u = draws.next3D();  // the lobe choice, then the direction
   BsdfSample bs = bsdf.sample(v.wo, u.x, {u.y, u.z});
   if (!bs.valid()) return PathStep::kDone;
   st.beta *= bs.f * (std::fabs(dot(bs.wi, v.n)) / bs.pdf);
@@ -234,7 +250,7 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
   // Russian roulette (Arvo & Kirk 1990) with Mitsuba's survival probability.
   if (st.depth > kRouletteDepth) {
     float q = std::min(maxComponent(st.beta) * st.etaFactor, 0.95f);
-    if (!(sampler.next1D() < q)) return PathStep::kDone;
+    if (!(draws.sampler.next1D() < q)) return PathStep::kDone;
     st.beta /= q;
   }
   return PathStep::kContinue;

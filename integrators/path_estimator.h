@@ -63,6 +63,14 @@ struct ShadowQuery {
   LobeSplit toLight;
 };
 
+/// A vertex's two 3D draws made ahead in SIMD (core/sampler_batch.h), or none (null): the light
+/// sample's and then the BSDF sample's come from here in that order, each skipping the sampler
+/// past it; a vertex that draws only one (no light sample) takes `first` for its BSDF sample.
+struct DrawsAhead {
+  const Vec3* first = nullptr;
+  const Vec3* second = nullptr;
+};
+
 /// What one vertex did to its path.
 enum class PathStep : uint8_t {
   kContinue,  ///< state.ray is the next segment
@@ -79,10 +87,11 @@ class PathEstimator {
   /// NEE (sets `shadow` and returns true in `wantsShadow` when a shadow ray must be tested),
   /// BSDF sampling and Russian roulette. Fills `primary` at the first surface if not null.
   /// `surface`: Scene::surface(state.ray, hit) when the caller has it (the wavefront computes
-  /// its queue's in SIMD, core/surface_batch.h); null: computed here.
+  /// its queue's in SIMD, core/surface_batch.h); null: computed here. `ahead`: the sampler's
+  /// next two 3D draws when the caller made them (the same numbers either way).
   PathStep step(PathState& state, Sampler& sampler, bool found, const Hit& hit, ShadowQuery& shadow,
                 bool& wantsShadow, RayStats& stats, PrimaryHit* primary,
-                const SurfacePoint* surface = nullptr) const;
+                const SurfacePoint* surface = nullptr, DrawsAhead ahead = {}) const;
   /// Adds a next-event estimate whose shadow ray was traced.
   void resolveShadow(PathState& state, const ShadowQuery& shadow, bool occluded) const {
     if (occluded) return;
@@ -113,9 +122,10 @@ class PathEstimator {
 
  private:
   struct Vertex;
-  bool nextEvent(const PathState& st, const Vertex& v, const Bsdf& bsdf, Sampler& sampler,
+  struct VertexDraws;
+  bool nextEvent(const PathState& st, const Vertex& v, const Bsdf& bsdf, VertexDraws& draws,
                  ShadowQuery& shadow) const;
-  PathStep scatter(PathState& st, const Vertex& v, const Bsdf& bsdf, Sampler& sampler,
+  PathStep scatter(PathState& st, const Vertex& v, const Bsdf& bsdf, VertexDraws& draws,
                    RayStats& stats) const;
   /// Adds `c` to the path's radiance (clamped when indirect) and returns what was added.
   /// Firefly clamping (--clamp-indirect): light that reached the camera path after scattering

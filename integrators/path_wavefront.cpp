@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/camera_batch.h"
+#include "core/sampler_batch.h"
 #include "core/surface_batch.h"
 #include "integrators/path.h"
 #include "integrators/path_estimator.h"
@@ -31,6 +32,7 @@ struct Wave {
   std::vector<uint8_t> found;
   std::vector<SurfacePoint> surfaces;  ///< at the found hits (when SurfaceBatch is useful)
   SurfaceBatch::Scratch surfaceScratch;
+  SamplerDrawsAhead draws;  ///< each live path's next two 3D draws (when SIMD is available)
   // The shadow queue: next-event estimates waiting for their rays (slots kept from one bounce
   // to the next; bounce() says how many are in use).
   std::vector<ShadowQuery> shadows;
@@ -64,6 +66,7 @@ class PathWavefrontIntegrator final : public Integrator {
       : Integrator(ctx),
         estimator_(ctx_),
         surfaces_(ctx_.scene),
+        drawsAhead_(SamplerBatch::available()),
         cameraBatch_(CameraRayBatch::make(ctx_.camera, pixelSampler(), seed(), sequence(), moving(),
                                           ctx_.width)) {}
 
@@ -108,6 +111,7 @@ class PathWavefrontIntegrator final : public Integrator {
   void bounce(Wave& w, RayStats& stats) const;
   PathEstimator estimator_;
   SurfaceBatch surfaces_;
+  bool drawsAhead_;  ///< each bounce makes its paths' 3D draws in SIMD (SamplerBatch)
   std::optional<CameraRayBatch> cameraBatch_;  ///< nothing: cameras the kernel does not cover
 };
 
@@ -200,6 +204,10 @@ void PathWavefrontIntegrator::bounce(Wave& w, RayStats& stats) const {
     w.surfaces.resize(count);
     surfaces_.compute(w.rays, w.hits, w.found, w.surfaces, w.surfaceScratch);
   }
+  // The vertices' light-sample and BSDF-sample draws, for every live path at once (a path that
+  // missed, or crosses a null interface, leaves them unused: its sampler does not advance).
+  if (drawsAhead_)
+    SamplerBatch::drawTwo3D(sequence(), w.samplers.data(), w.live.data(), count, w.draws);
 
   w.next.clear();
   // step() writes a next-event estimate straight into the queue's next slot, setting what
@@ -210,9 +218,10 @@ void PathWavefrontIntegrator::bounce(Wave& w, RayStats& stats) const {
   for (size_t j = 0; j < count; ++j) {
     const uint32_t k = w.live[j];
     bool wantsShadow;
-    const PathStep step = estimator_.step(w.paths[k], w.samplers[k], w.found[j], w.hits[j],
-                                          w.shadows[shadowCount], wantsShadow, stats, &w.primary[k],
-                                          surfacesKnown ? &w.surfaces[j] : nullptr);
+    const PathStep step = estimator_.step(
+        w.paths[k], w.samplers[k], w.found[j], w.hits[j], w.shadows[shadowCount], wantsShadow,
+        stats, &w.primary[k], surfacesKnown ? &w.surfaces[j] : nullptr,
+        drawsAhead_ ? DrawsAhead{&w.draws.first[j], &w.draws.second[j]} : DrawsAhead{});
     if (wantsShadow) w.shadowPath[shadowCount++] = k;
     if (step == PathStep::kContinue) w.next.push_back(k);
   }
