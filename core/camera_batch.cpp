@@ -182,7 +182,7 @@ HWY_EXPORT(GenerateCameraRays);
 
 void CameraRayLanes::resize(size_t n) {
   // Whole vectors of the widest target: the kernel's last store may run past n.
-  const size_t padded = (n + kMaxLanes - 1) / kMaxLanes * kMaxLanes;
+  const size_t padded = wholeSimdVectors(n);
   if (key.size() >= padded) return;  // grown once, kept from call to call
   key.resize(padded), reversedIndex.resize(padded);
   offsetX.resize(padded), offsetY.resize(padded);

@@ -11,6 +11,7 @@
 #include "core/pixel_sampler.h"
 #include "core/ray.h"
 #include "core/sampler.h"
+#include "core/simd_lanes.h"
 
 namespace tray {
 
@@ -29,8 +30,8 @@ struct CameraBatchParams {
 
 /// The kernel's results, one array per field; entry k is path k's.
 struct CameraRayLanes {
-  /// Floats per vector of the widest target (AVX-512): arrays are whole vectors of it.
-  static constexpr size_t kMaxLanes = 16;
+  /// Arrays are whole vectors of the widest target (core/simd_lanes.h).
+  static constexpr size_t kMaxLanes = kMaxSimdLanes;
   std::vector<uint64_t> key;            ///< its Sampler's state (the dimension is 2)
   std::vector<uint32_t> reversedIndex;  ///< after next2D
   std::vector<float> offsetX, offsetY;  ///< PixelSampler::offset

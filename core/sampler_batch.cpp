@@ -18,7 +18,7 @@ namespace hn = hwy::HWY_NAMESPACE;
 // SamplerBatch::available() is false without a SIMD target: never called.
 void DrawTwo3D(int32_t, size_t, const uint64_t*, const uint32_t*, Vec3*, Vec3*) {}
 #else
-static_assert(HWY_MAX_BYTES / sizeof(float) <= SamplerDrawsAhead::kMaxLanes);
+static_assert(HWY_MAX_BYTES / sizeof(float) <= kMaxSimdLanes);
 
 /// Sampler::next1D with independent numbers, j dimensions on: toUnit(mix(base + step j)).
 HWY_INLINE VF Independent(const V64 base[2], uint64_t j) {
@@ -85,7 +85,7 @@ namespace tray {
 HWY_EXPORT(DrawTwo3D);
 
 void SamplerDrawsAhead::resize(size_t n) {
-  const size_t padded = (n + kMaxLanes - 1) / kMaxLanes * kMaxLanes;
+  const size_t padded = wholeSimdVectors(n);
   if (base.size() >= padded) return;  // grown once, kept from call to call
   first.resize(padded), second.resize(padded);
   base.resize(padded), reversedIndex.resize(padded);

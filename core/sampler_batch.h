@@ -8,19 +8,18 @@
 
 #include "core/math.h"
 #include "core/sampler.h"
+#include "core/simd_lanes.h"
 
 namespace tray {
 
 /// The draws made ahead, one entry per path: first[k] and second[k] are what the path's
 /// sampler's next two next3D() calls return.
 struct SamplerDrawsAhead {
-  /// Floats per vector of the widest target (AVX-512): arrays are whole vectors of it.
-  static constexpr size_t kMaxLanes = 16;
   std::vector<Vec3> first, second;
   // The kernel's inputs: key + step * dimension (Sampler::drawBase) and the reversed index.
   std::vector<uint64_t> base;
   std::vector<uint32_t> reversedIndex;
-  /// Room for n entries in whole vectors; never shrinks.
+  /// Room for n entries in whole vectors (core/simd_lanes.h); never shrinks.
   void resize(size_t n);
 };
 

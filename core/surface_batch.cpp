@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <limits>
 
+#include "core/simd_lanes.h"
 #include "hwy/foreach_target.h"  // IWYU pragma: keep
 #include "hwy/highway.h"
 
@@ -26,7 +27,7 @@ using DI = hn::RebindToSigned<DF>;
 using VF = hn::Vec<DF>;
 using VI = hn::Vec<DI>;
 
-constexpr size_t kMaxLanes = 16;  // AVX-512's floats per vector
+constexpr size_t kMaxLanes = kMaxSimdLanes;
 static_assert(HWY_MAX_BYTES / sizeof(float) <= kMaxLanes);
 static_assert(sizeof(Hit) % 4 == 0 && offsetof(Hit, triangle) % 4 == 0 &&
               offsetof(Hit, b1) % 4 == 0 && offsetof(Hit, b2) % 4 == 0);

@@ -198,7 +198,7 @@ void PathWavefrontIntegrator::bounce(Wave& w, RayStats& stats) const {
   w.rays.resize(count), w.hits.resize(count), w.found.resize(count);
   for (size_t j = 0; j < count; ++j) w.rays[j] = w.paths[w.live[j]].ray;
   ctx_.accel.intersectBatch(w.rays, w.hits, w.found);
-  // The hits' surfaces in SIMD, the first shading stage over the queue.
+  // The hits' surfaces in SIMD (core/surface_batch.h).
   const bool surfacesKnown = surfaces_.useful();
   if (surfacesKnown) {
     w.surfaces.resize(count);

@@ -1,6 +1,8 @@
 #pragma once
 // Tiny scenes built in code for tests: no files needed.
+#include <cmath>
 #include <memory>
+#include <random>
 
 #include "core/scene.h"
 #include "shapes/box.h"
@@ -27,7 +29,8 @@ inline Material diffuse(const Color& albedo) {
   return m;
 }
 
-inline uint32_t addShape(Scene& s, std::shared_ptr<const Shape> shape, const Mat4& toWorld, int material) {
+inline uint32_t addShape(Scene& s, std::shared_ptr<const Shape> shape, const Mat4& toWorld,
+                         int material) {
   Primitive p;
   p.kind = Primitive::Kind::kShape;
   p.shape = std::move(shape);
@@ -87,6 +90,21 @@ inline CameraDesc lookAt(const Vec3& eye, const Vec3& target, float yfov = 0.8f)
   }
   d.toWorld = Transform(m);
   return d;
+}
+
+/// A random invertible placement: rotation, non-uniform scale and shear, translation of either
+/// sign (the SIMD kernels' tests: Transform::vector's 0 * m[r][3] term is -0 for a negative one).
+inline Transform randomPlacement(std::mt19937_64& rng) {
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  for (;;) {
+    Mat4 m;
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 4; ++c) m.m[r][c] = (c == 3 ? 10.0f : 1.0f) * u(rng);
+    const float det = m.m[0][0] * (m.m[1][1] * m.m[2][2] - m.m[1][2] * m.m[2][1]) -
+                      m.m[0][1] * (m.m[1][0] * m.m[2][2] - m.m[1][2] * m.m[2][0]) +
+                      m.m[0][2] * (m.m[1][0] * m.m[2][1] - m.m[1][1] * m.m[2][0]);
+    if (std::abs(det) > 0.05f) return Transform(m);
+  }
 }
 
 inline PunctualLightDesc pointLight(const Vec3& p, const Color& intensity) {

@@ -3,13 +3,15 @@
 #include "core/camera_batch.h"
 
 #include <gtest/gtest.h>
-#include <hwy/targets.h>
 
 #include <bit>
 #include <cstdint>
 #include <cstdio>
 #include <random>
 #include <vector>
+
+#include "tests/scene_builder.h"
+#include "tests/simd_targets.h"
 
 namespace tray {
 namespace {
@@ -36,20 +38,7 @@ ScalarSample scalarSample(const Camera& camera, const PixelSampler& pixels, uint
   return {s, offset, ray};
 }
 
-/// A random invertible placement: rotation, non-uniform scale and shear, translation of
-/// either sign (Transform::vector's 0 * m[r][3] term is -0 for a negative one).
-Transform randomPlacement(std::mt19937_64& rng) {
-  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-  for (;;) {
-    Mat4 m;
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 4; ++c) m.m[r][c] = (c == 3 ? 10.0f : 1.0f) * u(rng);
-    const float det = m.m[0][0] * (m.m[1][1] * m.m[2][2] - m.m[1][2] * m.m[2][1]) -
-                      m.m[0][1] * (m.m[1][0] * m.m[2][2] - m.m[1][2] * m.m[2][0]) +
-                      m.m[0][2] * (m.m[1][0] * m.m[2][1] - m.m[1][1] * m.m[2][0]);
-    if (std::abs(det) > 0.05f) return Transform(m);
-  }
-}
+using test::randomPlacement;
 
 void expectSameBits(float a, float b, const char* what, size_t k) {
   EXPECT_EQ(std::bit_cast<uint32_t>(a), std::bit_cast<uint32_t>(b))
@@ -117,19 +106,7 @@ int compareRandomCases() {
 }
 
 TEST(CameraBatch, SameBitsAsTheScalarCameraRays) {
-  // Each SIMD target this CPU has, in turn (AVX-512, AVX2, SSE4, SSSE3, emulated 128-bit).
-  int targets = 0;
-  for (const int64_t target : hwy::SupportedAndGeneratedTargets()) {
-    if (target == HWY_SCALAR) continue;  // not used (CameraRayBatch::make)
-    SCOPED_TRACE(hwy::TargetName(target));
-    hwy::SetSupportedTargetsForTest(target);
-    EXPECT_GT(compareRandomCases(), 10000);
-    ++targets;
-    if (HasFailure()) break;
-  }
-  hwy::SetSupportedTargetsForTest(0);
-  EXPECT_GE(targets, 1);
-  std::printf("compared on %d targets\n", targets);
+  test::onEverySimdTarget(10000, compareRandomCases);
 }
 
 TEST(CameraBatch, ConsecutiveSamplesOfOnePixelAsTheWavefrontMakesThem) {

@@ -4,7 +4,6 @@
 #include "core/sampler_batch.h"
 
 #include <gtest/gtest.h>
-#include <hwy/targets.h>
 
 #include <algorithm>
 #include <bit>
@@ -12,6 +11,8 @@
 #include <cstdio>
 #include <random>
 #include <vector>
+
+#include "tests/simd_targets.h"
 
 namespace tray {
 namespace {
@@ -75,18 +76,7 @@ int compareRandomWaves() {
 
 TEST(SamplerBatch, SameBitsAsNext3D) {
   ASSERT_TRUE(SamplerBatch::available());
-  int targets = 0;
-  for (const int64_t target : hwy::SupportedAndGeneratedTargets()) {
-    if (target == HWY_SCALAR) continue;  // not used (SamplerBatch::available)
-    SCOPED_TRACE(hwy::TargetName(target));
-    hwy::SetSupportedTargetsForTest(target);
-    EXPECT_GT(compareRandomWaves(), 5000);
-    ++targets;
-    if (HasFailure()) break;
-  }
-  hwy::SetSupportedTargetsForTest(0);
-  EXPECT_GE(targets, 1);
-  std::printf("compared on %d targets\n", targets);
+  test::onEverySimdTarget(5000, compareRandomWaves);
 }
 
 }  // namespace

@@ -5,7 +5,6 @@
 #include "core/surface_batch.h"
 
 #include <gtest/gtest.h>
-#include <hwy/targets.h>
 
 #include <bit>
 #include <cmath>
@@ -15,23 +14,13 @@
 #include <vector>
 
 #include "shapes/sphere.h"
+#include "tests/scene_builder.h"
+#include "tests/simd_targets.h"
 
 namespace tray {
 namespace {
 
-/// A random invertible placement: rotation, non-uniform scale and shear, translation.
-Transform randomPlacement(std::mt19937_64& rng) {
-  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-  for (;;) {
-    Mat4 m;
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 4; ++c) m.m[r][c] = (c == 3 ? 10.0f : 1.0f) * u(rng);
-    const float det = m.m[0][0] * (m.m[1][1] * m.m[2][2] - m.m[1][2] * m.m[2][1]) -
-                      m.m[0][1] * (m.m[1][0] * m.m[2][2] - m.m[1][2] * m.m[2][0]) +
-                      m.m[0][2] * (m.m[1][0] * m.m[2][1] - m.m[1][1] * m.m[2][0]);
-    if (std::abs(det) > 0.05f) return Transform(m);
-  }
-}
+using test::randomPlacement;
 
 /// Mesh `k` of a random scene: every fourth without normals, every third without uvs; some
 /// vertex normals zero or NaN (the flat fallback) or facing away (ng flips).
@@ -144,21 +133,13 @@ int compareRandomWaves(std::mt19937_64& rng) {
 }
 
 TEST(SurfaceBatch, SameBitsAsSceneSurface) {
-  int targets = 0;
-  for (const int64_t target : hwy::SupportedAndGeneratedTargets()) {
-    if (target == HWY_SCALAR) continue;  // not used (SurfaceBatch::useful)
-    SCOPED_TRACE(hwy::TargetName(target));
-    hwy::SetSupportedTargetsForTest(target);
+  test::onEverySimdTarget(20000, [] {
     std::mt19937_64 rng(20261203);
     int compared = 0;
-    for (int trial = 0; trial < 200 && !HasFailure(); ++trial) compared += compareRandomWaves(rng);
-    EXPECT_GT(compared, 20000);
-    ++targets;
-    if (HasFailure()) break;
-  }
-  hwy::SetSupportedTargetsForTest(0);
-  EXPECT_GE(targets, 1);
-  std::printf("compared on %d targets\n", targets);
+    for (int trial = 0; trial < 200 && !testing::Test::HasFailure(); ++trial)
+      compared += compareRandomWaves(rng);
+    return compared;
+  });
 }
 
 TEST(SurfaceBatch, ScenesWithoutStaticMeshesAreLeftToTheScalarCode) {

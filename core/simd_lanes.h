@@ -1,0 +1,18 @@
+#pragma once
+// Sizes shared by the SIMD kernels (core/camera_batch.cpp, core/surface_batch.cpp,
+// core/sampler_batch.cpp): Highway picks the vector width at run time, so buffers are sized
+// for the widest target.
+#include <cstddef>
+
+namespace tray {
+
+/// Floats per vector of the widest target (AVX-512): each kernel asserts its target fits.
+inline constexpr size_t kMaxSimdLanes = 16;
+
+/// n rounded up to whole vectors of the widest target: a kernel's last, partial vector may
+/// read and write that far.
+constexpr size_t wholeSimdVectors(size_t n) {
+  return (n + kMaxSimdLanes - 1) / kMaxSimdLanes * kMaxSimdLanes;
+}
+
+}  // namespace tray
