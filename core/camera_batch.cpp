@@ -194,7 +194,7 @@ std::optional<CameraRayBatch> CameraRayBatch::make(const Camera& camera, const P
                                                    bool moving, int imageWidth) {
   const std::optional<PinholeProjection> pinhole = camera.pinhole();
   if (!pinhole || moving) return std::nullopt;
-  if ((hwy::SupportedTargets() & HWY_TARGETS & ~HWY_SCALAR) == 0) return std::nullopt;
+  if (!hasSimdTarget()) return std::nullopt;
   CameraRayBatch b;
   CameraBatchParams& p = b.params_;
   const Mat4& m = pinhole->toWorld.m;

@@ -36,7 +36,7 @@ class Sampler {
   /// Uniform in [0, 1).
   float next1D() {
     if (sequence_ == Sequence::kIndependent)
-      return toUnit(mix(key_ + 0xbf58476d1ce4e5b9ull * ++dimension_));
+      return toUnit(mix(key_ + kDimensionStep * ++dimension_));
     const uint64_t h = dimensionHash(++dimension_);
     const uint32_t index = sobol::shuffleReversed(reversedIndex_, uint32_t(h));
     return sobol::toUnit(sobol::scrambledDimension0(index, uint32_t(h >> 32)));
@@ -71,11 +71,14 @@ class Sampler {
             sobol::toUnit(sobol::scrambledDimension1(index, seedZ))};
   }
   uint32_t dimension() const { return dimension_; }
+  /// A value's hash input is key + kDimensionStep * its dimension (mod 2^64); the SIMD kernels
+  /// (core/sampler_simd-inl.h) repeat it.
+  static constexpr uint64_t kDimensionStep = 0xbf58476d1ce4e5b9ull;
   Sequence sequence() const { return sequence_; }
   uint32_t reversedIndex() const { return reversedIndex_; }
   /// key + step * dimension (mod 2^64): the next draws' hashes are of drawBase() + step * j,
   /// j = 1, 2, ... (core/sampler_batch.h makes them ahead in SIMD).
-  uint64_t drawBase() const { return key_ + 0xbf58476d1ce4e5b9ull * dimension_; }
+  uint64_t drawBase() const { return key_ + kDimensionStep * dimension_; }
   /// Advances past a next3D() whose value was drawn ahead (core/sampler_batch.h): both
   /// sequences take three dimensions per 3D draw.
   void skip3D() { dimension_ += 3; }
@@ -97,8 +100,7 @@ class Sampler {
   /// is off draws nothing, and on it changes no other number (so images without it keep every
   /// bit). With kSobol the values over a pixel's samples are one stratified 1D sequence.
   float reserved1D(uint32_t dimension) const {
-    if (sequence_ == Sequence::kIndependent)
-      return toUnit(mix(key_ + 0xbf58476d1ce4e5b9ull * dimension));
+    if (sequence_ == Sequence::kIndependent) return toUnit(mix(key_ + kDimensionStep * dimension));
     const uint64_t h = dimensionHash(dimension);
     const uint32_t index = sobol::shuffleReversed(reversedIndex_, uint32_t(h));
     return sobol::toUnit(sobol::scrambledDimension0(index, uint32_t(h >> 32)));
@@ -117,7 +119,7 @@ class Sampler {
   static float toUnit(uint64_t v) { return float(v >> 40) * (1.0f / 16777216.0f); }
   /// Sobol': per pixel and dimension, the seed of its shuffle and scrambles.
   uint64_t dimensionHash(uint32_t dimension) const {
-    return mix(key_ + 0xbf58476d1ce4e5b9ull * dimension);
+    return mix(key_ + kDimensionStep * dimension);
   }
   uint64_t key_;
   uint32_t reversedIndex_;  ///< the sample index, bit-reversed for the Sobol' shuffle

@@ -15,7 +15,7 @@ namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
 #if HWY_TARGET == HWY_SCALAR
-// SamplerBatch::available() is false without a SIMD target: never called.
+// Without a SIMD target (hasSimdTarget) the wavefront draws as it goes: never called.
 void DrawTwo3D(int32_t, size_t, const uint64_t*, const uint32_t*, Vec3*, Vec3*) {}
 #else
 static_assert(HWY_MAX_BYTES / sizeof(float) <= kMaxSimdLanes);
@@ -89,10 +89,6 @@ void SamplerDrawsAhead::resize(size_t n) {
   if (base.size() >= padded) return;  // grown once, kept from call to call
   first.resize(padded), second.resize(padded);
   base.resize(padded), reversedIndex.resize(padded);
-}
-
-bool SamplerBatch::available() {
-  return (hwy::SupportedTargets() & HWY_TARGETS & ~HWY_SCALAR) != 0;
 }
 
 void SamplerBatch::drawTwo3D(Sampler::Sequence sequence, const Sampler* samplers,

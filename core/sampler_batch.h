@@ -24,11 +24,10 @@ struct SamplerDrawsAhead {
 };
 
 /// The next two next3D() draws of many samplers of one sequence, without advancing them; a
-/// path then takes them with Sampler::skip3D (PathEstimator::step's `ahead`).
+/// path then takes them with Sampler::skip3D (PathEstimator::step's `ahead`). Needs a SIMD
+/// target (hasSimdTarget, core/simd_lanes.h).
 class SamplerBatch {
  public:
-  /// False when the CPU has no SIMD target: the estimator draws as it goes.
-  static bool available();
   /// out.first[k], out.second[k] for samplers[index[k]], k < n.
   static void drawTwo3D(Sampler::Sequence sequence, const Sampler* samplers, const uint32_t* index,
                         size_t n, SamplerDrawsAhead& out);

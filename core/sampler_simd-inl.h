@@ -11,6 +11,7 @@
 
 #include <cstdint>
 
+#include "core/sampler.h"
 #include "core/sobol.h"
 #include "hwy/highway.h"
 
@@ -32,7 +33,7 @@ using VU = hn::Vec<DU>;
 using V64 = hn::Vec<D64>;
 
 // Sampler's constants (core/sampler.h).
-constexpr uint64_t kDimensionStep = 0xbf58476d1ce4e5b9ull, kGolden = 0x9e3779b97f4a7c15ull;
+constexpr uint64_t kDimensionStep = Sampler::kDimensionStep, kGolden = 0x9e3779b97f4a7c15ull;
 
 /// Sampler::mix, SplitMix64's finaliser.
 HWY_INLINE V64 Mix(V64 z) {

@@ -27,8 +27,7 @@ using DI = hn::RebindToSigned<DF>;
 using VF = hn::Vec<DF>;
 using VI = hn::Vec<DI>;
 
-constexpr size_t kMaxLanes = kMaxSimdLanes;
-static_assert(HWY_MAX_BYTES / sizeof(float) <= kMaxLanes);
+static_assert(HWY_MAX_BYTES / sizeof(float) <= kMaxSimdLanes);
 static_assert(sizeof(Hit) % 4 == 0 && offsetof(Hit, triangle) % 4 == 0 &&
               offsetof(Hit, b1) % 4 == 0 && offsetof(Hit, b2) % 4 == 0);
 static_assert(sizeof(Vec3) == 12 && sizeof(Vec2) == 8);
@@ -132,7 +131,7 @@ HWY_INLINE void Block(const SurfaceBatchPrimitive& p, const int32_t* order, size
               hn::GatherIndex(df, uvs + 1, i2u));
   }
   // To the hits' own SurfacePoints, lane by lane.
-  HWY_ALIGN float lanes[14][kMaxLanes];
+  HWY_ALIGN float lanes[14][kMaxSimdLanes];
   const VF fields[14] = {world[0], world[1], world[2], side.x, side.y, side.z, n.x,
                          n.y,      n.z,      u,        v,      ng.x,   ng.y,   ng.z};
   for (int f = 0; f < 14; ++f) hn::Store(fields[f], df, lanes[f]);
@@ -161,7 +160,7 @@ void SurfaceGroup(const SurfaceBatchPrimitive& p, const int32_t* order, size_t n
   if (k == n) return;
   // The last partial vector: its missing lanes repeat the group's first hit (in bounds for
   // every gather), and are not written out.
-  int32_t padded[kMaxLanes];
+  int32_t padded[kMaxSimdLanes];
   for (size_t l = 0; l < lanes; ++l) padded[l] = order[k + l < n ? k + l : 0];
   Block(p, padded, n - k, hits, rays, out);
 }
@@ -178,7 +177,7 @@ HWY_EXPORT(SurfaceGroup);
 SurfaceBatch::SurfaceBatch(const Scene& scene) : scene_(scene) {
   primitives_.resize(scene.primitives.size());
   batched_.assign(scene.primitives.size(), 0);
-  const bool simd = (hwy::SupportedTargets() & HWY_TARGETS & ~HWY_SCALAR) != 0;
+  const bool simd = hasSimdTarget();
   for (size_t i = 0; i < scene.primitives.size() && simd; ++i) {
     const Primitive& prim = scene.primitives[i];
     if (prim.kind != Primitive::Kind::kMesh || !prim.motion.empty()) continue;
@@ -188,7 +187,6 @@ SurfaceBatch::SurfaceBatch(const Scene& scene) : scene_(scene) {
         mesh.indices.size() >= (1u << 30))
       continue;
     SurfaceBatchPrimitive& p = primitives_[i];
-    p.batched = true;
     batched_[i] = 1;
     p.material = mesh.material;
     for (int r = 0; r < 3; ++r)

@@ -15,7 +15,6 @@ namespace tray {
 
 /// What the kernel reads of one primitive (plain values, gathered once by SurfaceBatch).
 struct SurfaceBatchPrimitive {
-  bool batched = false;  ///< a static triangle mesh: the kernel's; otherwise Scene::surface's
   bool hasNormals = false, hasUvs = false;
   int32_t material = 0;
   float m[3][4];    ///< toWorld.m's first three rows (Transform::point)
@@ -50,7 +49,9 @@ class SurfaceBatch {
  private:
   const Scene& scene_;
   std::vector<SurfaceBatchPrimitive> primitives_;
-  std::vector<uint8_t> batched_;  ///< primitives_[i].batched, packed: read per hit
+  /// Per primitive: a static triangle mesh, the kernel's (else Scene::surface's); apart from
+  /// primitives_ so that the per-hit test reads a byte, not a 100-byte struct.
+  std::vector<uint8_t> batched_;
   bool useful_ = false;
 };
 

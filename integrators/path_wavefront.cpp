@@ -5,6 +5,7 @@
 
 #include "core/camera_batch.h"
 #include "core/sampler_batch.h"
+#include "core/simd_lanes.h"
 #include "core/surface_batch.h"
 #include "integrators/path.h"
 #include "integrators/path_estimator.h"
@@ -66,7 +67,7 @@ class PathWavefrontIntegrator final : public Integrator {
       : Integrator(ctx),
         estimator_(ctx_),
         surfaces_(ctx_.scene),
-        drawsAhead_(SamplerBatch::available()),
+        drawsAhead_(hasSimdTarget()),
         cameraBatch_(CameraRayBatch::make(ctx_.camera, pixelSampler(), seed(), sequence(), moving(),
                                           ctx_.width)) {}
 

@@ -75,7 +75,7 @@ int compareRandomWaves() {
 }
 
 TEST(SamplerBatch, SameBitsAsNext3D) {
-  ASSERT_TRUE(SamplerBatch::available());
+  ASSERT_TRUE(hasSimdTarget());
   test::onEverySimdTarget(5000, compareRandomWaves);
 }
 
