@@ -203,6 +203,10 @@ void print(const std::string& integrator, const Measured& m, int threads) {
   if (m.traversal >= 0)
     std::printf("    traversal       %.0f%% of the render (time in batched queries)\n",
                 100 * m.traversal);
+  if (m.stats.rays.simdVertices > 0)
+    std::printf("    SIMD shading    %.0f%% of the traced segments' vertices (matte stage)\n",
+                100.0 * double(m.stats.rays.simdVertices) /
+                    double(m.stats.rays.cameraRays + m.stats.rays.secondaryRays));
   std::printf("    NaN samples     %llu\n", (unsigned long long)m.stats.rays.nanSamples);
 }
 

@@ -23,12 +23,16 @@ namespace tray {
 /// Counters gathered per tile and summed for the summary line.
 struct RayStats {
   uint64_t cameraRays = 0, shadowRays = 0, secondaryRays = 0, nanSamples = 0;
+  /// Path vertices whose light and BSDF samples a SIMD stage made (the wavefront's matte
+  /// vertices, integrators/matte_batch.h): benchmarks and tests read it.
+  uint64_t simdVertices = 0;
   uint64_t total() const { return cameraRays + shadowRays + secondaryRays; }
   RayStats& operator+=(const RayStats& o) {
     cameraRays += o.cameraRays;
     shadowRays += o.shadowRays;
     secondaryRays += o.secondaryRays;
     nanSamples += o.nanSamples;
+    simdVertices += o.simdVertices;
     return *this;
   }
 };

@@ -93,7 +93,7 @@ void PathEstimator::escape(PathState& st) const {
 PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const Hit& hit,
                              ShadowQuery& shadow, bool& wantsShadow, RayStats& stats,
                              PrimaryHit* primary, const SurfacePoint* surface,
-                             DrawsAhead ahead) const {
+                             DrawsAhead ahead, const MatteDeferral* matte, uint32_t path) const {
   wantsShadow = false;
   // KHR_materials_volume: the segment crosses the medium in effect, which absorbs.
   const Color sigmaA = st.media.currentAbsorption();
@@ -174,6 +174,7 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
   v.here.n = v.n;
   v.here.transmits = bsdf.transmits();
   v.here.belowMatters = bsdf.transmits() || !(dot(v.wo, v.n) > 0) || sm.clearcoat > 0;
+  if (matte && defer(st, sampler, v, bsdf, ahead, *matte, path)) return PathStep::kDeferred;
   VertexDraws draws{sampler, {ahead.first, ahead.second}};
   wantsShadow = nextEvent(st, v, bsdf, draws, shadow);
   if (wantsShadow) ++stats.shadowRays;
@@ -247,13 +248,72 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
   ++stats.secondaryRays;
   ++st.depth;
 
-  // Russian roulette (Arvo & Kirk 1990) with Mitsuba's survival probability.
-  if (st.depth > kRouletteDepth) {
-    float q = std::min(maxComponent(st.beta) * st.etaFactor, 0.95f);
-    if (!(draws.sampler.next1D() < q)) return PathStep::kDone;
-    st.beta /= q;
+  return roulette(st, draws.sampler);
+}
+
+bool PathEstimator::defer(const PathState& st, Sampler& sampler, const Vertex& v, const Bsdf& bsdf,
+                          DrawsAhead ahead, const MatteDeferral& matte, uint32_t path) const {
+  // What the SIMD stage repeats: the lone Lambert lobe, both draws made, a light sample drawn
+  // (nextEvent's conditions), nothing for light-path AOVs, no medium to attenuate by.
+  if (!bsdf.lambertOnly() || !ahead.first || !ahead.second || lights_.empty() ||
+      st.paths.active() || !isBlack(v.sigmaA) || (absorbingMedia_ && v.refractive))
+    return false;
+  const Vec3& u = *ahead.first;
+  float pmf;
+  const int light = lights_.choose(v.here, u.x, pmf);
+  const bool chosen = light >= 0 && pmf > 0;
+  const int32_t row = matte.batch.row(light);
+  if (chosen && row < 0) return false;  // another kind of light: the scalar code samples it
+  MatteLanes& m = matte.lanes;
+  const size_t q = m.count++;
+  const SurfacePoint& s = v.s;
+  m.p[q] = s.p, m.ng[q] = s.ng, m.n[q] = v.n, m.wo[q] = v.wo;
+  m.albedo[q] = bsdf.lambertAlbedo(), m.beta[q] = st.beta;
+  m.lightDraw[q] = {u.y, u.z}, m.bsdfDraw[q] = {ahead.second->y, ahead.second->z};
+  m.pmf[q] = pmf;
+  m.emitter[q] = chosen ? row : -1;
+  m.path[q] = path, m.time[q] = s.time, m.belowMatters[q] = v.here.belowMatters;
+  sampler.skip3D(), sampler.skip3D();  // as the two draws would have advanced it
+  return true;
+}
+
+PathStep PathEstimator::finishMatte(PathState& st, Sampler& sampler, const MatteLanes& m, size_t q,
+                                    ShadowQuery& shadow, bool& wantsShadow,
+                                    RayStats& stats) const {
+  const float time = m.time[q];
+  wantsShadow = m.lit[q];
+  if (wantsShadow) {
+    shadow.ray.o = m.shadowOrigin[q], shadow.ray.d = m.shadowDir[q];
+    shadow.ray.tmin = 0.0f, shadow.ray.tmax = 1.0f - 1e-4f;  // setSpawnRayTo's
+    shadow.ray.blend = BlendRays::kStochastic, shadow.ray.time = time;
+    shadow.contribution = m.contribution[q];
+    shadow.indirect = st.indirectNee;
+    shadow.depth = st.depth;
+    shadow.firstVertex = st.paths.atFirstVertex();
+    ++stats.shadowRays;
   }
-  return PathStep::kContinue;
+  // scatter() from the BSDF sample on (a Lambert lobe: no delta, no transmission).
+  const float pdf = m.pdf[q];
+  if (!(pdf > 0)) return PathStep::kDone;
+  st.beta = m.nextBeta[q];
+  if (!isFinite(st.beta)) {
+    reportNan(st, "path throughput", st.depth);
+    st.nan = true;
+    return PathStep::kDone;
+  }
+  if (isBlack(st.beta)) return PathStep::kDone;
+  st.specular = false;
+  st.indirectEmission = st.indirectNee;
+  st.indirectNee = true;
+  st.prevPdf = pdf;
+  st.prev.p = m.p[q], st.prev.n = m.n[q];
+  st.prev.transmits = false, st.prev.belowMatters = m.belowMatters[q];
+  st.ray.o = m.rayOrigin[q], st.ray.d = m.rayDir[q];
+  st.ray.tmin = 0.0f, st.ray.tmax = kInfinity;  // setSpawnRay's
+  st.ray.blend = BlendRays::kStochastic, st.ray.time = time;
+  ++stats.secondaryRays;
+  ++st.depth;
+  return roulette(st, sampler);
 }
 
 }  // namespace tray

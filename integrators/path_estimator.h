@@ -3,12 +3,14 @@
 // (one path traced to its end) and `path-wavefront` (every path of a batch advanced one
 // segment at a time, rays traced together). Both drive the same code over the same random
 // numbers, so a pixel sample gives the same radiance either way (docs/wavefront.md).
+#include <algorithm>
 #include <atomic>
 
 #include "core/integrator.h"
 #include "core/light_paths.h"
 #include "core/shading.h"
 #include "lights/light_set.h"
+#include "integrators/matte_batch.h"
 #include "materials/medium_stack.h"
 
 namespace tray {
@@ -75,6 +77,13 @@ struct DrawsAhead {
 enum class PathStep : uint8_t {
   kContinue,  ///< state.ray is the next segment
   kDone,      ///< the path ended (escaped, absorbed, roulette, max depth, NaN)
+  kDeferred,  ///< a matte vertex waits in the SIMD stage's lanes: finishMatte completes it
+};
+
+/// Where step() may leave a matte vertex for the SIMD stage (integrators/matte_batch.h).
+struct MatteDeferral {
+  const MatteBatch& batch;
+  MatteLanes& lanes;
 };
 
 /// Unidirectional path tracing with next-event estimation and MIS (Veach 1997, ch. 9), written
@@ -88,10 +97,20 @@ class PathEstimator {
   /// BSDF sampling and Russian roulette. Fills `primary` at the first surface if not null.
   /// `surface`: Scene::surface(state.ray, hit) when the caller has it (the wavefront computes
   /// its queue's in SIMD, core/surface_batch.h); null: computed here. `ahead`: the sampler's
-  /// next two 3D draws when the caller made them (the same numbers either way).
+  /// next two 3D draws when the caller made them (the same numbers either way). `matte`: a
+  /// vertex with a lone Lambert lobe (and both draws made ahead, no light-path split, no
+  /// absorbing medium) whose light choice is an emissive triangle or none is chosen, queued
+  /// there with its inputs as `path`: kDeferred, the sampler past both draws.
   PathStep step(PathState& state, Sampler& sampler, bool found, const Hit& hit, ShadowQuery& shadow,
                 bool& wantsShadow, RayStats& stats, PrimaryHit* primary,
-                const SurfacePoint* surface = nullptr, DrawsAhead ahead = {}) const;
+                const SurfacePoint* surface = nullptr, DrawsAhead ahead = {},
+                const MatteDeferral* matte = nullptr, uint32_t path = 0) const;
+  /// The rest of a deferred vertex once MatteBatch::compute has run: entry q of `lanes`
+  /// becomes the shadow query (wantsShadow) and the next segment, as step() would have made
+  /// them, then Russian roulette.
+  PathStep finishMatte(PathState& state, Sampler& sampler, const MatteLanes& lanes, size_t q,
+                       ShadowQuery& shadow, bool& wantsShadow, RayStats& stats) const;
+  const LightSet& lights() const { return lights_; }
   /// Adds a next-event estimate whose shadow ray was traced.
   void resolveShadow(PathState& state, const ShadowQuery& shadow, bool occluded) const {
     if (occluded) return;
@@ -127,6 +146,19 @@ class PathEstimator {
                  ShadowQuery& shadow) const;
   PathStep scatter(PathState& st, const Vertex& v, const Bsdf& bsdf, VertexDraws& draws,
                    RayStats& stats) const;
+  /// Queues the vertex in matte.lanes when it qualifies (see step); false: step goes on.
+  bool defer(const PathState& st, Sampler& sampler, const Vertex& v, const Bsdf& bsdf,
+             DrawsAhead ahead, const MatteDeferral& matte, uint32_t path) const;
+  /// Russian roulette after a scattering (Arvo & Kirk 1990) with Mitsuba's survival
+  /// probability, from the kRouletteDepth-th segment on.
+  PathStep roulette(PathState& st, Sampler& sampler) const {
+    if (st.depth > kRouletteDepth) {
+      float q = std::min(maxComponent(st.beta) * st.etaFactor, 0.95f);
+      if (!(sampler.next1D() < q)) return PathStep::kDone;
+      st.beta /= q;
+    }
+    return PathStep::kContinue;
+  }
   /// Adds `c` to the path's radiance (clamped when indirect) and returns what was added.
   /// Firefly clamping (--clamp-indirect): light that reached the camera path after scattering
   /// off a diffuse or glossy vertex earlier than the one gathering it (caustics,

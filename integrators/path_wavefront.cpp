@@ -7,6 +7,7 @@
 #include "core/sampler_batch.h"
 #include "core/simd_lanes.h"
 #include "core/surface_batch.h"
+#include "integrators/matte_batch.h"
 #include "integrators/path.h"
 #include "integrators/path_estimator.h"
 
@@ -34,6 +35,7 @@ struct Wave {
   std::vector<SurfacePoint> surfaces;  ///< at the found hits (when SurfaceBatch is useful)
   SurfaceBatch::Scratch surfaceScratch;
   SamplerDrawsAhead draws;  ///< each live path's next two 3D draws (when SIMD is available)
+  MatteLanes matte;         ///< the bounce's matte vertices, for the SIMD stage
   // The shadow queue: next-event estimates waiting for their rays (slots kept from one bounce
   // to the next; bounce() says how many are in use).
   std::vector<ShadowQuery> shadows;
@@ -68,6 +70,7 @@ class PathWavefrontIntegrator final : public Integrator {
         estimator_(ctx_),
         surfaces_(ctx_.scene),
         drawsAhead_(hasSimdTarget()),
+        matte_(estimator_.lights()),
         cameraBatch_(CameraRayBatch::make(ctx_.camera, pixelSampler(), seed(), sequence(), moving(),
                                           ctx_.width)) {}
 
@@ -113,6 +116,7 @@ class PathWavefrontIntegrator final : public Integrator {
   PathEstimator estimator_;
   SurfaceBatch surfaces_;
   bool drawsAhead_;  ///< each bounce makes its paths' 3D draws in SIMD (SamplerBatch)
+  MatteBatch matte_;  ///< matte vertices' light and BSDF samples in SIMD (when useful)
   std::optional<CameraRayBatch> cameraBatch_;  ///< nothing: cameras the kernel does not cover
 };
 
@@ -210,6 +214,12 @@ void PathWavefrontIntegrator::bounce(Wave& w, RayStats& stats) const {
   if (drawsAhead_)
     SamplerBatch::drawTwo3D(sequence(), w.samplers.data(), w.live.data(), count, w.draws);
 
+  // Matte vertices wait in w.matte for the SIMD stage (integrators/matte_batch.h); it needs the
+  // draws made ahead.
+  const bool deferring = drawsAhead_ && matte_.useful();
+  if (deferring) w.matte.reset(count);
+  const MatteDeferral deferral{matte_, w.matte};
+
   w.next.clear();
   // step() writes a next-event estimate straight into the queue's next slot, setting what
   // resolveShadow reads (as the scalar path reuses one query): no default-initialised query
@@ -222,9 +232,22 @@ void PathWavefrontIntegrator::bounce(Wave& w, RayStats& stats) const {
     const PathStep step = estimator_.step(
         w.paths[k], w.samplers[k], w.found[j], w.hits[j], w.shadows[shadowCount], wantsShadow,
         stats, &w.primary[k], surfacesKnown ? &w.surfaces[j] : nullptr,
-        drawsAhead_ ? DrawsAhead{&w.draws.first[j], &w.draws.second[j]} : DrawsAhead{});
+        drawsAhead_ ? DrawsAhead{&w.draws.first[j], &w.draws.second[j]} : DrawsAhead{},
+        deferring ? &deferral : nullptr, k);
     if (wantsShadow) w.shadowPath[shadowCount++] = k;
     if (step == PathStep::kContinue) w.next.push_back(k);
+  }
+  if (deferring && w.matte.count > 0) {
+    matte_.compute(w.matte);
+    stats.simdVertices += w.matte.count;
+    for (size_t q = 0; q < w.matte.count; ++q) {
+      const uint32_t k = w.matte.path[q];
+      bool wantsShadow;
+      const PathStep step = estimator_.finishMatte(w.paths[k], w.samplers[k], w.matte, q,
+                                                   w.shadows[shadowCount], wantsShadow, stats);
+      if (wantsShadow) w.shadowPath[shadowCount++] = k;
+      if (step == PathStep::kContinue) w.next.push_back(k);
+    }
   }
 
   w.shadowRays.resize(shadowCount), w.blocked.resize(shadowCount);

@@ -43,6 +43,16 @@ class AreaLight final : public Light {
     return trianglePdf(dist2, dot(n_, d) / std::sqrt(dist2));
   }
   float area() const { return area_; }
+  /// A triangle's world-space data, as sampleTriangle reads it (the SIMD matte stage,
+  /// integrators/matte_batch.h, copies it into its table). Only when isTriangle().
+  bool isTriangle() const { return shape_ == nullptr; }
+  struct Triangle {
+    Vec3 p0, e1, e2, n;
+    float area;
+    Color Le;
+    bool doubleSided;
+  };
+  Triangle triangleData() const { return {p0_, e1_, e2_, n_, area_, Le_, doubleSided_}; }
 
  private:
   AreaLight() = default;

@@ -34,6 +34,13 @@ class LightSet {
   /// includes the choice probability. Inline, into the integrators (callgrind, Cornell box:
   /// ~23 instructions per vertex fewer than a call, which copied the sample out).
   LightSample sample(const LightSampleContext& ctx, float u1, Vec2 u2) const;
+  /// sample()'s choice alone: the light it samples with u1 from ctx and the probability of
+  /// that choice (none when the index is negative or pmf is not positive).
+  int choose(const LightSampleContext& ctx, float u1, float& pmf) const {
+    return bvh_ ? bvh_->sample(ctx, u1, pmf) : chooser_->sample(ctx, u1, pmf);
+  }
+  /// Light i as an area light, or null when it is another kind.
+  const AreaLight* areaLight(size_t i) const { return i < area_.size() ? &area_[i] : nullptr; }
 
   /// Index of the light that a hit on (primitive, triangle) belongs to, or -1 when that
   /// surface is not in the set (it may still glow: BSDF sampling then gets full weight).
@@ -90,7 +97,7 @@ inline LightSample LightSet::sample(const LightSampleContext& ctx, float u1, Vec
   float pmf;
   // The BVH chooser and area lights through their final classes: inline, no virtual calls
   // (callgrind, Cornell box: LightSet::sample ~248 -> ~188 instructions per vertex).
-  const int i = bvh_ ? bvh_->sample(ctx, u1, pmf) : chooser_->sample(ctx, u1, pmf);
+  const int i = choose(ctx, u1, pmf);
   const bool chosen = i >= 0 && pmf > 0;
   // One named result built in place (no `return {}` beside it, which stops the compiler's
   // NRVO): copying the light's sample out of a temporary after writing its pdf cost a

@@ -75,6 +75,10 @@ class Bsdf {
   }
   /// True when light can also scatter to the far side of the surface.
   bool transmits() const { return wGlass_ > 0; }
+  /// Nothing but a Lambert lobe (matte): the SIMD matte stage repeats eval and sample for it
+  /// (integrators/matte_batch.h), reading its albedo.
+  bool lambertOnly() const { return lambertOnly_; }
+  const Color& lambertAlbedo() const { return diffuse_.albedo; }
   const Frame& frame() const { return frame_; }
 
   /// eval split by lobe kind (core/light_paths.h): the three parts sum to eval(wo, wi) up to

@@ -17,65 +17,18 @@
 #include "core/renderer.h"
 #include "integrators/registry.h"
 #include "io/gltf_loader.h"
+#include "tests/integrators/render_job.h"
 #include "tests/scene_builder.h"
 
 namespace tray {
 namespace {
 
+using test::differingValues;
+using test::Job;
+using test::Render;
+using test::render;
+
 const std::string kShared = TRAY_SHARED_DIR;
-
-struct Render {
-  Film film{1, 1};
-  RenderStats stats;
-};
-
-struct Job {
-  std::string integrator = "path-scalar";  ///< the reference; `path` runs the wavefront
-  std::string inner;                       ///< adaptive's inner integrator, when set
-  std::string accel = "embree";
-  std::string sampler = "sobol";
-  int size = 24, spp = 8, threads = 1, tileSize = 16;
-  uint64_t seed = 0;
-  std::vector<std::string> aovs;
-  int sampleBegin = 0, sampleEnd = 0;
-};
-
-Render render(const Scene& scene, const Job& job, RenderState* state = nullptr) {
-  auto camera = Camera::create(chooseCamera(scene, -1), job.size, job.size);
-  auto accel = makeAccelerator(job.accel, scene);
-  RenderSettings settings;
-  settings.set("integrator", job.integrator);
-  if (!job.inner.empty()) settings.set("inner", job.inner);
-  settings.set("spp", job.spp);
-  settings.set("sampler", job.sampler);
-  settings.set("seed", int64_t(job.seed));
-  RenderContext ctx{scene, *accel, *camera, settings, job.size, job.size};
-  auto integrator = makeIntegrator(ctx);
-  Render r;
-  r.film = Film(job.size, job.size);
-  RenderOptions options;
-  options.threads = job.threads;
-  options.tileSize = job.tileSize;
-  options.aovs = job.aovs;
-  options.sampleBegin = job.sampleBegin, options.sampleEnd = job.sampleEnd;
-  RenderState fresh;
-  r.stats = renderImage(*integrator, r.film, state ? *state : fresh, options);
-  return r;
-}
-
-/// Every layer, every channel, every pixel: the number of values that differ.
-size_t differingValues(const Film& a, const Film& b) {
-  EXPECT_EQ(a.layers().size(), b.layers().size());
-  size_t differ = 0;
-  for (size_t l = 0; l < std::min(a.layers().size(), b.layers().size()); ++l) {
-    EXPECT_EQ(a.layers()[l].name, b.layers()[l].name);
-    const auto &da = a.layers()[l].data, &db = b.layers()[l].data;
-    EXPECT_EQ(da.size(), db.size());
-    for (size_t i = 0; i < std::min(da.size(), db.size()); ++i)
-      differ += !(da[i] == db[i] || (std::isnan(da[i]) && std::isnan(db[i])));
-  }
-  return differ;
-}
 
 /// A scene from ../shared; one without lights gets a point light at the camera.
 Scene sharedScene(const std::string& file) {

@@ -1,0 +1,202 @@
+// The SIMD matte stage (integrators/matte_batch.h) on every SIMD target the CPU has:
+// - its kernel against the scalar pieces PathEstimator::step runs for a lone Lambert lobe and
+//   a triangle light (AreaLight::sample, Bsdf::eval and sample, powerHeuristic, spawnRayTo,
+//   spawnRay), bit for bit, on random vertices including the edge cases (no light chosen,
+//   lights facing away, receivers below the light's plane, the disk map's centre, black
+//   channels);
+// - whole renders of random scenes through `path` (the wavefront, which defers its matte
+//   vertices to the stage) against `path-scalar`, bit for bit, with other lights and
+//   materials mixed in that the stage leaves to the scalar code.
+#include "integrators/matte_batch.h"
+
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include "core/ray.h"
+#include "core/simd_lanes.h"
+#include "materials/bsdf.h"
+#include "tests/integrators/render_job.h"
+#include "tests/scene_builder.h"
+#include "tests/simd_targets.h"
+
+namespace tray {
+namespace {
+
+Vec3 randomUnit(std::mt19937_64& rng) {
+  std::normal_distribution<float> g;
+  for (;;) {
+    const Vec3 v{g(rng), g(rng), g(rng)};
+    if (length(v) > 1e-3f) return normalize(v);
+  }
+}
+
+/// A mesh of one triangle with random corners in [-2, 2]^3 and material `material`.
+TriangleMesh randomTriangle(std::mt19937_64& rng, int material) {
+  std::uniform_real_distribution<float> u(-2.0f, 2.0f);
+  TriangleMesh m;
+  for (int k = 0; k < 3; ++k) m.positions.push_back({u(rng), u(rng), u(rng)});
+  m.indices = {0, 1, 2};
+  m.material = material;
+  return m;
+}
+
+/// Emissive triangles: random radiance (one black), some double-sided.
+Scene emitters(std::mt19937_64& rng, int count) {
+  Scene scene;
+  std::uniform_real_distribution<float> le(0.0f, 5.0f);
+  for (int k = 0; k < count; ++k) {
+    Material m = test::diffuse(Color(0.5f));
+    m.emissive = k == 1 ? Color(0.0f) : Color(le(rng), le(rng), k % 3 == 0 ? 0.0f : le(rng));
+    m.doubleSided = k % 2 == 0;
+    test::addMeshInstance(scene, test::addMesh(scene, randomTriangle(rng, test::addMaterial(scene, m))),
+                          Mat4());
+  }
+  return scene;
+}
+
+void expectSameBits(float got, float want, const char* what, size_t q) {
+  EXPECT_EQ(std::bit_cast<uint32_t>(got), std::bit_cast<uint32_t>(want))
+      << what << " of vertex " << q << ": " << got << " vs " << want;
+}
+void expectSameBits(const Vec3& got, const Vec3& want, const char* what, size_t q) {
+  for (int a = 0; a < 3; ++a) expectSameBits(got[a], want[a], what, q);
+}
+
+/// One random matte vertex in entry q of `m`: edge cases every few entries.
+void randomVertex(std::mt19937_64& rng, const MatteBatch& batch, size_t lights, MatteLanes& m,
+                  size_t q) {
+  std::uniform_real_distribution<float> u01(0.0f, 1.0f), u(-3.0f, 3.0f);
+  m.p[q] = {u(rng), u(rng), u(rng)};
+  m.ng[q] = randomUnit(rng);
+  m.n[q] = q % 5 == 0 ? -m.ng[q] : randomUnit(rng);
+  m.wo[q] = randomUnit(rng);  // above or below n
+  m.albedo[q] = {u01(rng), q % 4 == 0 ? 0.0f : u01(rng), u01(rng) + 0.01f};
+  m.beta[q] = {u01(rng) * 3, u01(rng), u01(rng)};
+  m.lightDraw[q] = {u01(rng), u01(rng)};
+  m.bsdfDraw[q] = q % 7 == 0 ? Vec2{0.5f, 0.5f} : Vec2{u01(rng), u01(rng)};  // the disk's centre
+  if (q % 11 == 0) m.bsdfDraw[q].x = 0.5f;  // ox == 0: the y wedge divides by zero
+  m.pmf[q] = q % 9 == 0 ? 1.0f : u01(rng);
+  const int light = std::uniform_int_distribution<int>(0, int(lights) - 1)(rng);
+  m.emitter[q] = q % 13 == 0 ? -1 : batch.row(light);
+  m.path[q] = uint32_t(light);  // remembered for the scalar side
+}
+
+/// Entry q's outputs against the scalar pieces step() runs; returns 1 when it was lit.
+int compareVertex(const LightSet& lights, const MatteLanes& m, size_t q) {
+  Material material = test::diffuse(m.albedo[q]);
+  const Bsdf bsdf(material, m.n[q], 1.5f);
+  EXPECT_TRUE(bsdf.lambertOnly());
+  const LightSampleContext ctx{m.p[q], m.n[q], false, false};
+  LightSample ls;
+  if (m.emitter[q] >= 0) {
+    ls = lights.areaLight(m.path[q])->sample(ctx, m.lightDraw[q]);
+    ls.pdf *= m.pmf[q];
+  }
+  bool lit = false;
+  if (ls.valid() && !isBlack(ls.L)) {
+    float bsdfPdf;
+    const Color f = bsdf.eval(m.wo[q], ls.wi, bsdfPdf) * std::fabs(dot(ls.wi, m.n[q]));
+    if (!isBlack(f)) {
+      lit = true;
+      const Ray shadow = spawnRayTo(m.p[q], m.ng[q], ls.p, 0.0f);
+      expectSameBits(m.shadowOrigin[q], shadow.o, "shadow origin", q);
+      expectSameBits(m.shadowDir[q], shadow.d, "shadow direction", q);
+      const float w = powerHeuristic(ls.pdf, bsdfPdf);
+      expectSameBits(m.contribution[q], m.beta[q] * f * ls.L * (w / ls.pdf), "contribution", q);
+    }
+  }
+  EXPECT_EQ(bool(m.lit[q]), lit) << q;
+  const BsdfSample bs = bsdf.sample(m.wo[q], 0.0f, m.bsdfDraw[q]);
+  expectSameBits(m.pdf[q], bs.pdf, "pdf", q);
+  EXPECT_GT(m.pdf[q], 0.0f) << q;
+  const Color beta = m.beta[q] * (bs.f * (std::fabs(dot(bs.wi, m.n[q])) / bs.pdf));
+  expectSameBits(m.nextBeta[q], beta, "throughput", q);
+  const Ray next = spawnRay(m.p[q], m.ng[q], bs.wi, 0.0f);
+  expectSameBits(m.rayOrigin[q], next.o, "ray origin", q);
+  expectSameBits(m.rayDir[q], next.d, "ray direction", q);
+  return lit;
+}
+
+TEST(MatteBatch, KernelIsTheScalarStepBitForBit) {
+  std::mt19937_64 rng(16);
+  const Scene scene = emitters(rng, 6);
+  const LightSet lights(scene);
+  const MatteBatch batch(lights);
+  ASSERT_EQ(lights.size(), 5u);  // the black triangle is not a light
+  if (!hasSimdTarget()) GTEST_SKIP() << "no SIMD target: the wavefront keeps to scalar code";
+  ASSERT_TRUE(batch.useful());
+  test::onEverySimdTarget(1000, [&] {
+    int compared = 0, lit = 0;
+    MatteLanes m;
+    for (int wave = 0; wave < 40 && !testing::Test::HasFailure(); ++wave) {
+      const size_t count = std::uniform_int_distribution<size_t>(1, 100)(rng);  // partial vectors
+      m.reset(count);
+      for (m.count = 0; m.count < count; ++m.count)
+        randomVertex(rng, batch, lights.size(), m, m.count);
+      batch.compute(m);
+      for (size_t q = 0; q < count; ++q) lit += compareVertex(lights, m, q), ++compared;
+    }
+    EXPECT_GT(lit, compared / 5);  // the light sample's arithmetic is compared, not only skipped
+    EXPECT_LT(lit, compared);      // and so are the unlit cases
+    return compared;
+  });
+}
+
+/// A random scene: matte triangles under emissive ones, a floor, and what the stage leaves to
+/// the scalar code in some (a metal, an emissive sphere, a point light).
+Scene randomScene(std::mt19937_64& rng, int index) {
+  Scene scene = emitters(rng, 3);
+  std::uniform_real_distribution<float> u01(0.0f, 1.0f);
+  for (int k = 0; k < 12; ++k) {
+    Material m = test::diffuse(Color(u01(rng), u01(rng), u01(rng)));
+    if (index % 2 == 1 && k == 0) m.metallic = 1, m.roughness = 0.3f;
+    test::addMeshInstance(scene, test::addMesh(scene, randomTriangle(rng, test::addMaterial(scene, m))),
+                          Mat4());
+  }
+  const int floor = test::addMaterial(scene, test::diffuse(Color(0.7f)));
+  test::addMeshInstance(scene, test::addMesh(scene, test::quadMesh(4.0f, floor)),
+                        Mat4::translate({0, -2.5f, 0}));
+  if (index % 3 == 1) {
+    Material glow = test::diffuse(Color(0.2f));
+    glow.emissive = Color(3.0f);
+    test::addSphere(scene, {0, 2.5f, 0}, 0.5f, test::addMaterial(scene, glow));
+  }
+  if (index % 3 == 2) scene.lights.push_back(test::pointLight({1, 3, 1}, Color(20.0f)));
+  scene.cameras.push_back(test::lookAt({0.5f, 1.0f, 7.0f}, {0, 0, 0}));
+  return scene;
+}
+
+TEST(MatteBatch, RandomScenesRenderAsTheScalarPathTracer) {
+  if (!hasSimdTarget()) GTEST_SKIP() << "no SIMD target: the wavefront keeps to scalar code";
+  test::onEverySimdTarget(5, [] {
+    std::mt19937_64 rng(61);
+    int compared = 0;
+    for (int index = 0; index < 6 && !testing::Test::HasFailure(); ++index) {
+      const Scene scene = randomScene(rng, index);
+      test::Job job;
+      job.size = 20, job.spp = 4, job.seed = uint64_t(index);
+      const test::Render scalar = test::render(scene, job);
+      job.integrator = "path";
+      const test::Render wave = test::render(scene, job);
+      EXPECT_EQ(test::differingValues(scalar.film, wave.film), 0u) << "scene " << index;
+      EXPECT_EQ(scalar.stats.rays.shadowRays, wave.stats.rays.shadowRays) << index;
+      EXPECT_EQ(scalar.stats.rays.secondaryRays, wave.stats.rays.secondaryRays) << index;
+      // The stage ran (the scalar driver has none): for most vertices where only matte
+      // surfaces and triangle lights are in the scene.
+      EXPECT_EQ(scalar.stats.rays.simdVertices, 0u);
+      EXPECT_GT(wave.stats.rays.simdVertices,
+                index % 6 == 0 ? wave.stats.rays.secondaryRays / 2 : 0u)
+          << index;
+      ++compared;
+    }
+    return compared;
+  });
+}
+
+}  // namespace
+}  // namespace tray
