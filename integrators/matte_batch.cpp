@@ -54,6 +54,7 @@ struct Fields {
     hn::StoreInterleaved3(a.x, a.y, a.z, DF(), &v[q].x);
   }
   void store(std::vector<float>& v, VF a) const { hn::StoreU(a, DF(), &v[q]); }
+  void store(std::vector<int32_t>& v, VI a) const { hn::StoreU(a, DI(), &v[q]); }
 };
 
 HWY_INLINE VF Dot(const V3& a, const V3& b) {
@@ -158,10 +159,7 @@ HWY_NOINLINE void LightSample(const Fields& f, const float* table) {
   const V3 origin = SpawnOrigin(p, ng, Sub(target, p));
   f.store(f.m.shadowOrigin, origin);
   f.store(f.m.shadowDir, Sub(target, origin));
-  alignas(64) uint8_t bits[kMaxSimdLanes / 8 > 8 ? kMaxSimdLanes / 8 : 8] = {};
-  hn::StoreMaskBits(df, ok, bits);
-  const size_t lanes = hn::Lanes(df);
-  for (size_t k = 0; k < lanes; ++k) f.m.lit[f.q + k] = (bits[k / 8] >> (k % 8)) & 1;
+  f.store(f.m.lit, hn::VecFromMask(di, hn::RebindMask(di, ok)));
 }
 
 /// BSDF sampling of one vector of vertices: Bsdf::lambertSample (the concentric map, the

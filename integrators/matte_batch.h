@@ -35,7 +35,7 @@ struct MatteLanes {
   // (no sample unless > 0).
   std::vector<Vec3> shadowOrigin, shadowDir, contribution, rayOrigin, rayDir, nextBeta;
   std::vector<float> pdf;
-  std::vector<uint8_t> lit;
+  std::vector<int32_t> lit;  ///< all bits set or none
   // Not for the kernel: the wave's path the vertex belongs to, its rays' shutter time and
   // LightSampleContext::belowMatters there.
   std::vector<uint32_t> path;

@@ -166,6 +166,9 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
 
   // Shade on the side the ray arrived from.
   v.n = s.frontFace ? sm.n : -sm.n;
+  // A matte vertex goes to the SIMD stage before its Bsdf is built (it needs none).
+  if (matte && Bsdf::isLambertOnly(sm) && defer(st, sampler, v, sm.baseColor, ahead, *matte, path))
+    return PathStep::kDeferred;
   const Bsdf bsdf(sm, v.n, eta);
   // A reflecting BSDF sees only light above n unless wo lies below it (shading normals) or a
   // clearcoat brings a normal of its own.
@@ -174,7 +177,6 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
   v.here.n = v.n;
   v.here.transmits = bsdf.transmits();
   v.here.belowMatters = bsdf.transmits() || !(dot(v.wo, v.n) > 0) || sm.clearcoat > 0;
-  if (matte && defer(st, sampler, v, bsdf, ahead, *matte, path)) return PathStep::kDeferred;
   VertexDraws draws{sampler, {ahead.first, ahead.second}};
   wantsShadow = nextEvent(st, v, bsdf, draws, shadow);
   if (wantsShadow) ++stats.shadowRays;
@@ -251,13 +253,19 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
   return roulette(st, draws.sampler);
 }
 
-bool PathEstimator::defer(const PathState& st, Sampler& sampler, const Vertex& v, const Bsdf& bsdf,
+bool PathEstimator::defer(const PathState& st, Sampler& sampler, Vertex& v, const Color& albedo,
                           DrawsAhead ahead, const MatteDeferral& matte, uint32_t path) const {
-  // What the SIMD stage repeats: the lone Lambert lobe, both draws made, a light sample drawn
-  // (nextEvent's conditions), nothing for light-path AOVs, no medium to attenuate by.
-  if (!bsdf.lambertOnly() || !ahead.first || !ahead.second || lights_.empty() ||
-      st.paths.active() || !isBlack(v.sigmaA) || (absorbingMedia_ && v.refractive))
+  // What the SIMD stage repeats: a lone Lambert lobe (the caller's test), both draws made, a
+  // light sample drawn (nextEvent's conditions), nothing for light-path AOVs, no medium to
+  // attenuate by.
+  if (!ahead.first || !ahead.second || lights_.empty() || st.paths.active() ||
+      !isBlack(v.sigmaA) || (absorbingMedia_ && v.refractive))
     return false;
+  // step's receiver for a Lambert lobe: it does not transmit and has no clearcoat.
+  v.here.p = v.s.p;
+  v.here.n = v.n;
+  v.here.transmits = false;
+  v.here.belowMatters = !(dot(v.wo, v.n) > 0);
   const Vec3& u = *ahead.first;
   float pmf;
   const int light = lights_.choose(v.here, u.x, pmf);
@@ -268,7 +276,7 @@ bool PathEstimator::defer(const PathState& st, Sampler& sampler, const Vertex& v
   const size_t q = m.count++;
   const SurfacePoint& s = v.s;
   m.p[q] = s.p, m.ng[q] = s.ng, m.n[q] = v.n, m.wo[q] = v.wo;
-  m.albedo[q] = bsdf.lambertAlbedo(), m.beta[q] = st.beta;
+  m.albedo[q] = albedo, m.beta[q] = st.beta;
   m.lightDraw[q] = {u.y, u.z}, m.bsdfDraw[q] = {ahead.second->y, ahead.second->z};
   m.pmf[q] = pmf;
   m.emitter[q] = chosen ? row : -1;

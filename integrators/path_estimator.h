@@ -146,8 +146,9 @@ class PathEstimator {
                  ShadowQuery& shadow) const;
   PathStep scatter(PathState& st, const Vertex& v, const Bsdf& bsdf, VertexDraws& draws,
                    RayStats& stats) const;
-  /// Queues the vertex in matte.lanes when it qualifies (see step); false: step goes on.
-  bool defer(const PathState& st, Sampler& sampler, const Vertex& v, const Bsdf& bsdf,
+  /// Queues a vertex whose BSDF would be a lone Lambert lobe of `albedo` in matte.lanes when
+  /// the rest qualifies (see step), setting v.here; false: step goes on.
+  bool defer(const PathState& st, Sampler& sampler, Vertex& v, const Color& albedo,
              DrawsAhead ahead, const MatteDeferral& matte, uint32_t path) const;
   /// Russian roulette after a scattering (Arvo & Kirk 1990) with Mitsuba's survival
   /// probability, from the kRouletteDepth-th segment on.

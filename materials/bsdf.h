@@ -43,9 +43,7 @@ class Bsdf {
     // coatFresnel is 0 either way with coat_ 0 (evalLobes reads it). NaN factors go the general
     // way, whose classification this test matches (coat_ > 0 iff roughness < 1; a NaN weight
     // makes wPlastic_ NaN and the lobe inert).
-    const Color& a = m.baseColor;
-    if (m.metallic <= 0 && m.transmission <= 0 && !(m.roughness < 1.0f) &&
-        (a.x > 0 || a.y > 0 || a.z > 0) && !(m.clearcoat > 0) && isBlack(m.sheenColor)) {
+    if (isLambertOnly(m)) {
       wMetal_ = 0, wGlass_ = 0, wPlastic_ = 1, coat_ = 0;
       coatTinted_ = false;
       hasNonDelta_ = true;
@@ -75,10 +73,15 @@ class Bsdf {
   }
   /// True when light can also scatter to the far side of the surface.
   bool transmits() const { return wGlass_ > 0; }
-  /// Nothing but a Lambert lobe (matte): the SIMD matte stage repeats eval and sample for it
-  /// (integrators/matte_batch.h), reading its albedo.
+  /// Nothing but a Lambert lobe of albedo m.baseColor (matte): the SIMD matte stage repeats
+  /// eval and sample for it (integrators/matte_batch.h). The constructor's test: metallic 0,
+  /// roughness 1, no transmission, clearcoat or sheen, some albedo.
+  static bool isLambertOnly(const ShadingMaterial& m) {
+    const Color& a = m.baseColor;
+    return m.metallic <= 0 && m.transmission <= 0 && !(m.roughness < 1.0f) &&
+           (a.x > 0 || a.y > 0 || a.z > 0) && !(m.clearcoat > 0) && isBlack(m.sheenColor);
+  }
   bool lambertOnly() const { return lambertOnly_; }
-  const Color& lambertAlbedo() const { return diffuse_.albedo; }
   const Frame& frame() const { return frame_; }
 
   /// eval split by lobe kind (core/light_paths.h): the three parts sum to eval(wo, wi) up to
