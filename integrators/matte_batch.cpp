@@ -84,7 +84,8 @@ HWY_INLINE VF OffsetOrigin(VF p, VF n) {
   const VI offset = hn::ConvertTo(di, hn::Mul(hn::Set(df, 256.0f), n));  // truncates, as C++
   const VI bits = hn::BitCast(di, p);
   const MF negative = hn::Lt(p, hn::Zero(df));
-  const VI moved = hn::Add(bits, hn::IfThenElse(hn::RebindMask(di, negative), hn::Neg(offset), offset));
+  const VI moved =
+      hn::Add(bits, hn::IfThenElse(hn::RebindMask(di, negative), hn::Neg(offset), offset));
   const VF nearZero = hn::Add(p, hn::Mul(hn::Set(df, 1.0f / 65536.0f), n));
   return hn::IfThenElse(hn::Lt(hn::Abs(p), hn::Set(df, 1.0f / 32.0f)), nearZero,
                         hn::BitCast(df, moved));
@@ -126,8 +127,7 @@ HWY_NOINLINE void LightSample(const Fields& f, const float* table) {
   const V3 nLight = {column(T::kNx), column(T::kNy), column(T::kNz)};
   const VF cosL = hn::Neg(Dot(nLight, wi));
   const VF c = hn::Abs(cosL);
-  const VF trianglePdf =
-      hn::IfThenElseZero(hn::Gt(c, zero), hn::Div(dist2, c * column(T::kArea)));
+  const VF trianglePdf = hn::IfThenElseZero(hn::Gt(c, zero), hn::Div(dist2, c * column(T::kArea)));
   const VF lightPdf = trianglePdf * f.load(f.m.pmf);
   const MF faces = hn::Or(hn::Gt(column(T::kDoubleSided), zero), hn::Gt(cosL, zero));
   const V3 Le = {column(T::kLeR), column(T::kLeG), column(T::kLeB)};
@@ -135,7 +135,8 @@ HWY_NOINLINE void LightSample(const Fields& f, const float* table) {
   const VF cosO = Dot(f.load(f.m.wo), n), cosI = Dot(wi, n);
   const MF same = hn::Gt(cosO * cosI, zero);
   const VF invPi = hn::Set(df, 1.0f / kPi);
-  const VF bsdfPdf = hn::IfThenElseZero(same, hn::Div(StdMax(zero, hn::Abs(cosI)), hn::Set(df, kPi)));
+  const VF bsdfPdf =
+      hn::IfThenElseZero(same, hn::Div(StdMax(zero, hn::Abs(cosI)), hn::Set(df, kPi)));
   const VF absCos = hn::Abs(cosI);
   const V3 albedo = f.load(f.m.albedo);
   const V3 fr = {hn::IfThenElseZero(same, albedo.x * invPi) * absCos,
@@ -154,7 +155,7 @@ HWY_NOINLINE void LightSample(const Fields& f, const float* table) {
   const VF scale = hn::Div(w, lightPdf);
   const V3 beta = f.load(f.m.beta);
   f.store(f.m.contribution, {((beta.x * fr.x) * Le.x) * scale, ((beta.y * fr.y) * Le.y) * scale,
-                               ((beta.z * fr.z) * Le.z) * scale});
+                             ((beta.z * fr.z) * Le.z) * scale});
   // setSpawnRayTo(p, ng, target).
   const V3 origin = SpawnOrigin(p, ng, Sub(target, p));
   f.store(f.m.shadowOrigin, origin);
@@ -202,7 +203,7 @@ HWY_NOINLINE void ScatterSample(const Fields& f) {
   const VF s = hn::Div(hn::Abs(Dot(wi, n)), pdf);
   const V3 albedo = f.load(f.m.albedo), beta = f.load(f.m.beta);
   f.store(f.m.nextBeta, {beta.x * ((albedo.x * invPi) * s), beta.y * ((albedo.y * invPi) * s),
-                           beta.z * ((albedo.z * invPi) * s)});
+                         beta.z * ((albedo.z * invPi) * s)});
   f.store(f.m.pdf, pdf);
   f.store(f.m.rayOrigin, SpawnOrigin(f.load(f.m.p), f.load(f.m.ng), wi));
   f.store(f.m.rayDir, wi);
@@ -231,8 +232,8 @@ void MatteLanes::reset(size_t size) {
   count = 0;
   const size_t padded = wholeSimdVectors(size);
   if (padded <= emitter.size()) return;
-  for (std::vector<Vec3>* v : {&p, &ng, &n, &wo, &albedo, &beta, &shadowOrigin, &shadowDir, &contribution,
-                  &rayOrigin, &rayDir, &nextBeta})
+  for (std::vector<Vec3>* v : {&p, &ng, &n, &wo, &albedo, &beta, &shadowOrigin, &shadowDir,
+                               &contribution, &rayOrigin, &rayDir, &nextBeta})
     v->resize(padded);
   lightDraw.resize(padded), bsdfDraw.resize(padded);
   pmf.resize(padded), emitter.resize(padded), pdf.resize(padded), lit.resize(padded);
@@ -255,9 +256,23 @@ MatteBatch::MatteBatch(const LightSet& lights) : rows_(lights.size(), -1) {
     if (!area || !area->isTriangle()) continue;
     const AreaLight::Triangle t = area->triangleData();
     rows_[i] = int32_t(table_.size() / kColumnCount);
-    const float row[kColumnCount] = {t.p0.x, t.p0.y, t.p0.z, t.e1.x, t.e1.y, t.e1.z,
-                                     t.e2.x, t.e2.y, t.e2.z, t.n.x,  t.n.y,  t.n.z,
-                                     t.area, t.Le.x, t.Le.y, t.Le.z, t.doubleSided ? 1.0f : 0.0f};
+    const float row[kColumnCount] = {t.p0.x,
+                                     t.p0.y,
+                                     t.p0.z,
+                                     t.e1.x,
+                                     t.e1.y,
+                                     t.e1.z,
+                                     t.e2.x,
+                                     t.e2.y,
+                                     t.e2.z,
+                                     t.n.x,
+                                     t.n.y,
+                                     t.n.z,
+                                     t.area,
+                                     t.Le.x,
+                                     t.Le.y,
+                                     t.Le.z,
+                                     t.doubleSided ? 1.0f : 0.0f};
     table_.insert(table_.end(), row, row + kColumnCount);
   }
   useful_ = hasSimdTarget() && !table_.empty();

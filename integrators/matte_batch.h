@@ -64,13 +64,15 @@ class MatteBatch {
 
   /// Floats per row: vertex 0, the two edges, the unit front normal, the area, the radiance
   /// and whether both faces emit (1 or 0).
+  // clang-format off
   enum Column : uint8_t {
     kP0x, kP0y, kP0z, kE1x, kE1y, kE1z, kE2x, kE2y, kE2z, kNx, kNy, kNz,
     kArea, kLeR, kLeG, kLeB, kDoubleSided, kColumnCount
   };
+  // clang-format on
 
  private:
-  std::vector<float> table_;  ///< kColumnCount floats per row
+  std::vector<float> table_;   ///< kColumnCount floats per row
   std::vector<int32_t> rows_;  ///< per light index
   bool useful_ = false;
 };

@@ -92,8 +92,8 @@ void PathEstimator::escape(PathState& st) const {
 
 PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const Hit& hit,
                              ShadowQuery& shadow, bool& wantsShadow, RayStats& stats,
-                             PrimaryHit* primary, const SurfacePoint* surface,
-                             DrawsAhead ahead, const MatteDeferral* matte, uint32_t path) const {
+                             PrimaryHit* primary, const SurfacePoint* surface, DrawsAhead ahead,
+                             const MatteDeferral* matte, uint32_t path) const {
   wantsShadow = false;
   // KHR_materials_volume: the segment crosses the medium in effect, which absorbs.
   const Color sigmaA = st.media.currentAbsorption();
@@ -258,8 +258,8 @@ bool PathEstimator::defer(const PathState& st, Sampler& sampler, Vertex& v, cons
   // What the SIMD stage repeats: a lone Lambert lobe (the caller's test), both draws made, a
   // light sample drawn (nextEvent's conditions), nothing for light-path AOVs, no medium to
   // attenuate by.
-  if (!ahead.first || !ahead.second || lights_.empty() || st.paths.active() ||
-      !isBlack(v.sigmaA) || (absorbingMedia_ && v.refractive))
+  if (!ahead.first || !ahead.second || lights_.empty() || st.paths.active() || !isBlack(v.sigmaA) ||
+      (absorbingMedia_ && v.refractive))
     return false;
   // step's receiver for a Lambert lobe: it does not transmit and has no clearcoat.
   v.here.p = v.s.p;
@@ -286,8 +286,7 @@ bool PathEstimator::defer(const PathState& st, Sampler& sampler, Vertex& v, cons
 }
 
 PathStep PathEstimator::finishMatte(PathState& st, Sampler& sampler, const MatteLanes& m, size_t q,
-                                    ShadowQuery& shadow, bool& wantsShadow,
-                                    RayStats& stats) const {
+                                    ShadowQuery& shadow, bool& wantsShadow, RayStats& stats) const {
   const float time = m.time[q];
   wantsShadow = m.lit[q];
   if (wantsShadow) {

@@ -9,8 +9,8 @@
 #include "core/integrator.h"
 #include "core/light_paths.h"
 #include "core/shading.h"
-#include "lights/light_set.h"
 #include "integrators/matte_batch.h"
+#include "lights/light_set.h"
 #include "materials/medium_stack.h"
 
 namespace tray {

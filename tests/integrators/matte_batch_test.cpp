@@ -53,8 +53,8 @@ Scene emitters(std::mt19937_64& rng, int count) {
     Material m = test::diffuse(Color(0.5f));
     m.emissive = k == 1 ? Color(0.0f) : Color(le(rng), le(rng), k % 3 == 0 ? 0.0f : le(rng));
     m.doubleSided = k % 2 == 0;
-    test::addMeshInstance(scene, test::addMesh(scene, randomTriangle(rng, test::addMaterial(scene, m))),
-                          Mat4());
+    test::addMeshInstance(
+        scene, test::addMesh(scene, randomTriangle(rng, test::addMaterial(scene, m))), Mat4());
   }
   return scene;
 }
@@ -155,8 +155,8 @@ Scene randomScene(std::mt19937_64& rng, int index) {
   for (int k = 0; k < 12; ++k) {
     Material m = test::diffuse(Color(u01(rng), u01(rng), u01(rng)));
     if (index % 2 == 1 && k == 0) m.metallic = 1, m.roughness = 0.3f;
-    test::addMeshInstance(scene, test::addMesh(scene, randomTriangle(rng, test::addMaterial(scene, m))),
-                          Mat4());
+    test::addMeshInstance(
+        scene, test::addMesh(scene, randomTriangle(rng, test::addMaterial(scene, m))), Mat4());
   }
   const int floor = test::addMaterial(scene, test::diffuse(Color(0.7f)));
   test::addMeshInstance(scene, test::addMesh(scene, test::quadMesh(4.0f, floor)),
