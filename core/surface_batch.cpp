@@ -11,6 +11,8 @@
 #include "core/simd_lanes.h"
 #include "hwy/foreach_target.h"  // IWYU pragma: keep
 #include "hwy/highway.h"
+// After highway.h, once per target: Vec3 arithmetic over lanes.
+#include "core/vec3_simd-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace tray {
@@ -31,10 +33,6 @@ static_assert(HWY_MAX_BYTES / sizeof(float) <= kMaxSimdLanes);
 static_assert(sizeof(Hit) % 4 == 0 && offsetof(Hit, triangle) % 4 == 0 &&
               offsetof(Hit, b1) % 4 == 0 && offsetof(Hit, b2) % 4 == 0);
 static_assert(sizeof(Vec3) == 12 && sizeof(Vec2) == 8);
-
-struct V3 {
-  VF x, y, z;
-};
 
 /// The three floats of Vec3 `index` in `base` (vertex arrays as floats). Not inlined: the
 /// kernel as one straight block of gathers is more than Valgrind's memcheck can instrument
@@ -61,10 +59,6 @@ HWY_INLINE V3 Normal(const SurfaceBatchPrimitive& p, const V3& n) {
     *out[c] = (hn::Set(df, p.inv[0][c]) * n.x + hn::Set(df, p.inv[1][c]) * n.y) +
               hn::Set(df, p.inv[2][c]) * n.z;
   return r;
-}
-
-HWY_INLINE VF Dot(const V3& a, const V3& b) {
-  return (a.x * b.x + a.y * b.y) + a.z * b.z;
 }
 
 /// The first `count` lanes of a group's vector (count <= lanes): meshSurface for each, then written
@@ -98,12 +92,11 @@ HWY_INLINE void Block(const SurfaceBatchPrimitive& p, const int32_t* order, size
                 hn::Set(df, p.m[r][2]) * local.z) +
                hn::Set(df, p.m[r][3]) * one;
   // ng = normalize(toWorld.normal(cross(p1 - p0, p2 - p0))); normalize is a * (1 / |a|).
-  const V3 e1 = {p1.x - p0.x, p1.y - p0.y, p1.z - p0.z};
-  const V3 e2 = {p2.x - p0.x, p2.y - p0.y, p2.z - p0.z};
+  const V3 e1 = Sub(p1, p0), e2 = Sub(p2, p0);
   const V3 c = {e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z, e1.x * e2.y - e1.y * e2.x};
   const V3 ngw = Normal(p, c);
   const VF ngInverse = one / hn::Sqrt(Dot(ngw, ngw));
-  const V3 ng = {ngw.x * ngInverse, ngw.y * ngInverse, ngw.z * ngInverse};
+  const V3 ng = Scale(ngw, ngInverse);
   V3 n = ng, side = ng;
   if (p.hasNormals) {
     const V3 n0 = Gather3(p.normals, i0), n1 = Gather3(p.normals, i1), n2 = Gather3(p.normals, i2);

@@ -14,6 +14,8 @@
 #include "core/simd_lanes.h"
 #include "hwy/foreach_target.h"  // IWYU pragma: keep
 #include "hwy/highway.h"
+// After highway.h, once per target: Vec3 arithmetic over lanes.
+#include "core/vec3_simd-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace tray {
@@ -32,10 +34,6 @@ using MF = hn::Mask<DF>;
 using T = MatteBatch;
 
 static_assert(HWY_MAX_BYTES / sizeof(float) <= kMaxSimdLanes);
-
-struct V3 {
-  VF x, y, z;
-};
 
 /// One vector of the lanes, from entry q: Vec3 fields loaded and stored deinterleaved.
 struct Fields {
@@ -57,15 +55,6 @@ struct Fields {
   void store(std::vector<int32_t>& v, VI a) const { hn::StoreU(a, DI(), &v[q]); }
 };
 
-HWY_INLINE VF Dot(const V3& a, const V3& b) {
-  return (a.x * b.x + a.y * b.y) + a.z * b.z;
-}
-HWY_INLINE V3 Sub(const V3& a, const V3& b) {
-  return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-HWY_INLINE V3 Scale(const V3& a, VF s) {
-  return {a.x * s, a.y * s, a.z * s};
-}
 /// isBlack: every component == 0.
 HWY_INLINE MF Black(const V3& c) {
   const DF df;
