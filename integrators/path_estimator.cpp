@@ -40,6 +40,11 @@ struct PathEstimator::Vertex {
   Color sigmaA;  ///< absorption of the medium the arriving segment crossed
   /// What light sampling knows of the receiver; BSDF sampling's MIS weights use the same.
   LightSampleContext here;
+  /// defer() chose `light` with probability lightPmf from `here` and the first draw, then left
+  /// the vertex to the scalar code (another kind of light): nextEvent samples that choice.
+  bool lightChosen = false;
+  int light;
+  float lightPmf;
 };
 
 /// The vertex's 3D draws: those made ahead while they last, then the sampler's own.
@@ -195,7 +200,8 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
   const SurfacePoint& s = v.s;
   // The light choice and the point on it as one 3D sample (stratified jointly by Sobol').
   const Vec3 u = draws.next3D();
-  LightSample ls = lights_.sample(v.here, u.x, {u.y, u.z});
+  LightSample ls = v.lightChosen ? lights_.sampleChosen(v.light, v.lightPmf, v.here, {u.y, u.z})
+                                 : lights_.sample(v.here, u.x, {u.y, u.z});
   if (!ls.valid() || isBlack(ls.L)) return false;
   float bsdfPdf;
   Color f = bsdf.eval(v.wo, ls.wi, bsdfPdf) * std::fabs(dot(ls.wi, v.n));
@@ -271,7 +277,10 @@ bool PathEstimator::defer(const PathState& st, Sampler& sampler, Vertex& v, cons
   const int light = lights_.choose(v.here, u.x, pmf);
   const bool chosen = light >= 0 && pmf > 0;
   const int32_t row = matte.batch.row(light);
-  if (chosen && row < 0) return false;  // another kind of light: the scalar code samples it
+  if (chosen && row < 0) {  // another kind of light: the scalar code samples this choice
+    v.lightChosen = true, v.light = light, v.lightPmf = pmf;
+    return false;
+  }
   MatteLanes& m = matte.lanes;
   const size_t q = m.count++;
   const SurfacePoint& s = v.s;

@@ -39,6 +39,9 @@ class LightSet {
   int choose(const LightSampleContext& ctx, float u1, float& pmf) const {
     return bvh_ ? bvh_->sample(ctx, u1, pmf) : chooser_->sample(ctx, u1, pmf);
   }
+  /// sample() past its choice: light i chosen with probability pmf by choose(ctx, u1, pmf),
+  /// for a caller that made the choice already.
+  LightSample sampleChosen(int i, float pmf, const LightSampleContext& ctx, Vec2 u2) const;
   /// Light i as an area light, or null when it is another kind.
   const AreaLight* areaLight(size_t i) const { return i < area_.size() ? &area_[i] : nullptr; }
 
@@ -98,6 +101,11 @@ inline LightSample LightSet::sample(const LightSampleContext& ctx, float u1, Vec
   // The BVH chooser and area lights through their final classes: inline, no virtual calls
   // (callgrind, Cornell box: LightSet::sample ~248 -> ~188 instructions per vertex).
   const int i = choose(ctx, u1, pmf);
+  return sampleChosen(i, pmf, ctx, u2);
+}
+
+inline LightSample LightSet::sampleChosen(int i, float pmf, const LightSampleContext& ctx,
+                                          Vec2 u2) const {
   const bool chosen = i >= 0 && pmf > 0;
   // One named result built in place (no `return {}` beside it, which stops the compiler's
   // NRVO): copying the light's sample out of a temporary after writing its pdf cost a
