@@ -26,14 +26,15 @@
 #include "bench/bench_rays.h"
 #include "bench/cpu_time.h"
 #include "core/error.h"
+#include "integrators/path_wavefront.h"
 #include "io/gltf_loader.h"
 
 using namespace tray;
 
 namespace {
 
-/// The wavefront integrator's queue size (integrators/path_wavefront.cpp, kWaveSize).
-constexpr size_t kBatch = 4096;
+/// The wavefront integrator's queue size.
+constexpr size_t kBatch = kPathWaveSize;
 
 struct Mode {
   std::string name;

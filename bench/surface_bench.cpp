@@ -21,14 +21,15 @@
 #include "bench/cpu_time.h"
 #include "core/error.h"
 #include "core/surface_batch.h"
+#include "integrators/path_wavefront.h"
 #include "io/gltf_loader.h"
 
 using namespace tray;
 
 namespace {
 
-/// The wavefront integrator's queue size (integrators/path_wavefront.cpp, kWaveSize).
-constexpr size_t kWave = 4096;
+/// The wavefront integrator's queue size.
+constexpr size_t kWave = kPathWaveSize;
 
 /// A ray set's hits, wave by wave, as the wavefront's bounce() sees them.
 struct Waves {

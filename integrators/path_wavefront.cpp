@@ -104,9 +104,6 @@ class PathWavefrontIntegrator final : public Integrator {
   }
 
  private:
-  /// Paths in flight per wave: enough to fill the accelerator's batches, few enough that a
-  /// wave's state (about 400 bytes a path) stays in the L2 cache.
-  static constexpr size_t kWaveSize = 4096;
   static Wave& scratch() {
     static thread_local Wave wave;
     return wave;
@@ -131,10 +128,10 @@ void PathWavefrontIntegrator::accumulatePixels(std::span<PixelTask> tasks, int b
   const bool anySplit = std::any_of(tasks.begin(), tasks.end(), wantsLightPaths);
   // Paths in (pixel, sample) order, cut into waves: each pixel's samples are added to its sums
   // in sample order, as accumulate() does, so the sums are the same bits.
-  for (size_t g0 = 0; g0 < total; g0 += kWaveSize) {
+  for (size_t g0 = 0; g0 < total; g0 += kPathWaveSize) {
     // A stop between waves: the pixels whose samples all came before are finished.
     if (stop && stop->load(std::memory_order_relaxed)) break;
-    const size_t g1 = std::min(total, g0 + kWaveSize);
+    const size_t g1 = std::min(total, g0 + kPathWaveSize);
     w.clear();
     // Sized before the paths point into it; zero, as accumulate() clears a sample's split.
     w.lightPaths.assign(anySplit ? g1 - g0 : 0, LightPathRadiance{});

@@ -1,7 +1,14 @@
 #pragma once
+#include <cstddef>
+
 #include "core/integrator.h"
 
 namespace tray {
+
+/// Paths in flight per wave of the wavefront driver: enough to fill the accelerator's batches,
+/// few enough that a wave's state (about 400 bytes a path) stays in the L2 cache. Benchmarks of
+/// the wavefront's stages feed them waves of this size (bench/surface_bench.cpp).
+inline constexpr size_t kPathWaveSize = 4096;
 
 /// Wavefront path tracing: the estimator of `path` (PathEstimator, the same random numbers per
 /// pixel sample), but the samples of a batch of pixels advance together one segment at a
