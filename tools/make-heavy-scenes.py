@@ -172,6 +172,15 @@ def helmets():
                               "KHR_materials_emissive_strength", "TRAY_environment"]}
     helmet = merge(doc, os.path.join(SHARED, "gltf-samples", "DamagedHelmet.glb"))
     bottle = merge(doc, os.path.join(SHARED, "gltf-features", "WaterBottle", "WaterBottle.gltf"))
+    # Bilinear lookups in the finest level, as Mitsuba's bitmap does (it has no MIP-maps): TRay's
+    # trilinear filtering over the pixel footprint cannot be carried over, so it is left out of
+    # both (issue 16). LINEAR for both filters (glTF 2.0 §5.26), the assets' wrap modes kept.
+    for sampler in doc["samplers"]:
+        sampler.update({"magFilter": 9729, "minFilter": 9729})
+    for texture in doc["textures"]:
+        if "sampler" not in texture:
+            texture["sampler"] = len(doc["samplers"])
+            doc["samplers"].append({"magFilter": 9729, "minFilter": 9729})
     m = len(doc["materials"])
     doc["materials"] += [
         {"name": "glossy metal floor", "pbrMetallicRoughness": {
