@@ -119,6 +119,8 @@ void MaterialEvaluator::modulate(const Hit& hit, const SurfacePoint& s,
   };
   auto lookup = [&](const TextureRef& ref) {
     const int k = ref.texCoord == 1 ? 1 : 0;
+    if (!TextureSampler::footprintMatters(ref))
+      return sampler_->sample(ref, {frameOf(k).uv, {}, {}});
     if (!haveFootprint[k]) {
       footprints[k] = pixelFootprint(frameOf(k), s.p, s.ng, camera_, footprintScale_);
       haveFootprint[k] = true;

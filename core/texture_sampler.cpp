@@ -87,14 +87,19 @@ Color TextureSampler::sample(const TextureRef& ref, const UvFootprint& f) const 
   if (ref.image < 0 || size_t(ref.image) >= impl_->pyramids.size()) return Color(1.0f);
   const TextureImage& im = impl_->images[size_t(ref.image)];
   const Vec2 uv = transformUv(ref, f.uv);
-  const Vec2 dx = transformUv(ref, f.dx, true), dy = transformUv(ref, f.dy, true);
   // OIIO's t runs down the image from its first row, as glTF's v does (glTF 2.0 §3.8.4.1), so
   // uvs pass through unchanged.
-  TextureQuery q{uv.x, uv.y, dx.x, dx.y, dy.x, dy.y, ref.wrapS, ref.wrapT};
-  // Footprint in texels of the finest level: under one texel the texture is magnified.
-  const float w = float(im.width), h = float(im.height);
-  const float texels = std::max(std::hypot(dx.x * w, dx.y * h), std::hypot(dy.x * w, dy.y * h));
-  filtersOf(texels > 1.0f ? ref.minFilter : ref.magFilter, q.texel, q.mip);
+  TextureQuery q{uv.x, uv.y, 0, 0, 0, 0, ref.wrapS, ref.wrapT};
+  if (footprintMatters(ref)) {
+    const Vec2 dx = transformUv(ref, f.dx, true), dy = transformUv(ref, f.dy, true);
+    q.dsdx = dx.x, q.dtdx = dx.y, q.dsdy = dy.x, q.dtdy = dy.y;
+    // Footprint in texels of the finest level: under one texel the texture is magnified.
+    const float w = float(im.width), h = float(im.height);
+    const float texels = std::max(std::hypot(dx.x * w, dx.y * h), std::hypot(dy.x * w, dy.y * h));
+    filtersOf(texels > 1.0f ? ref.minFilter : ref.magFilter, q.texel, q.mip);
+  } else {  // one filter without MIP levels: the derivatives are never read (nor by OIIO's nomip)
+    filtersOf(ref.magFilter, q.texel, q.mip);
+  }
   if (!impl_->oiio) return lookupTexture(*impl_->pyramids[size_t(ref.image)], q);
   float rgb[3] = {0, 0, 0};
   if (!impl_->oiio->lookup(size_t(ref.image), q, rgb))

@@ -44,6 +44,15 @@ class TextureSampler {
   /// minifies with minFilter: nearest/linear texels in the finest level, or one/two MIP levels.
   Color sample(const TextureRef& ref, const UvFootprint& f) const;
 
+  /// False when ref's footprint changes nothing: its min and mag filters are the same filter
+  /// without MIP levels (NEAREST or LINEAR both ways), so the footprint neither chooses between
+  /// them nor picks a level. sample() then reads f.uv alone, and callers may skip computing
+  /// f.dx and f.dy.
+  static bool footprintMatters(const TextureRef& ref) {
+    return ref.minFilter != ref.magFilter ||
+           (ref.magFilter != TextureFilter::kNearest && ref.magFilter != TextureFilter::kLinear);
+  }
+
   /// The budget when none is given: every level of every image as OIIO's float tiles, at
   /// least kMinCacheMB and at most a quarter of physical memory. Why not a fixed budget: the
   /// fixed 128 MB of before made DamagedHelmet (five 2048^2 textures, 336 MB of float levels)

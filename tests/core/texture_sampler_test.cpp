@@ -126,6 +126,40 @@ TEST(TextureSampler, MipMappedMinificationAveragesAndLinearDoesNot) {
   EXPECT_NEAR(sampler.sample(r, {{u, v}, {d, 0}, {0, d}}).x, 0.0f, 1e-6f);
 }
 
+// One filter without MIP levels both ways (the heavy bench scene's LINEAR samplers): the
+// footprint can change nothing, so shading skips computing it (footprintMatters) and sample()
+// reads the uv alone. Any footprint then gives the no-footprint lookup's bits, through TRay's
+// filter and OIIO's (whose no-MIP lookup reads no derivatives either).
+TEST(TextureSampler, OneFilterWithoutMipLevelsIgnoresTheFootprint) {
+  using F = TextureFilter;
+  TextureRef r = ref(TextureWrap::kRepeat);
+  EXPECT_TRUE(TextureSampler::footprintMatters(r)) << "glTF's open minFilter: trilinear";
+  r.minFilter = F::kLinear;
+  EXPECT_FALSE(TextureSampler::footprintMatters(r));
+  r.magFilter = r.minFilter = F::kNearest;
+  EXPECT_FALSE(TextureSampler::footprintMatters(r));
+  r.minFilter = F::kLinear;  // the footprint picks which of the two filters
+  EXPECT_TRUE(TextureSampler::footprintMatters(r));
+  r.magFilter = r.minFilter = F::kLinearMipmapNearest;
+  EXPECT_TRUE(TextureSampler::footprintMatters(r));
+
+  std::vector<TextureImage> images{checker64()};
+  const TextureSampler own(images), paged(images, 1e-3);
+  ASSERT_FALSE(own.paged());
+  ASSERT_TRUE(paged.paged());
+  for (F f : {F::kLinear, F::kNearest}) {
+    r.magFilter = r.minFilter = f;
+    for (float u : {0.1f, 0.37f, 0.8f}) {
+      const float v = 1.0f - u, d = 16.0f / 64;
+      for (const TextureSampler* s : {&own, &paged}) {
+        const Color none = at(*s, r, u, v), wide = s->sample(r, {{u, v}, {d, 0}, {0, d}});
+        EXPECT_TRUE(none == wide) << u;
+      }
+      EXPECT_TRUE(at(own, r, u, v) == at(paged, r, u, v)) << u;
+    }
+  }
+}
+
 /// A size x size image of smooth colours.
 TextureImage gradient(int size) {
   TextureImage im;
