@@ -93,9 +93,15 @@ namespace {
 struct Taps {
   std::vector<int> low;
   std::vector<float> frac;
+  /// Every tap two texels past the one before with the same weight: a level that halves the
+  /// finer one exactly (a power-of-two size gives weight 0.5 everywhere), whose rows are then
+  /// filtered without reading low and frac per texel.
+  bool even = true;
   Taps(int first, int n, int size, int upSize) : low(size_t(n)), frac(size_t(n)) {
-    for (int i = 0; i < n; ++i)
+    for (int i = 0; i < n; ++i) {
       frac[size_t(i)] = sourceTexel(first + i, size, upSize, &low[size_t(i)]);
+      even = even && low[size_t(i)] == low[0] + 2 * i && frac[size_t(i)] == frac[0];
+    }
   }
 };
 
@@ -177,6 +183,17 @@ void TexturePyramid::computeBlock(int level, int x0, int y0, int w, int h, float
   auto bilerpRow = [&](int j, const float* r0, const float* r1) {
     float* o = out + size_t(j) * stride;
     const float yfrac = ys.frac[size_t(j)];
+    if (xs.even) {
+      // OIIO::bilerp's expression, t1 (v0 s1 + v1 s) + t (v2 s1 + v3 s) with s1 = 1 - s and
+      // t1 = 1 - t, over consecutive texel pairs: the same operations, so the same floats.
+      const float s = xs.frac[0], s1 = 1.0f - s, t = yfrac, t1 = 1.0f - t;
+      const float* a = r0 + 3 * size_t(xs.low[0] - sx0);
+      const float* b = r1 + 3 * size_t(xs.low[0] - sx0);
+      for (int i = 0; i < w; ++i, a += 6, b += 6, o += 3)
+        for (int c = 0; c < 3; ++c)
+          o[c] = t1 * (a[c] * s1 + a[c + 3] * s) + t * (b[c] * s1 + b[c + 3] * s);
+      return;
+    }
     for (int i = 0; i < w; ++i) {
       const size_t x = 3 * size_t(xs.low[size_t(i)] - sx0);
       OIIO::bilerp(r0 + x, r0 + x + 3, r1 + x, r1 + x + 3, xs.frac[size_t(i)], yfrac, 3,
@@ -226,7 +243,8 @@ const float* TexturePyramid::makeTile(int level, int tx, int ty) const {
   const Level& l = levels_[size_t(level)];
   const int x0 = tx * kTile, y0 = ty * kTile;
   const int tw = std::min(kTile, l.width - x0), th = std::min(kTile, l.height - y0);
-  auto texels = std::make_unique<float[]>(size_t(tw) * size_t(th) * 3);
+  // Not zero-filled (computeBlock writes every texel): 48 kB of memset per tile.
+  auto texels = std::make_unique_for_overwrite<float[]>(size_t(tw) * size_t(th) * 3);
   computeBlock(level, x0, y0, tw, th, texels.get(), size_t(tw) * 3, true);
   std::atomic<const float*>& slot = l.tiles[size_t(ty) * size_t(l.tilesX) + size_t(tx)];
   const float* expected = nullptr;
