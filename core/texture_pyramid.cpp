@@ -185,10 +185,10 @@ void TexturePyramid::computeBlock(int level, int x0, int y0, int w, int h, float
     const float yfrac = ys.frac[size_t(j)];
     if (xs.even) {
       // OIIO::bilerp's expression, t1 (v0 s1 + v1 s) + t (v2 s1 + v3 s) with s1 = 1 - s and
-      // t1 = 1 - t, over consecutive texel pairs: the same operations, so the same floats.
+      // t1 = 1 - t, over consecutive texel pairs: the same operations, so the same floats. The
+      // rows start at the first tap (sx0 = xs.low[0]).
       const float s = xs.frac[0], s1 = 1.0f - s, t = yfrac, t1 = 1.0f - t;
-      const float* a = r0 + 3 * size_t(xs.low[0] - sx0);
-      const float* b = r1 + 3 * size_t(xs.low[0] - sx0);
+      const float *a = r0, *b = r1;
       for (int i = 0; i < w; ++i, a += 6, b += 6, o += 3)
         for (int c = 0; c < 3; ++c)
           o[c] = t1 * (a[c] * s1 + a[c + 3] * s) + t * (b[c] * s1 + b[c + 3] * s);

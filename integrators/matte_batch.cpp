@@ -245,23 +245,12 @@ MatteBatch::MatteBatch(const LightSet& lights) : rows_(lights.size(), -1) {
     if (!area || !area->isTriangle()) continue;
     const AreaLight::Triangle t = area->triangleData();
     rows_[i] = int32_t(table_.size() / kColumnCount);
-    const float row[kColumnCount] = {t.p0.x,
-                                     t.p0.y,
-                                     t.p0.z,
-                                     t.e1.x,
-                                     t.e1.y,
-                                     t.e1.z,
-                                     t.e2.x,
-                                     t.e2.y,
-                                     t.e2.z,
-                                     t.n.x,
-                                     t.n.y,
-                                     t.n.z,
-                                     t.area,
-                                     t.Le.x,
-                                     t.Le.y,
-                                     t.Le.z,
-                                     t.doubleSided ? 1.0f : 0.0f};
+    // One line per group of Column.
+    // clang-format off
+    const float row[kColumnCount] = {t.p0.x, t.p0.y, t.p0.z, t.e1.x, t.e1.y, t.e1.z,
+                                     t.e2.x, t.e2.y, t.e2.z, t.n.x, t.n.y, t.n.z,
+                                     t.area, t.Le.x, t.Le.y, t.Le.z, t.doubleSided ? 1.0f : 0.0f};
+    // clang-format on
     table_.insert(table_.end(), row, row + kColumnCount);
   }
   useful_ = hasSimdTarget() && !table_.empty();
