@@ -98,7 +98,7 @@ void PathEstimator::escape(PathState& st) const {
 PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const Hit& hit,
                              ShadowQuery& shadow, bool& wantsShadow, RayStats& stats,
                              PrimaryHit* primary, const SurfacePoint* surface, DrawsAhead ahead,
-                             const MatteDeferral* matte, uint32_t path) const {
+                             const ShadingDeferral* deferral, uint32_t path) const {
   wantsShadow = false;
   // KHR_materials_volume: the segment crosses the medium in effect, which absorbs.
   const Color sigmaA = st.media.currentAbsorption();
@@ -171,9 +171,13 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
 
   // Shade on the side the ray arrived from.
   v.n = s.frontFace ? sm.n : -sm.n;
-  // A matte vertex goes to the SIMD stage before its Bsdf is built (it needs none).
-  if (matte && Bsdf::isLambertOnly(sm) && defer(st, sampler, v, sm.baseColor, ahead, *matte, path))
-    return PathStep::kDeferred;
+  // A matte or glossy vertex goes to its SIMD stage before its Bsdf is built (it needs none).
+  if (deferral) {
+    const bool matte = deferral->matte && Bsdf::isLambertOnly(sm);
+    if ((matte || (deferral->glossy && Bsdf::isGgxMixture(sm))) &&
+        defer(st, sampler, v, sm, eta, ahead, *deferral, !matte, path))
+      return PathStep::kDeferred;
+  }
   const Bsdf bsdf(sm, v.n, eta);
   // A reflecting BSDF sees only light above n unless wo lies below it (shading normals) or a
   // clearcoat brings a normal of its own.
@@ -259,15 +263,16 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
   return roulette(st, draws.sampler);
 }
 
-bool PathEstimator::defer(const PathState& st, Sampler& sampler, Vertex& v, const Color& albedo,
-                          DrawsAhead ahead, const MatteDeferral& matte, uint32_t path) const {
-  // What the SIMD stage repeats: a lone Lambert lobe (the caller's test), both draws made, a
-  // light sample drawn (nextEvent's conditions), nothing for light-path AOVs, no medium to
-  // attenuate by.
+bool PathEstimator::defer(const PathState& st, Sampler& sampler, Vertex& v,
+                          const ShadingMaterial& sm, float eta, DrawsAhead ahead,
+                          const ShadingDeferral& stages, bool glossy, uint32_t path) const {
+  // What the SIMD stages repeat: a lone Lambert lobe or the metal and plastic mixture (the
+  // caller's test), both draws made, a light sample drawn (nextEvent's conditions: neither
+  // BSDF is all deltas), nothing for light-path AOVs, no medium to attenuate by.
   if (!ahead.first || !ahead.second || lights_.empty() || st.paths.active() || !isBlack(v.sigmaA) ||
       (absorbingMedia_ && v.refractive))
     return false;
-  // step's receiver for a Lambert lobe: it does not transmit and has no clearcoat.
+  // step's receiver for either BSDF: it does not transmit and has no clearcoat.
   v.here.p = v.s.p;
   v.here.n = v.n;
   v.here.transmits = false;
@@ -276,31 +281,39 @@ bool PathEstimator::defer(const PathState& st, Sampler& sampler, Vertex& v, cons
   float pmf;
   const int light = lights_.choose(v.here, u.x, pmf);
   const bool chosen = light >= 0 && pmf > 0;
-  const int32_t row = matte.batch.row(light);
-  if (chosen && row < 0) {  // another kind of light: the scalar code samples this choice
+  const int32_t choice = glossy ? stages.glossy->choice(light) : stages.matte->row(light);
+  const bool sampled = glossy ? choice != GlossyBatch::kOtherLight : choice >= 0;
+  if (chosen && !sampled) {  // another kind of light: the scalar code samples this choice
     v.lightChosen = true, v.light = light, v.lightPmf = pmf;
     return false;
   }
-  MatteLanes& m = matte.lanes;
+  ShadingLanes& m = glossy ? *stages.glossyLanes : *stages.matteLanes;
   const size_t q = m.count++;
   const SurfacePoint& s = v.s;
   m.p[q] = s.p, m.ng[q] = s.ng, m.n[q] = v.n, m.wo[q] = v.wo;
-  m.albedo[q] = albedo, m.beta[q] = st.beta;
+  m.albedo[q] = sm.baseColor, m.beta[q] = st.beta;
   m.lightDraw[q] = {u.y, u.z}, m.bsdfDraw[q] = {ahead.second->y, ahead.second->z};
   m.pmf[q] = pmf;
-  m.emitter[q] = chosen ? row : -1;
+  m.emitter[q] = chosen ? choice : int32_t(kNoLightChosen);
+  if (glossy) {
+    m.lobeDraw[q] = ahead.second->x;
+    m.metallic[q] = sm.metallic, m.roughness[q] = sm.roughness, m.eta[q] = eta;
+  }
   m.path[q] = path, m.time[q] = s.time, m.belowMatters[q] = v.here.belowMatters;
   sampler.skip3D(), sampler.skip3D();  // as the two draws would have advanced it
   return true;
 }
 
-PathStep PathEstimator::finishMatte(PathState& st, Sampler& sampler, const MatteLanes& m, size_t q,
-                                    ShadowQuery& shadow, bool& wantsShadow, RayStats& stats) const {
+PathStep PathEstimator::finishDeferred(PathState& st, Sampler& sampler, const ShadingLanes& m,
+                                       size_t q, ShadowQuery& shadow, bool& wantsShadow,
+                                       RayStats& stats) const {
   const float time = m.time[q];
   wantsShadow = m.lit[q];
   if (wantsShadow) {
     shadow.ray.o = m.shadowOrigin[q], shadow.ray.d = m.shadowDir[q];
-    shadow.ray.tmin = 0.0f, shadow.ray.tmax = 1.0f - 1e-4f;  // setSpawnRayTo's
+    // setSpawnRay's toward the environment, setSpawnRayTo's toward a point.
+    shadow.ray.tmin = 0.0f;
+    shadow.ray.tmax = m.emitter[q] == kConstantEnvironment ? kInfinity : 1.0f - 1e-4f;
     shadow.ray.blend = BlendRays::kStochastic, shadow.ray.time = time;
     shadow.contribution = m.contribution[q];
     shadow.indirect = st.indirectNee;
@@ -308,7 +321,7 @@ PathStep PathEstimator::finishMatte(PathState& st, Sampler& sampler, const Matte
     shadow.firstVertex = st.paths.atFirstVertex();
     ++stats.shadowRays;
   }
-  // scatter() from the BSDF sample on (a Lambert lobe: no delta, no transmission).
+  // scatter() from the BSDF sample on (neither stage's BSDF has a delta lobe or transmits).
   const float pdf = m.pdf[q];
   if (!(pdf > 0)) return PathStep::kDone;
   st.beta = m.nextBeta[q];

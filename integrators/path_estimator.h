@@ -9,6 +9,7 @@
 #include "core/integrator.h"
 #include "core/light_paths.h"
 #include "core/shading.h"
+#include "integrators/glossy_batch.h"
 #include "integrators/matte_batch.h"
 #include "lights/light_set.h"
 #include "materials/medium_stack.h"
@@ -77,13 +78,17 @@ struct DrawsAhead {
 enum class PathStep : uint8_t {
   kContinue,  ///< state.ray is the next segment
   kDone,      ///< the path ended (escaped, absorbed, roulette, max depth, NaN)
-  kDeferred,  ///< a matte vertex waits in the SIMD stage's lanes: finishMatte completes it
+  kDeferred,  ///< the vertex waits in a SIMD stage's lanes: finishDeferred completes it
 };
 
-/// Where step() may leave a matte vertex for the SIMD stage (integrators/matte_batch.h).
-struct MatteDeferral {
-  const MatteBatch& batch;
-  MatteLanes& lanes;
+/// Where step() may leave a vertex for a SIMD shading stage: a matte one (a lone Lambert lobe,
+/// integrators/matte_batch.h) or a glossy one (the metal and plastic mixture,
+/// integrators/glossy_batch.h). A null stage takes none.
+struct ShadingDeferral {
+  const MatteBatch* matte = nullptr;
+  ShadingLanes* matteLanes = nullptr;
+  const GlossyBatch* glossy = nullptr;
+  ShadingLanes* glossyLanes = nullptr;
 };
 
 /// Unidirectional path tracing with next-event estimation and MIS (Veach 1997, ch. 9), written
@@ -97,19 +102,21 @@ class PathEstimator {
   /// BSDF sampling and Russian roulette. Fills `primary` at the first surface if not null.
   /// `surface`: Scene::surface(state.ray, hit) when the caller has it (the wavefront computes
   /// its queue's in SIMD, core/surface_batch.h); null: computed here. `ahead`: the sampler's
-  /// next two 3D draws when the caller made them (the same numbers either way). `matte`: a
-  /// vertex with a lone Lambert lobe (and both draws made ahead, no light-path split, no
-  /// absorbing medium) whose light choice is an emissive triangle or none is chosen, queued
-  /// there with its inputs as `path`: kDeferred, the sampler past both draws.
+  /// next two 3D draws when the caller made them (the same numbers either way). `deferral`: a
+  /// vertex with a lone Lambert lobe, or with the metal and plastic mixture (and both draws
+  /// made ahead, no light-path split, no absorbing medium) whose light choice is one its
+  /// stage samples (an emissive triangle; the constant environment for the glossy stage) or
+  /// none is chosen, queued in that stage's lanes with its inputs as `path`: kDeferred, the
+  /// sampler past both draws.
   PathStep step(PathState& state, Sampler& sampler, bool found, const Hit& hit, ShadowQuery& shadow,
                 bool& wantsShadow, RayStats& stats, PrimaryHit* primary,
                 const SurfacePoint* surface = nullptr, DrawsAhead ahead = {},
-                const MatteDeferral* matte = nullptr, uint32_t path = 0) const;
-  /// The rest of a deferred vertex once MatteBatch::compute has run: entry q of `lanes`
+                const ShadingDeferral* deferral = nullptr, uint32_t path = 0) const;
+  /// The rest of a deferred vertex once its stage's compute has run: entry q of `lanes`
   /// becomes the shadow query (wantsShadow) and the next segment, as step() would have made
   /// them, then Russian roulette.
-  PathStep finishMatte(PathState& state, Sampler& sampler, const MatteLanes& lanes, size_t q,
-                       ShadowQuery& shadow, bool& wantsShadow, RayStats& stats) const;
+  PathStep finishDeferred(PathState& state, Sampler& sampler, const ShadingLanes& lanes, size_t q,
+                          ShadowQuery& shadow, bool& wantsShadow, RayStats& stats) const;
   const LightSet& lights() const { return lights_; }
   /// Adds a next-event estimate whose shadow ray was traced.
   void resolveShadow(PathState& state, const ShadowQuery& shadow, bool occluded) const {
@@ -146,10 +153,11 @@ class PathEstimator {
                  ShadowQuery& shadow) const;
   PathStep scatter(PathState& st, const Vertex& v, const Bsdf& bsdf, VertexDraws& draws,
                    RayStats& stats) const;
-  /// Queues a vertex whose BSDF would be a lone Lambert lobe of `albedo` in matte.lanes when
-  /// the rest qualifies (see step), setting v.here; false: step goes on.
-  bool defer(const PathState& st, Sampler& sampler, Vertex& v, const Color& albedo,
-             DrawsAhead ahead, const MatteDeferral& matte, uint32_t path) const;
+  /// Queues a vertex whose BSDF would be a lone Lambert lobe (glossy false) or the metal and
+  /// plastic mixture (glossy true) of `sm` in the stage's lanes when the rest qualifies (see
+  /// step), setting v.here; false: step goes on.
+  bool defer(const PathState& st, Sampler& sampler, Vertex& v, const ShadingMaterial& sm, float eta,
+             DrawsAhead ahead, const ShadingDeferral& stages, bool glossy, uint32_t path) const;
   /// Russian roulette after a scattering (Arvo & Kirk 1990) with Mitsuba's survival
   /// probability, from the kRouletteDepth-th segment on.
   PathStep roulette(PathState& st, Sampler& sampler) const {

@@ -7,6 +7,7 @@
 #include "core/sampler_batch.h"
 #include "core/simd_lanes.h"
 #include "core/surface_batch.h"
+#include "integrators/glossy_batch.h"
 #include "integrators/matte_batch.h"
 #include "integrators/path.h"
 #include "integrators/path_estimator.h"
@@ -35,7 +36,8 @@ struct Wave {
   std::vector<SurfacePoint> surfaces;  ///< at the found hits (when SurfaceBatch is useful)
   SurfaceBatch::Scratch surfaceScratch;
   SamplerDrawsAhead draws;  ///< each live path's next two 3D draws (when SIMD is available)
-  MatteLanes matte;         ///< the bounce's matte vertices, for the SIMD stage
+  ShadingLanes matte;       ///< the bounce's matte vertices, for the SIMD matte stage
+  ShadingLanes glossy;      ///< the bounce's metal and plastic vertices, for the glossy stage
   // The shadow queue: next-event estimates waiting for their rays (slots kept from one bounce
   // to the next; bounce() says how many are in use).
   std::vector<ShadowQuery> shadows;
@@ -71,6 +73,7 @@ class PathWavefrontIntegrator final : public Integrator {
         surfaces_(ctx_.scene),
         drawsAhead_(hasSimdTarget()),
         matte_(estimator_.lights()),
+        glossy_(estimator_.lights(), matte_),
         cameraBatch_(CameraRayBatch::make(ctx_.camera, pixelSampler(), seed(), sequence(), moving(),
                                           ctx_.width)) {}
 
@@ -114,6 +117,7 @@ class PathWavefrontIntegrator final : public Integrator {
   SurfaceBatch surfaces_;
   bool drawsAhead_;   ///< each bounce makes its paths' 3D draws in SIMD (SamplerBatch)
   MatteBatch matte_;  ///< matte vertices' light and BSDF samples in SIMD (when useful)
+  GlossyBatch glossy_;  ///< the same for metal and plastic vertices (when useful)
   std::optional<CameraRayBatch> cameraBatch_;  ///< nothing: cameras the kernel does not cover
 };
 
@@ -211,11 +215,13 @@ void PathWavefrontIntegrator::bounce(Wave& w, RayStats& stats) const {
   if (drawsAhead_)
     SamplerBatch::drawTwo3D(sequence(), w.samplers.data(), w.live.data(), count, w.draws);
 
-  // Matte vertices wait in w.matte for the SIMD stage (integrators/matte_batch.h); it needs the
-  // draws made ahead.
-  const bool deferring = drawsAhead_ && matte_.useful();
-  if (deferring) w.matte.reset(count);
-  const MatteDeferral deferral{matte_, w.matte};
+  // Matte and glossy vertices wait in w.matte and w.glossy for the SIMD stages
+  // (integrators/matte_batch.h, glossy_batch.h); they need the draws made ahead.
+  const bool matteOn = drawsAhead_ && matte_.useful(), glossyOn = drawsAhead_ && glossy_.useful();
+  if (matteOn) w.matte.reset(count);
+  if (glossyOn) w.glossy.reset(count);
+  const ShadingDeferral deferral{matteOn ? &matte_ : nullptr, &w.matte,
+                                 glossyOn ? &glossy_ : nullptr, &w.glossy};
 
   w.next.clear();
   // step() writes a next-event estimate straight into the queue's next slot, setting what
@@ -230,22 +236,24 @@ void PathWavefrontIntegrator::bounce(Wave& w, RayStats& stats) const {
         w.paths[k], w.samplers[k], w.found[j], w.hits[j], w.shadows[shadowCount], wantsShadow,
         stats, &w.primary[k], surfacesKnown ? &w.surfaces[j] : nullptr,
         drawsAhead_ ? DrawsAhead{&w.draws.first[j], &w.draws.second[j]} : DrawsAhead{},
-        deferring ? &deferral : nullptr, k);
+        matteOn || glossyOn ? &deferral : nullptr, k);
     if (wantsShadow) w.shadowPath[shadowCount++] = k;
     if (step == PathStep::kContinue) w.next.push_back(k);
   }
-  if (deferring && w.matte.count > 0) {
-    matte_.compute(w.matte);
-    stats.simdVertices += w.matte.count;
-    for (size_t q = 0; q < w.matte.count; ++q) {
-      const uint32_t k = w.matte.path[q];
+  // The stages' results become shadow queries and next segments, path by path.
+  const auto finish = [&](ShadingLanes& lanes) {
+    stats.simdVertices += lanes.count;
+    for (size_t q = 0; q < lanes.count; ++q) {
+      const uint32_t k = lanes.path[q];
       bool wantsShadow;
-      const PathStep step = estimator_.finishMatte(w.paths[k], w.samplers[k], w.matte, q,
-                                                   w.shadows[shadowCount], wantsShadow, stats);
+      const PathStep step = estimator_.finishDeferred(w.paths[k], w.samplers[k], lanes, q,
+                                                      w.shadows[shadowCount], wantsShadow, stats);
       if (wantsShadow) w.shadowPath[shadowCount++] = k;
       if (step == PathStep::kContinue) w.next.push_back(k);
     }
-  }
+  };
+  if (matteOn && w.matte.count > 0) matte_.compute(w.matte), finish(w.matte);
+  if (glossyOn && w.glossy.count > 0) glossy_.compute(w.glossy), finish(w.glossy);
 
   w.shadowRays.resize(shadowCount), w.blocked.resize(shadowCount);
   for (size_t q = 0; q < shadowCount; ++q) w.shadowRays[q] = w.shadows[q].ray;

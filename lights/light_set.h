@@ -69,6 +69,8 @@ class LightSet {
   const std::vector<int>& infinite() const { return infinite_; }
   /// Indices of the delta lights (point, spot, directional), in the scene's order.
   const std::vector<int>& delta() const { return delta_; }
+  /// Index of the constant environment (TRAY_environment's background), or -1.
+  int constantEnvironment() const { return constantEnvironment_; }
   /// Number of emissive triangles in the set.
   size_t triangleCount() const { return triangleCount_; }
 

@@ -68,7 +68,7 @@ void expectSameBits(const Vec3& got, const Vec3& want, const char* what, size_t 
 }
 
 /// One random matte vertex in entry q of `m`: edge cases every few entries.
-void randomVertex(std::mt19937_64& rng, const MatteBatch& batch, size_t lights, MatteLanes& m,
+void randomVertex(std::mt19937_64& rng, const MatteBatch& batch, size_t lights, ShadingLanes& m,
                   size_t q) {
   std::uniform_real_distribution<float> u01(0.0f, 1.0f), u(-3.0f, 3.0f);
   m.p[q] = {u(rng), u(rng), u(rng)};
@@ -87,7 +87,7 @@ void randomVertex(std::mt19937_64& rng, const MatteBatch& batch, size_t lights, 
 }
 
 /// Entry q's outputs against the scalar pieces step() runs; returns 1 when it was lit.
-int compareVertex(const LightSet& lights, const MatteLanes& m, size_t q) {
+int compareVertex(const LightSet& lights, const ShadingLanes& m, size_t q) {
   Material material = test::diffuse(m.albedo[q]);
   const Bsdf bsdf(material, m.n[q], 1.5f);
   EXPECT_TRUE(bsdf.lambertOnly());
@@ -132,7 +132,7 @@ TEST(MatteBatch, KernelIsTheScalarStepBitForBit) {
   ASSERT_TRUE(batch.useful());
   test::onEverySimdTarget(1000, [&] {
     int compared = 0, lit = 0;
-    MatteLanes m;
+    ShadingLanes m;
     for (int wave = 0; wave < 40 && !testing::Test::HasFailure(); ++wave) {
       const size_t count = std::uniform_int_distribution<size_t>(1, 100)(rng);  // partial vectors
       m.reset(count);
