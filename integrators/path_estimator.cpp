@@ -173,10 +173,11 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
   v.n = s.frontFace ? sm.n : -sm.n;
   // A matte or glossy vertex goes to its SIMD stage before its Bsdf is built (it needs none).
   if (deferral) {
-    const bool matte = deferral->matte && Bsdf::isLambertOnly(sm);
-    if ((matte || (deferral->glossy && Bsdf::isGgxMixture(sm))) &&
-        defer(st, sampler, v, sm, eta, ahead, *deferral, !matte, path))
-      return PathStep::kDeferred;
+    if (deferral->matte && Bsdf::isLambertOnly(sm)) {
+      if (defer<false>(st, sampler, v, sm, eta, ahead, *deferral, path)) return PathStep::kDeferred;
+    } else if (deferral->glossy && Bsdf::isGgxMixture(sm)) {
+      if (defer<true>(st, sampler, v, sm, eta, ahead, *deferral, path)) return PathStep::kDeferred;
+    }
   }
   const Bsdf bsdf(sm, v.n, eta);
   // A reflecting BSDF sees only light above n unless wo lies below it (shading normals) or a
@@ -263,9 +264,10 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
   return roulette(st, draws.sampler);
 }
 
+template <bool glossy>
 bool PathEstimator::defer(const PathState& st, Sampler& sampler, Vertex& v,
                           const ShadingMaterial& sm, float eta, DrawsAhead ahead,
-                          const ShadingDeferral& stages, bool glossy, uint32_t path) const {
+                          const ShadingDeferral& stages, uint32_t path) const {
   // What the SIMD stages repeat: a lone Lambert lobe or the metal and plastic mixture (the
   // caller's test), both draws made, a light sample drawn (nextEvent's conditions: neither
   // BSDF is all deltas), nothing for light-path AOVs, no medium to attenuate by.
@@ -281,13 +283,18 @@ bool PathEstimator::defer(const PathState& st, Sampler& sampler, Vertex& v,
   float pmf;
   const int light = lights_.choose(v.here, u.x, pmf);
   const bool chosen = light >= 0 && pmf > 0;
-  const int32_t choice = glossy ? stages.glossy->choice(light) : stages.matte->row(light);
-  const bool sampled = glossy ? choice != GlossyBatch::kOtherLight : choice >= 0;
+  int32_t choice;
+  bool sampled;
+  if constexpr (glossy) {
+    choice = stages.glossy->choice(light), sampled = choice != GlossyBatch::kOtherLight;
+  } else {
+    choice = stages.matte->row(light), sampled = choice >= 0;
+  }
   if (chosen && !sampled) {  // another kind of light: the scalar code samples this choice
     v.lightChosen = true, v.light = light, v.lightPmf = pmf;
     return false;
   }
-  ShadingLanes& m = glossy ? *stages.glossyLanes : *stages.matteLanes;
+  ShadingLanes& m = glossy ? *stages.glossyLanes : *stages.matteLanes;  // a constant
   const size_t q = m.count++;
   const SurfacePoint& s = v.s;
   m.p[q] = s.p, m.ng[q] = s.ng, m.n[q] = v.n, m.wo[q] = v.wo;
@@ -295,7 +302,7 @@ bool PathEstimator::defer(const PathState& st, Sampler& sampler, Vertex& v,
   m.lightDraw[q] = {u.y, u.z}, m.bsdfDraw[q] = {ahead.second->y, ahead.second->z};
   m.pmf[q] = pmf;
   m.emitter[q] = chosen ? choice : int32_t(kNoLightChosen);
-  if (glossy) {
+  if constexpr (glossy) {
     m.lobeDraw[q] = ahead.second->x;
     m.metallic[q] = sm.metallic, m.roughness[q] = sm.roughness, m.eta[q] = eta;
   }

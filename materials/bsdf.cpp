@@ -40,6 +40,19 @@ void Bsdf::initLobes(const ShadingMaterial& m, float eta) {
                                       : Only::kMixture;
 }
 
+bool Bsdf::isGgxMixture(const ShadingMaterial& m) {
+  if (!std::isfinite(m.metallic) || !std::isfinite(m.roughness) || !(m.transmission <= 0) ||
+      m.clearcoat > 0 || !isBlack(m.sheenColor) || m.specular != 1.0f ||
+      !(m.specularColor == Color(1.0f)) || isLambertOnly(m))
+    return false;
+  if (!(std::max(m.roughness * m.roughness, 1e-4f) >= GgxDistribution::kSmoothAlpha))
+    return false;  // GgxDistribution's alpha: a delta lobe
+  const float wMetal = std::clamp(m.metallic, 0.0f, 1.0f);
+  const bool coat = std::clamp((1.0f - m.roughness) * 10.0f, 0.0f, 1.0f) > 0;
+  const Color& a = m.baseColor;
+  return wMetal > 0 || (1.0f - wMetal > 0 && (coat || a.x > 0 || a.y > 0 || a.z > 0));
+}
+
 float Bsdf::coatFresnel(const Vec3& wo) const {
   if (coatTinted_) return coat_ > 0 ? coat_ * maxComponent(coatLobe_->fresnel(wo.z)) : 0.0f;
   return coat_ > 0 ? coat_ * fresnelDielectric(absCosTheta(wo), coatEta_) : 0.0f;

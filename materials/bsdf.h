@@ -86,18 +86,8 @@ class Bsdf {
   /// tint, some lobe in use, not a lone Lambert lobe. The SIMD glossy stage repeats eval and
   /// sample for it (integrators/glossy_batch.h): initLobes' Only::kMetal or kMixture, whose
   /// lone metal lobe is the mixture with weight 1.
-  static bool isGgxMixture(const ShadingMaterial& m) {
-    if (!std::isfinite(m.metallic) || !std::isfinite(m.roughness) || !(m.transmission <= 0) ||
-        m.clearcoat > 0 || !isBlack(m.sheenColor) || m.specular != 1.0f ||
-        !(m.specularColor == Color(1.0f)) || isLambertOnly(m))
-      return false;
-    if (!(std::max(m.roughness * m.roughness, 1e-4f) >= GgxDistribution::kSmoothAlpha))
-      return false;  // GgxDistribution's alpha: a delta lobe
-    const float wMetal = std::clamp(m.metallic, 0.0f, 1.0f);
-    const bool coat = std::clamp((1.0f - m.roughness) * 10.0f, 0.0f, 1.0f) > 0;
-    const Color& a = m.baseColor;
-    return wMetal > 0 || (1.0f - wMetal > 0 && (coat || a.x > 0 || a.y > 0 || a.z > 0));
-  }
+  /// Out of line: inlined, it cost the matte vertices' step more than the call costs these.
+  static bool isGgxMixture(const ShadingMaterial& m);
   bool lambertOnly() const { return lambertOnly_; }
   const Frame& frame() const { return frame_; }
 
