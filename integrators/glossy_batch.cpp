@@ -169,48 +169,23 @@ HWY_INLINE Evaluated MixtureEvalPdf(const Mixture& x, const V3& wo, const V3& wi
 
 /// Next-event estimation of one vector of vertices: the chosen triangle's or the constant
 /// environment's sample, the mixture toward it, powerHeuristic and the shadow ray.
-HWY_INLINE void LightSample(const Fields& f, const float* table, const Color& envLe,
+HWY_INLINE void LightSample(const Fields& f, const float* table, const Color& environmentLe,
                             const Basis& frame, const Mixture& x, const V3& wo) {
   const DF df;
   const DI di;
-  const VF zero = hn::Zero(df);
-  const V3 p = f.load(f.m.p), ng = f.load(f.m.ng), &n = frame.n;
-  const TriangleSample tri = SampleTriangle(f, table, p);
-  // EnvironmentLight::sample for a receiver that does not transmit: the cosine lobe about n.
-  const MF env = hn::RebindMask(df, hn::Eq(f.load(f.m.emitter), hn::Set(di, kConstantEnvironment)));
-  V3 wi = tri.wi;
-  VF lightPdf = tri.pdf;
-  V3 Le = tri.Le;
-  MF ok = tri.ok;
-  if (!hn::AllFalse(df, env)) {
-    VF u1, u2, r, theta, dx, dy;
-    MF center;
-    f.load(f.m.lightDraw, u1, u2);
-    ConcentricPolar(u1, u2, r, theta, center);
-    Polar(r, theta, dx, dy);
-    dx = hn::IfThenZeroElse(center, dx), dy = hn::IfThenZeroElse(center, dy);
-    const V3 wiEnv = Normalize(frame.toWorld({dx, dy, CosineZ(dx, dy)}));
-    const VF pdfEnv = hn::Div(StdMax(zero, Dot(n, wiEnv)), hn::Set(df, kPi)) * f.load(f.m.pmf);
-    const V3 LeEnv = {hn::Set(df, envLe.x), hn::Set(df, envLe.y), hn::Set(df, envLe.z)};
-    wi = Select(env, wiEnv, wi);
-    lightPdf = hn::IfThenElse(env, pdfEnv, lightPdf);
-    Le = Select(env, LeEnv, Le);
-    const MF okEnv = hn::AndNot(Black(LeEnv), hn::Gt(pdfEnv, zero));
-    ok = hn::Or(hn::AndNot(env, ok), hn::And(env, okEnv));
-  }
+  const V3 p = f.load(f.m.p), ng = f.load(f.m.ng);
+  const ChosenLightSample ls = SampleChosenLight(f, table, environmentLe, p, frame.n);
   // Bsdf::eval(wo, wi, pdf) times |cos| at the receiver.
-  Evaluated e = MixtureEvalPdf(x, wo, frame.toLocal(wi));
-  const VF absCos = hn::Abs(Dot(wi, n));
+  const Evaluated e = MixtureEvalPdf(x, wo, frame.toLocal(ls.wi));
+  const VF absCos = hn::Abs(Dot(ls.wi, frame.n));
   const V3 fr = {e.f.x * absCos, e.f.y * absCos, e.f.z * absCos};
-  ok = hn::AndNot(Black(fr), ok);
-  const VF scale = hn::Div(PowerHeuristic(lightPdf, e.pdf), lightPdf);
+  const MF ok = hn::AndNot(Black(fr), ls.ok);
+  const VF scale = hn::Div(PowerHeuristic(ls.pdf, e.pdf), ls.pdf);
   const V3 beta = f.load(f.m.beta);
+  const V3& Le = ls.Le;
   f.store(f.m.contribution, {((beta.x * fr.x) * Le.x) * scale, ((beta.y * fr.y) * Le.y) * scale,
                              ((beta.z * fr.z) * Le.z) * scale});
-  // setSpawnRay(p, ng, wi) toward the environment, setSpawnRayTo(p, ng, target) otherwise.
-  const V3 origin = SpawnOrigin(p, ng, Select(env, wi, Sub(tri.target, p)));
-  f.store(f.m.shadowOrigin, origin);
-  f.store(f.m.shadowDir, Select(env, wi, Sub(tri.target, origin)));
+  StoreShadowRay(f, ls, p, ng);
   f.store(f.m.lit, hn::VecFromMask(di, hn::RebindMask(di, ok)));
 }
 
@@ -311,16 +286,12 @@ HWY_AFTER_NAMESPACE();
 namespace tray {
 HWY_EXPORT(GlossyVertices);
 
-GlossyBatch::GlossyBatch(const LightSet& lights, const MatteBatch& emitters)
-    : emitters_(emitters), environment_(lights.constantEnvironment()) {
-  if (environment_ >= 0) environmentLe_ = lights.light(size_t(environment_)).Le(Vec3(0, 0, 1));
-  useful_ = hasSimdTarget() && !lights.empty();
-}
+GlossyBatch::GlossyBatch(const MatteBatch& lights) : lights_(lights) {}
 
 void GlossyBatch::compute(ShadingLanes& lanes) const {
   if (lanes.count == 0) return;
   lanes.padInputs();
-  HWY_DYNAMIC_DISPATCH(GlossyVertices)(emitters_.table(), environmentLe_, lanes);
+  HWY_DYNAMIC_DISPATCH(GlossyVertices)(lights_.table(), lights_.environmentLe(), lanes);
 }
 
 }  // namespace tray

@@ -1,9 +1,10 @@
 // Highway's dynamic dispatch, as core/surface_batch.cpp: compiled once per x86 target, with
 // -ffp-contract=off (integrators/CMakeLists.txt). Every lane repeats PathEstimator::step's
-// arithmetic for a lone Lambert lobe and a triangle light, term by term in its order
-// (AreaLight::sampleTriangle, Bsdf::lambertEval and lambertSample, Frame::fromNormal,
-// powerHeuristic, setSpawnRay and setSpawnRayTo), so the bits are the same. The concentric
-// map's cosine and sine are libm's, lane by lane, as the scalar code calls them.
+// arithmetic for a lone Lambert lobe and a triangle light or the constant environment, term by
+// term in its order (AreaLight::sampleTriangle, EnvironmentLight::sample, Bsdf::lambertEval and
+// lambertSample, Frame::fromNormal, powerHeuristic, setSpawnRay and setSpawnRayTo), so the bits are
+// the same. The concentric map's cosine and sine are libm's, lane by lane, as the scalar code calls
+// them.
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "integrators/matte_batch.cpp"
 #include "integrators/matte_batch.h"
@@ -25,17 +26,18 @@ namespace hn = hwy::HWY_NAMESPACE;
 
 #if HWY_TARGET == HWY_SCALAR
 // MatteBatch::useful() is false without a SIMD target: never called.
-void MatteVertices(const float*, ShadingLanes&) {}
+void MatteVertices(const float*, const Color&, ShadingLanes&) {}
 #else
 
-/// Next-event estimation of one vector of vertices: AreaLight::sampleTriangle (pdf times the
-/// choice's pmf), Bsdf::lambertEval, powerHeuristic and setSpawnRayTo, as nextEvent runs them.
-HWY_NOINLINE void LightSample(const Fields& f, const float* table) {
+/// Next-event estimation of one vector of vertices: AreaLight::sampleTriangle or the constant
+/// environment's sample (pdf times the choice's pmf), Bsdf::lambertEval, powerHeuristic and
+/// the shadow ray, as nextEvent runs them.
+HWY_NOINLINE void LightSample(const Fields& f, const float* table, const Color& environmentLe) {
   const DF df;
   const DI di;
   const VF zero = hn::Zero(df);
   const V3 p = f.load(f.m.p), ng = f.load(f.m.ng), n = f.load(f.m.n);
-  const TriangleSample ls = SampleTriangle(f, table, p);
+  const ChosenLightSample ls = SampleChosenLight(f, table, environmentLe, p, n);
   // Bsdf::lambertEval, times |cos| at the receiver.
   const VF cosO = Dot(f.load(f.m.wo), n), cosI = Dot(ls.wi, n);
   const MF same = hn::Gt(cosO * cosI, zero);
@@ -54,10 +56,7 @@ HWY_NOINLINE void LightSample(const Fields& f, const float* table) {
   const V3& Le = ls.Le;
   f.store(f.m.contribution, {((beta.x * fr.x) * Le.x) * scale, ((beta.y * fr.y) * Le.y) * scale,
                              ((beta.z * fr.z) * Le.z) * scale});
-  // setSpawnRayTo(p, ng, target).
-  const V3 origin = SpawnOrigin(p, ng, Sub(ls.target, p));
-  f.store(f.m.shadowOrigin, origin);
-  f.store(f.m.shadowDir, Sub(ls.target, origin));
+  StoreShadowRay(f, ls, p, ng);
   f.store(f.m.lit, hn::VecFromMask(di, hn::RebindMask(di, ok)));
 }
 
@@ -90,12 +89,12 @@ HWY_NOINLINE void ScatterSample(const Fields& f) {
   f.store(f.m.rayDir, wi);
 }
 
-void MatteVertices(const float* table, ShadingLanes& lanes) {
+void MatteVertices(const float* table, const Color& environmentLe, ShadingLanes& lanes) {
   const size_t n = hn::Lanes(DF());
   // Whole vectors: the inputs are padded (ShadingLanes::padInputs), and the outputs have room.
   for (size_t q = 0; q < lanes.count; q += n) {
     const Fields f{lanes, q};
-    LightSample(f, table);
+    LightSample(f, table, environmentLe);
     ScatterSample(f);
   }
 }
@@ -109,12 +108,12 @@ HWY_AFTER_NAMESPACE();
 namespace tray {
 HWY_EXPORT(MatteVertices);
 
-MatteBatch::MatteBatch(const LightSet& lights) : rows_(lights.size(), -1) {
+MatteBatch::MatteBatch(const LightSet& lights) : choices_(lights.size(), kOtherLight) {
   for (size_t i = 0; i < lights.size(); ++i) {
     const AreaLight* area = lights.areaLight(i);
     if (!area || !area->isTriangle()) continue;
     const AreaLight::Triangle t = area->triangleData();
-    rows_[i] = int32_t(table_.size() / kColumnCount);
+    choices_[i] = int32_t(table_.size() / kColumnCount);
     // One line per group of Column.
     // clang-format off
     const float row[kColumnCount] = {t.p0.x, t.p0.y, t.p0.z, t.e1.x, t.e1.y, t.e1.z,
@@ -123,16 +122,21 @@ MatteBatch::MatteBatch(const LightSet& lights) : rows_(lights.size(), -1) {
     // clang-format on
     table_.insert(table_.end(), row, row + kColumnCount);
   }
-  useful_ = hasSimdTarget() && !table_.empty();
-  // A row of zeros where there is no emissive triangle: what the glossy stage's lanes gather
-  // when none of them chose one (row() still maps every light to -1).
+  const int environment = lights.constantEnvironment();
+  if (environment >= 0) {
+    choices_[size_t(environment)] = kConstantEnvironment;
+    environmentLe_ = lights.light(size_t(environment)).Le(Vec3(0.0f, 0.0f, 1.0f));
+  }
+  useful_ = hasSimdTarget() && (!table_.empty() || environment >= 0);
+  // A row of zeros where there is no emissive triangle: what the lanes gather when none of
+  // them chose one.
   if (table_.empty()) table_.assign(kColumnCount, 0.0f);
 }
 
 void MatteBatch::compute(ShadingLanes& lanes) const {
   if (lanes.count == 0) return;
   lanes.padInputs();
-  HWY_DYNAMIC_DISPATCH(MatteVertices)(table_.data(), lanes);
+  HWY_DYNAMIC_DISPATCH(MatteVertices)(table_.data(), environmentLe_, lanes);
 }
 
 }  // namespace tray

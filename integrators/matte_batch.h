@@ -1,7 +1,8 @@
 #pragma once
 // Matte vertices in SIMD (Highway, dynamic dispatch): the second half of PathEstimator::step
 // for every queued vertex whose BSDF is a lone Lambert lobe and whose light choice fell on an
-// emissive triangle (or on no light), which is every vertex of the Cornell box. The light
+// emissive triangle, the constant environment or no light: every vertex of the Cornell box
+// and of the white furnace. The light
 // sample, its Lambert term and MIS weight, the shadow ray, the cosine-weighted BSDF sample
 // and the next ray are computed for a vector of vertices at once, bit for bit the scalar
 // step's (docs/wavefront.md, "Matte shading in SIMD").
@@ -15,20 +16,25 @@
 
 namespace tray {
 
-/// The SIMD stage: the scene's emissive triangles as a table the kernel gathers from.
+/// The SIMD stage: the scene's emissive triangles as a table the kernel gathers from, and the
+/// constant environment's radiance.
 class MatteBatch {
  public:
   explicit MatteBatch(const LightSet& lights);
-  /// A SIMD target and at least one emissive triangle: worth deferring vertices to.
+  /// A SIMD target and a light the stage samples (an emissive triangle or the constant
+  /// environment): worth deferring vertices to.
   bool useful() const { return useful_; }
-  /// Light `index`'s row of the table, or -1 when it is not an emissive triangle.
-  int32_t row(int index) const {
-    return index >= 0 && size_t(index) < rows_.size() ? rows_[size_t(index)] : -1;
+  /// Light `index` as the lanes name it: a triangle's row of the table, kConstantEnvironment,
+  /// or kOtherLight when the stages do not sample it (the scalar code does; also for -1).
+  int32_t choice(int index) const {
+    return index >= 0 && size_t(index) < choices_.size() ? choices_[size_t(index)]
+                                                         : int32_t(kOtherLight);
   }
   /// Computes the outputs of lanes.count vertices (their inputs padded: padInputs).
   void compute(ShadingLanes& lanes) const;
   /// The emitter table (kColumnCount floats per row; the glossy stage gathers from it too).
   const float* table() const { return table_.data(); }
+  const Color& environmentLe() const { return environmentLe_; }
 
   /// Floats per row: vertex 0, the two edges, the unit front normal, the area, the radiance
   /// and whether both faces emit (1 or 0).
@@ -40,8 +46,9 @@ class MatteBatch {
   // clang-format on
 
  private:
-  std::vector<float> table_;   ///< kColumnCount floats per row
-  std::vector<int32_t> rows_;  ///< per light index
+  std::vector<float> table_;      ///< kColumnCount floats per row
+  std::vector<int32_t> choices_;  ///< per light index
+  Color environmentLe_{0.0f};
   bool useful_ = false;
 };
 

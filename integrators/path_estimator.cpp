@@ -283,14 +283,8 @@ bool PathEstimator::defer(const PathState& st, Sampler& sampler, Vertex& v,
   float pmf;
   const int light = lights_.choose(v.here, u.x, pmf);
   const bool chosen = light >= 0 && pmf > 0;
-  int32_t choice;
-  bool sampled;
-  if constexpr (glossy) {
-    choice = stages.glossy->choice(light), sampled = choice != GlossyBatch::kOtherLight;
-  } else {
-    choice = stages.matte->row(light), sampled = choice >= 0;
-  }
-  if (chosen && !sampled) {  // another kind of light: the scalar code samples this choice
+  const int32_t choice = stages.lights->choice(light);
+  if (chosen && choice == kOtherLight) {  // another kind of light: the scalar code samples it
     v.lightChosen = true, v.light = light, v.lightPmf = pmf;
     return false;
   }

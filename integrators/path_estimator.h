@@ -83,11 +83,11 @@ enum class PathStep : uint8_t {
 
 /// Where step() may leave a vertex for a SIMD shading stage: a matte one (a lone Lambert lobe,
 /// integrators/matte_batch.h) or a glossy one (the metal and plastic mixture,
-/// integrators/glossy_batch.h). A null stage takes none.
+/// integrators/glossy_batch.h). A stage not in use takes none.
 struct ShadingDeferral {
-  const MatteBatch* matte = nullptr;
+  const MatteBatch* lights = nullptr;  ///< which light choices the stages sample
+  bool matte = false, glossy = false;  ///< the stages in use
   ShadingLanes* matteLanes = nullptr;
-  const GlossyBatch* glossy = nullptr;
   ShadingLanes* glossyLanes = nullptr;
 };
 

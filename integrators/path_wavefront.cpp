@@ -73,7 +73,7 @@ class PathWavefrontIntegrator final : public Integrator {
         surfaces_(ctx_.scene),
         drawsAhead_(hasSimdTarget()),
         matte_(estimator_.lights()),
-        glossy_(estimator_.lights(), matte_),
+        glossy_(matte_),
         cameraBatch_(CameraRayBatch::make(ctx_.camera, pixelSampler(), seed(), sequence(), moving(),
                                           ctx_.width)) {}
 
@@ -220,8 +220,7 @@ void PathWavefrontIntegrator::bounce(Wave& w, RayStats& stats) const {
   const bool matteOn = drawsAhead_ && matte_.useful(), glossyOn = drawsAhead_ && glossy_.useful();
   if (matteOn) w.matte.reset(count);
   if (glossyOn) w.glossy.reset(count);
-  const ShadingDeferral deferral{matteOn ? &matte_ : nullptr, &w.matte,
-                                 glossyOn ? &glossy_ : nullptr, &w.glossy};
+  const ShadingDeferral deferral{&matte_, matteOn, glossyOn, &w.matte, &w.glossy};
 
   w.next.clear();
   // step() writes a next-event estimate straight into the queue's next slot, setting what

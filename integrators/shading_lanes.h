@@ -9,11 +9,12 @@
 
 namespace tray {
 
-/// Light choices a stage samples itself, in ShadingLanes::emitter beside a triangle's row of
-/// the emitter table (>= 0).
+/// Light choices as the stages name them (MatteBatch::choice), in ShadingLanes::emitter beside
+/// a triangle's row of the emitter table (>= 0).
 enum EmitterChoice : int32_t {
   kNoLightChosen = -1,
-  kConstantEnvironment = -2,  ///< the scene's constant environment (glossy stage only)
+  kConstantEnvironment = -2,  ///< the scene's constant environment
+  kOtherLight = -3,           ///< a light the stages do not sample (never in the lanes)
 };
 
 /// The deferred vertices of one bounce, one array per field (Vec3 fields as arrays of Vec3:

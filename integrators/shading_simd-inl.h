@@ -207,6 +207,52 @@ HWY_INLINE TriangleSample SampleTriangle(const Fields& f, const float* table, co
   return s;
 }
 
+/// The lanes' chosen light sampled: a triangle of the table (SampleTriangle), or the constant
+/// environment as EnvironmentLight::sample draws it for a receiver that does not transmit
+/// (the cosine lobe about n, normalised; pdf cosineHemispherePdf(n . wi) times the choice's
+/// pmf). `ok` where a light was chosen and its sample is valid with some radiance.
+struct ChosenLightSample {
+  V3 wi, Le, target;  ///< target: the triangle's point (not for the environment)
+  VF pdf;
+  MF ok, environment;
+};
+HWY_INLINE ChosenLightSample SampleChosenLight(const Fields& f, const float* table,
+                                               const Color& environmentLe, const V3& p,
+                                               const V3& n) {
+  const DF df;
+  const DI di;
+  const VF zero = hn::Zero(df);
+  const TriangleSample tri = SampleTriangle(f, table, p);
+  ChosenLightSample s{tri.wi, tri.Le, tri.target, tri.pdf, tri.ok, {}};
+  s.environment =
+      hn::RebindMask(df, hn::Eq(f.load(f.m.emitter), hn::Set(di, kConstantEnvironment)));
+  if (hn::AllFalse(df, s.environment)) return s;
+  VF u1, u2, r, theta, dx, dy;
+  MF center;
+  f.load(f.m.lightDraw, u1, u2);
+  ConcentricPolar(u1, u2, r, theta, center);
+  Polar(r, theta, dx, dy);
+  dx = hn::IfThenZeroElse(center, dx), dy = hn::IfThenZeroElse(center, dy);
+  const V3 wi = Normalize(Basis(n).toWorld({dx, dy, CosineZ(dx, dy)}));
+  const VF pdf = hn::Div(StdMax(zero, Dot(n, wi)), hn::Set(df, kPi)) * f.load(f.m.pmf);
+  const V3 Le = {hn::Set(df, environmentLe.x), hn::Set(df, environmentLe.y),
+                 hn::Set(df, environmentLe.z)};
+  const MF ok = hn::AndNot(Black(Le), hn::Gt(pdf, zero));
+  s.wi = Select(s.environment, wi, s.wi);
+  s.Le = Select(s.environment, Le, s.Le);
+  s.pdf = hn::IfThenElse(s.environment, pdf, s.pdf);
+  s.ok = hn::Or(hn::AndNot(s.environment, s.ok), hn::And(s.environment, ok));
+  return s;
+}
+/// The shadow ray toward a chosen light's sample: setSpawnRay(p, ng, wi) toward the
+/// environment (unbounded: finishDeferred sets tmax), setSpawnRayTo(p, ng, target) otherwise.
+HWY_INLINE void StoreShadowRay(const Fields& f, const ChosenLightSample& ls, const V3& p,
+                               const V3& ng) {
+  const V3 origin = SpawnOrigin(p, ng, Select(ls.environment, ls.wi, Sub(ls.target, p)));
+  f.store(f.m.shadowOrigin, origin);
+  f.store(f.m.shadowDir, Select(ls.environment, ls.wi, Sub(ls.target, origin)));
+}
+
 /// powerHeuristic(pf, pg) (core/sampling.h): 1 where pf is infinite.
 HWY_INLINE VF PowerHeuristic(VF pf, VF pg) {
   const DF df;

@@ -1,9 +1,9 @@
 // The SIMD matte stage (integrators/matte_batch.h) on every SIMD target the CPU has:
 // - its kernel against the scalar pieces PathEstimator::step runs for a lone Lambert lobe and
-//   a triangle light (AreaLight::sample, Bsdf::eval and sample, powerHeuristic, spawnRayTo,
-//   spawnRay), bit for bit, on random vertices including the edge cases (no light chosen,
-//   lights facing away, receivers below the light's plane, the disk map's centre, black
-//   channels);
+//   a triangle light or the constant environment (AreaLight::sample, EnvironmentLight::sample,
+//   Bsdf::eval and sample, powerHeuristic, spawnRayTo, spawnRay), bit for bit, on random vertices
+//   including the edge cases (no light chosen, lights facing away, receivers below the light's
+//   plane, the disk map's centre, black channels);
 // - whole renders of random scenes through `path` (the wavefront, which defers its matte
 //   vertices to the stage) against `path-scalar`, bit for bit, with other lights and
 //   materials mixed in that the stage leaves to the scalar code.
@@ -45,8 +45,9 @@ TriangleMesh randomTriangle(std::mt19937_64& rng, int material) {
   return m;
 }
 
-/// Emissive triangles: random radiance (one black), some double-sided.
-Scene emitters(std::mt19937_64& rng, int count) {
+/// Emissive triangles: random radiance (one black), some double-sided; under a constant
+/// environment when `sky`.
+Scene emitters(std::mt19937_64& rng, int count, bool sky) {
   Scene scene;
   std::uniform_real_distribution<float> le(0.0f, 5.0f);
   for (int k = 0; k < count; ++k) {
@@ -56,6 +57,7 @@ Scene emitters(std::mt19937_64& rng, int count) {
     test::addMeshInstance(
         scene, test::addMesh(scene, randomTriangle(rng, test::addMaterial(scene, m))), Mat4());
   }
+  if (sky) scene.environment.background = {0.3f, 0.5f, 0.8f};
   return scene;
 }
 
@@ -82,19 +84,20 @@ void randomVertex(std::mt19937_64& rng, const MatteBatch& batch, size_t lights, 
   if (q % 11 == 0) m.bsdfDraw[q].x = 0.5f;  // ox == 0: the y wedge divides by zero
   m.pmf[q] = q % 9 == 0 ? 1.0f : u01(rng);
   const int light = std::uniform_int_distribution<int>(0, int(lights) - 1)(rng);
-  m.emitter[q] = q % 13 == 0 ? -1 : batch.row(light);
+  m.emitter[q] = q % 13 == 0 ? -1 : batch.choice(light);
   m.path[q] = uint32_t(light);  // remembered for the scalar side
 }
 
-/// Entry q's outputs against the scalar pieces step() runs; returns 1 when it was lit.
-int compareVertex(const LightSet& lights, const ShadingLanes& m, size_t q) {
+/// Entry q's outputs against the scalar pieces step() runs; returns 1 when it was lit, and
+/// counts in environmentLit when by the environment.
+int compareVertex(const LightSet& lights, const ShadingLanes& m, size_t q, int& environmentLit) {
   Material material = test::diffuse(m.albedo[q]);
   const Bsdf bsdf(material, m.n[q], 1.5f);
   EXPECT_TRUE(bsdf.lambertOnly());
   const LightSampleContext ctx{m.p[q], m.n[q], false, false};
   LightSample ls;
-  if (m.emitter[q] >= 0) {
-    ls = lights.areaLight(m.path[q])->sample(ctx, m.lightDraw[q]);
+  if (m.emitter[q] != kNoLightChosen) {
+    ls = lights.light(m.path[q]).sample(ctx, m.lightDraw[q]);
     ls.pdf *= m.pmf[q];
   }
   bool lit = false;
@@ -103,11 +106,13 @@ int compareVertex(const LightSet& lights, const ShadingLanes& m, size_t q) {
     const Color f = bsdf.eval(m.wo[q], ls.wi, bsdfPdf) * std::fabs(dot(ls.wi, m.n[q]));
     if (!isBlack(f)) {
       lit = true;
-      const Ray shadow = spawnRayTo(m.p[q], m.ng[q], ls.p, 0.0f);
+      const Ray shadow = ls.infinite ? spawnRay(m.p[q], m.ng[q], ls.wi, 0.0f)
+                                     : spawnRayTo(m.p[q], m.ng[q], ls.p, 0.0f);
       expectSameBits(m.shadowOrigin[q], shadow.o, "shadow origin", q);
       expectSameBits(m.shadowDir[q], shadow.d, "shadow direction", q);
       const float w = powerHeuristic(ls.pdf, bsdfPdf);
       expectSameBits(m.contribution[q], m.beta[q] * f * ls.L * (w / ls.pdf), "contribution", q);
+      environmentLit += ls.infinite;
     }
   }
   EXPECT_EQ(bool(m.lit[q]), lit) << q;
@@ -124,14 +129,14 @@ int compareVertex(const LightSet& lights, const ShadingLanes& m, size_t q) {
 
 TEST(MatteBatch, KernelIsTheScalarStepBitForBit) {
   std::mt19937_64 rng(16);
-  const Scene scene = emitters(rng, 6);
+  const Scene scene = emitters(rng, 6, true);
   const LightSet lights(scene);
   const MatteBatch batch(lights);
-  ASSERT_EQ(lights.size(), 5u);  // the black triangle is not a light
+  ASSERT_EQ(lights.size(), 6u);  // the black triangle is not a light; the sky is
   if (!hasSimdTarget()) GTEST_SKIP() << "no SIMD target: the wavefront keeps to scalar code";
   ASSERT_TRUE(batch.useful());
   test::onEverySimdTarget(1000, [&] {
-    int compared = 0, lit = 0;
+    int compared = 0, lit = 0, environmentLit = 0;
     ShadingLanes m;
     for (int wave = 0; wave < 40 && !testing::Test::HasFailure(); ++wave) {
       const size_t count = std::uniform_int_distribution<size_t>(1, 100)(rng);  // partial vectors
@@ -139,10 +144,12 @@ TEST(MatteBatch, KernelIsTheScalarStepBitForBit) {
       for (m.count = 0; m.count < count; ++m.count)
         randomVertex(rng, batch, lights.size(), m, m.count);
       batch.compute(m);
-      for (size_t q = 0; q < count; ++q) lit += compareVertex(lights, m, q), ++compared;
+      for (size_t q = 0; q < count; ++q)
+        lit += compareVertex(lights, m, q, environmentLit), ++compared;
     }
     EXPECT_GT(lit, compared / 5);  // the light sample's arithmetic is compared, not only skipped
     EXPECT_LT(lit, compared);      // and so are the unlit cases
+    EXPECT_GT(environmentLit, compared / 20);  // and the sky's samples
     return compared;
   });
 }
@@ -150,7 +157,7 @@ TEST(MatteBatch, KernelIsTheScalarStepBitForBit) {
 /// A random scene: matte triangles under emissive ones, a floor, and what the stage leaves to
 /// the scalar code in some (a metal, an emissive sphere, a point light).
 Scene randomScene(std::mt19937_64& rng, int index) {
-  Scene scene = emitters(rng, 3);
+  Scene scene = emitters(rng, 3, index % 2 == 1);
   std::uniform_real_distribution<float> u01(0.0f, 1.0f);
   for (int k = 0; k < 12; ++k) {
     Material m = test::diffuse(Color(u01(rng), u01(rng), u01(rng)));
