@@ -169,12 +169,13 @@ HWY_INLINE Evaluated MixtureEvalPdf(const Mixture& x, const V3& wo, const V3& wi
 
 /// Next-event estimation of one vector of vertices: the chosen triangle's or the constant
 /// environment's sample, the mixture toward it, powerHeuristic and the shadow ray.
+template <bool kEnvironment>
 HWY_INLINE void LightSample(const Fields& f, const float* table, const Color& environmentLe,
                             const Basis& frame, const Mixture& x, const V3& wo) {
   const DF df;
   const DI di;
   const V3 p = f.load(f.m.p), ng = f.load(f.m.ng);
-  const ChosenLightSample ls = SampleChosenLight(f, table, environmentLe, p, frame.n);
+  const ChosenLightSample ls = SampleChosenLight<kEnvironment>(f, table, environmentLe, p, frame.n);
   // Bsdf::eval(wo, wi, pdf) times |cos| at the receiver.
   const Evaluated e = MixtureEvalPdf(x, wo, frame.toLocal(ls.wi));
   const VF absCos = hn::Abs(Dot(ls.wi, frame.n));
@@ -185,7 +186,7 @@ HWY_INLINE void LightSample(const Fields& f, const float* table, const Color& en
   const V3& Le = ls.Le;
   f.store(f.m.contribution, {((beta.x * fr.x) * Le.x) * scale, ((beta.y * fr.y) * Le.y) * scale,
                              ((beta.z * fr.z) * Le.z) * scale});
-  StoreShadowRay(f, ls, p, ng);
+  StoreShadowRay<kEnvironment>(f, ls, p, ng);
   f.store(f.m.lit, hn::VecFromMask(di, hn::RebindMask(di, ok)));
 }
 
@@ -272,7 +273,10 @@ void GlossyVertices(const float* table, const Color& envLe, ShadingLanes& lanes)
     const Basis frame(f.load(f.m.n));
     const V3 wo = frame.toLocal(f.load(f.m.wo));
     const Mixture x(f, wo.z);
-    LightSample(f, table, envLe, frame, x, wo);
+    if (hn::AllFalse(DF(), EnvironmentLanes(f)))
+      LightSample<false>(f, table, envLe, frame, x, wo);
+    else
+      LightSample<true>(f, table, envLe, frame, x, wo);
     ScatterSample(f, frame, x, wo);
   }
 }

@@ -32,12 +32,13 @@ void MatteVertices(const float*, const Color&, ShadingLanes&) {}
 /// Next-event estimation of one vector of vertices: AreaLight::sampleTriangle or the constant
 /// environment's sample (pdf times the choice's pmf), Bsdf::lambertEval, powerHeuristic and
 /// the shadow ray, as nextEvent runs them.
+template <bool kEnvironment>
 HWY_NOINLINE void LightSample(const Fields& f, const float* table, const Color& environmentLe) {
   const DF df;
   const DI di;
   const VF zero = hn::Zero(df);
   const V3 p = f.load(f.m.p), ng = f.load(f.m.ng), n = f.load(f.m.n);
-  const ChosenLightSample ls = SampleChosenLight(f, table, environmentLe, p, n);
+  const ChosenLightSample ls = SampleChosenLight<kEnvironment>(f, table, environmentLe, p, n);
   // Bsdf::lambertEval, times |cos| at the receiver.
   const VF cosO = Dot(f.load(f.m.wo), n), cosI = Dot(ls.wi, n);
   const MF same = hn::Gt(cosO * cosI, zero);
@@ -56,7 +57,7 @@ HWY_NOINLINE void LightSample(const Fields& f, const float* table, const Color& 
   const V3& Le = ls.Le;
   f.store(f.m.contribution, {((beta.x * fr.x) * Le.x) * scale, ((beta.y * fr.y) * Le.y) * scale,
                              ((beta.z * fr.z) * Le.z) * scale});
-  StoreShadowRay(f, ls, p, ng);
+  StoreShadowRay<kEnvironment>(f, ls, p, ng);
   f.store(f.m.lit, hn::VecFromMask(di, hn::RebindMask(di, ok)));
 }
 
@@ -94,7 +95,10 @@ void MatteVertices(const float* table, const Color& environmentLe, ShadingLanes&
   // Whole vectors: the inputs are padded (ShadingLanes::padInputs), and the outputs have room.
   for (size_t q = 0; q < lanes.count; q += n) {
     const Fields f{lanes, q};
-    LightSample(f, table, environmentLe);
+    if (hn::AllFalse(DF(), EnvironmentLanes(f)))
+      LightSample<false>(f, table, environmentLe);
+    else
+      LightSample<true>(f, table, environmentLe);
     ScatterSample(f);
   }
 }
