@@ -260,9 +260,7 @@ HWY_INLINE void ScatterSample(const Fields& f, const Basis& frame, const Mixture
   const VF s = hn::Div(hn::Abs(Dot(wi, frame.n)), pdf);
   const V3 beta = f.load(f.m.beta);
   f.store(f.m.nextBeta, {beta.x * (e.f.x * s), beta.y * (e.f.y * s), beta.z * (e.f.z * s)});
-  f.store(f.m.pdf, pdf);
-  f.store(f.m.rayOrigin, SpawnOrigin(f.load(f.m.p), f.load(f.m.ng), wi));
-  f.store(f.m.rayDir, wi);
+  StoreNextRay(f, wi, pdf);
 }
 
 void GlossyVertices(const float* table, const Color& envLe, ShadingLanes& lanes) {

@@ -67,12 +67,9 @@ HWY_NOINLINE void ScatterSample(const Fields& f) {
   const DF df;
   const VF zero = hn::Zero(df);
   // sampleUniformDiskConcentric, then sampleCosineHemisphere's z on wo's side.
-  VF v1, v2, r, theta, dx, dy;
-  MF center;
+  VF v1, v2, dx, dy;
   f.load(f.m.bsdfDraw, v1, v2);
-  ConcentricPolar(v1, v2, r, theta, center);
-  Polar(r, theta, dx, dy);
-  dx = hn::IfThenZeroElse(center, dx), dy = hn::IfThenZeroElse(center, dy);
+  ConcentricDisk(v1, v2, dx, dy);
   const VF z = CosineZ(dx, dy);
   const V3 n = f.load(f.m.n);
   const VF woz = Dot(f.load(f.m.wo), n);
@@ -85,9 +82,7 @@ HWY_NOINLINE void ScatterSample(const Fields& f) {
   const V3 albedo = f.load(f.m.albedo), beta = f.load(f.m.beta);
   f.store(f.m.nextBeta, {beta.x * ((albedo.x * invPi) * s), beta.y * ((albedo.y * invPi) * s),
                          beta.z * ((albedo.z * invPi) * s)});
-  f.store(f.m.pdf, pdf);
-  f.store(f.m.rayOrigin, SpawnOrigin(f.load(f.m.p), f.load(f.m.ng), wi));
-  f.store(f.m.rayDir, wi);
+  StoreNextRay(f, wi, pdf);
 }
 
 void MatteVertices(const float* table, const Color& environmentLe, ShadingLanes& lanes) {

@@ -104,10 +104,10 @@ class PathEstimator {
   /// its queue's in SIMD, core/surface_batch.h); null: computed here. `ahead`: the sampler's
   /// next two 3D draws when the caller made them (the same numbers either way). `deferral`: a
   /// vertex with a lone Lambert lobe, or with the metal and plastic mixture (and both draws
-  /// made ahead, no light-path split, no absorbing medium) whose light choice is one its
-  /// stage samples (an emissive triangle; the constant environment for the glossy stage) or
-  /// none is chosen, queued in that stage's lanes with its inputs as `path`: kDeferred, the
-  /// sampler past both draws.
+  /// made ahead, no light-path split, no absorbing medium) whose light choice is one the
+  /// stages sample (an emissive triangle or the constant environment) or none is chosen,
+  /// queued in its stage's lanes with its inputs as `path`: kDeferred, the sampler past both
+  /// draws.
   PathStep step(PathState& state, Sampler& sampler, bool found, const Hit& hit, ShadowQuery& shadow,
                 bool& wantsShadow, RayStats& stats, PrimaryHit* primary,
                 const SurfacePoint* surface = nullptr, DrawsAhead ahead = {},

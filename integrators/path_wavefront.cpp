@@ -115,8 +115,8 @@ class PathWavefrontIntegrator final : public Integrator {
   void bounce(Wave& w, RayStats& stats) const;
   PathEstimator estimator_;
   SurfaceBatch surfaces_;
-  bool drawsAhead_;   ///< each bounce makes its paths' 3D draws in SIMD (SamplerBatch)
-  MatteBatch matte_;  ///< matte vertices' light and BSDF samples in SIMD (when useful)
+  bool drawsAhead_;     ///< each bounce makes its paths' 3D draws in SIMD (SamplerBatch)
+  MatteBatch matte_;    ///< matte vertices' light and BSDF samples in SIMD (when useful)
   GlossyBatch glossy_;  ///< the same for metal and plastic vertices (when useful)
   std::optional<CameraRayBatch> cameraBatch_;  ///< nothing: cameras the kernel does not cover
 };

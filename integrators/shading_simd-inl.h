@@ -154,6 +154,14 @@ HWY_INLINE void ConcentricPolar(VF u1, VF u2, VF& r, VF& theta, MF& center) {
   const VF thetaY = hn::Set(df, kPi / 2.0f) - quarter * hn::Div(ox, oy);
   theta = hn::IfThenElse(xWedge, thetaX, thetaY);
 }
+/// sampleUniformDiskConcentric(u1, u2): the point (dx, dy), (0, 0) at the centre.
+HWY_INLINE void ConcentricDisk(VF u1, VF u2, VF& dx, VF& dy) {
+  VF r, theta;
+  MF center;
+  ConcentricPolar(u1, u2, r, theta, center);
+  Polar(r, theta, dx, dy);
+  dx = hn::IfThenZeroElse(center, dx), dy = hn::IfThenZeroElse(center, dy);
+}
 /// sampleCosineHemisphere's z from the disk point (dx, dy): floored at 2^-11.
 HWY_INLINE VF CosineZ(VF dx, VF dy) {
   const DF df;
@@ -221,12 +229,9 @@ HWY_INLINE void SampleEnvironment(const Fields& f, const Color& environmentLe, c
                                   ChosenLightSample& s) {
   const DF df;
   const VF zero = hn::Zero(df);
-  VF u1, u2, r, theta, dx, dy;
-  MF center;
+  VF u1, u2, dx, dy;
   f.load(f.m.lightDraw, u1, u2);
-  ConcentricPolar(u1, u2, r, theta, center);
-  Polar(r, theta, dx, dy);
-  dx = hn::IfThenZeroElse(center, dx), dy = hn::IfThenZeroElse(center, dy);
+  ConcentricDisk(u1, u2, dx, dy);
   const V3 wi = Normalize(Basis(n).toWorld({dx, dy, CosineZ(dx, dy)}));
   const VF pdf = hn::Div(StdMax(zero, Dot(n, wi)), hn::Set(df, kPi)) * f.load(f.m.pmf);
   const V3 Le = {hn::Set(df, environmentLe.x), hn::Set(df, environmentLe.y),
@@ -273,6 +278,13 @@ HWY_INLINE void StoreShadowRay(const Fields& f, const ChosenLightSample& ls, con
     f.store(f.m.shadowOrigin, origin);
     f.store(f.m.shadowDir, Select(ls.environment, ls.wi, Sub(ls.target, origin)));
   }
+}
+
+/// The BSDF sample's pdf and setSpawnRay(p, ng, wi)'s origin and direction: the next ray.
+HWY_INLINE void StoreNextRay(const Fields& f, const V3& wi, VF pdf) {
+  f.store(f.m.pdf, pdf);
+  f.store(f.m.rayOrigin, SpawnOrigin(f.load(f.m.p), f.load(f.m.ng), wi));
+  f.store(f.m.rayDir, wi);
 }
 
 /// powerHeuristic(pf, pg) (core/sampling.h): 1 where pf is infinite.

@@ -20,30 +20,16 @@
 #include "core/ray.h"
 #include "core/simd_lanes.h"
 #include "materials/bsdf.h"
-#include "tests/integrators/render_job.h"
+#include "tests/integrators/shading_stage_test.h"
 #include "tests/scene_builder.h"
 #include "tests/simd_targets.h"
 
 namespace tray {
 namespace {
 
-Vec3 randomUnit(std::mt19937_64& rng) {
-  std::normal_distribution<float> g;
-  for (;;) {
-    const Vec3 v{g(rng), g(rng), g(rng)};
-    if (length(v) > 1e-3f) return normalize(v);
-  }
-}
-
-/// A mesh of one triangle with random corners in [-2, 2]^3 and material `material`.
-TriangleMesh randomTriangle(std::mt19937_64& rng, int material) {
-  std::uniform_real_distribution<float> u(-2.0f, 2.0f);
-  TriangleMesh m;
-  for (int k = 0; k < 3; ++k) m.positions.push_back({u(rng), u(rng), u(rng)});
-  m.indices = {0, 1, 2};
-  m.material = material;
-  return m;
-}
+using test::expectSameBits;
+using test::randomTriangle;
+using test::randomUnit;
 
 /// Emissive triangles (some double-sided) under a constant environment.
 Scene emittersUnderSky(std::mt19937_64& rng, int count) {
@@ -58,14 +44,6 @@ Scene emittersUnderSky(std::mt19937_64& rng, int count) {
   }
   scene.environment.background = {0.3f, 0.5f, 0.8f};
   return scene;
-}
-
-void expectSameBits(float got, float want, const char* what, size_t q) {
-  EXPECT_EQ(std::bit_cast<uint32_t>(got), std::bit_cast<uint32_t>(want))
-      << what << " of vertex " << q << ": " << got << " vs " << want;
-}
-void expectSameBits(const Vec3& got, const Vec3& want, const char* what, size_t q) {
-  for (int a = 0; a < 3; ++a) expectSameBits(got[a], want[a], what, q);
 }
 
 /// The material of entry q as step() would have evaluated it.
@@ -118,29 +96,11 @@ struct Met {
 /// Entry q's outputs against the scalar pieces step() runs.
 void compareVertex(const LightSet& lights, const ShadingLanes& m, size_t q, Met& met) {
   const Bsdf bsdf(materialOf(m, q), m.n[q], m.eta[q]);
-  const LightSampleContext ctx{m.p[q], m.n[q], false, false};
-  LightSample ls;
-  if (m.emitter[q] != kNoLightChosen) {
-    ls = lights.light(m.path[q]).sample(ctx, m.lightDraw[q]);
-    ls.pdf *= m.pmf[q];
-  }
-  bool lit = false;
-  if (ls.valid() && !isBlack(ls.L)) {
-    float bsdfPdf;
-    const Color f = bsdf.eval(m.wo[q], ls.wi, bsdfPdf) * std::fabs(dot(ls.wi, m.n[q]));
-    if (!isBlack(f)) {
-      lit = true;
-      const Ray shadow = ls.infinite ? spawnRay(m.p[q], m.ng[q], ls.wi, 0.0f)
-                                     : spawnRayTo(m.p[q], m.ng[q], ls.p, 0.0f);
-      expectSameBits(m.shadowOrigin[q], shadow.o, "shadow origin", q);
-      expectSameBits(m.shadowDir[q], shadow.d, "shadow direction", q);
-      const float w = powerHeuristic(ls.pdf, bsdfPdf);
-      expectSameBits(m.contribution[q], m.beta[q] * f * ls.L * (w / ls.pdf), "contribution", q);
-      ++(ls.infinite ? met.litEnvironment : met.litTriangle);
-    }
-  }
-  if (!lit) ++met.unlit;
-  EXPECT_EQ(bool(m.lit[q]), lit) << q;
+  bool infinite;
+  if (test::compareLightSample(lights, bsdf, m, q, infinite))
+    ++(infinite ? met.litEnvironment : met.litTriangle);
+  else
+    ++met.unlit;
   const BsdfSample bs = bsdf.sample(m.wo[q], m.lobeDraw[q], m.bsdfDraw[q]);
   EXPECT_FALSE(bs.delta) << q;
   expectSameBits(m.pdf[q], bs.pdf, "pdf", q);
@@ -244,24 +204,9 @@ Scene randomScene(std::mt19937_64& rng, int index) {
 TEST(GlossyBatch, RandomScenesRenderAsTheScalarPathTracer) {
   if (!hasSimdTarget()) GTEST_SKIP() << "no SIMD target: the wavefront keeps to scalar code";
   test::onEverySimdTarget(5, [] {
-    std::mt19937_64 rng(71);
-    int compared = 0;
-    for (int index = 0; index < 6 && !testing::Test::HasFailure(); ++index) {
-      const Scene scene = randomScene(rng, index);
-      test::Job job;
-      job.size = 20, job.spp = 4, job.seed = uint64_t(index);
-      const test::Render scalar = test::render(scene, job);
-      job.integrator = "path";
-      const test::Render wave = test::render(scene, job);
-      EXPECT_EQ(test::differingValues(scalar.film, wave.film), 0u) << "scene " << index;
-      EXPECT_EQ(scalar.stats.rays.shadowRays, wave.stats.rays.shadowRays) << index;
-      EXPECT_EQ(scalar.stats.rays.secondaryRays, wave.stats.rays.secondaryRays) << index;
-      // The stages ran for most vertices that hit something (the scalar driver has none).
-      EXPECT_EQ(scalar.stats.rays.simdVertices, 0u);
-      EXPECT_GT(wave.stats.rays.simdVertices, wave.stats.rays.secondaryRays / 3) << index;
-      ++compared;
-    }
-    return compared;
+    // The stages ran for most vertices that hit something.
+    return test::compareRandomScenes(71, randomScene,
+                                     [](int, uint64_t secondary) { return secondary / 3; });
   });
 }
 

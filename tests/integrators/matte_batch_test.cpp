@@ -20,30 +20,16 @@
 #include "core/ray.h"
 #include "core/simd_lanes.h"
 #include "materials/bsdf.h"
-#include "tests/integrators/render_job.h"
+#include "tests/integrators/shading_stage_test.h"
 #include "tests/scene_builder.h"
 #include "tests/simd_targets.h"
 
 namespace tray {
 namespace {
 
-Vec3 randomUnit(std::mt19937_64& rng) {
-  std::normal_distribution<float> g;
-  for (;;) {
-    const Vec3 v{g(rng), g(rng), g(rng)};
-    if (length(v) > 1e-3f) return normalize(v);
-  }
-}
-
-/// A mesh of one triangle with random corners in [-2, 2]^3 and material `material`.
-TriangleMesh randomTriangle(std::mt19937_64& rng, int material) {
-  std::uniform_real_distribution<float> u(-2.0f, 2.0f);
-  TriangleMesh m;
-  for (int k = 0; k < 3; ++k) m.positions.push_back({u(rng), u(rng), u(rng)});
-  m.indices = {0, 1, 2};
-  m.material = material;
-  return m;
-}
+using test::expectSameBits;
+using test::randomTriangle;
+using test::randomUnit;
 
 /// Emissive triangles: random radiance (one black), some double-sided; under a constant
 /// environment when `sky`.
@@ -59,14 +45,6 @@ Scene emitters(std::mt19937_64& rng, int count, bool sky) {
   }
   if (sky) scene.environment.background = {0.3f, 0.5f, 0.8f};
   return scene;
-}
-
-void expectSameBits(float got, float want, const char* what, size_t q) {
-  EXPECT_EQ(std::bit_cast<uint32_t>(got), std::bit_cast<uint32_t>(want))
-      << what << " of vertex " << q << ": " << got << " vs " << want;
-}
-void expectSameBits(const Vec3& got, const Vec3& want, const char* what, size_t q) {
-  for (int a = 0; a < 3; ++a) expectSameBits(got[a], want[a], what, q);
 }
 
 /// One random matte vertex in entry q of `m`: edge cases every few entries.
@@ -94,28 +72,9 @@ int compareVertex(const LightSet& lights, const ShadingLanes& m, size_t q, int& 
   Material material = test::diffuse(m.albedo[q]);
   const Bsdf bsdf(material, m.n[q], 1.5f);
   EXPECT_TRUE(bsdf.lambertOnly());
-  const LightSampleContext ctx{m.p[q], m.n[q], false, false};
-  LightSample ls;
-  if (m.emitter[q] != kNoLightChosen) {
-    ls = lights.light(m.path[q]).sample(ctx, m.lightDraw[q]);
-    ls.pdf *= m.pmf[q];
-  }
-  bool lit = false;
-  if (ls.valid() && !isBlack(ls.L)) {
-    float bsdfPdf;
-    const Color f = bsdf.eval(m.wo[q], ls.wi, bsdfPdf) * std::fabs(dot(ls.wi, m.n[q]));
-    if (!isBlack(f)) {
-      lit = true;
-      const Ray shadow = ls.infinite ? spawnRay(m.p[q], m.ng[q], ls.wi, 0.0f)
-                                     : spawnRayTo(m.p[q], m.ng[q], ls.p, 0.0f);
-      expectSameBits(m.shadowOrigin[q], shadow.o, "shadow origin", q);
-      expectSameBits(m.shadowDir[q], shadow.d, "shadow direction", q);
-      const float w = powerHeuristic(ls.pdf, bsdfPdf);
-      expectSameBits(m.contribution[q], m.beta[q] * f * ls.L * (w / ls.pdf), "contribution", q);
-      environmentLit += ls.infinite;
-    }
-  }
-  EXPECT_EQ(bool(m.lit[q]), lit) << q;
+  bool infinite;
+  const bool lit = test::compareLightSample(lights, bsdf, m, q, infinite);
+  environmentLit += lit && infinite;
   const BsdfSample bs = bsdf.sample(m.wo[q], 0.0f, m.bsdfDraw[q]);
   expectSameBits(m.pdf[q], bs.pdf, "pdf", q);
   EXPECT_GT(m.pdf[q], 0.0f) << q;
@@ -181,27 +140,11 @@ Scene randomScene(std::mt19937_64& rng, int index) {
 TEST(MatteBatch, RandomScenesRenderAsTheScalarPathTracer) {
   if (!hasSimdTarget()) GTEST_SKIP() << "no SIMD target: the wavefront keeps to scalar code";
   test::onEverySimdTarget(5, [] {
-    std::mt19937_64 rng(61);
-    int compared = 0;
-    for (int index = 0; index < 6 && !testing::Test::HasFailure(); ++index) {
-      const Scene scene = randomScene(rng, index);
-      test::Job job;
-      job.size = 20, job.spp = 4, job.seed = uint64_t(index);
-      const test::Render scalar = test::render(scene, job);
-      job.integrator = "path";
-      const test::Render wave = test::render(scene, job);
-      EXPECT_EQ(test::differingValues(scalar.film, wave.film), 0u) << "scene " << index;
-      EXPECT_EQ(scalar.stats.rays.shadowRays, wave.stats.rays.shadowRays) << index;
-      EXPECT_EQ(scalar.stats.rays.secondaryRays, wave.stats.rays.secondaryRays) << index;
-      // The stage ran (the scalar driver has none): for most vertices where only matte
-      // surfaces and triangle lights are in the scene.
-      EXPECT_EQ(scalar.stats.rays.simdVertices, 0u);
-      EXPECT_GT(wave.stats.rays.simdVertices,
-                index % 6 == 0 ? wave.stats.rays.secondaryRays / 2 : 0u)
-          << index;
-      ++compared;
-    }
-    return compared;
+    // The stage ran: for most vertices where only matte surfaces and triangle lights are in
+    // the scene.
+    return test::compareRandomScenes(61, randomScene, [](int index, uint64_t secondary) {
+      return index % 6 == 0 ? secondary / 2 : 0u;
+    });
   });
 }
 
