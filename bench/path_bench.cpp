@@ -204,9 +204,10 @@ void print(const std::string& integrator, const Measured& m, int threads) {
     std::printf("    traversal       %.0f%% of the render (time in batched queries)\n",
                 100 * m.traversal);
   if (m.stats.rays.simdVertices > 0)
-    std::printf("    SIMD shading    %.0f%% of the traced segments' vertices (matte and glossy stages)\n",
-                100.0 * double(m.stats.rays.simdVertices) /
-                    double(m.stats.rays.cameraRays + m.stats.rays.secondaryRays));
+    std::printf(
+        "    SIMD shading    %.0f%% of the traced segments' vertices (matte and glossy stages)\n",
+        100.0 * double(m.stats.rays.simdVertices) /
+            double(m.stats.rays.cameraRays + m.stats.rays.secondaryRays));
   std::printf("    NaN samples     %llu\n", (unsigned long long)m.stats.rays.nanSamples);
 }
 

@@ -174,7 +174,7 @@ HWY_INLINE Evaluated MixtureEvalPdf(const Mixture& x, const V3& wo, const V3& wi
 /// instructions (callgrind, heavy spheres).
 template <bool kEnvironment>
 HWY_NOINLINE void LightSample(const Fields& f, const float* table, const Color& environmentLe,
-                            const Basis& frame, const Mixture& x, const V3& wo) {
+                              const Basis& frame, const Mixture& x, const V3& wo) {
   const DF df;
   const DI di;
   const V3 p = f.load(f.m.p), ng = f.load(f.m.ng);
@@ -224,7 +224,8 @@ HWY_INLINE V3 GgxDirection(VF alpha, const V3& wo, VF px, VF py, MF& ok) {
 /// BSDF sampling of one vector of vertices: Bsdf::sampleLocal's lobe choice, the GGX lobes'
 /// visible normals or Lambert's cosine lobe, the mixture's value and pdf there (their checks
 /// as mixtureGgxSample and sampleLocal make them), the throughput update and setSpawnRay.
-HWY_NOINLINE void ScatterSample(const Fields& f, const Basis& frame, const Mixture& x, const V3& wo) {
+HWY_NOINLINE void ScatterSample(const Fields& f, const Basis& frame, const Mixture& x,
+                                const V3& wo) {
   const DF df;
   const VF zero = hn::Zero(df);
   // The lobe: metal below the first cdf step, the coat below the third, else Lambert (the
