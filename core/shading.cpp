@@ -117,15 +117,17 @@ void MaterialEvaluator::modulate(const Hit& hit, const SurfacePoint& s,
     if (!have[k]) frames[k] = surfaceUvFrame(scene_, hit, s, k), have[k] = true;
     return frames[k];
   };
-  auto lookup = [&](const TextureRef& ref) {
-    const int k = ref.texCoord == 1 ? 1 : 0;
-    if (!TextureSampler::footprintMatters(ref))
-      return sampler_->sample(ref, {frameOf(k).uv, {}, {}});
-    if (!haveFootprint[k]) {
-      footprints[k] = pixelFootprint(frameOf(k), s.p, s.ng, camera_, footprintScale_);
+  auto footprintOf = [&](int set) -> const UvFootprint& {
+    const int k = set == 1 ? 1 : 0;
+    if (!haveFootprint[k])
+      footprints[k] = pixelFootprint(frameOf(k), s.p, s.ng, camera_, footprintScale_),
       haveFootprint[k] = true;
-    }
-    return sampler_->sample(ref, footprints[k]);
+    return footprints[k];
+  };
+  auto lookup = [&](const TextureRef& ref) {
+    if (!TextureSampler::footprintMatters(ref))
+      return sampler_->sample(ref, {frameOf(ref.texCoord).uv, {}, {}});
+    return sampler_->sample(ref, footprintOf(ref.texCoord));
   };
   Color base(1.0f);
   if (m.baseColorTexture.valid()) out.baseColor *= (base = lookup(m.baseColorTexture));

@@ -25,7 +25,7 @@ namespace HWY_NAMESPACE {
 namespace hn = hwy::HWY_NAMESPACE;
 
 #if HWY_TARGET == HWY_SCALAR
-// GlossyBatch::useful() is false without a SIMD target: never called.
+// MatteBatch::useful() is false without a SIMD target: never called.
 void GlossyVertices(const float*, const Color&, ShadingLanes&) {}
 #else
 
@@ -42,12 +42,17 @@ HWY_INLINE VF FresnelDielectric(VF c, VF eta) {
   return hn::IfThenElse(hn::Ge(sin2T, one), one, r);  // total internal reflection
 }
 
-/// Bsdf::initLobes for a metal and plastic mixture, and computeProbabilities at wo.
+/// Bsdf::initLobes for a metal and plastic mixture, and computeProbabilities at wo: what
+/// mixtureEvalPdf reads at every (wo, wi) of the vertex, computed once.
 struct Mixture {
   VF wMetal, wPlastic, coat, alpha, eta;
   V3 albedo;  ///< the metal's F0 and the Lambert lobe's albedo
-  MF metalOn, coatOn;
+  /// The lobes mixtureEvalPdf adds: metal (wMetal > 0), plastic (wPlastic > 0), its coat
+  /// (and coat > 0); ggxOn: it computes the GGX terms at all.
+  MF metalOn, plasticOn, coatOn, ggxOn;
+  VF coatWeight, diffuseWeight;    ///< wPlastic coat and wPlastic (1 - coatFresnel(wo))
   VF fc, pMetal, pCoat, pDiffuse;  ///< coatFresnel(wo) and the lobes' probabilities
+  MF pMetalOn, pCoatOn, pDiffuseOn;  ///< the probabilities that are > 0
   Mixture(const Fields& f, VF woz) : eta(f.load(f.m.eta)), albedo(f.load(f.m.albedo)) {
     const DF df;
     const VF zero = hn::Zero(df), one = hn::Set(df, 1.0f);
@@ -57,7 +62,8 @@ struct Mixture {
     coat = StdClamp((one - roughness) * hn::Set(df, 10.0f), zero, one);
     alpha = StdMax(roughness * roughness, hn::Set(df, 1e-4f));  // GgxDistribution's
     metalOn = hn::Gt(wMetal, zero);
-    coatOn = hn::And(hn::Gt(wPlastic, zero), hn::Gt(coat, zero));
+    plasticOn = hn::Gt(wPlastic, zero);
+    coatOn = hn::And(plasticOn, hn::Gt(coat, zero));
     fc = hn::IfThenElseZero(hn::Gt(coat, zero), coat * FresnelDielectric(hn::Abs(woz), eta));
     pMetal = wMetal;
     pCoat = wPlastic * fc;
@@ -70,6 +76,11 @@ struct Mixture {
     pMetal = hn::IfThenElse(positive, pMetal * inv, pMetal);
     pCoat = hn::IfThenElse(positive, pCoat * inv, pCoat);
     pDiffuse = hn::IfThenElse(positive, pDiffuse * inv, pDiffuse);
+    pMetalOn = hn::Gt(pMetal, zero), pCoatOn = hn::Gt(pCoat, zero);
+    pDiffuseOn = hn::Gt(pDiffuse, zero);
+    ggxOn = hn::Or(hn::Or(metalOn, coatOn), hn::Or(pMetalOn, pCoatOn));
+    coatWeight = wPlastic * coat;
+    diffuseWeight = wPlastic * (one - fc);
   }
 };
 
@@ -130,10 +141,8 @@ HWY_INLINE Evaluated MixtureEvalPdf(const Mixture& x, const V3& wo, const V3& wi
   const DF df;
   const VF zero = hn::Zero(df), one = hn::Set(df, 1.0f);
   const Terms t = GgxTerms(x.alpha, wo, wi);
-  const MF ggx =
-      hn::Or(hn::Or(x.metalOn, x.coatOn), hn::Or(hn::Gt(x.pMetal, zero), hn::Gt(x.pCoat, zero)));
   Evaluated r;
-  r.ggxPdf = hn::IfThenElseZero(ggx, t.pdf);
+  r.ggxPdf = hn::IfThenElseZero(x.ggxOn, t.pdf);
   // Schlick's metal Fresnel with F0 = albedo, and the coat's exact one, at wo . wm.
   const VF m = StdClamp(one - hn::Abs(t.cosOM), zero, one);
   const VF m5 = ((m * m) * (m * m)) * m;
@@ -145,25 +154,20 @@ HWY_INLINE Evaluated MixtureEvalPdf(const Mixture& x, const V3& wo, const V3& wi
       hn::IfThenElseZero(t.nonzero, FresnelDielectric(hn::Abs(t.cosOM), x.eta) * t.scale);
   const MF same = hn::Gt(wo.z * wi.z, zero);  // LambertLobe's
   const VF invPi = hn::Set(df, 1.0f / kPi);
-  const MF plastic = hn::Gt(x.wPlastic, zero);
-  const MF coatF = hn::And(plastic, x.coatOn);
-  const VF coatWeight = hn::IfThenElseZero(coatF, x.wPlastic * x.coat);
-  const VF diffuseWeight = hn::IfThenElseZero(plastic, x.wPlastic * (one - x.fc));
-  const VF metalWeight = hn::IfThenElseZero(x.metalOn, x.wMetal);
   // ((0 + metal) + coat) + diffuse, a term left out where the scalar code skips it (+0 added
   // to a sum that is never -0: the same bits).
   const auto sum = [&](VF metalC, VF albedoC) {
     const VF diffuse = hn::IfThenElseZero(same, albedoC * invPi);
-    return ((zero + hn::IfThenElseZero(x.metalOn, metalWeight * metalC)) +
-            hn::IfThenElseZero(coatF, coatWeight * coat)) +
-           hn::IfThenElseZero(plastic, diffuseWeight * diffuse);
+    return ((zero + hn::IfThenElseZero(x.metalOn, x.wMetal * metalC)) +
+            hn::IfThenElseZero(x.coatOn, x.coatWeight * coat)) +
+           hn::IfThenElseZero(x.plasticOn, x.diffuseWeight * diffuse);
   };
   r.f = {sum(metal.x, x.albedo.x), sum(metal.y, x.albedo.y), sum(metal.z, x.albedo.z)};
   const VF lambertPdf =
       hn::IfThenElseZero(same, hn::Div(StdMax(zero, hn::Abs(wi.z)), hn::Set(df, kPi)));
-  r.pdf = ((zero + hn::IfThenElseZero(hn::Gt(x.pMetal, zero), x.pMetal * t.pdf)) +
-           hn::IfThenElseZero(hn::Gt(x.pCoat, zero), x.pCoat * t.pdf)) +
-          hn::IfThenElseZero(hn::Gt(x.pDiffuse, zero), x.pDiffuse * lambertPdf);
+  r.pdf = ((zero + hn::IfThenElseZero(x.pMetalOn, x.pMetal * t.pdf)) +
+           hn::IfThenElseZero(x.pCoatOn, x.pCoat * t.pdf)) +
+          hn::IfThenElseZero(x.pDiffuseOn, x.pDiffuse * lambertPdf);
   return r;
 }
 

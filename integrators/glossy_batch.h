@@ -17,9 +17,8 @@ namespace tray {
 /// the matte stage's (MatteBatch::choice).
 class GlossyBatch {
  public:
+  /// Worth deferring vertices to when the matte stage is (MatteBatch::useful).
   explicit GlossyBatch(const MatteBatch& lights);
-  /// A SIMD target and a light the stages sample: worth deferring vertices to.
-  bool useful() const { return lights_.useful(); }
   /// Computes the outputs of lanes.count vertices (their inputs padded: padInputs).
   void compute(ShadingLanes& lanes) const;
 

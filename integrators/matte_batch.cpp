@@ -9,7 +9,6 @@
 #define HWY_TARGET_INCLUDE "integrators/matte_batch.cpp"
 #include "integrators/matte_batch.h"
 
-#include <algorithm>
 #include <cmath>
 
 #include "core/simd_lanes.h"

@@ -173,9 +173,9 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
   v.n = s.frontFace ? sm.n : -sm.n;
   // A matte or glossy vertex goes to its SIMD stage before its Bsdf is built (it needs none).
   if (deferral) {
-    if (deferral->matte && Bsdf::isLambertOnly(sm)) {
+    if (Bsdf::isLambertOnly(sm)) {
       if (defer<false>(st, sampler, v, sm, eta, ahead, *deferral, path)) return PathStep::kDeferred;
-    } else if (deferral->glossy && Bsdf::isGgxMixture(sm)) {
+    } else if (Bsdf::isGgxMixture(sm)) {
       if (defer<true>(st, sampler, v, sm, eta, ahead, *deferral, path)) return PathStep::kDeferred;
     }
   }
@@ -283,12 +283,12 @@ bool PathEstimator::defer(const PathState& st, Sampler& sampler, Vertex& v,
   float pmf;
   const int light = lights_.choose(v.here, u.x, pmf);
   const bool chosen = light >= 0 && pmf > 0;
-  const int32_t choice = stages.lights->choice(light);
+  const int32_t choice = stages.lights.choice(light);
   if (chosen && choice == kOtherLight) {  // another kind of light: the scalar code samples it
     v.lightChosen = true, v.light = light, v.lightPmf = pmf;
     return false;
   }
-  ShadingLanes& m = glossy ? *stages.glossyLanes : *stages.matteLanes;  // a constant
+  ShadingLanes& m = glossy ? stages.glossy : stages.matte;  // a constant
   const size_t q = m.count++;
   const SurfacePoint& s = v.s;
   m.p[q] = s.p, m.ng[q] = s.ng, m.n[q] = v.n, m.wo[q] = v.wo;

@@ -83,12 +83,11 @@ enum class PathStep : uint8_t {
 
 /// Where step() may leave a vertex for a SIMD shading stage: a matte one (a lone Lambert lobe,
 /// integrators/matte_batch.h) or a glossy one (the metal and plastic mixture,
-/// integrators/glossy_batch.h). A stage not in use takes none.
+/// integrators/glossy_batch.h), each in its own lanes.
 struct ShadingDeferral {
-  const MatteBatch* lights = nullptr;  ///< which light choices the stages sample
-  bool matte = false, glossy = false;  ///< the stages in use
-  ShadingLanes* matteLanes = nullptr;
-  ShadingLanes* glossyLanes = nullptr;
+  const MatteBatch& lights;  ///< which light choices the stages sample (both the same)
+  ShadingLanes& matte;
+  ShadingLanes& glossy;
 };
 
 /// Unidirectional path tracing with next-event estimation and MIS (Veach 1997, ch. 9), written

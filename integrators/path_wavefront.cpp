@@ -117,7 +117,7 @@ class PathWavefrontIntegrator final : public Integrator {
   SurfaceBatch surfaces_;
   bool drawsAhead_;     ///< each bounce makes its paths' 3D draws in SIMD (SamplerBatch)
   MatteBatch matte_;    ///< matte vertices' light and BSDF samples in SIMD (when useful)
-  GlossyBatch glossy_;  ///< the same for metal and plastic vertices (when useful)
+  GlossyBatch glossy_;  ///< the same for metal and plastic vertices (when matte_ is useful)
   std::optional<CameraRayBatch> cameraBatch_;  ///< nothing: cameras the kernel does not cover
 };
 
@@ -216,11 +216,11 @@ void PathWavefrontIntegrator::bounce(Wave& w, RayStats& stats) const {
     SamplerBatch::drawTwo3D(sequence(), w.samplers.data(), w.live.data(), count, w.draws);
 
   // Matte and glossy vertices wait in w.matte and w.glossy for the SIMD stages
-  // (integrators/matte_batch.h, glossy_batch.h); they need the draws made ahead.
-  const bool matteOn = drawsAhead_ && matte_.useful(), glossyOn = drawsAhead_ && glossy_.useful();
-  if (matteOn) w.matte.reset(count);
-  if (glossyOn) w.glossy.reset(count);
-  const ShadingDeferral deferral{&matte_, matteOn, glossyOn, &w.matte, &w.glossy};
+  // (integrators/matte_batch.h, glossy_batch.h), which sample the same lights; they need the
+  // draws made ahead.
+  const bool deferring = drawsAhead_ && matte_.useful();
+  if (deferring) w.matte.reset(count), w.glossy.reset(count);
+  const ShadingDeferral deferral{matte_, w.matte, w.glossy};
 
   w.next.clear();
   // step() writes a next-event estimate straight into the queue's next slot, setting what
@@ -235,7 +235,7 @@ void PathWavefrontIntegrator::bounce(Wave& w, RayStats& stats) const {
         w.paths[k], w.samplers[k], w.found[j], w.hits[j], w.shadows[shadowCount], wantsShadow,
         stats, &w.primary[k], surfacesKnown ? &w.surfaces[j] : nullptr,
         drawsAhead_ ? DrawsAhead{&w.draws.first[j], &w.draws.second[j]} : DrawsAhead{},
-        matteOn || glossyOn ? &deferral : nullptr, k);
+        deferring ? &deferral : nullptr, k);
     if (wantsShadow) w.shadowPath[shadowCount++] = k;
     if (step == PathStep::kContinue) w.next.push_back(k);
   }
@@ -251,8 +251,8 @@ void PathWavefrontIntegrator::bounce(Wave& w, RayStats& stats) const {
       if (step == PathStep::kContinue) w.next.push_back(k);
     }
   };
-  if (matteOn && w.matte.count > 0) matte_.compute(w.matte), finish(w.matte);
-  if (glossyOn && w.glossy.count > 0) glossy_.compute(w.glossy), finish(w.glossy);
+  if (deferring && w.matte.count > 0) matte_.compute(w.matte), finish(w.matte);
+  if (deferring && w.glossy.count > 0) glossy_.compute(w.glossy), finish(w.glossy);
 
   w.shadowRays.resize(shadowCount), w.blocked.resize(shadowCount);
   for (size_t q = 0; q < shadowCount; ++q) w.shadowRays[q] = w.shadows[q].ray;

@@ -126,7 +126,7 @@ TEST(GlossyBatch, KernelIsTheScalarStepBitForBit) {
   ASSERT_EQ(lights.size(), 5u);  // four triangles and the sky
   ASSERT_GE(lights.constantEnvironment(), 0);
   if (!hasSimdTarget()) GTEST_SKIP() << "no SIMD target: the wavefront keeps to scalar code";
-  ASSERT_TRUE(batch.useful());
+  ASSERT_TRUE(matte.useful());
   test::onEverySimdTarget(1000, [&] {
     Met met;
     ShadingLanes m;
