@@ -188,6 +188,11 @@ class EmbreeAccelerator final : public Accelerator {
     if (!streamable()) return Accelerator::intersectBatch(rays, hits, found);
     embreeIntersectBatch(top_, scene_, batch_, rays, hits, found);
   }
+  void intersectCoherentBatch(std::span<const Ray> rays, std::span<Hit> hits,
+                              std::span<uint8_t> found) const override {
+    if (!streamable()) return Accelerator::intersectBatch(rays, hits, found);
+    embreeIntersectBatch(top_, scene_, batch_, rays, hits, found, true);
+  }
   void occludedBatch(std::span<const Ray> rays, std::span<uint8_t> blocked) const override {
     if (!streamable()) return Accelerator::occludedBatch(rays, blocked);
     embreeOccludedBatch(top_, scene_, batch_, rays, blocked);

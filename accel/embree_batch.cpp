@@ -80,11 +80,14 @@ void occludedPackets(RTCScene top, RTCIntersectContext* ctx, std::span<const Ray
 }  // namespace
 
 void embreeIntersectBatch(RTCScene top, const Scene& scene, EmbreeBatch mode,
-                          std::span<const Ray> rays, std::span<Hit> hits,
-                          std::span<uint8_t> found) {
+                          std::span<const Ray> rays, std::span<Hit> hits, std::span<uint8_t> found,
+                          bool coherent) {
   AlphaRayContext ctx(scene, rays.data());
+  // Embree 3 traverses coherent packets and streams differently (rtcIntersect8: frustum
+  // culling per node); incoherent rays lose by it (docs/wavefront.md).
+  ctx.base.flags =
+      coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
   if (mode == EmbreeBatch::kPacket8) return intersectPackets(top, &ctx.base, rays, hits, found);
-  ctx.base.flags = RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
   static thread_local std::vector<RTCRayHit> queue;
   queue.resize(rays.size());
   for (size_t i = 0; i < rays.size(); ++i) {

@@ -39,13 +39,14 @@ constexpr size_t kBatch = kPathWaveSize;
 struct Mode {
   std::string name;
   std::unique_ptr<Accelerator> accel;
+  bool coherent = false;  ///< camera rays through intersectCoherentBatch (the wavefront's)
   double camera = 0, shadow = 0, bounce = 0;  ///< best Mrays per CPU-second
 };
 
 /// Mrays per CPU-second of one query over a ray set in batches of kBatch, repeated for at least
 /// `minSeconds` of CPU time.
 double batchedMrays(const Accelerator& accel, const std::vector<Ray>& rays, bool shadow,
-                    double minSeconds) {
+                    double minSeconds, bool coherent = false) {
   if (rays.empty()) return 0;
   std::vector<Hit> hits(kBatch);
   std::vector<uint8_t> flags(kBatch);
@@ -57,6 +58,8 @@ double batchedMrays(const Accelerator& accel, const std::vector<Ray>& rays, bool
       const std::span<const Ray> batch(rays.data() + b, n);
       if (shadow)
         accel.occludedBatch(batch, std::span(flags.data(), n));
+      else if (coherent)
+        accel.intersectCoherentBatch(batch, std::span(hits.data(), n), std::span(flags.data(), n));
       else
         accel.intersectBatch(batch, std::span(hits.data(), n), std::span(flags.data(), n));
       for (size_t i = 0; i < n; ++i) found += flags[i];
@@ -72,6 +75,8 @@ std::vector<Mode> modes(const Scene& scene) {
   m.push_back({"embree rtcIntersect1 loop", makeEmbreeAccelerator(scene, EmbreeBatch::kLoop)});
   m.push_back({"embree rtcIntersect1M", makeEmbreeAccelerator(scene, EmbreeBatch::kStream)});
   m.push_back({"embree rtcIntersect8", makeEmbreeAccelerator(scene, EmbreeBatch::kPacket8)});
+  m.push_back({"embree rtcIntersect8 coherent",
+               makeEmbreeAccelerator(scene, EmbreeBatch::kPacket8), true});
   for (BvhBatch batch : {BvhBatch::kLoop, BvhBatch::kPacket8, BvhBatch::kStream64}) {
     TwoLevelOptions options;
     options.batch = batch;
@@ -105,7 +110,7 @@ void benchScene(const std::string& path, int width, int height, int rounds, bool
   std::vector<Mode> all = modes(scene);
   for (int r = 0; r < rounds; ++r)
     for (Mode& m : all) {
-      m.camera = std::max(m.camera, batchedMrays(*m.accel, rays.camera, false, 0.2));
+      m.camera = std::max(m.camera, batchedMrays(*m.accel, rays.camera, false, 0.2, m.coherent));
       m.shadow = std::max(m.shadow, batchedMrays(*m.accel, rays.shadow, true, 0.2));
       m.bounce = std::max(m.bounce, batchedMrays(*m.accel, rays.bounce, false, 0.2));
     }

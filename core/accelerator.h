@@ -29,6 +29,13 @@ class Accelerator {
                               std::span<uint8_t> found) const {
     for (size_t i = 0; i < rays.size(); ++i) found[i] = intersect(rays[i], hits[i]);
   }
+  /// intersectBatch() for rays known to be coherent (camera rays of a tile, in pixel order:
+  /// neighbours start at one point in nearly one direction): the same hits, but an
+  /// accelerator may trace them differently (Embree: RTC_INTERSECT_CONTEXT_FLAG_COHERENT).
+  virtual void intersectCoherentBatch(std::span<const Ray> rays, std::span<Hit> hits,
+                                      std::span<uint8_t> found) const {
+    intersectBatch(rays, hits, found);
+  }
   /// occluded() for each ray of a batch: blocked[i] = occluded(rays[i]).
   virtual void occludedBatch(std::span<const Ray> rays, std::span<uint8_t> blocked) const {
     for (size_t i = 0; i < rays.size(); ++i) blocked[i] = occluded(rays[i]);

@@ -112,7 +112,8 @@ class PathWavefrontIntegrator final : public Integrator {
     return wave;
   }
   void trace(Wave& w, RayStats& stats) const;
-  void bounce(Wave& w, RayStats& stats) const;
+  /// `cameraRays`: the queue holds the wave's camera rays (its first bounce).
+  void bounce(Wave& w, RayStats& stats, bool cameraRays) const;
   PathEstimator estimator_;
   SurfaceBatch surfaces_;
   bool drawsAhead_;     ///< each bounce makes its paths' 3D draws in SIMD (SamplerBatch)
@@ -194,16 +195,20 @@ void PathWavefrontIntegrator::trace(Wave& w, RayStats& stats) const {
   if (estimator_.maxDepth() == 0) return;  // nothing is traced: black, nothing hit
   w.live.resize(w.paths.size());
   for (size_t k = 0; k < w.live.size(); ++k) w.live[k] = uint32_t(k);
-  while (!w.live.empty()) bounce(w, stats);
+  // The first segments are the camera rays, in pixel order: coherent.
+  for (bool first = true; !w.live.empty(); first = false) bounce(w, stats, first);
 }
 
 /// One segment of every live path: trace the queue, shade each hit (emission, light sample,
 /// BSDF sample), then trace the shadow queue and add the unoccluded estimates.
-void PathWavefrontIntegrator::bounce(Wave& w, RayStats& stats) const {
+void PathWavefrontIntegrator::bounce(Wave& w, RayStats& stats, bool cameraRays) const {
   const size_t count = w.live.size();
   w.rays.resize(count), w.hits.resize(count), w.found.resize(count);
   for (size_t j = 0; j < count; ++j) w.rays[j] = w.paths[w.live[j]].ray;
-  ctx_.accel.intersectBatch(w.rays, w.hits, w.found);
+  if (cameraRays)
+    ctx_.accel.intersectCoherentBatch(w.rays, w.hits, w.found);
+  else
+    ctx_.accel.intersectBatch(w.rays, w.hits, w.found);
   // The hits' surfaces in SIMD (core/surface_batch.h).
   const bool surfacesKnown = surfaces_.useful();
   if (surfacesKnown) {

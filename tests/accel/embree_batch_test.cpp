@@ -1,6 +1,7 @@
 // Accelerator::intersectBatch / occludedBatch against the single-ray queries they batch:
 // every way of reaching Embree (loop, stream, 8-wide packets), the BVH's default batch, on
-// opaque meshes and on alpha-tested ones (the filter finds each ray by its id in the batch).
+// opaque meshes and on alpha-tested ones (the filter finds each ray by its id in the batch),
+// and the coherent batch the wavefront's camera rays take.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -15,8 +16,10 @@
 namespace tray {
 namespace {
 
+/// intersectBatch (coherent: intersectCoherentBatch) and occludedBatch over `rays` give what
+/// the single-ray queries give.
 void expectSameAsSingleRays(const Accelerator& accel, const std::vector<Ray>& rays,
-                            const std::string& what) {
+                            const std::string& what, bool coherent) {
   // Odd sizes leave part of the last packet empty (13: a full packet then a partial one over
   // it; 5: a batch's only packet, partial).
   for (size_t n : {rays.size(), size_t(13), size_t(5)}) {
@@ -26,7 +29,10 @@ void expectSameAsSingleRays(const Accelerator& accel, const std::vector<Ray>& ra
     stale.normal = Vec3(1, 2, 3), stale.uv = {4, 5}, stale.material = 6;
     std::vector<Hit> hits(n, stale);
     std::vector<uint8_t> found(n), blocked(n);
-    accel.intersectBatch(batch, hits, found);
+    if (coherent)
+      accel.intersectCoherentBatch(batch, hits, found);
+    else
+      accel.intersectBatch(batch, hits, found);
     accel.occludedBatch(batch, blocked);
     size_t hitCount = 0, ties = 0;
     for (size_t i = 0; i < n; ++i) {
@@ -58,15 +64,46 @@ void expectSameAsSingleRays(const Accelerator& accel, const std::vector<Ray>& ra
   }
 }
 
+/// Camera-like rays: from one point, eight jittered rays per "pixel" of a 32 x 32 grid of
+/// directions towards the scene's centre, in pixel order (what the wavefront's first bounce
+/// traces as coherent).
+std::vector<Ray> cameraLikeRays(const Scene& scene) {
+  const Bounds3 b = scene.bounds();
+  const Vec3 centre = (b.lo + b.hi) * 0.5f, extent = b.hi - b.lo;
+  const Vec3 eye = centre + Vec3(0.1f, 0.2f, 2.0f) * length(extent);
+  Sampler jitter(0, 0, 11);
+  std::vector<Ray> rays;
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 32; ++x)
+      for (int s = 0; s < 8; ++s) {
+        const Vec2 u = jitter.next2D();
+        const Vec3 target = centre + Vec3((x + u.x) / 32 - 0.5f, (y + u.y) / 32 - 0.5f, 0) *
+                                         length(extent);
+        Ray r;
+        r.o = eye, r.d = normalize(target - eye), r.tmin = 0, r.tmax = kInfinity;
+        rays.push_back(r);
+      }
+  return rays;
+}
+
 TEST(EmbreeBatch, EveryModeEqualsSingleRayQueries) {
   for (const char* file :
        {"/reference/cornell-box.gltf", "/gltf-features/AlphaBlendModeTest.glb"}) {
     const Scene scene = loadGltf(std::string(TRAY_SHARED_DIR) + file);
     const std::vector<Ray> rays = test::randomRaysInBounds(scene, 2000, 7, false);
-    for (EmbreeBatch mode : {EmbreeBatch::kLoop, EmbreeBatch::kStream, EmbreeBatch::kPacket8})
-      expectSameAsSingleRays(*makeEmbreeAccelerator(scene, mode), rays,
-                             std::string(file) + " mode " + std::to_string(int(mode)));
-    expectSameAsSingleRays(*makeAccelerator("bvh", scene), rays, std::string(file) + " bvh");
+    const std::vector<Ray> camera = cameraLikeRays(scene);
+    for (EmbreeBatch mode : {EmbreeBatch::kLoop, EmbreeBatch::kStream, EmbreeBatch::kPacket8}) {
+      const auto accel = makeEmbreeAccelerator(scene, mode);
+      const std::string what = std::string(file) + " mode " + std::to_string(int(mode));
+      expectSameAsSingleRays(*accel, rays, what, false);
+      // The coherent traversal (the wavefront's camera rays) on rays that are not coherent,
+      // and on rays that are.
+      expectSameAsSingleRays(*accel, rays, what + " coherent", true);
+      expectSameAsSingleRays(*accel, camera, what + " coherent camera", true);
+    }
+    const auto bvh = makeAccelerator("bvh", scene);
+    expectSameAsSingleRays(*bvh, rays, std::string(file) + " bvh", false);
+    expectSameAsSingleRays(*bvh, camera, std::string(file) + " bvh coherent camera", true);
   }
 }
 
