@@ -75,8 +75,8 @@ std::vector<Mode> modes(const Scene& scene) {
   m.push_back({"embree rtcIntersect1 loop", makeEmbreeAccelerator(scene, EmbreeBatch::kLoop)});
   m.push_back({"embree rtcIntersect1M", makeEmbreeAccelerator(scene, EmbreeBatch::kStream)});
   m.push_back({"embree rtcIntersect8", makeEmbreeAccelerator(scene, EmbreeBatch::kPacket8)});
-  m.push_back({"embree rtcIntersect8 coherent",
-               makeEmbreeAccelerator(scene, EmbreeBatch::kPacket8), true});
+  m.push_back(
+      {"embree rtcIntersect8 coherent", makeEmbreeAccelerator(scene, EmbreeBatch::kPacket8), true});
   for (BvhBatch batch : {BvhBatch::kLoop, BvhBatch::kPacket8, BvhBatch::kStream64}) {
     TwoLevelOptions options;
     options.batch = batch;
@@ -121,8 +121,8 @@ void benchScene(const std::string& path, int width, int height, int rounds, bool
   const Mode* loop = nullptr;
   for (const Mode& m : all) {
     if (m.name.find("loop") != std::string::npos) loop = &m;  // each accelerator's loop first
-    std::printf("  %-26s %8.2f (%5.2fx) %8.2f (%5.2fx) %8.2f (%5.2fx)\n", m.name.c_str(),
-                m.camera, m.camera / loop->camera, m.shadow, m.shadow / loop->shadow, m.bounce,
+    std::printf("  %-26s %8.2f (%5.2fx) %8.2f (%5.2fx) %8.2f (%5.2fx)\n", m.name.c_str(), m.camera,
+                m.camera / loop->camera, m.shadow, m.shadow / loop->shadow, m.bounce,
                 m.bounce / loop->bounce);
   }
   std::fflush(stdout);

@@ -77,8 +77,8 @@ std::vector<Ray> cameraLikeRays(const Scene& scene) {
     for (int x = 0; x < 32; ++x)
       for (int s = 0; s < 8; ++s) {
         const Vec2 u = jitter.next2D();
-        const Vec3 target = centre + Vec3((x + u.x) / 32 - 0.5f, (y + u.y) / 32 - 0.5f, 0) *
-                                         length(extent);
+        const Vec3 target =
+            centre + Vec3((x + u.x) / 32 - 0.5f, (y + u.y) / 32 - 0.5f, 0) * length(extent);
         Ray r;
         r.o = eye, r.d = normalize(target - eye), r.tmin = 0, r.tmax = kInfinity;
         rays.push_back(r);
