@@ -46,7 +46,7 @@ Filter Filter::make(const std::string& name) {
 Filter::Filter(Kind kind) : kind_(kind) {
   switch (kind) {
     case Kind::kBox:
-      radius_ = 0.5f;
+      radius_ = kBoxRadius;
       break;
     case Kind::kTent:
       radius_ = 1.0f;

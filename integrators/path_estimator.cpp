@@ -84,14 +84,16 @@ Color PathEstimator::result(const PathState& state) {
 
 /// Escaped: the infinite lights' radiance, weighted against their light-sampling pdfs.
 void PathEstimator::escape(PathState& st) const {
-  for (int i : lights_.infinite()) {
-    const Vec3 dir = normalize(st.ray.d);
-    const Color Le = lights_.light(size_t(i)).Le(dir);
+  const std::vector<int>& infinite = lights_.infinite();
+  if (infinite.empty()) return;
+  const Vec3 dir = normalize(st.ray.d);
+  for (int i : infinite) {
+    const Color Le = lights_.Le(i, dir);
     if (isBlack(Le)) continue;
     const float w =
         st.specular ? 1.0f : powerHeuristic(st.prevPdf, lights_.pdf(i, st.prev, dir, {}, {}));
-    st.paths.addFound(add(st, st.beta * Le * w, "environment", st.indirectEmission, st.depth),
-                      true);
+    const Color c = add(st, st.beta * Le * w, "environment", st.indirectEmission, st.depth);
+    if (st.paths.active()) st.paths.addFound(c, true);
   }
 }
 

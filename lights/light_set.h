@@ -59,7 +59,16 @@ class LightSet {
     const float pmf = this->pmf(ctx, index);
     if (!(pmf > 0)) return 0.0f;
     const size_t i = size_t(index);
-    return pmf * (i < area_.size() ? area_[i].pdf(ctx, wi, p, n) : pdfOther(index, ctx, wi, p, n));
+    // The constant environment through its final class, inline (the escapes of a scene under
+    // the sky call this per path: callgrind, heavy spheres).
+    return pmf * (i < area_.size()                ? area_[i].pdf(ctx, wi, p, n)
+                  : index == constantEnvironment_ ? environment_[0].pdf(ctx, wi, p, n)
+                                                  : pdfOther(index, ctx, wi, p, n));
+  }
+  /// Light i's radiance toward an escaping ray's direction (Light::Le), the constant
+  /// environment's inline.
+  Color Le(int i, const Vec3& dir) const {
+    return i == constantEnvironment_ ? environment_[0].Le(dir) : lights_[size_t(i)]->Le(dir);
   }
   /// The probability that sample() from ctx chooses light `index`.
   float pmf(const LightSampleContext& ctx, int index) const {
