@@ -45,6 +45,8 @@ struct PathEstimator::Vertex {
   bool lightChosen = false;
   int light;
   float lightPmf;
+  /// What the light choice here gave of LightSet::pmf(here, escapeLight()), or -1.
+  float escapePmf = -1;
 };
 
 /// The vertex's 3D draws: those made ahead while they last, then the sampler's own.
@@ -90,8 +92,12 @@ void PathEstimator::escape(PathState& st) const {
   for (int i : infinite) {
     const Color Le = lights_.Le(i, dir);
     if (isBlack(Le)) continue;
-    const float w =
-        st.specular ? 1.0f : powerHeuristic(st.prevPdf, lights_.pdf(i, st.prev, dir, {}, {}));
+    // The choice at prev computed the environment's pmf there, if it is the light in question.
+    const float w = st.specular ? 1.0f
+                    : i == lights_.escapeLight() && st.prevEscapePmf >= 0
+                        ? powerHeuristic(st.prevPdf, lights_.pdfChosen(i, st.prevEscapePmf, st.prev,
+                                                                       dir, {}, {}))
+                        : powerHeuristic(st.prevPdf, lights_.pdf(i, st.prev, dir, {}, {}));
     const Color c = add(st, st.beta * Le * w, "environment", st.indirectEmission, st.depth);
     if (st.paths.active()) st.paths.addFound(c, true);
   }
@@ -200,7 +206,7 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
 
 /// Next-event estimation: one light sample, MIS-weighted against BSDF sampling. Returns true
 /// with `shadow` set when the estimate needs its shadow ray traced.
-[[gnu::always_inline]] inline bool PathEstimator::nextEvent(const PathState& st, const Vertex& v,
+[[gnu::always_inline]] inline bool PathEstimator::nextEvent(const PathState& st, Vertex& v,
                                                             const Bsdf& bsdf, VertexDraws& draws,
                                                             ShadowQuery& shadow) const {
   if (!bsdf.hasNonDelta() || lights_.empty()) return false;
@@ -208,7 +214,7 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
   // The light choice and the point on it as one 3D sample (stratified jointly by Sobol').
   const Vec3 u = draws.next3D();
   LightSample ls = v.lightChosen ? lights_.sampleChosen(v.light, v.lightPmf, v.here, {u.y, u.z})
-                                 : lights_.sample(v.here, u.x, {u.y, u.z});
+                                 : lights_.sample(v.here, u.x, {u.y, u.z}, v.escapePmf);
   if (!ls.valid() || isBlack(ls.L)) return false;
   float bsdfPdf;
   Color f = bsdf.eval(v.wo, ls.wi, bsdfPdf) * std::fabs(dot(ls.wi, v.n));
@@ -251,6 +257,7 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
   st.indirectNee = st.indirectNee || !bs.delta;
   st.prevPdf = bs.pdf;
   st.prev = v.here;
+  st.prevEscapePmf = v.escapePmf;
   if (bs.transmission && v.refractive) {
     st.media.cross(s.material, *v.m, s.frontFace);
     st.etaFactor /= bs.etaScale;
@@ -267,9 +274,9 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
 }
 
 template <bool glossy>
-bool PathEstimator::defer(const PathState& st, Sampler& sampler, Vertex& v,
-                          const ShadingMaterial& sm, float eta, DrawsAhead ahead,
-                          const ShadingDeferral& stages, uint32_t path) const {
+bool PathEstimator::defer(PathState& st, Sampler& sampler, Vertex& v, const ShadingMaterial& sm,
+                          float eta, DrawsAhead ahead, const ShadingDeferral& stages,
+                          uint32_t path) const {
   // What the SIMD stages repeat: a lone Lambert lobe or the metal and plastic mixture (the
   // caller's test), both draws made, a light sample drawn (nextEvent's conditions: neither
   // BSDF is all deltas), nothing for light-path AOVs, no medium to attenuate by.
@@ -283,7 +290,7 @@ bool PathEstimator::defer(const PathState& st, Sampler& sampler, Vertex& v,
   v.here.belowMatters = !(dot(v.wo, v.n) > 0);
   const Vec3& u = *ahead.first;
   float pmf;
-  const int light = lights_.choose(v.here, u.x, pmf);
+  const int light = lights_.choose(v.here, u.x, pmf, v.escapePmf);
   const bool chosen = light >= 0 && pmf > 0;
   const int32_t choice = stages.lights.choice(light);
   if (chosen && choice == kOtherLight) {  // another kind of light: the scalar code samples it
@@ -303,6 +310,8 @@ bool PathEstimator::defer(const PathState& st, Sampler& sampler, Vertex& v,
     m.metallic[q] = sm.metallic, m.roughness[q] = sm.roughness, m.eta[q] = eta;
   }
   m.path[q] = path, m.time[q] = s.time, m.belowMatters[q] = v.here.belowMatters;
+  // finishDeferred makes `here` the path's prev (the stages neither read nor change this).
+  st.prevEscapePmf = v.escapePmf;
   sampler.skip3D(), sampler.skip3D();  // as the two draws would have advanced it
   return true;
 }

@@ -31,6 +31,8 @@ struct PathState {
   bool indirectNee = false, indirectEmission = false;
   float prevPdf = 0;        ///< BSDF pdf of the last scattering, for MIS against light sampling
   LightSampleContext prev;  ///< the last scattering point, as light sampling saw it
+  /// LightSet::pmf(prev, escapeLight()) when the light choice at prev gave it, else -1.
+  float prevEscapePmf = -1;
   float etaFactor = 1;      ///< undoes the 1/eta^2 radiance scaling for Russian roulette
   MediumStack media;
   Vec3 cameraOrigin;             ///< for the primary hit's depth
@@ -148,7 +150,7 @@ class PathEstimator {
  private:
   struct Vertex;
   struct VertexDraws;
-  bool nextEvent(const PathState& st, const Vertex& v, const Bsdf& bsdf, VertexDraws& draws,
+  bool nextEvent(const PathState& st, Vertex& v, const Bsdf& bsdf, VertexDraws& draws,
                  ShadowQuery& shadow) const;
   PathStep scatter(PathState& st, const Vertex& v, const Bsdf& bsdf, VertexDraws& draws,
                    RayStats& stats) const;
@@ -157,7 +159,7 @@ class PathEstimator {
   /// step), setting v.here; false: step goes on. A template: the matte vertices' call has no
   /// branch on the stage (callgrind, Cornell box: -0.2% of the render).
   template <bool glossy>
-  bool defer(const PathState& st, Sampler& sampler, Vertex& v, const ShadingMaterial& sm, float eta,
+  bool defer(PathState& st, Sampler& sampler, Vertex& v, const ShadingMaterial& sm, float eta,
              DrawsAhead ahead, const ShadingDeferral& stages, uint32_t path) const;
   /// Russian roulette after a scattering (Arvo & Kirk 1990) with Mitsuba's survival
   /// probability, from the kRouletteDepth-th segment on.

@@ -183,15 +183,20 @@ float BvhLightSampler::leftByImportance(uint32_t node, const LightSampleContext&
   return sum > 0 && std::isfinite(sum) ? left / sum : 0.5f;
 }
 
-int BvhLightSampler::sampleTop(const LightSampleContext& ctx, float u, float& pmf) const {
+int BvhLightSampler::sampleTop(const LightSampleContext& ctx, float u, float& pmf,
+                               float* soleInfinitePmf) const {
   pmf = 0;
   float root;
   const float total = topTotal(ctx, root);
+  const bool sole = infinite_.size() == 1;
+  // pmfTop's numbers for the one infinite light: its importance over the same total, or 0.
+  if (soleInfinitePmf) *soleInfinitePmf = sole ? 0.0f : -1.0f;
   if (!(total > 0) || !std::isfinite(total)) return -1;
   // The top level: the infinite lights, then the tree, by their weights.
   float target = u * total, before = 0;
   for (size_t i = 0; i < infinite_.size(); ++i) {
     const float w = infinite_[i].importance(ctx);
+    if (sole && soleInfinitePmf) *soleInfinitePmf = w / total;
     if (target < before + w || (nodes_.empty() && i + 1 == infinite_.size() && w > 0)) {
       pmf = w / total;
       return infiniteLight_[i];

@@ -26,9 +26,20 @@ class BvhLightSampler final : public LightSampler {
   /// infinite light the tree takes all of u (callgrind, Cornell box: ~95 -> ~30 instructions
   /// per choice).
   int sample(const LightSampleContext& ctx, float u, float& pmf) const override {
+    return sample(ctx, u, pmf, nullptr);
+  }
+  /// sample(), also giving in *soleInfinitePmf (when not null) pmf(ctx, i) for the scene's
+  /// infinite light i when it has exactly one, bit for bit, and -1 otherwise: what an escape
+  /// from the receiver's next segment weighs the environment by (PathEstimator::escape), for
+  /// one top-level importance less per escape.
+  int sample(const LightSampleContext& ctx, float u, float& pmf, float* soleInfinitePmf) const {
     // An environment alone: importance phi of a total phi, wherever the receiver is.
-    if (soleAmbient_ >= 0) return pmf = 1.0f, soleAmbient_;
-    if (!infinite_.empty() || nodes_.empty()) return sampleTop(ctx, u, pmf);
+    if (soleAmbient_ >= 0) {
+      if (soleInfinitePmf) *soleInfinitePmf = 1.0f;
+      return pmf = 1.0f, soleAmbient_;
+    }
+    if (!infinite_.empty() || nodes_.empty()) return sampleTop(ctx, u, pmf, soleInfinitePmf);
+    if (soleInfinitePmf) *soleInfinitePmf = -1.0f;
     // The tree alone: weight 1 of a total 1. u x 1, u / 1 and 1 / 1 are exact, so the choice
     // and the pmf are sampleTop's, bit for bit.
     u = std::min(u, kOneMinusEpsilon);
@@ -43,6 +54,9 @@ class BvhLightSampler final : public LightSampler {
     const uint64_t trail = trail_[size_t(light)];  // the tree alone: p 1, as above
     return fixedTree_ ? pmfInTree<true>(ctx, trail, 1.0f) : pmfAny(ctx, trail, 1.0f);
   }
+  /// The light whose pmf sample() gives in *soleInfinitePmf: the only infinite light that can
+  /// be chosen, or -1 when there are none or several.
+  int soleInfinite() const { return infinite_.size() == 1 ? infiniteLight_[0] : -1; }
   size_t nodeCount() const { return nodes_.size(); }
   /// Levels below the root of the deepest leaf (0: one light or none).
   int depth() const { return depth_; }
@@ -65,7 +79,7 @@ class BvhLightSampler final : public LightSampler {
   size_t split(std::vector<Item>& items, size_t begin, size_t end, bool balanced) const;
   static constexpr float kOneMinusEpsilon = 0.99999994f;
   /// sample() and pmf() with infinite lights beside the tree (or no tree).
-  int sampleTop(const LightSampleContext& ctx, float u, float& pmf) const;
+  int sampleTop(const LightSampleContext& ctx, float u, float& pmf, float* soleInfinitePmf) const;
   float pmfTop(const LightSampleContext& ctx, int light) const;
   /// From the root down to a leaf by u (in [0,1)), p times each branch's probability: the
   /// leaf's light. kFixed: every interior node has its fixedLeft (fixedTree_). Inline only

@@ -87,6 +87,8 @@ LightSet::LightSet(const Scene& scene, LightSamplerKind kind) {
     for (const Light* l : lights_) bounds.push_back(l->bounds());
   chooser_ = makeLightSampler(kind, power, bounds);
   bvh_ = dynamic_cast<const BvhLightSampler*>(chooser_.get());
+  if (bvh_ && infinite_.size() == 1 && bvh_->soleInfinite() == infinite_[0])
+    escapeLight_ = infinite_[0];
 }
 
 LightSample LightSet::sampleOther(int i, const LightSampleContext& ctx, Vec2 u) const {

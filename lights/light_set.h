@@ -34,11 +34,24 @@ class LightSet {
   /// includes the choice probability. Inline, into the integrators (callgrind, Cornell box:
   /// ~23 instructions per vertex fewer than a call, which copied the sample out).
   LightSample sample(const LightSampleContext& ctx, float u1, Vec2 u2) const;
+  /// sample(), also giving choose()'s escapePmf.
+  LightSample sample(const LightSampleContext& ctx, float u1, Vec2 u2, float& escapePmf) const;
   /// sample()'s choice alone: the light it samples with u1 from ctx and the probability of
   /// that choice (none when the index is negative or pmf is not positive).
   int choose(const LightSampleContext& ctx, float u1, float& pmf) const {
     return bvh_ ? bvh_->sample(ctx, u1, pmf) : chooser_->sample(ctx, u1, pmf);
   }
+  /// choose(), also giving in escapePmf pmf(ctx, escapeLight()) bit for bit when the choice
+  /// computed it on the way (the light BVH's top level), or -1.
+  int choose(const LightSampleContext& ctx, float u1, float& pmf, float& escapePmf) const {
+    if (bvh_ && escapeLight_ >= 0) return bvh_->sample(ctx, u1, pmf, &escapePmf);
+    escapePmf = -1.0f;
+    return choose(ctx, u1, pmf);
+  }
+  /// The light whose pmf choose() can give on the way: the scene's only infinite light when
+  /// the light BVH chooses and has no other infinite light (a sun) beside it; -1 otherwise.
+  /// An escaping ray's MIS weight needs that pmf at the vertex it left (PathEstimator::escape).
+  int escapeLight() const { return escapeLight_; }
   /// sample() past its choice: light i chosen with probability pmf by choose(ctx, u1, pmf),
   /// for a caller that made the choice already.
   LightSample sampleChosen(int i, float pmf, const LightSampleContext& ctx, Vec2 u2) const;
@@ -56,7 +69,11 @@ class LightSet {
   float pdf(int index, const LightSampleContext& ctx, const Vec3& wi, const Vec3& p,
             const Vec3& n) const {
     if (index < 0 || size_t(index) >= lights_.size()) return 0.0f;
-    const float pmf = this->pmf(ctx, index);
+    return pdfChosen(index, this->pmf(ctx, index), ctx, wi, p, n);
+  }
+  /// pdf() for a valid index whose choice probability pmf(ctx, index) the caller knows.
+  float pdfChosen(int index, float pmf, const LightSampleContext& ctx, const Vec3& wi,
+                  const Vec3& p, const Vec3& n) const {
     if (!(pmf > 0)) return 0.0f;
     const size_t i = size_t(index);
     // The constant environment through its final class, inline (the escapes of a scene under
@@ -100,6 +117,7 @@ class LightSet {
   std::vector<bool> isTriangles_;     ///< per primitive: lights are per triangle
   std::vector<int> infinite_, delta_;
   int constantEnvironment_ = -1;  ///< environment_[0]'s index (sampled inline), or -1
+  int escapeLight_ = -1;          ///< see escapeLight()
   size_t triangleCount_ = 0;
   bool anyPower_ = false;
   std::unique_ptr<LightSampler> chooser_;
@@ -112,6 +130,13 @@ inline LightSample LightSet::sample(const LightSampleContext& ctx, float u1, Vec
   // The BVH chooser and area lights through their final classes: inline, no virtual calls
   // (callgrind, Cornell box: LightSet::sample ~248 -> ~188 instructions per vertex).
   const int i = choose(ctx, u1, pmf);
+  return sampleChosen(i, pmf, ctx, u2);
+}
+
+inline LightSample LightSet::sample(const LightSampleContext& ctx, float u1, Vec2 u2,
+                                    float& escapePmf) const {
+  float pmf;
+  const int i = choose(ctx, u1, pmf, escapePmf);
   return sampleChosen(i, pmf, ctx, u2);
 }
 

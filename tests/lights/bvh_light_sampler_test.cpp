@@ -83,6 +83,49 @@ TEST(BvhLightSampler, SamplingReportsThePmfThatQueriesGiveBitForBit) {
   }
 }
 
+/// The many-lights scene under a sky alone (no sun): the sky is the only infinite light.
+Scene manyLightsUnderASky() {
+  Scene s = manyLightsScene();
+  s.environment.background = Color(0.3f);
+  return s;
+}
+
+TEST(BvhLightSampler, SamplingGivesTheSkysPmfAsTheEscapeAsksForIt) {
+  // What PathEstimator::escape weighs an escaping ray by: pmf(prev, sky), given by the choice
+  // made at prev, bit for bit; none (-1) when a sun stands beside the sky at the top level.
+  Scene sky = manyLightsUnderASky();
+  sky.finalize();
+  const LightSet lights(sky, LightSamplerKind::kBvh);
+  ASSERT_EQ(lights.infinite().size(), 1u);
+  const int skyLight = lights.infinite()[0];
+  EXPECT_EQ(lights.escapeLight(), skyLight);
+  Receivers r;
+  int chosen = 0, skyChosen = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const LightSampleContext ctx = r.next();
+    const float u = r.u();
+    float pmf, escapePmf = -2;
+    const int light = lights.choose(ctx, u, pmf, escapePmf);
+    EXPECT_EQ(escapePmf, lights.pmf(ctx, skyLight)) << "receiver " << i;
+    // The same choice and pmf as without it.
+    float plainPmf;
+    EXPECT_EQ(light, lights.choose(ctx, u, plainPmf)) << "receiver " << i;
+    EXPECT_EQ(pmf, plainPmf) << "receiver " << i;
+    chosen += light >= 0, skyChosen += light == skyLight;
+  }
+  EXPECT_GT(chosen, 1000);
+  EXPECT_GT(skyChosen, 20);  // both branches of the top level were taken
+  EXPECT_LT(skyChosen, chosen - 20);
+
+  Scene sunAndSky = everyKindOfLight();
+  sunAndSky.finalize();
+  const LightSet both(sunAndSky, LightSamplerKind::kBvh);
+  EXPECT_EQ(both.escapeLight(), -1);
+  float pmf, escapePmf = 0.5f;
+  both.choose(r.next(), 0.5f, pmf, escapePmf);
+  EXPECT_EQ(escapePmf, -1.0f);
+}
+
 TEST(BvhLightSampler, ChoicesFollowThePmf) {
   Scene s = everyKindOfLight();
   s.finalize();
