@@ -14,7 +14,7 @@
 namespace tray {
 
 /// found[i]: rays[i] hit something in top, hits[i] its closest hit (as rtcIntersect1 would).
-/// `coherent`: the rays are (camera rays in pixel order), and Embree is told so.
+/// `coherent`: the rays are (camera rays in pixel order), and Embree's packets are told so.
 void embreeIntersectBatch(RTCScene top, const Scene& scene, EmbreeBatch mode,
                           std::span<const Ray> rays, std::span<Hit> hits, std::span<uint8_t> found,
                           bool coherent = false);
