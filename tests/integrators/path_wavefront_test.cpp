@@ -15,6 +15,7 @@
 #include "core/aov.h"
 #include "core/render_setup.h"
 #include "core/renderer.h"
+#include "integrators/path_wavefront.h"
 #include "integrators/registry.h"
 #include "io/gltf_loader.h"
 #include "tests/integrators/render_job.h"
@@ -250,8 +251,8 @@ class StoppingAccelerator final : public Accelerator {
   std::atomic<bool>& stop_;
 };
 
-// A stop (SIGINT, SIGTERM) ends a batch between waves: its first wave (4096 paths: four
-// whole pixels of 1000 samples, and part of a fifth) is finished, and only the pixels whose
+// A stop (SIGINT, SIGTERM) ends a batch between waves: its first wave (kPathWaveSize paths,
+// 1024: three whole pixels of 300 samples, and part of a fourth) is finished, and only the pixels whose
 // samples all came before the stop are written, with the uninterrupted render's values. (The
 // wavefront used to check nothing within a batch: a render with hours of samples per batch
 // ignored the signal; Farm.RealSignalsExit130And143WithThePartialImage waited on it.)
@@ -261,7 +262,9 @@ TEST(PathWavefront, StopBetweenWavesWritesOnlyWholePixels) {
   auto embree = makeAccelerator("embree", scene);
   RenderSettings settings;
   settings.set("integrator", "path");
-  settings.set("spp", 1000);
+  constexpr int kSpp = 300;
+  static_assert(kPathWaveSize % kSpp != 0 && kPathWaveSize / kSpp >= 2);
+  settings.set("spp", kSpp);
   auto renderWith = [&](const Accelerator& accel, const std::atomic<bool>* stop, Film& film) {
     RenderContext ctx{scene, accel, *camera, settings, 16, 16};
     auto integrator = makeIntegrator(ctx);
@@ -277,12 +280,13 @@ TEST(PathWavefront, StopBetweenWavesWritesOnlyWholePixels) {
   Film stopped(16, 16);
   const auto [stoppedStats, stoppedState] = renderWith(stopping, &stop, stopped);
   EXPECT_TRUE(stoppedStats.interrupted);
-  EXPECT_EQ(stoppedStats.pixelsDone, 4u);  // 4096 / 1000 whole pixels
+  const size_t wholePixels = kPathWaveSize / kSpp;
+  EXPECT_EQ(stoppedStats.pixelsDone, wholePixels);
   Film whole(16, 16);
   const auto [wholeStats, wholeState] = renderWith(*embree, nullptr, whole);
   EXPECT_EQ(wholeStats.pixelsDone, 256u);
   for (size_t p = 0; p < 256; ++p) {
-    EXPECT_EQ(stoppedState.done[p], p < 4 ? 1 : 0) << p;
+    EXPECT_EQ(stoppedState.done[p], p < wholePixels ? 1 : 0) << p;
     if (!stoppedState.done[p]) continue;
     for (int c = 0; c < 3; ++c) EXPECT_EQ(stoppedState.sums[p].rgb[c], wholeState.sums[p].rgb[c]);
   }
