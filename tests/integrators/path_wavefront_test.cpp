@@ -4,6 +4,8 @@
 // accelerator queries, so the images are expected to be the same bits (tolerance 0); only a
 // batched traversal that returned a different closest hit among equal-t candidates could make
 // them differ, and the tests below would show it. docs/wavefront.md.
+#include "integrators/path_wavefront.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,7 +17,6 @@
 #include "core/aov.h"
 #include "core/render_setup.h"
 #include "core/renderer.h"
-#include "integrators/path_wavefront.h"
 #include "integrators/registry.h"
 #include "io/gltf_loader.h"
 #include "tests/integrators/render_job.h"
@@ -252,8 +253,8 @@ class StoppingAccelerator final : public Accelerator {
 };
 
 // A stop (SIGINT, SIGTERM) ends a batch between waves: its first wave (kPathWaveSize paths,
-// 1024: three whole pixels of 300 samples, and part of a fourth) is finished, and only the pixels whose
-// samples all came before the stop are written, with the uninterrupted render's values. (The
+// 1024: three whole pixels of 300 samples, and part of a fourth) is finished, and only the pixels
+// whose samples all came before the stop are written, with the uninterrupted render's values. (The
 // wavefront used to check nothing within a batch: a render with hours of samples per batch
 // ignored the signal; Farm.RealSignalsExit130And143WithThePartialImage waited on it.)
 TEST(PathWavefront, StopBetweenWavesWritesOnlyWholePixels) {
