@@ -1,6 +1,7 @@
 #pragma once
 // What the accelerator tests trace batches and motion against: random rays inside a scene's
-// bounds, and a cube and a sphere moving over the shutter (each kind of instance motion).
+// bounds, a pinhole's rays row by row, and a cube and a sphere moving over the shutter (each
+// kind of instance motion).
 #include <vector>
 
 #include "core/ray.h"
@@ -26,6 +27,26 @@ inline std::vector<Ray> randomRaysInBounds(const Scene& scene, int count, uint32
     if (i % 3 == 0) r.tmax = 0.3f * length(b.diagonal()) * s.next1D();
     rays.push_back(r);
   }
+  return rays;
+}
+
+/// Camera rays: a pinhole outside the bounds looking at their centre, row by row (neighbours in
+/// the batch are neighbours in the image), at random shutter times; odd rows of random length.
+inline std::vector<Ray> coherentRays(const Scene& scene, int width, int height) {
+  const Bounds3 b = scene.bounds();
+  const Vec3 centre = 0.5f * (b.lo + b.hi), eye = centre + Vec3(0.3f, 0.4f, 1.5f) * b.diagonal();
+  const Vec3 forward = normalize(centre - eye), right = normalize(cross(forward, {0, 1, 0}));
+  const Vec3 up = cross(right, forward);
+  std::vector<Ray> rays;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      Sampler s(uint32_t(y * width + x), 0, 9);
+      const float px = (x + 0.5f) / width - 0.5f, py = 0.5f - (y + 0.5f) / height;
+      Ray r{eye, forward + 0.8f * px * right + 0.8f * py * up};
+      r.time = s.next1D();
+      if (y % 2) r.tmax = 2.5f * s.next1D();  // odd rows end anywhere: some are not blocked
+      rays.push_back(r);
+    }
   return rays;
 }
 

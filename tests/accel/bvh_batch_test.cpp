@@ -71,26 +71,6 @@ Scene movingScene() {
   return s;
 }
 
-/// Camera rays: a pinhole outside the bounds looking at their centre, row by row (neighbours in
-/// the batch are neighbours in the image), at random shutter times; odd rows of random length.
-std::vector<Ray> coherentRays(const Scene& scene, int width, int height) {
-  const Bounds3 b = scene.bounds();
-  const Vec3 centre = 0.5f * (b.lo + b.hi), eye = centre + Vec3(0.3f, 0.4f, 1.5f) * b.diagonal();
-  const Vec3 forward = normalize(centre - eye), right = normalize(cross(forward, {0, 1, 0}));
-  const Vec3 up = cross(right, forward);
-  std::vector<Ray> rays;
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) {
-      Sampler s(uint32_t(y * width + x), 0, 9);
-      const float px = (x + 0.5f) / width - 0.5f, py = 0.5f - (y + 0.5f) / height;
-      Ray r{eye, forward + 0.8f * px * right + 0.8f * py * up};
-      r.time = s.next1D();
-      if (y % 2) r.tmax = 2.5f * s.next1D();  // odd rows end anywhere: some are not blocked
-      rays.push_back(r);
-    }
-  return rays;
-}
-
 /// Every ray's batched answers against its single-ray ones. Ties: another primitive or triangle
 /// at exactly the same t is as closest (coincident surfaces; the groups' traversal order differs
 /// from a single ray's); at most 2% of the hits.

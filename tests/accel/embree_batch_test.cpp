@@ -1,7 +1,7 @@
 // Accelerator::intersectBatch / occludedBatch against the single-ray queries they batch:
 // every way of reaching Embree (loop, stream, 8-wide packets), the BVH's default batch, on
 // opaque meshes and on alpha-tested ones (the filter finds each ray by its id in the batch),
-// and the coherent batch the wavefront's camera rays take.
+// and the coherent batch the wavefront's camera rays take (on a pinhole's rays row by row).
 #include <gtest/gtest.h>
 
 #include <string>
@@ -64,34 +64,12 @@ void expectSameAsSingleRays(const Accelerator& accel, const std::vector<Ray>& ra
   }
 }
 
-/// Camera-like rays: from one point, eight jittered rays per "pixel" of a 32 x 32 grid of
-/// directions towards the scene's centre, in pixel order (what the wavefront's first bounce
-/// traces as coherent).
-std::vector<Ray> cameraLikeRays(const Scene& scene) {
-  const Bounds3 b = scene.bounds();
-  const Vec3 centre = (b.lo + b.hi) * 0.5f, extent = b.hi - b.lo;
-  const Vec3 eye = centre + Vec3(0.1f, 0.2f, 2.0f) * length(extent);
-  Sampler jitter(0, 0, 11);
-  std::vector<Ray> rays;
-  for (int y = 0; y < 32; ++y)
-    for (int x = 0; x < 32; ++x)
-      for (int s = 0; s < 8; ++s) {
-        const Vec2 u = jitter.next2D();
-        const Vec3 target =
-            centre + Vec3((x + u.x) / 32 - 0.5f, (y + u.y) / 32 - 0.5f, 0) * length(extent);
-        Ray r;
-        r.o = eye, r.d = normalize(target - eye), r.tmin = 0, r.tmax = kInfinity;
-        rays.push_back(r);
-      }
-  return rays;
-}
-
 TEST(EmbreeBatch, EveryModeEqualsSingleRayQueries) {
   for (const char* file :
        {"/reference/cornell-box.gltf", "/gltf-features/AlphaBlendModeTest.glb"}) {
     const Scene scene = loadGltf(std::string(TRAY_SHARED_DIR) + file);
     const std::vector<Ray> rays = test::randomRaysInBounds(scene, 2000, 7, false);
-    const std::vector<Ray> camera = cameraLikeRays(scene);
+    const std::vector<Ray> camera = test::coherentRays(scene, 48, 40);
     for (EmbreeBatch mode : {EmbreeBatch::kLoop, EmbreeBatch::kStream, EmbreeBatch::kPacket8}) {
       const auto accel = makeEmbreeAccelerator(scene, mode);
       const std::string what = std::string(file) + " mode " + std::to_string(int(mode));
