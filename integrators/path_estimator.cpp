@@ -92,12 +92,14 @@ void PathEstimator::escape(PathState& st) const {
   for (int i : infinite) {
     const Color Le = lights_.Le(i, dir);
     if (isBlack(Le)) continue;
-    // The choice at prev computed the environment's pmf there, if it is the light in question.
-    const float w = st.specular ? 1.0f
-                    : i == lights_.escapeLight() && st.prevEscapePmf >= 0
-                        ? powerHeuristic(st.prevPdf, lights_.pdfChosen(i, st.prevEscapePmf, st.prev,
-                                                                       dir, {}, {}))
-                        : powerHeuristic(st.prevPdf, lights_.pdf(i, st.prev, dir, {}, {}));
+    float w = 1.0f;
+    if (!st.specular) {
+      // The choice at prev gave the environment's pmf there, if it is the light in question.
+      const float pmf = i == lights_.escapeLight() && st.prevEscapePmf >= 0
+                            ? st.prevEscapePmf
+                            : lights_.pmf(st.prev, i);
+      w = powerHeuristic(st.prevPdf, lights_.pdfChosen(i, pmf, st.prev, dir, {}, {}));
+    }
     const Color c = add(st, st.beta * Le * w, "environment", st.indirectEmission, st.depth);
     if (st.paths.active()) st.paths.addFound(c, true);
   }
