@@ -18,12 +18,9 @@ enum class EmbreeBatch {
 
 /// Per primitive: whether Embree places it in the top scene as world-space triangles rather
 /// than as an instance (as Mitsuba 3 places every mesh): a static mesh (no motion, no
-/// deformation) of at least kEmbreeFlattenTriangles used by this primitive alone. Measured
-/// (docs/accelerators.md): MetalRoughSpheresNoTextures' 98 meshes of ~10k triangles trace
-/// 11-14% faster per sample flattened (no per-instance ray transform, one tree over all),
-/// while flattening the Cornell box's small meshes made it 10% slower; a mesh placed several
-/// times stays one copy, instanced.
-constexpr size_t kEmbreeFlattenTriangles = 1024;
+/// deformation) used by this primitive alone. No per-instance ray transform; the top scene is
+/// built as two levels (a tree per geometry, one over them), which is what made small meshes
+/// pay too (docs/accelerators.md): a mesh placed several times stays one copy, instanced.
 std::vector<uint8_t> embreeFlattenedMeshes(const Scene& scene);
 
 /// Embree 3 traversal: meshes as triangle geometry built once per mesh and placed by instances;
