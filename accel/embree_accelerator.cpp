@@ -374,8 +374,8 @@ std::vector<uint8_t> embreeFlattenedMeshes(const Scene& scene) {
     const Primitive& p = scene.primitives[i];
     if (p.kind != Primitive::Kind::kMesh) continue;
     const TriangleMesh& m = scene.meshes[p.mesh];
-    flat[i] = uses[p.mesh] == 1 && p.motion.empty() && m.positionSteps.empty() &&
-              m.triangleCount() > 0;
+    flat[i] =
+        uses[p.mesh] == 1 && p.motion.empty() && m.positionSteps.empty() && m.triangleCount() > 0;
   }
   return flat;
 }
