@@ -311,15 +311,12 @@ class EmbreeAccelerator final : public Accelerator {
   void build() {
     top_ = rtcNewScene(device_);
     rtcSetSceneFlags(top_, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
-    // Two levels: Embree builds each geometry's own tree, and a tree over them (the low
-    // quality's two-level index, rtcSetSceneBuildQuality(3)). One tree over every flattened
-    // triangle (the default quality) traced the Cornell box's bounce rays slower than its
-    // instances did; two levels trace them 1.2-1.3x faster than the instances, with no ray
-    // transform per instance (callgrind, 128 x 128: Cornell box -12.8% of the render's
-    // instructions, heavy helmets -7.0%, heavy spheres -2.3%; docs/accelerators.md).
-    rtcSetSceneBuildQuality(top_, RTC_BUILD_QUALITY_LOW);
     userData_.resize(scene_.primitives.size());
     const std::vector<uint8_t> flat = embreeFlattenedMeshes(scene_);
+    // Two levels (rtcSetSceneBuildQuality(3): the low quality builds a tree per geometry and
+    // one over them) for a few triangles, one tree for many (kEmbreeOneTreeTriangles).
+    rtcSetSceneBuildQuality(top_, embreeTwoLevelTop(scene_, flat) ? RTC_BUILD_QUALITY_LOW
+                                                                  : RTC_BUILD_QUALITY_MEDIUM);
     for (uint32_t i = 0; i < scene_.primitives.size(); ++i) {
       const Primitive& p = scene_.primitives[i];
       RTCGeometry g;
@@ -378,6 +375,13 @@ std::vector<uint8_t> embreeFlattenedMeshes(const Scene& scene) {
         uses[p.mesh] == 1 && p.motion.empty() && m.positionSteps.empty() && m.triangleCount() > 0;
   }
   return flat;
+}
+
+bool embreeTwoLevelTop(const Scene& scene, const std::vector<uint8_t>& flattened) {
+  size_t triangles = 0;
+  for (size_t i = 0; i < flattened.size(); ++i)
+    if (flattened[i]) triangles += scene.meshes[scene.primitives[i].mesh].triangleCount();
+  return triangles < kEmbreeOneTreeTriangles;
 }
 
 std::unique_ptr<Accelerator> makeEmbreeAccelerator(const Scene& scene) {

@@ -18,10 +18,19 @@ enum class EmbreeBatch {
 
 /// Per primitive: whether Embree places it in the top scene as world-space triangles rather
 /// than as an instance (as Mitsuba 3 places every mesh): a static mesh (no motion, no
-/// deformation) used by this primitive alone. No per-instance ray transform; the top scene is
-/// built as two levels (a tree per geometry, one over them), which is what made small meshes
-/// pay too (docs/accelerators.md): a mesh placed several times stays one copy, instanced.
+/// deformation) used by this primitive alone. No per-instance ray transform; a mesh placed
+/// several times stays one copy, instanced.
 std::vector<uint8_t> embreeFlattenedMeshes(const Scene& scene);
+
+/// Below this many flattened triangles in all, the top scene is built in two levels (a tree
+/// per geometry and one over them, Embree 3's RTC_BUILD_QUALITY_LOW); from it on, as one tree
+/// over every triangle (the default quality). Measured on the bench scenes
+/// (docs/accelerators.md), per sample against instances of every mesh under 1024 triangles:
+/// the Cornell box's 36 triangles 1.13x in two levels, 0.94x in one tree; the heavy spheres'
+/// million 0.93x in two levels, 1.06x in one tree; the heavy helmets 1.14-1.16x either way.
+constexpr size_t kEmbreeOneTreeTriangles = 1024;
+/// Whether the top scene of `scene` is built in two levels, given embreeFlattenedMeshes.
+bool embreeTwoLevelTop(const Scene& scene, const std::vector<uint8_t>& flattened);
 
 /// Embree 3 traversal: meshes as triangle geometry built once per mesh and placed by instances;
 /// analytic shapes as user geometry calling Scene::intersectShape.

@@ -112,6 +112,34 @@ TEST(EmbreeFlatten, OnlyStaticMeshesPlacedOnce) {
   EXPECT_EQ(embreeFlattenedMeshes(s), (std::vector<uint8_t>{0, 0, 0, 0}));
 }
 
+TEST(EmbreeFlatten, TwoLevelsOnlyForFewFlattenedTriangles) {
+  // The grid of 1152 triangles placed once: one tree. Two of 2 triangles, and a shared grid
+  // (instanced, not counted): two levels.
+  Scene big = scene(diffuse(Color(0.5f)));
+  EXPECT_FALSE(embreeTwoLevelTop(big, embreeFlattenedMeshes(big)));
+  Scene small;
+  const int mat = addMaterial(small, diffuse(Color(0.5f)));
+  addMeshInstance(small, addMesh(small, grid(1, mat)), Mat4::translate({0, 1, 0}));
+  addMeshInstance(small, addMesh(small, grid(1, mat)), Mat4::translate({0, 2, 0}));
+  const uint32_t shared = addMesh(small, grid(24, mat));
+  addMeshInstance(small, shared, Mat4::translate({0, 3, 0}));
+  addMeshInstance(small, shared, Mat4::translate({0, 4, 0}));
+  small.finalize();
+  EXPECT_EQ(embreeFlattenedMeshes(small), (std::vector<uint8_t>{1, 1, 0, 0}));
+  EXPECT_TRUE(embreeTwoLevelTop(small, embreeFlattenedMeshes(small)));
+  // Either way the hits are the BVH's.
+  auto embree = makeAccelerator("embree", small), bvh = makeAccelerator("bvh", small);
+  int hits = 0;
+  for (const Ray& r : rays(4000)) {
+    Hit e, b;
+    const bool he = embree->intersect(r, e), hb = bvh->intersect(r, b);
+    ASSERT_EQ(he, hb);
+    EXPECT_EQ(embree->occluded(r), bvh->occluded(r));
+    if (he) expectSameHit(small, r, e, b), ++hits;
+  }
+  EXPECT_GT(hits, 500);
+}
+
 TEST(EmbreeFlatten, BigMeshPlacedOnceHitsAsTheInstancedTree) {
   Scene s = scene(diffuse(Color(0.5f)));
   int meshHits[3] = {0, 0, 0};
