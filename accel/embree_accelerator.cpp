@@ -315,8 +315,8 @@ class EmbreeAccelerator final : public Accelerator {
     const std::vector<uint8_t> flat = embreeFlattenedMeshes(scene_);
     // Two levels (rtcSetSceneBuildQuality(3): the low quality builds a tree per geometry and
     // one over them) for a few triangles, one tree for many (kEmbreeOneTreeTriangles).
-    rtcSetSceneBuildQuality(top_, embreeTwoLevelTop(scene_, flat) ? RTC_BUILD_QUALITY_LOW
-                                                                  : RTC_BUILD_QUALITY_MEDIUM);
+    rtcSetSceneBuildQuality(
+        top_, embreeTwoLevelTop(scene_, flat) ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_MEDIUM);
     for (uint32_t i = 0; i < scene_.primitives.size(); ++i) {
       const Primitive& p = scene_.primitives[i];
       RTCGeometry g;
