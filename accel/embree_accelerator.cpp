@@ -314,7 +314,8 @@ class EmbreeAccelerator final : public Accelerator {
     userData_.resize(scene_.primitives.size());
     const std::vector<uint8_t> flat = embreeFlattenedMeshes(scene_);
     // Two levels (rtcSetSceneBuildQuality(3): the low quality builds a tree per geometry and
-    // one over them) for a few triangles, one tree for many (kEmbreeOneTreeTriangles).
+    // one over them) for small meshes, one tree when a big one is flattened
+    // (kEmbreeOneTreeTriangles).
     rtcSetSceneBuildQuality(
         top_, embreeTwoLevelTop(scene_, flat) ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_MEDIUM);
     for (uint32_t i = 0; i < scene_.primitives.size(); ++i) {
@@ -378,10 +379,11 @@ std::vector<uint8_t> embreeFlattenedMeshes(const Scene& scene) {
 }
 
 bool embreeTwoLevelTop(const Scene& scene, const std::vector<uint8_t>& flattened) {
-  size_t triangles = 0;
   for (size_t i = 0; i < flattened.size(); ++i)
-    if (flattened[i]) triangles += scene.meshes[scene.primitives[i].mesh].triangleCount();
-  return triangles < kEmbreeOneTreeTriangles;
+    if (flattened[i] &&
+        scene.meshes[scene.primitives[i].mesh].triangleCount() >= kEmbreeOneTreeTriangles)
+      return false;
+  return true;
 }
 
 std::unique_ptr<Accelerator> makeEmbreeAccelerator(const Scene& scene) {

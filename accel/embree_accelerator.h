@@ -22,12 +22,13 @@ enum class EmbreeBatch {
 /// several times stays one copy, instanced.
 std::vector<uint8_t> embreeFlattenedMeshes(const Scene& scene);
 
-/// Below this many flattened triangles in all, the top scene is built in two levels (a tree
-/// per geometry and one over them, Embree 3's RTC_BUILD_QUALITY_LOW); from it on, as one tree
-/// over every triangle (the default quality). Measured on the bench scenes
-/// (docs/accelerators.md), per sample against instances of every mesh under 1024 triangles:
-/// the Cornell box's 36 triangles 1.13x in two levels, 0.94x in one tree; the heavy spheres'
-/// million 0.93x in two levels, 1.06x in one tree; the heavy helmets 1.14-1.16x either way.
+/// When no flattened mesh has this many triangles, the top scene is built in two levels (a
+/// tree per geometry and one over them, Embree 3's RTC_BUILD_QUALITY_LOW); when one has, as one
+/// tree over every triangle (the default quality). Measured (docs/accelerators.md), per sample
+/// against instances of every mesh under 1024 triangles: the Cornell box (8 meshes, 36
+/// triangles) 1.13x in two levels, 0.94x in one tree; with 100 more small meshes (1236
+/// triangles) 1.42x and 1.16x; the heavy spheres (98 meshes of ~10k triangles) 0.93x in two
+/// levels, 1.06x in one tree; the heavy helmets 1.14-1.16x either way.
 constexpr size_t kEmbreeOneTreeTriangles = 1024;
 /// Whether the top scene of `scene` is built in two levels, given embreeFlattenedMeshes.
 bool embreeTwoLevelTop(const Scene& scene, const std::vector<uint8_t>& flattened);

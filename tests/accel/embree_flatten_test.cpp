@@ -112,20 +112,22 @@ TEST(EmbreeFlatten, OnlyStaticMeshesPlacedOnce) {
   EXPECT_EQ(embreeFlattenedMeshes(s), (std::vector<uint8_t>{0, 0, 0, 0}));
 }
 
-TEST(EmbreeFlatten, TwoLevelsOnlyForFewFlattenedTriangles) {
-  // The grid of 1152 triangles placed once: one tree. Two of 2 triangles, and a shared grid
-  // (instanced, not counted): two levels.
+TEST(EmbreeFlatten, TwoLevelsUnlessABigMeshIsFlattened) {
+  // The grid of 1152 triangles placed once: one tree. Small meshes placed once, however many
+  // triangles in all, and a big shared grid (instanced): two levels.
   Scene big = scene(diffuse(Color(0.5f)));
   EXPECT_FALSE(embreeTwoLevelTop(big, embreeFlattenedMeshes(big)));
   Scene small;
   const int mat = addMaterial(small, diffuse(Color(0.5f)));
   addMeshInstance(small, addMesh(small, grid(1, mat)), Mat4::translate({0, 1, 0}));
   addMeshInstance(small, addMesh(small, grid(1, mat)), Mat4::translate({0, 2, 0}));
+  for (int k = 0; k < 5; ++k)  // 5 x 288 triangles
+    addMeshInstance(small, addMesh(small, grid(12, mat)), Mat4::translate({0, -1.0f - k, 0}));
   const uint32_t shared = addMesh(small, grid(24, mat));
   addMeshInstance(small, shared, Mat4::translate({0, 3, 0}));
   addMeshInstance(small, shared, Mat4::translate({0, 4, 0}));
   small.finalize();
-  EXPECT_EQ(embreeFlattenedMeshes(small), (std::vector<uint8_t>{1, 1, 0, 0}));
+  EXPECT_EQ(embreeFlattenedMeshes(small), (std::vector<uint8_t>{1, 1, 1, 1, 1, 1, 1, 0, 0}));
   EXPECT_TRUE(embreeTwoLevelTop(small, embreeFlattenedMeshes(small)));
   // Either way the hits are the BVH's.
   auto embree = makeAccelerator("embree", small), bvh = makeAccelerator("bvh", small);
