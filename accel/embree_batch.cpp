@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "accel/embree_alpha_filter.h"
+#include "accel/embree_pack.h"
 #include "accel/embree_rays.h"
 
 namespace tray {
@@ -48,10 +49,16 @@ void intersectPackets(RTCScene top, RTCIntersectContext* ctx, std::span<const Ra
     alignas(32) int valid[kLanes];
     laneMask(b, n, valid);
     const int lanes = int(std::min(n - b, size_t(kLanes)));
-    for (int l = 0; l < lanes; ++l) {
-      toLane(rays[b + l], uint32_t(b + l), p.ray, l);
-      p.hit.geomID[l] = RTC_INVALID_GEOMETRY_ID;
-      p.hit.instID[0][l] = RTC_INVALID_GEOMETRY_ID;
+    if (lanes == kLanes) {
+      packRays8(&rays[b], uint32_t(b), p.ray);
+      for (int l = 0; l < kLanes; ++l)
+        p.hit.geomID[l] = p.hit.instID[0][l] = RTC_INVALID_GEOMETRY_ID;
+    } else {
+      for (int l = 0; l < lanes; ++l) {
+        toLane(rays[b + l], uint32_t(b + l), p.ray, l);
+        p.hit.geomID[l] = RTC_INVALID_GEOMETRY_ID;
+        p.hit.instID[0][l] = RTC_INVALID_GEOMETRY_ID;
+      }
     }
     rtcIntersect8(valid, top, ctx, &p);
     for (int l = 0; l < lanes; ++l) {
@@ -71,7 +78,10 @@ void occludedPackets(RTCScene top, RTCIntersectContext* ctx, std::span<const Ray
     alignas(32) int valid[kLanes];
     laneMask(b, n, valid);
     const int lanes = int(std::min(n - b, size_t(kLanes)));
-    for (int l = 0; l < lanes; ++l) toLane(rays[b + l], uint32_t(b + l), p, l);
+    if (lanes == kLanes)
+      packRays8(&rays[b], uint32_t(b), p);
+    else
+      for (int l = 0; l < lanes; ++l) toLane(rays[b + l], uint32_t(b + l), p, l);
     rtcOccluded8(valid, top, ctx, &p);
     for (int l = 0; l < lanes; ++l) blocked[b + l] = p.tfar[l] < 0;
   }
