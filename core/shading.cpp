@@ -78,12 +78,11 @@ Vec3 MaterialEvaluator::normalMapped(const ShadingMaterial& out, const UvFrame& 
 }
 
 ShadingMaterial MaterialEvaluator::evaluate(const Hit& hit, const SurfacePoint& s) const {
-  const Prebuilt& pre = prebuilt_[size_t(s.material)];
-  ShadingMaterial out = pre.factors;  // ShadingMaterial::of(material, s.n)
+  ShadingMaterial out = prebuilt_[size_t(s.material)].factors;  // ShadingMaterial::of(m, s.n)
   out.n = s.n;
   out.clearcoatN = s.n;
   // Most vertices: the factors alone (no vertex colour, blend coverage or texture).
-  if (pre.plain && !(hit.material < 0 && coloredMesh_[hit.primitive])) return out;
+  if (plainFactors(hit, s)) return out;
   modulate(hit, s, out);
   return out;
 }

@@ -29,6 +29,13 @@ class MaterialEvaluator {
   MaterialEvaluator(const Scene& scene, const Camera& camera, int samplesPerPixel);
   ~MaterialEvaluator();
   ShadingMaterial evaluate(const Hit& hit, const SurfacePoint& s) const;
+  /// The material's factors when they are all of evaluate()'s result at this hit (no texture,
+  /// vertex colour or blend coverage): evaluate() returns them with n and clearcoatN set to
+  /// s.n. Null otherwise. Lets a caller that needs a few fields skip the copy.
+  const ShadingMaterial* plainFactors(const Hit& hit, const SurfacePoint& s) const {
+    const Prebuilt& pre = prebuilt_[size_t(s.material)];
+    return pre.plain && !(hit.material < 0 && coloredMesh_[hit.primitive]) ? &pre.factors : nullptr;
+  }
 
  private:
   /// evaluate() past the factors: multiplies `out` by the vertex colour, blend coverage and

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 
 #include "core/front_face.h"
 #include "core/shading.h"
@@ -72,7 +73,16 @@ PathEstimator::PathEstimator(const RenderContext& ctx)
           std::any_of(ctx.scene.materials.begin(), ctx.scene.materials.end(),
                       [](const Material& m) { return !isBlack(m.layers.absorption()); })),
       lights_(ctx.scene, lightSamplerKind(ctx.settings.getString("light-sampler"))),
-      materials_(ctx.scene, ctx.camera, ctx.settings.getInt("spp")) {}
+      materials_(ctx.scene, ctx.camera, ctx.settings.getInt("spp")) {
+  plainStage_.reserve(ctx.scene.materials.size());
+  for (const Material& m : ctx.scene.materials)
+    plainStage_.push_back(stageOf(ShadingMaterial::of(m, Vec3())));
+}
+
+PathEstimator::DeferStage PathEstimator::stageOf(const ShadingMaterial& sm) {
+  if (Bsdf::isLambertOnly(sm)) return DeferStage::kMatte;
+  return Bsdf::isGgxMixture(sm) ? DeferStage::kGlossy : DeferStage::kNone;
+}
 
 void PathEstimator::reportNan(const PathState& state, const char* what, int depth) const {
   if (!debugNan_ || nanReports_.fetch_add(1) >= kMaxNanReports) return;
@@ -146,15 +156,24 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
     eta = iface.etaT / iface.etaI;
   }
   // Textures are evaluated only at surfaces that scatter or emit (not at null interfaces).
-  ShadingMaterial sm = materials_.evaluate(hit, s);
+  // Most vertices' material is its factors alone (plain): read in place, copied only for a
+  // Bsdf (callgrind, Cornell box: evaluate's copy was 2% of the render).
+  const ShadingMaterial* plain = materials_.plainFactors(hit, s);
+  std::optional<ShadingMaterial> evaluated;
   // The clearcoat and sheen are on the outside of a transmissive solid: not seen from within.
-  if (v.refractive && !s.frontFace) sm.clearcoat = 0, sm.sheenColor = Color(0.0f);
+  const bool inside = v.refractive && !s.frontFace;
+  if (!plain) {
+    evaluated.emplace(materials_.evaluate(hit, s));
+    if (inside) evaluated->clearcoat = 0, evaluated->sheenColor = Color(0.0f);
+  }
+  const ShadingMaterial& sm = plain ? *plain : *evaluated;
+  const Vec3& shadingN = plain ? s.n : evaluated->n;
   if (primary && !primary->hit) {
     primary->hit = true;
     primary->depth = length(s.p - st.cameraOrigin);
     primary->position = s.p;
     primary->primitive = s.primitive, primary->time = s.time;
-    primary->normal = sm.n;
+    primary->normal = shadingN;
     primary->albedo = sm.baseColor;
     primary->objectId = ctx_.scene.primitives[s.primitive].objectId;
     primary->materialId = s.material;
@@ -180,16 +199,24 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
   if (st.depth + 1 > maxDepth_) return PathStep::kDone;
 
   // Shade on the side the ray arrived from.
-  v.n = s.frontFace ? sm.n : -sm.n;
+  v.n = s.frontFace ? shadingN : -shadingN;
   // A matte or glossy vertex goes to its SIMD stage before its Bsdf is built (it needs none).
+  // (A plain material's stage is its factors' stage: for an inside vertex none, since both
+  // stages need transmission 0.)
   if (deferral) {
-    if (Bsdf::isLambertOnly(sm)) {
+    const DeferStage stage = plain ? plainStage_[size_t(s.material)] : stageOf(sm);
+    if (stage == DeferStage::kMatte) {
       if (defer<false>(st, sampler, v, sm, eta, ahead, *deferral, path)) return PathStep::kDeferred;
-    } else if (Bsdf::isGgxMixture(sm)) {
+    } else if (stage == DeferStage::kGlossy) {
       if (defer<true>(st, sampler, v, sm, eta, ahead, *deferral, path)) return PathStep::kDeferred;
     }
   }
-  const Bsdf bsdf(sm, v.n, eta);
+  if (plain) {  // evaluate()'s result, as above
+    evaluated.emplace(*plain);
+    evaluated->n = evaluated->clearcoatN = s.n;
+    if (inside) evaluated->clearcoat = 0, evaluated->sheenColor = Color(0.0f);
+  }
+  const Bsdf bsdf(*evaluated, v.n, eta);
   // A reflecting BSDF sees only light above n unless wo lies below it (shading normals) or a
   // clearcoat brings a normal of its own.
   // Field by field, not `= {...}`: see setSpawnRay (core/ray.h) on store-forwarding stalls.

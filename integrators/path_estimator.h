@@ -189,6 +189,9 @@ class PathEstimator {
     return c;
   }
   void escape(PathState& state) const;
+  /// Which SIMD stage a vertex of material `sm` may go to (step's test, before its lights).
+  enum class DeferStage : uint8_t { kNone, kMatte, kGlossy };
+  static DeferStage stageOf(const ShadingMaterial& sm);
   void reportNan(const PathState& state, const char* what, int depth) const;
   static constexpr int kMaxNanReports = 10;
   /// Mitsuba's default: Russian roulette from the fifth segment on.
@@ -202,6 +205,8 @@ class PathEstimator {
   bool absorbingMedia_;  ///< some material absorbs (KHR_materials_volume): NEE looks it up
   LightSet lights_;
   MaterialEvaluator materials_;
+  /// Per material: stageOf its factors, for the vertices where they are all of it (plain).
+  std::vector<DeferStage> plainStage_;
   mutable std::atomic<int> nanReports_{0};
 };
 
