@@ -27,6 +27,19 @@ Color farSideAbsorption(const MediumStack& media, int id, const Material& m, boo
 
 }  // namespace
 
+/// The first surface a camera ray met, for the AOVs and Cryptomatte.
+void PathEstimator::recordPrimary(PrimaryHit& primary, const PathState& st, const SurfacePoint& s,
+                                  const Vec3& shadingN, const Color& albedo) const {
+  primary.hit = true;
+  primary.depth = length(s.p - st.cameraOrigin);
+  primary.position = s.p;
+  primary.primitive = s.primitive, primary.time = s.time;
+  primary.normal = shadingN;
+  primary.albedo = albedo;
+  primary.objectId = ctx_.scene.primitives[s.primitive].objectId;
+  primary.materialId = s.material;
+}
+
 /// The scattering vertex being shaded: what NEE and BSDF sampling both read.
 struct PathEstimator::Vertex {
   /// The surface is built in place (not assigned from a returned temporary: a
@@ -168,16 +181,7 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
   }
   const ShadingMaterial& sm = plain ? *plain : *evaluated;
   const Vec3& shadingN = plain ? s.n : evaluated->n;
-  if (primary && !primary->hit) {
-    primary->hit = true;
-    primary->depth = length(s.p - st.cameraOrigin);
-    primary->position = s.p;
-    primary->primitive = s.primitive, primary->time = s.time;
-    primary->normal = shadingN;
-    primary->albedo = sm.baseColor;
-    primary->objectId = ctx_.scene.primitives[s.primitive].objectId;
-    primary->materialId = s.material;
-  }
+  if (primary && !primary->hit) recordPrimary(*primary, st, s, shadingN, sm.baseColor);
   // KHR_materials_unlit: the base colour leaves the surface as is and nothing scatters, as
   // from an emitter that is not in the light set (docs/scene-format.md, "Unlit").
   if (sm.unlit) {

@@ -189,6 +189,8 @@ class PathEstimator {
     return c;
   }
   void escape(PathState& state) const;
+  void recordPrimary(PrimaryHit& primary, const PathState& st, const SurfacePoint& s,
+                     const Vec3& shadingN, const Color& albedo) const;
   /// Which SIMD stage a vertex of material `sm` may go to (step's test, before its lights).
   enum class DeferStage : uint8_t { kNone, kMatte, kGlossy };
   static DeferStage stageOf(const ShadingMaterial& sm);
