@@ -49,6 +49,8 @@ void intersectPackets(RTCScene top, RTCIntersectContext* ctx, std::span<const Ra
     alignas(32) int valid[kLanes];
     laneMask(b, n, valid);
     const int lanes = int(std::min(n - b, size_t(kLanes)));
+    // The hit ids reset in each branch: over a constant 8 lanes the loop is two vector stores
+    // (one loop over `lanes` after both: +0.5% of the Cornell box's instructions, callgrind).
     if (lanes == kLanes) {
       packRays8(&rays[b], uint32_t(b), p.ray);
       for (int l = 0; l < kLanes; ++l)

@@ -78,10 +78,10 @@ Vec3 MaterialEvaluator::normalMapped(const ShadingMaterial& out, const UvFrame& 
 }
 
 ShadingMaterial MaterialEvaluator::evaluate(const Hit& hit, const SurfacePoint& s) const {
-  ShadingMaterial out = prebuilt_[size_t(s.material)].factors;  // ShadingMaterial::of(m, s.n)
-  out.n = s.n;
-  out.clearcoatN = s.n;
-  // Most vertices: the factors alone (no vertex colour, blend coverage or texture).
+  // ShadingMaterial::of(m, s.n). Most vertices: the factors alone (no vertex colour, blend
+  // coverage or texture).
+  ShadingMaterial out = prebuilt_[size_t(s.material)].factors;
+  placeAt(out, s);
   if (plainFactors(hit, s)) return out;
   modulate(hit, s, out);
   return out;

@@ -36,6 +36,12 @@ class MaterialEvaluator {
     const Prebuilt& pre = prebuilt_[size_t(s.material)];
     return pre.plain && !(hit.material < 0 && coloredMesh_[hit.primitive]) ? &pre.factors : nullptr;
   }
+  /// Places a copy of a material's factors at s (its normals): evaluate()'s result where
+  /// plainFactors gave them.
+  static void placeAt(ShadingMaterial& factors, const SurfacePoint& s) {
+    factors.n = s.n;
+    factors.clearcoatN = s.n;
+  }
 
  private:
   /// evaluate() past the factors: multiplies `out` by the vertex colour, blend coverage and

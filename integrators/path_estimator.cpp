@@ -169,16 +169,19 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
     eta = iface.etaT / iface.etaI;
   }
   // Textures are evaluated only at surfaces that scatter or emit (not at null interfaces).
-  // Most vertices' material is its factors alone (plain): read in place, copied only for a
-  // Bsdf (callgrind, Cornell box: evaluate's copy was 2% of the render).
+  // Most vertices' material is its factors alone (plain): read in place, evaluated (copied)
+  // only for a Bsdf (callgrind, Cornell box: evaluate's copy was 2% of the render).
   const ShadingMaterial* plain = materials_.plainFactors(hit, s);
   std::optional<ShadingMaterial> evaluated;
-  // The clearcoat and sheen are on the outside of a transmissive solid: not seen from within.
-  const bool inside = v.refractive && !s.frontFace;
-  if (!plain) {
-    evaluated.emplace(materials_.evaluate(hit, s));
-    if (inside) evaluated->clearcoat = 0, evaluated->sheenColor = Color(0.0f);
-  }
+  const auto evaluate = [&] {
+    if (plain)
+      MaterialEvaluator::placeAt(evaluated.emplace(*plain), s);
+    else
+      evaluated.emplace(materials_.evaluate(hit, s));
+    // The clearcoat and sheen are on the outside of a transmissive solid: not seen from within.
+    if (v.refractive && !s.frontFace) evaluated->clearcoat = 0, evaluated->sheenColor = Color(0.0f);
+  };
+  if (!plain) evaluate();
   const ShadingMaterial& sm = plain ? *plain : *evaluated;
   const Vec3& shadingN = plain ? s.n : evaluated->n;
   if (primary && !primary->hit) recordPrimary(*primary, st, s, shadingN, sm.baseColor);
@@ -215,11 +218,7 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
       if (defer<true>(st, sampler, v, sm, eta, ahead, *deferral, path)) return PathStep::kDeferred;
     }
   }
-  if (plain) {  // evaluate()'s result, as above
-    evaluated.emplace(*plain);
-    evaluated->n = evaluated->clearcoatN = s.n;
-    if (inside) evaluated->clearcoat = 0, evaluated->sheenColor = Color(0.0f);
-  }
+  if (plain) evaluate();
   const Bsdf bsdf(*evaluated, v.n, eta);
   // A reflecting BSDF sees only light above n unless wo lies below it (shading normals) or a
   // clearcoat brings a normal of its own.
