@@ -5,7 +5,7 @@
 // the exact dielectric Fresnel, sampleLocal's lobe choice, GgxDistribution::
 // sampleVisibleNormal, LambertLobe::sample; EnvironmentLight::sample and AreaLight::
 // sampleTriangle; powerHeuristic, setSpawnRay and setSpawnRayTo), so the bits are the same.
-// Cosines and sines are libm's, lane by lane, as the scalar code calls them.
+// Cosines and sines are core/sampling.h's polynomials, vectorised (SinCosQuarterPi).
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "integrators/glossy_batch.cpp"
 #include "integrators/glossy_batch.h"
@@ -238,15 +238,12 @@ HWY_NOINLINE void ScatterSample(const Fields& f, const Basis& frame, const Mixtu
   const MF pastMetal = hn::Ge(uc, x.pMetal);
   const MF lambert = hn::And(pastMetal, hn::Ge(uc, x.pMetal + x.pCoat));
   const VF prob = hn::IfThenElse(lambert, x.pDiffuse, hn::IfThenElse(pastMetal, x.pCoat, x.pMetal));
-  // Both disks' radius and angle, one chosen, then one cosine and sine per lane.
-  VF v1, v2, rC, thetaC, px, py;
-  MF center;
+  // Both disk points: Lambert's lanes take the concentric one, the GGX lobes' the polar one.
+  VF v1, v2, dx, dy, px, py;
   f.load(f.m.bsdfDraw, v1, v2);
-  ConcentricPolar(v1, v2, rC, thetaC, center);
-  const VF rG = hn::Sqrt(v1), thetaG = hn::Set(df, 2.0f * kPi) * v2;  // sampleUniformDiskPolar
-  Polar(hn::IfThenElse(lambert, rC, rG), hn::IfThenElse(lambert, thetaC, thetaG), px, py);
+  ConcentricDisk(v1, v2, dx, dy);
+  PolarDisk(v1, v2, px, py);
   // LambertLobe::sample on wo's side.
-  const VF dx = hn::IfThenZeroElse(center, px), dy = hn::IfThenZeroElse(center, py);
   const VF z = CosineZ(dx, dy);
   const V3 wiLambert = {dx, dy, hn::IfThenElse(hn::Lt(wo.z, zero), hn::Neg(z), z)};
   const MF lambertValid =

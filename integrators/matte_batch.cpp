@@ -3,8 +3,8 @@
 // arithmetic for a lone Lambert lobe and a triangle light or the constant environment, term by
 // term in its order (AreaLight::sampleTriangle, EnvironmentLight::sample, Bsdf::lambertEval and
 // lambertSample, Frame::fromNormal, powerHeuristic, setSpawnRay and setSpawnRayTo), so the bits are
-// the same. The concentric map's cosine and sine are libm's, lane by lane, as the scalar code calls
-// them.
+// the same. The concentric map's cosine and sine are core/sampling.h's polynomials, vectorised
+// (SinCosQuarterPi).
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "integrators/matte_batch.cpp"
 #include "integrators/matte_batch.h"

@@ -12,6 +12,7 @@
 
 #include <cmath>
 
+#include "core/sampling.h"
 #include "core/simd_lanes.h"
 #include "hwy/highway.h"
 #include "integrators/matte_batch.h"
@@ -128,39 +129,45 @@ struct Basis {
   }
 };
 
-/// r cos(theta) and r sin(theta) with libm's cosine and sine, lane by lane, as the scalar
-/// samplers call them (a vector polynomial would change the bits: glibc's sincosf evaluates
-/// in double).
-HWY_INLINE void Polar(VF r, VF theta, VF& x, VF& y) {
+/// sinCosQuarterPi (core/sampling.h): the same polynomials, operation for operation.
+HWY_INLINE void SinCosQuarterPi(VF t, VF& sine, VF& cosine) {
   const DF df;
-  alignas(64) float angle[kMaxSimdLanes], cosine[kMaxSimdLanes], sine[kMaxSimdLanes];
-  hn::Store(theta, df, angle);
-  const size_t lanes = hn::Lanes(df);
-  for (size_t k = 0; k < lanes; ++k) cosine[k] = std::cos(angle[k]), sine[k] = std::sin(angle[k]);
-  x = r * hn::Load(df, cosine), y = r * hn::Load(df, sine);
-}
-
-/// sampleUniformDiskConcentric's radius and angle (both wedges computed, one chosen), and
-/// whether u is the disk's centre (the point (0, 0)).
-HWY_INLINE void ConcentricPolar(VF u1, VF u2, VF& r, VF& theta, MF& center) {
-  const DF df;
-  const VF zero = hn::Zero(df), one = hn::Set(df, 1.0f), two = hn::Set(df, 2.0f);
-  const VF ox = two * u1 - one, oy = two * u2 - one;
-  center = hn::And(hn::Eq(ox, zero), hn::Eq(oy, zero));
-  const MF xWedge = hn::Gt(hn::Abs(ox), hn::Abs(oy));
-  r = hn::IfThenElse(xWedge, ox, oy);
-  const VF quarter = hn::Set(df, kPi / 4.0f);
-  const VF thetaX = quarter * hn::Div(oy, ox);
-  const VF thetaY = hn::Set(df, kPi / 2.0f) - quarter * hn::Div(ox, oy);
-  theta = hn::IfThenElse(xWedge, thetaX, thetaY);
+  const VF t2 = t * t;
+  const auto s = [&](int i) { return hn::Set(df, kSinQuarterPi[i]); };
+  const auto c = [&](int i) { return hn::Set(df, kCosQuarterPi[i]); };
+  sine = ((((s(4) * t2 + s(3)) * t2 + s(2)) * t2 + s(1)) * t2 + s(0)) * t;
+  cosine = (((c(4) * t2 + c(3)) * t2 + c(2)) * t2 + c(1)) * t2 + c(0);
 }
 /// sampleUniformDiskConcentric(u1, u2): the point (dx, dy), (0, 0) at the centre.
 HWY_INLINE void ConcentricDisk(VF u1, VF u2, VF& dx, VF& dy) {
-  VF r, theta;
-  MF center;
-  ConcentricPolar(u1, u2, r, theta, center);
-  Polar(r, theta, dx, dy);
-  dx = hn::IfThenZeroElse(center, dx), dy = hn::IfThenZeroElse(center, dy);
+  const DF df;
+  const VF zero = hn::Zero(df), one = hn::Set(df, 1.0f), two = hn::Set(df, 2.0f);
+  const VF ox = two * u1 - one, oy = two * u2 - one;
+  const MF center = hn::And(hn::Eq(ox, zero), hn::Eq(oy, zero));
+  const MF xWedge = hn::Gt(hn::Abs(ox), hn::Abs(oy));
+  const VF r = hn::IfThenElse(xWedge, ox, oy);
+  VF s, c;
+  SinCosQuarterPi(hn::Div(hn::IfThenElse(xWedge, oy, ox), r), s, c);
+  dx = hn::IfThenZeroElse(center, r * hn::IfThenElse(xWedge, c, s));
+  dy = hn::IfThenZeroElse(center, r * hn::IfThenElse(xWedge, s, c));
+}
+/// sampleUniformDiskPolar(u1, u2): sqrt(u1) times cosSinTwoPi(u2).
+HWY_INLINE void PolarDisk(VF u1, VF u2, VF& px, VF& py) {
+  const DF df;
+  const DI di;
+  const VF four = hn::Set(df, 4.0f);
+  const VF k = hn::Floor(four * u2 + hn::Set(df, 0.5f));
+  VF s, c;
+  SinCosQuarterPi(hn::Set(df, 2.0f) * (four * u2 - k), s, c);
+  const VI quarter = hn::And(hn::ConvertTo(di, k), hn::Set(di, 3));
+  const MF odd = hn::RebindMask(df, hn::Eq(hn::And(quarter, hn::Set(di, 1)), hn::Set(di, 1)));
+  const MF negX =
+      hn::RebindMask(df, hn::Or(hn::Eq(quarter, hn::Set(di, 1)), hn::Eq(quarter, hn::Set(di, 2))));
+  const MF negY = hn::RebindMask(df, hn::Gt(quarter, hn::Set(di, 1)));
+  const VF x = hn::IfThenElse(odd, s, c), y = hn::IfThenElse(odd, c, s);
+  const VF r = hn::Sqrt(u1);
+  px = r * hn::IfThenElse(negX, hn::Neg(x), x);
+  py = r * hn::IfThenElse(negY, hn::Neg(y), y);
 }
 /// sampleCosineHemisphere's z from the disk point (dx, dy): floored at 2^-11.
 HWY_INLINE VF CosineZ(VF dx, VF dy) {
