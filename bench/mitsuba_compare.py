@@ -32,7 +32,7 @@ except ImportError as e:
 import mitsuba_heavy
 from compare_report import LINES, check_image, fail, rmse, say
 from mitsuba_measure import (MITSUBA_STRATIFIED, equal_error_lines, mitsuba_render, mitsuba_speed,
-                             tray_speed)
+                             paired_per_sample, tray_speed)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SHARED = os.path.normpath(os.path.join(HERE, "..", "..", "shared", "reference"))
@@ -100,6 +100,8 @@ def cornell_speed(a):
         say(f"  TRay independent / Mitsuba {name:12s} {tray[0]['wall'] / m[0]:.2f} (wall clock), "
             f"{tray[0]['cpu'] / m[1]:.2f} (per CPU-second) with path-scalar; path (wavefront) "
             f"{tray[1]['wall'] / m[0]:.2f}, {tray[1]['cpu'] / m[1]:.2f}")
+    paired_per_sample(a.size, a.spp, a.max_depth, a.paired_rounds, mitsuba_scene, a.tray_bench,
+                      a.gltf, a.threads)
     say(f"  (load at the end of the speed runs: {os.getloadavg()[0]:.2f}; per CPU-second figures"
         " depend less on other jobs)")
     return mi_speed, tray, tray_sobol
@@ -155,6 +157,9 @@ def parse_args():
     p.add_argument("--max-depth", type=int, default=8)
     p.add_argument("--threads", type=int, default=2, help="TRay's threads (Mitsuba uses all cores)")
     p.add_argument("--repeats", type=int, default=3)
+    p.add_argument("--paired-rounds", type=int, default=5,
+                   help="rounds of Mitsuba llvm_ad_rgb and TRay back to back, for the per-sample "
+                        "ratio within a round (median reported)")
     p.add_argument("--error-spp", type=int, default=64)
     p.add_argument("--report", help="also write the report to this text file")
     p.add_argument("--quick", action="store_true",
@@ -165,6 +170,7 @@ def parse_args():
     a = p.parse_args()
     if a.quick:
         a.size, a.spp, a.repeats, a.error_spp = 128, 16, 1, 16
+        a.paired_rounds = 1
         mitsuba_heavy.quick(a)
     a.tray_bench = os.path.join(a.tray_build, "path_bench")
     a.tray_render = os.path.join(a.tray_build, "tray-render")

@@ -25,7 +25,7 @@ import numpy as np
 import gltf_to_mitsuba as g2m
 from compare_report import channel_means, check_image, fail, rmse, say
 from mitsuba_measure import (MITSUBA_STRATIFIED, equal_error_lines, mitsuba_render, mitsuba_speed,
-                             tray_speed)
+                             paired_per_sample, tray_speed)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SCENES = ("heavy-helmets", "heavy-spheres")
@@ -164,6 +164,8 @@ def speed(a, gltf, staged):
         m = mi_speed[name]
         say(f"  per sample, TRay independent / Mitsuba {name:12s}: path-scalar "
             f"{tray[0]['cpu'] / m[1]:.2f}, path {tray[1]['cpu'] / m[1]:.2f} (per CPU-second)")
+    paired_per_sample(size, spp, a.max_depth, a.paired_rounds, make, a.tray_bench, staged,
+                      a.threads)
     say(f"  (load at the end of the speed runs: {os.getloadavg()[0]:.2f})")
     return mi_speed, tray, tray_sobol
 

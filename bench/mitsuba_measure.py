@@ -41,35 +41,65 @@ def mitsuba_speed(variant, size, spp, depth, repeats, sampler, make_scene):
     return n / best, n / best_cpu
 
 
+def tray_run(bench, gltf, threads, size, spp, sampler):
+    """One path_bench run: per integrator (`path-scalar`, then `path`, the wavefront) a dict of
+    Msamples/s (`wall`), Msamples per CPU-second (`cpu`), Mrays per CPU-second (`rays`) and,
+    for the wavefront, the share of its time in batched traversal (`traversal`; -1 otherwise)."""
+    r = subprocess.run([bench, gltf, str(threads), str(size), str(spp), "--sampler", sampler,
+                        "--no-replay", "--no-error"], capture_output=True, text=True)
+    if r.returncode != 0:
+        fail(f"{bench} failed (exit {r.returncode}): {r.stderr.strip() or r.stdout.strip()}")
+    wall = re.findall(r"Msamples/s\s+([0-9.]+)", r.stdout)
+    cpu = re.findall(r"([0-9.]+) Msamples per CPU-second", r.stdout)
+    rays = re.findall(r"([0-9.]+) Mrays per CPU-second", r.stdout)
+    traversal = re.findall(r"traversal\s+([0-9.]+)% of the render", r.stdout)
+    if len(wall) < 2 or len(cpu) < 2 or len(rays) < 2 or not traversal:
+        fail(f"{bench}: expected 'Msamples/s', 'Msamples per CPU-second', 'Mrays per "
+             f"CPU-second' for path-scalar and path, and the wavefront's traversal share:\n{r.stdout}")
+    return [{"wall": float(wall[k]), "cpu": float(cpu[k]), "rays": float(rays[k]),
+             "traversal": float(traversal[0]) if k == 1 else -1.0} for k in range(2)]
+
+
 def tray_speed(bench, gltf, threads, size, spp, repeats, sampler):
-    """Best of `repeats` path_bench runs of `path-scalar` and of `path` (the wavefront; path_bench
-    measures both in each run, in that order): per integrator a dict of Msamples/s (`wall`),
-    Msamples per CPU-second (`cpu`), Mrays per CPU-second (`rays`) and, for the wavefront, the
-    share of its time in batched traversal (`traversal`, from the fastest run)."""
+    """Best of `repeats` path_bench runs (tray_run) of `path-scalar` and of `path`; the rays
+    and traversal share are the fastest run's."""
     best = [{"wall": 0.0, "cpu": 0.0, "rays": 0.0, "traversal": -1.0} for _ in range(2)]
     for _ in range(repeats):
-        r = subprocess.run([bench, gltf, str(threads), str(size), str(spp), "--sampler", sampler,
-                            "--no-replay", "--no-error"], capture_output=True, text=True)
-        if r.returncode != 0:
-            fail(f"{bench} failed (exit {r.returncode}): {r.stderr.strip() or r.stdout.strip()}")
-        wall = re.findall(r"Msamples/s\s+([0-9.]+)", r.stdout)
-        cpu = re.findall(r"([0-9.]+) Msamples per CPU-second", r.stdout)
-        rays = re.findall(r"([0-9.]+) Mrays per CPU-second", r.stdout)
-        traversal = re.findall(r"traversal\s+([0-9.]+)% of the render", r.stdout)
-        if len(wall) < 2 or len(cpu) < 2 or len(rays) < 2 or not traversal:
-            fail(f"{bench}: expected 'Msamples/s', 'Msamples per CPU-second', 'Mrays per "
-                 f"CPU-second' for path-scalar and path, and the wavefront's traversal share:\n{r.stdout}")
-        for k, b in enumerate(best):
-            if float(cpu[k]) > b["cpu"]:
-                b.update(cpu=float(cpu[k]), rays=float(rays[k]),
-                         traversal=float(traversal[0]) if k == 1 else -1.0)
-            b["wall"] = max(b["wall"], float(wall[k]))
+        for b, run in zip(best, tray_run(bench, gltf, threads, size, spp, sampler)):
+            if run["cpu"] > b["cpu"]:
+                b.update(cpu=run["cpu"], rays=run["rays"], traversal=run["traversal"])
+            b["wall"] = max(b["wall"], run["wall"])
     for label, b in zip((" scalar", ""), best):
         share = f", traversal {b['traversal']:.0f}%" if b["traversal"] >= 0 else ""
         say(f"  TRay{label:10s} {sampler:12s} best {size * size * spp / b['wall'] * 1e-6:7.2f} s  "
             f"{b['wall']:7.3f} Msamples/s  {b['cpu']:7.3f} per CPU-s  ({threads} threads; "
             f"{b['rays']:.2f} Mrays per CPU-s{share})")
     return best
+
+
+def paired_per_sample(size, spp, depth, rounds, make_scene, bench, gltf, threads):
+    """Per sample, like for like, with the host's drift cancelled: `rounds` rounds, each one
+    Mitsuba llvm_ad_rgb render and one path_bench run back to back (both with independent
+    numbers), and per round TRay's rate over Mitsuba's, per CPU-second. The best-of figures
+    compare runs minutes apart, between which this shared host has moved either renderer's
+    rate by up to 73%; a ratio within a round sees the same load. Prints and returns the
+    wavefront's ratios (median, then all)."""
+    mi.set_variant("llvm_ad_rgb")
+    scene = make_scene(size, spp, depth, "independent")
+    mitsuba_render(scene, spp, 0)  # warm-up, as mitsuba_speed
+    n = size * size * spp * 1e-6
+    ratios = []
+    for i in range(rounds):
+        c = time.process_time()
+        mitsuba_render(scene, spp, i + 1)
+        mitsuba_cpu = n / (time.process_time() - c)
+        tray = tray_run(bench, gltf, threads, size, spp, "independent")
+        ratios.append(tray[1]["cpu"] / mitsuba_cpu)
+    median = sorted(ratios)[len(ratios) // 2]
+    say(f"  per sample, paired rounds (Mitsuba llvm_ad_rgb, then TRay path; independent): TRay / "
+        f"Mitsuba per CPU-second median {median:.2f} of {rounds} ("
+        + " ".join(f"{r:.2f}" for r in ratios) + ")")
+    return median, ratios
 
 
 def equal_error_lines(mi_speed, mi_err, tray_speeds, tray_err):
