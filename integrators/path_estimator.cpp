@@ -4,7 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <optional>
+#include <new>
+#include <type_traits>
 
 #include "core/front_face.h"
 #include "core/shading.h"
@@ -12,6 +13,14 @@
 
 namespace tray {
 namespace {
+
+/// Room for a ShadingMaterial that step builds only where it needs one (placement new; the
+/// type is trivially destructible, so nothing is destroyed).
+union LateMaterial {
+  LateMaterial() {}  // NOLINT: deliberately unbuilt
+  ShadingMaterial value;
+};
+static_assert(std::is_trivially_destructible_v<ShadingMaterial>);
 
 /// Beer-Lambert transmittance exp(-sigma_a d) per channel (KHR_materials_volume).
 Color transmittance(const Color& sigmaA, float d) {
@@ -172,18 +181,21 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
   // Most vertices' material is its factors alone (plain): read in place, evaluated (copied)
   // only for a Bsdf (callgrind, Cornell box: evaluate's copy was 2% of the render).
   const ShadingMaterial* plain = materials_.plainFactors(hit, s);
-  std::optional<ShadingMaterial> evaluated;
+  // Built only by evaluate(): not a std::optional, whose storage GCC 12 zeroes at its
+  // declaration (a 176-byte `rep stos` per vertex, callgrind and objdump).
+  LateMaterial late;
+  ShadingMaterial& evaluated = late.value;
   const auto evaluate = [&] {
     if (plain)
-      MaterialEvaluator::placeAt(evaluated.emplace(*plain), s);
+      MaterialEvaluator::placeAt(*new (&evaluated) ShadingMaterial(*plain), s);
     else
-      evaluated.emplace(materials_.evaluate(hit, s));
+      new (&evaluated) ShadingMaterial(materials_.evaluate(hit, s));
     // The clearcoat and sheen are on the outside of a transmissive solid: not seen from within.
-    if (v.refractive && !s.frontFace) evaluated->clearcoat = 0, evaluated->sheenColor = Color(0.0f);
+    if (v.refractive && !s.frontFace) evaluated.clearcoat = 0, evaluated.sheenColor = Color(0.0f);
   };
   if (!plain) evaluate();
-  const ShadingMaterial& sm = plain ? *plain : *evaluated;
-  const Vec3& shadingN = plain ? s.n : evaluated->n;
+  const ShadingMaterial& sm = plain ? *plain : evaluated;
+  const Vec3& shadingN = plain ? s.n : evaluated.n;
   if (primary && !primary->hit) recordPrimary(*primary, st, s, shadingN, sm.baseColor);
   // KHR_materials_unlit: the base colour leaves the surface as is and nothing scatters, as
   // from an emitter that is not in the light set (docs/scene-format.md, "Unlit").
@@ -219,7 +231,7 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
     }
   }
   if (plain) evaluate();
-  const Bsdf bsdf(*evaluated, v.n, eta);
+  const Bsdf bsdf(evaluated, v.n, eta);
   // A reflecting BSDF sees only light above n unless wo lies below it (shading normals) or a
   // clearcoat brings a normal of its own.
   // Field by field, not `= {...}`: see setSpawnRay (core/ray.h) on store-forwarding stalls.

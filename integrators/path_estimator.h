@@ -40,6 +40,11 @@ struct PathState {
   /// Light-path AOVs (core/light_paths.h): each contribution also goes to its path's category
   /// when the splitter has a target.
   LightPathSplitter paths{nullptr};
+  /// The members' own initializers only. Written out, not defaulted: value-initialising a
+  /// class whose default constructor is implicit zeroes all of it first, and the wavefront's
+  /// emplace_back() did so for every camera path (a 384-byte `rep stos`; the media's entries
+  /// are read only below their count).
+  PathState() {}  // NOLINT(modernize-use-equals-default)
   /// A path starting with the camera ray `ray` of pixel (x, y); its light-path split goes to
   /// `lightPaths` when not null.
   static PathState camera(const Ray& ray, int x, int y, LightPathRadiance* lightPaths) {
