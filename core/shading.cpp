@@ -1,8 +1,10 @@
 #include "core/shading.h"
 
 #include <cmath>
+#include <new>
 
 #include "core/alpha.h"
+#include "core/unbuilt.h"
 
 namespace tray {
 
@@ -108,20 +110,23 @@ void MaterialEvaluator::modulate(const Hit& hit, const SurfacePoint& s,
   // one pixel footprint per set: it depends on the set's frame and the point alone, so the
   // textures that share a set share it (the helmets' four lookups per vertex made it four
   // times: 10% of that scene's render, callgrind).
-  UvFrame frames[2];
-  UvFootprint footprints[2];
+  // Built when first asked for (core/unbuilt.h: a default UvFrame pair cost a 96-byte
+  // `rep stos` per textured vertex).
+  Unbuilt<UvFrame> frames[2];
+  Unbuilt<UvFootprint> footprints[2];
   bool have[2] = {false, false}, haveFootprint[2] = {false, false};
   auto frameOf = [&](int set) -> const UvFrame& {
     const int k = set == 1 ? 1 : 0;
-    if (!have[k]) frames[k] = surfaceUvFrame(scene_, hit, s, k), have[k] = true;
-    return frames[k];
+    if (!have[k]) new (&frames[k].value) UvFrame(surfaceUvFrame(scene_, hit, s, k)), have[k] = true;
+    return frames[k].value;
   };
   auto footprintOf = [&](int set) -> const UvFootprint& {
     const int k = set == 1 ? 1 : 0;
     if (!haveFootprint[k])
-      footprints[k] = pixelFootprint(frameOf(k), s.p, s.ng, camera_, footprintScale_),
-      haveFootprint[k] = true;
-    return footprints[k];
+      new (&footprints[k].value)
+          UvFootprint(pixelFootprint(frameOf(k), s.p, s.ng, camera_, footprintScale_)),
+          haveFootprint[k] = true;
+    return footprints[k].value;
   };
   auto lookup = [&](const TextureRef& ref) {
     if (!TextureSampler::footprintMatters(ref))

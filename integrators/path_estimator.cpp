@@ -5,22 +5,14 @@
 #include <cstdio>
 #include <limits>
 #include <new>
-#include <type_traits>
 
 #include "core/front_face.h"
 #include "core/shading.h"
+#include "core/unbuilt.h"
 #include "materials/bsdf.h"
 
 namespace tray {
 namespace {
-
-/// Room for a ShadingMaterial that step builds only where it needs one (placement new; the
-/// type is trivially destructible, so nothing is destroyed).
-union LateMaterial {
-  LateMaterial() {}  // NOLINT: deliberately unbuilt
-  ShadingMaterial value;
-};
-static_assert(std::is_trivially_destructible_v<ShadingMaterial>);
 
 /// Beer-Lambert transmittance exp(-sigma_a d) per channel (KHR_materials_volume).
 Color transmittance(const Color& sigmaA, float d) {
@@ -183,7 +175,7 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
   const ShadingMaterial* plain = materials_.plainFactors(hit, s);
   // Built only by evaluate(): not a std::optional, whose storage GCC 12 zeroes at its
   // declaration (a 176-byte `rep stos` per vertex, callgrind and objdump).
-  LateMaterial late;
+  Unbuilt<ShadingMaterial> late;
   ShadingMaterial& evaluated = late.value;
   const auto evaluate = [&] {
     if (plain)
