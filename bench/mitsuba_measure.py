@@ -20,6 +20,14 @@ def mitsuba_render(scene, spp, seed):
     return img
 
 
+def timed_render(scene, spp, seed):
+    """One Mitsuba render: (wall-clock seconds, CPU seconds of the process, all of Dr.Jit's
+    threads)."""
+    t, c = time.perf_counter(), time.process_time()
+    mitsuba_render(scene, spp, seed)
+    return time.perf_counter() - t, time.process_time() - c
+
+
 def mitsuba_speed(variant, size, spp, depth, repeats, sampler, make_scene):
     """Best of `repeats` renders of make_scene(size, spp, depth, sampler) after a warm-up:
     (Msamples/s, Msamples per CPU-second)."""
@@ -30,10 +38,8 @@ def mitsuba_speed(variant, size, spp, depth, repeats, sampler, make_scene):
     warm = time.perf_counter() - t
     best, best_cpu = float("inf"), float("inf")
     for i in range(repeats):
-        t, c = time.perf_counter(), time.process_time()  # process time: all of Dr.Jit's threads
-        mitsuba_render(scene, spp, i + 1)
-        best = min(best, time.perf_counter() - t)
-        best_cpu = min(best_cpu, time.process_time() - c)
+        wall, cpu = timed_render(scene, spp, i + 1)
+        best, best_cpu = min(best, wall), min(best_cpu, cpu)
     n = size * size * spp * 1e-6
     name = variant if sampler == "independent" else f"{variant} {sampler}"
     say(f"  Mitsuba {name:12s} best {best:7.2f} s  {n / best:7.3f} Msamples/s  "
@@ -90,9 +96,7 @@ def paired_per_sample(size, spp, depth, rounds, make_scene, bench, gltf, threads
     n = size * size * spp * 1e-6
     ratios = []
     for i in range(rounds):
-        c = time.process_time()
-        mitsuba_render(scene, spp, i + 1)
-        mitsuba_cpu = n / (time.process_time() - c)
+        mitsuba_cpu = n / timed_render(scene, spp, i + 1)[1]
         tray = tray_run(bench, gltf, threads, size, spp, "independent")
         ratios.append(tray[1]["cpu"] / mitsuba_cpu)
     median = sorted(ratios)[len(ratios) // 2]
