@@ -10,8 +10,6 @@
 #define TRAY_INTEGRATORS_SHADING_SIMD_INL_H_
 #endif
 
-#include <cmath>
-
 #include "core/sampling.h"
 #include "core/simd_lanes.h"
 #include "hwy/highway.h"
