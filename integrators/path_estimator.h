@@ -55,7 +55,13 @@ struct PathState {
   /// The same on a freshly default-constructed state, in place (the wavefront's queue slot:
   /// copying a just-built state in costs a store-forwarding stall, core/ray.h).
   void beginCamera(const Ray& cameraRay, int x, int y, LightPathRadiance* lightPaths) {
-    ray = cameraRay, cameraOrigin = cameraRay.o, pixelX = x, pixelY = y;
+    ray = cameraRay;
+    beginCamera(x, y, lightPaths);
+  }
+  /// The same once the caller has written the camera ray into `ray` (field by field, as the
+  /// wavefront's camera-ray kernel does: no Ray temporary to copy).
+  void beginCamera(int x, int y, LightPathRadiance* lightPaths) {
+    cameraOrigin = ray.o, pixelX = x, pixelY = y;
     paths = LightPathSplitter(lightPaths);
   }
 };

@@ -54,6 +54,10 @@ struct Wave {
   void addPath(const Ray& ray, int x, int y, LightPathRadiance* split, const Sampler& sampler,
                const Vec2& offset) {
     paths.emplace_back().beginCamera(ray, x, y, split);
+    addSamplerOf(sampler, offset);
+  }
+  /// The rest of a path whose state was just added: its sampler, first hit and offset.
+  void addSamplerOf(const Sampler& sampler, const Vec2& offset) {
     samplers.push_back(sampler);
     primary.emplace_back();
     offsets.push_back(offset);
@@ -183,9 +187,12 @@ void PathWavefrontIntegrator::beginPathsInSimd(Wave& w, std::span<const PixelTas
     task = chunkTask, sample = chunkSample;
     for (size_t k = 0; k < c1 - c0; ++k) {
       const PixelTask& t = tasks[task];
-      w.addPath(cameraBatch_->ray(w.cameraLanes, k), t.x, t.y,
-                wantsLightPaths(t) ? &w.lightPaths[c0 + k - g0] : nullptr,
-                cameraBatch_->sampler(w.cameraLanes, k), CameraRayBatch::offset(w.cameraLanes, k));
+      // The camera ray straight into the path's state (no Ray temporary: core/camera_batch.h).
+      PathState& st = w.paths.emplace_back();
+      cameraBatch_->setRay(w.cameraLanes, k, st.ray);
+      st.beginCamera(t.x, t.y, wantsLightPaths(t) ? &w.lightPaths[c0 + k - g0] : nullptr);
+      w.addSamplerOf(cameraBatch_->sampler(w.cameraLanes, k),
+                     CameraRayBatch::offset(w.cameraLanes, k));
       if (++sample == n) sample = 0, ++task;
     }
   }
