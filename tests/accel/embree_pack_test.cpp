@@ -30,28 +30,28 @@ TEST(EmbreePack, EveryLaneHoldsItsRaysBits) {
   }
   rays[5].tmax = kInfinity, rays[6].d.x = -0.0f;
   test::onEverySimdTarget(0, [&] {
-  int packets = 0;
-  for (size_t b = 0; b + 8 <= rays.size(); b += 3, ++packets) {
-    alignas(32) RTCRay8 p;
-    std::memset(&p, 0xab, sizeof p);
-    packRays8(&rays[b], uint32_t(1000 + b), p);
-    for (int l = 0; l < 8; ++l) {
-      const Ray& r = rays[b + size_t(l)];
-      EXPECT_EQ(bits(p.org_x[l]), bits(r.o.x));
-      EXPECT_EQ(bits(p.org_y[l]), bits(r.o.y));
-      EXPECT_EQ(bits(p.org_z[l]), bits(r.o.z));
-      EXPECT_EQ(bits(p.dir_x[l]), bits(r.d.x));
-      EXPECT_EQ(bits(p.dir_y[l]), bits(r.d.y));
-      EXPECT_EQ(bits(p.dir_z[l]), bits(r.d.z));
-      EXPECT_EQ(bits(p.tnear[l]), bits(r.tmin));
-      EXPECT_EQ(bits(p.tfar[l]), bits(r.tmax));
-      EXPECT_EQ(bits(p.time[l]), bits(r.time));
-      EXPECT_EQ(p.mask[l], 0xffffffffu);
-      EXPECT_EQ(p.id[l], uint32_t(1000 + b + size_t(l)));
-      EXPECT_EQ(p.flags[l], 0u);
+    int packets = 0;
+    for (size_t b = 0; b + 8 <= rays.size(); b += 3, ++packets) {
+      alignas(32) RTCRay8 p;
+      std::memset(&p, 0xab, sizeof p);
+      packRays8(&rays[b], uint32_t(1000 + b), p);
+      for (int l = 0; l < 8; ++l) {
+        const Ray& r = rays[b + size_t(l)];
+        EXPECT_EQ(bits(p.org_x[l]), bits(r.o.x));
+        EXPECT_EQ(bits(p.org_y[l]), bits(r.o.y));
+        EXPECT_EQ(bits(p.org_z[l]), bits(r.o.z));
+        EXPECT_EQ(bits(p.dir_x[l]), bits(r.d.x));
+        EXPECT_EQ(bits(p.dir_y[l]), bits(r.d.y));
+        EXPECT_EQ(bits(p.dir_z[l]), bits(r.d.z));
+        EXPECT_EQ(bits(p.tnear[l]), bits(r.tmin));
+        EXPECT_EQ(bits(p.tfar[l]), bits(r.tmax));
+        EXPECT_EQ(bits(p.time[l]), bits(r.time));
+        EXPECT_EQ(p.mask[l], 0xffffffffu);
+        EXPECT_EQ(p.id[l], uint32_t(1000 + b + size_t(l)));
+        EXPECT_EQ(p.flags[l], 0u);
+      }
     }
-  }
-  return packets;
+    return packets;
   });
 }
 
