@@ -34,12 +34,15 @@ struct PathState {
   /// LightSet::pmf(prev, escapeLight()) when the light choice at prev gave it, else -1.
   float prevEscapePmf = -1;
   float etaFactor = 1;      ///< undoes the 1/eta^2 radiance scaling for Russian roulette
-  MediumStack media;
-  Vec3 cameraOrigin;             ///< for the primary hit's depth
   int pixelX = -1, pixelY = -1;  ///< for --debug-nan reports
   /// Light-path AOVs (core/light_paths.h): each contribution also goes to its path's category
   /// when the splitter has a target.
   LightPathSplitter paths{nullptr};
+  Vec3 cameraOrigin;  ///< for the primary hit's depth
+  /// Last, its count first: a vertex outside every medium touches the state's first three
+  /// cache lines only, not the entries' (the wavefront's steps reach a wave's paths out of
+  /// order, from the L2 cache).
+  MediumStack media;
   /// The members' own initializers only. Written out, not defaulted: value-initialising a
   /// class whose default constructor is implicit zeroes all of it first, and the wavefront's
   /// emplace_back() did so for every camera path (a 384-byte `rep stos`; the media's entries
