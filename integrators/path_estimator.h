@@ -33,7 +33,7 @@ struct PathState {
   LightSampleContext prev;  ///< the last scattering point, as light sampling saw it
   /// LightSet::pmf(prev, escapeLight()) when the light choice at prev gave it, else -1.
   float prevEscapePmf = -1;
-  float etaFactor = 1;      ///< undoes the 1/eta^2 radiance scaling for Russian roulette
+  float etaFactor = 1;           ///< undoes the 1/eta^2 radiance scaling for Russian roulette
   int pixelX = -1, pixelY = -1;  ///< for --debug-nan reports
   /// Light-path AOVs (core/light_paths.h): each contribution also goes to its path's category
   /// when the splitter has a target.
