@@ -43,11 +43,13 @@ void PathEstimator::recordPrimary(PrimaryHit& primary, const PathState& st, cons
 
 /// The scattering vertex being shaded: what NEE and BSDF sampling both read.
 struct PathEstimator::Vertex {
-  /// The surface is built in place (not assigned from a returned temporary: a
-  /// store-forwarding stall, see setSpawnRay in core/ray.h), or copied from the caller's.
+  /// The caller's surface when it has one (the wavefront's, computed in SIMD): read where it
+  /// is, not copied (76 bytes per vertex). Otherwise built here in place (not assigned from a
+  /// returned temporary: a store-forwarding stall, see setSpawnRay in core/ray.h).
   Vertex(const Scene& scene, const Ray& ray, const Hit& hit, const SurfacePoint* known)
-      : s(known ? *known : scene.surface(ray, hit)) {}
-  SurfacePoint s;
+      : s(known ? *known : *new (&own.value) SurfacePoint(scene.surface(ray, hit))) {}
+  Unbuilt<SurfacePoint> own;  ///< built only when the caller has no surface
+  const SurfacePoint& s;
   const Material* m;
   Vec3 n;   ///< shading normal on the side the ray arrived from
   Vec3 wo;  ///< towards where the ray came from
