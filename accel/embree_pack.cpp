@@ -1,7 +1,8 @@
 // Highway's dynamic dispatch, as core/surface_batch.cpp: the transposition of eight of TRay's
-// rays (array of structures) into Embree's 8-ray packet (structure of arrays) by gathers, a
-// field of eight rays per instruction instead of a store per field and ray. Copies only: the
-// same bits as toLane in accel/embree_batch.cpp.
+// rays (array of structures) into Embree's 8-ray packet (structure of arrays), a field of eight
+// rays per store instead of a store per field and ray: by an 8 x 8 transpose in registers on
+// AVX2 and AVX-512, by gathers on the 128-bit targets. Copies only: the same bits as toLane in
+// accel/embree_batch.cpp.
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "accel/embree_pack.cpp"
 #include "accel/embree_pack.h"
@@ -24,9 +25,9 @@ constexpr int kRayWords = 10;
 #if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX2
 /// Words 0-7 of the eight rays (origin, direction, tnear, tfar) by an 8 x 8 transpose in
 /// registers: one 32-byte load per ray, three rounds of shuffles, one store per field. The
-/// gathers it replaces (one per field) are slow on AMD's Zen cores: a gather of eight floats
-/// issues eight loads and takes several cycles per element (AMD's Software Optimization
-/// Guide for Zen 4, "VGATHERDPS"); the transpose's shuffles take one cycle each.
+/// gathers it replaces (one per field) cost far more time than instructions on this project's
+/// AMD EPYC host: perf put 3.6% of the Cornell box's render on them for 0.7% of its
+/// instructions, and 1.0% on the transpose (docs/wavefront.md, "Gathers and cache lines").
 void TransposeRays8(const float* base, float* const fields[8]) {
   const hn::Full256<float> d;
   const hn::Repartition<double, decltype(d)> dd;
@@ -55,19 +56,18 @@ void TransposeRays8(const float* base, float* const fields[8]) {
 
 void PackRays8(const Ray* rays, uint32_t firstId, RTCRay8& p) {
   const hn::CappedTag<float, 8> df;
-  const hn::RebindToSigned<decltype(df)> di;
   const hn::RebindToUnsigned<decltype(df)> du;
   const float* base = &rays[0].o.x;
   // The packet's fields in Ray's word order; tfar before time (word 8 is blend: not Embree's).
   float* fields[] = {p.org_x, p.org_y, p.org_z, p.dir_x, p.dir_y, p.dir_z, p.tnear, p.tfar};
 #if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX2
-  (void)di;
   TransposeRays8(base, fields);
   for (int k = 0; k < 8; ++k) p.time[k] = rays[k].time;
   hn::StoreU(hn::Set(du, 0xffffffffu), du, p.mask);
   hn::StoreU(hn::Iota(du, firstId), du, p.id);
   hn::StoreU(hn::Zero(du), du, p.flags);
 #else
+  const hn::RebindToSigned<decltype(df)> di;
   for (size_t l = 0; l < 8; l += hn::Lanes(df)) {
     // Lane k reads ray l + k: word w at (l + k) * kRayWords + w.
     const auto row = hn::Mul(hn::Iota(di, int32_t(l)), hn::Set(di, kRayWords));
