@@ -63,9 +63,6 @@ void PackRays8(const Ray* rays, uint32_t firstId, RTCRay8& p) {
 #if HWY_ARCH_X86 && HWY_TARGET <= HWY_AVX2
   TransposeRays8(base, fields);
   for (int k = 0; k < 8; ++k) p.time[k] = rays[k].time;
-  hn::StoreU(hn::Set(du, 0xffffffffu), du, p.mask);
-  hn::StoreU(hn::Iota(du, firstId), du, p.id);
-  hn::StoreU(hn::Zero(du), du, p.flags);
 #else
   const hn::RebindToSigned<decltype(df)> di;
   for (size_t l = 0; l < 8; l += hn::Lanes(df)) {
@@ -73,11 +70,13 @@ void PackRays8(const Ray* rays, uint32_t firstId, RTCRay8& p) {
     const auto row = hn::Mul(hn::Iota(di, int32_t(l)), hn::Set(di, kRayWords));
     for (int w = 0; w < 8; ++w) hn::StoreU(hn::GatherIndex(df, base + w, row), df, fields[w] + l);
     hn::StoreU(hn::GatherIndex(df, base + 9, row), df, p.time + l);
+  }
+#endif
+  for (size_t l = 0; l < 8; l += hn::Lanes(df)) {
     hn::StoreU(hn::Set(du, 0xffffffffu), du, p.mask + l);
     hn::StoreU(hn::Iota(du, firstId + uint32_t(l)), du, p.id + l);
     hn::StoreU(hn::Zero(du), du, p.flags + l);
   }
-#endif
 }
 
 }  // namespace HWY_NAMESPACE

@@ -54,10 +54,10 @@ struct Wave {
   void addPath(const Ray& ray, int x, int y, LightPathRadiance* split, const Sampler& sampler,
                const Vec2& offset) {
     paths.emplace_back().beginCamera(ray, x, y, split);
-    addSamplerOf(sampler, offset);
+    addRestOfPath(sampler, offset);
   }
   /// The rest of a path whose state was just added: its sampler, first hit and offset.
-  void addSamplerOf(const Sampler& sampler, const Vec2& offset) {
+  void addRestOfPath(const Sampler& sampler, const Vec2& offset) {
     samplers.push_back(sampler);
     primary.emplace_back();
     offsets.push_back(offset);
@@ -191,8 +191,8 @@ void PathWavefrontIntegrator::beginPathsInSimd(Wave& w, std::span<const PixelTas
       PathState& st = w.paths.emplace_back();
       cameraBatch_->setRay(w.cameraLanes, k, st.ray);
       st.beginCamera(t.x, t.y, wantsLightPaths(t) ? &w.lightPaths[c0 + k - g0] : nullptr);
-      w.addSamplerOf(cameraBatch_->sampler(w.cameraLanes, k),
-                     CameraRayBatch::offset(w.cameraLanes, k));
+      w.addRestOfPath(cameraBatch_->sampler(w.cameraLanes, k),
+                      CameraRayBatch::offset(w.cameraLanes, k));
       if (++sample == n) sample = 0, ++task;
     }
   }
