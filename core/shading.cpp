@@ -89,6 +89,14 @@ ShadingMaterial MaterialEvaluator::evaluate(const Hit& hit, const SurfacePoint& 
   return out;
 }
 
+void MaterialEvaluator::prefetchTextures(const SurfacePoint& s) const {
+  if (!sampler_ || !prebuilt_[size_t(s.material)].textured) return;
+  const Material& m = scene_.material(s.material);
+  for (const TextureRef* ref :
+       {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.emissiveTexture, &m.normalTexture})
+    if (ref->valid() && ref->texCoord == 0) sampler_->prefetch(*ref, s.uv);
+}
+
 void MaterialEvaluator::modulate(const Hit& hit, const SurfacePoint& s,
                                  ShadingMaterial& out) const {
   const Material& m = scene_.material(s.material);

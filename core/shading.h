@@ -42,6 +42,12 @@ class MaterialEvaluator {
     factors.n = s.n;
     factors.clearcoatN = s.n;
   }
+  /// Whether some material samples a texture (else prefetchTextures never does anything).
+  bool textured() const { return sampler_ != nullptr; }
+  /// Prefetches the texels that evaluate() at s will read of its material's base colour,
+  /// metal-roughness, emissive and normal textures, where TextureSampler::prefetch knows them
+  /// from the TEXCOORD_0 uv alone. Changes nothing a lookup returns.
+  void prefetchTextures(const SurfacePoint& s) const;
 
  private:
   /// evaluate() past the factors: multiplies `out` by the vertex colour, blend coverage and

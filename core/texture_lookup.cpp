@@ -183,4 +183,14 @@ Color lookupTexture(const TexturePyramid& p, const TextureQuery& q) {
   return {sum[0], sum[1], sum[2]};
 }
 
+void prefetchLevel0(const TexturePyramid& p, const TextureQuery& q) {
+  const int w = p.width(0), h = p.height(0);
+  int s0, t0;
+  floorFrac(q.s * float(w) - 0.5f, &s0);
+  floorFrac(q.t * float(h) - 0.5f, &t0);
+  const int xa = wrap(s0, w, q.wrapS), xb = wrap(s0 + 1, w, q.wrapS);
+  const int ya = wrap(t0, h, q.wrapT), yb = wrap(t0 + 1, h, q.wrapT);
+  p.prefetch0(xa, ya), p.prefetch0(xb, ya), p.prefetch0(xa, yb), p.prefetch0(xb, yb);
+}
+
 }  // namespace tray

@@ -31,4 +31,9 @@ void filtersOf(TextureFilter f, TexelFilter& texel, MipFilter& mip);
 /// The filtered RGB of `pyramid` for `q`. Thread-safe (texels come from TexturePyramid::texel).
 Color lookupTexture(const TexturePyramid& pyramid, const TextureQuery& q);
 
+/// Prefetches the four level-0 texels that a bilinear lookup of q would read (those of a
+/// closest one among them), for queries that read level 0 alone (no MIP filter: TextureSampler
+/// knows). Reads nothing itself.
+void prefetchLevel0(const TexturePyramid& pyramid, const TextureQuery& q);
+
 }  // namespace tray

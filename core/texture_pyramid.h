@@ -52,6 +52,16 @@ class TexturePyramid {
     return tile + 3 * (size_t(y - ty * kTile) * size_t(tileWidth) + size_t(x - tx * kTile));
   }
 
+  /// Asks for the cache line of level 0's texel (x, y), inside the level, as texel() would
+  /// read it (its float pixel, or its first code): a prefetch into L2, which neither faults
+  /// nor changes a value.
+  void prefetch0(int x, int y) const {
+    const size_t p = size_t(y) * size_t(levels_[0].width) + size_t(x);
+    const void* at =
+        pixels_ ? static_cast<const void*>(pixels_ + 3 * p)
+                : static_cast<const void*>(bytes_ + (wide_ ? 2 : 1) * p * size_t(channels_));
+    __builtin_prefetch(at, 0, 2);
+  }
   /// The four texels bilinear filtering blends, (xa, ya), (xb, ya), (xa, yb), (xb, yb) of
   /// `level` (>= 1, all inside it), into v[0..3] as texel() gives them, but with one dispatch
   /// on the level's store, and one tile lookup when the four share a tile. (Level 0 is read by

@@ -83,6 +83,15 @@ int64_t TextureSampler::tilesMade() const {
   return n;
 }
 
+void TextureSampler::prefetch(const TextureRef& ref, Vec2 uv) const {
+  if (impl_->oiio || footprintMatters(ref) || ref.image < 0 ||
+      size_t(ref.image) >= impl_->pyramids.size())
+    return;
+  const Vec2 at = transformUv(ref, uv);
+  TextureQuery q{at.x, at.y, 0, 0, 0, 0, ref.wrapS, ref.wrapT};
+  prefetchLevel0(*impl_->pyramids[size_t(ref.image)], q);
+}
+
 Color TextureSampler::sample(const TextureRef& ref, const UvFootprint& f) const {
   if (ref.image < 0 || size_t(ref.image) >= impl_->pyramids.size()) return Color(1.0f);
   const TextureImage& im = impl_->images[size_t(ref.image)];

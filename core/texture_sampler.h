@@ -43,6 +43,11 @@ class TextureSampler {
   /// its sampler's wrap modes. A footprint under one texel magnifies (magFilter); a larger one
   /// minifies with minFilter: nearest/linear texels in the finest level, or one/two MIP levels.
   Color sample(const TextureRef& ref, const UvFootprint& f) const;
+  /// Prefetches what sample(ref, {uv}) will read, where that is known from uv alone: TRay's
+  /// filter on a reference whose footprint does not matter (level 0 only). Otherwise nothing.
+  /// The wavefront calls it for a whole queue before shading it, so that the texel misses of
+  /// many vertices overlap (docs/textures.md, "Prefetching").
+  void prefetch(const TextureRef& ref, Vec2 uv) const;
 
   /// False when ref's footprint changes nothing: its min and mag filters are the same filter
   /// without MIP levels (NEAREST or LINEAR both ways), so the footprint neither chooses between

@@ -133,6 +133,9 @@ class PathEstimator {
   PathStep finishDeferred(PathState& state, Sampler& sampler, const ShadingLanes& lanes, size_t q,
                           ShadowQuery& shadow, bool& wantsShadow, RayStats& stats) const;
   const LightSet& lights() const { return lights_; }
+  /// MaterialEvaluator::prefetchTextures, for a queue's vertices before they are shaded.
+  bool textured() const { return materials_.textured(); }
+  void prefetchTextures(const SurfacePoint& s) const { materials_.prefetchTextures(s); }
   /// Adds a next-event estimate whose shadow ray was traced.
   void resolveShadow(PathState& state, const ShadowQuery& shadow, bool occluded) const {
     if (occluded) return;

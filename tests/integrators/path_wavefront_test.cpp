@@ -17,6 +17,7 @@
 #include "core/aov.h"
 #include "core/render_setup.h"
 #include "core/renderer.h"
+#include "core/texture_sampler.h"
 #include "integrators/registry.h"
 #include "io/gltf_loader.h"
 #include "tests/integrators/render_job.h"
@@ -98,6 +99,31 @@ INSTANTIATE_TEST_SUITE_P(
         if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
       return s;
     });
+
+// Textures read in their finest level only (LINEAR both ways, as the Mitsuba bench's scene
+// has them): the wavefront prefetches each queue's texels ahead of its lookups
+// (TextureSampler::prefetch), the scalar driver does not. A prefetch reads no value, so the
+// pixels are the same.
+TEST(PathWavefront, TexelPrefetchChangesNoPixel) {
+  LoadOptions options;
+  options.allowAnyPath = true;  // the bench scene names ../shared's assets
+  const Scene scene =
+      loadGltf(std::string(TRAY_SOURCE_DIR) + "/scenes/bench/heavy-helmets.gltf", options);
+  int levelZeroOnly = 0;
+  for (const Material& m : scene.materials)
+    for (const TextureRef* ref :
+         {&m.baseColorTexture, &m.metallicRoughnessTexture, &m.emissiveTexture, &m.normalTexture})
+      levelZeroOnly += ref->valid() && !TextureSampler::footprintMatters(*ref);
+  ASSERT_GE(levelZeroOnly, 8) << "the helmet's and the bottle's textures, all prefetched";
+  Job job;
+  job.size = 32, job.spp = 2;
+  job.aovs = AovSet::known();
+  const Render scalar = render(scene, job);
+  job.integrator = "path";
+  const Render wave = render(scene, job);
+  EXPECT_EQ(differingValues(scalar.film, wave.film), 0u);
+  EXPECT_EQ(scalar.stats.rays.secondaryRays, wave.stats.rays.secondaryRays);
+}
 
 // Motion blur: each camera ray's time travels with its path through Embree's packets (RTCRay8
 // time) and the BVH's (per-ray instance transforms) as through the scalar queries, so a moving
