@@ -48,6 +48,20 @@ const Scene& cornell() {
   return s;
 }
 
+/// Renders `job` with `path-scalar` and with the wavefront, expecting every value of the two
+/// films (beauty, AOVs, Cryptomatte) and the ray counts equal; returns the wavefront's render.
+Render expectWavefrontSameAsScalar(const Scene& scene, Job job) {
+  job.integrator = "path-scalar";
+  const Render scalar = render(scene, job);
+  job.integrator = "path-wavefront";
+  Render wave = render(scene, job);
+  EXPECT_EQ(differingValues(scalar.film, wave.film), 0u);
+  EXPECT_EQ(scalar.stats.rays.cameraRays, wave.stats.rays.cameraRays);
+  EXPECT_EQ(scalar.stats.rays.secondaryRays, wave.stats.rays.secondaryRays);
+  EXPECT_EQ(scalar.stats.rays.shadowRays, wave.stats.rays.shadowRays);
+  return wave;
+}
+
 struct Case {
   const char* scene;  ///< under ../shared
   const char* accel;
@@ -64,13 +78,7 @@ TEST_P(SameAsScalar, SamePixelsAovsAndRayCounts) {
   Job job;
   job.accel = c.accel, job.sampler = c.sampler;
   job.aovs = AovSet::known();
-  const Render scalar = render(scene, job);
-  job.integrator = "path-wavefront";
-  const Render wave = render(scene, job);
-  EXPECT_EQ(differingValues(scalar.film, wave.film), 0u);
-  EXPECT_EQ(scalar.stats.rays.cameraRays, wave.stats.rays.cameraRays);
-  EXPECT_EQ(scalar.stats.rays.secondaryRays, wave.stats.rays.secondaryRays);
-  EXPECT_EQ(scalar.stats.rays.shadowRays, wave.stats.rays.shadowRays);
+  const Render wave = expectWavefrontSameAsScalar(scene, job);
   EXPECT_GT(wave.stats.rays.shadowRays, 0u);
   // The light-path layers were filled, not both left black: every scene has direct light.
   const int direct = wave.film.findLayer("diffuse_direct");
@@ -118,11 +126,7 @@ TEST(PathWavefront, TexelPrefetchChangesNoPixel) {
   Job job;
   job.size = 32, job.spp = 2;
   job.aovs = AovSet::known();
-  const Render scalar = render(scene, job);
-  job.integrator = "path";
-  const Render wave = render(scene, job);
-  EXPECT_EQ(differingValues(scalar.film, wave.film), 0u);
-  EXPECT_EQ(scalar.stats.rays.secondaryRays, wave.stats.rays.secondaryRays);
+  expectWavefrontSameAsScalar(scene, job);
 }
 
 // Motion blur: each camera ray's time travels with its path through Embree's packets (RTCRay8
