@@ -48,15 +48,28 @@ inline int wrap(int coord, int size, TextureWrap mode) {
   return c < 0 ? c + size : c;
 }
 
-/// sample_bilinear for one sample of weight 1: st_to_texel_simd (texel centres at +0.5), the
-/// four wrapped texels, OIIO::bilerp, added to a zero accumulator.
-void bilinear(const TexturePyramid& p, int level, const TextureQuery& q, float out[3]) {
+/// The 2 x 2 texels of `level` that a bilinear lookup of q blends (st_to_texel_simd: texel
+/// centres at +0.5; each wrapped), and its weights' fractions.
+struct BilinearTexels {
+  int xa, xb, ya, yb;
+  float sfrac, tfrac;
+};
+BilinearTexels bilinearTexels(const TexturePyramid& p, int level, const TextureQuery& q) {
   const int w = p.width(level), h = p.height(level);
   int s0, t0;
   const float sfrac = floorFrac(q.s * float(w) - 0.5f, &s0);
   const float tfrac = floorFrac(q.t * float(h) - 0.5f, &t0);
-  const int xa = wrap(s0, w, q.wrapS), xb = wrap(s0 + 1, w, q.wrapS);
-  const int ya = wrap(t0, h, q.wrapT), yb = wrap(t0 + 1, h, q.wrapT);
+  BilinearTexels t;
+  t.xa = wrap(s0, w, q.wrapS), t.xb = wrap(s0 + 1, w, q.wrapS);
+  t.ya = wrap(t0, h, q.wrapT), t.yb = wrap(t0 + 1, h, q.wrapT);
+  t.sfrac = sfrac, t.tfrac = tfrac;
+  return t;
+}
+
+/// sample_bilinear for one sample of weight 1: the four texels of bilinearTexels,
+/// OIIO::bilerp, added to a zero accumulator.
+void bilinear(const TexturePyramid& p, int level, const TextureQuery& q, float out[3]) {
+  const auto [xa, xb, ya, yb, sfrac, tfrac] = bilinearTexels(p, level, q);
   float scratch[4][3];
   const float* v[4];
   if (level == 0) {
@@ -184,13 +197,9 @@ Color lookupTexture(const TexturePyramid& p, const TextureQuery& q) {
 }
 
 void prefetchLevel0(const TexturePyramid& p, const TextureQuery& q) {
-  const int w = p.width(0), h = p.height(0);
-  int s0, t0;
-  floorFrac(q.s * float(w) - 0.5f, &s0);
-  floorFrac(q.t * float(h) - 0.5f, &t0);
-  const int xa = wrap(s0, w, q.wrapS), xb = wrap(s0 + 1, w, q.wrapS);
-  const int ya = wrap(t0, h, q.wrapT), yb = wrap(t0 + 1, h, q.wrapT);
-  p.prefetch0(xa, ya), p.prefetch0(xb, ya), p.prefetch0(xa, yb), p.prefetch0(xb, yb);
+  const BilinearTexels t = bilinearTexels(p, 0, q);
+  p.prefetch0(t.xa, t.ya), p.prefetch0(t.xb, t.ya);
+  p.prefetch0(t.xa, t.yb), p.prefetch0(t.xb, t.yb);
 }
 
 }  // namespace tray

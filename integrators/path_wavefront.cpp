@@ -225,13 +225,15 @@ void PathWavefrontIntegrator::bounce(Wave& w, RayStats& stats, bool cameraRays) 
     ctx_.accel.intersectBatch(w.rays, w.hits, w.found);
   // The hits' surfaces in SIMD (core/surface_batch.h).
   const bool surfacesKnown = surfaces_.useful();
+  // Texels are prefetched from the surfaces' uvs (docs/textures.md, "Prefetching").
+  const bool prefetching = textured_ && surfacesKnown;
   if (surfacesKnown) {
     w.surfaces.resize(count);
     surfaces_.compute(w.rays, w.hits, w.found, w.surfaces, w.surfaceScratch);
     // The first vertices' texels asked for now, the others' kTexelPrefetchAhead vertices ahead
     // in the loop below: their cache misses overlap other work instead of stalling each
-    // vertex's material lookups in turn (docs/textures.md, "Prefetching").
-    if (textured_)
+    // vertex's material lookups in turn.
+    if (prefetching)
       for (size_t j = 0; j < std::min(count, kTexelPrefetchAhead); ++j)
         if (w.found[j]) estimator_.prefetchTextures(w.surfaces[j]);
   }
@@ -255,7 +257,7 @@ void PathWavefrontIntegrator::bounce(Wave& w, RayStats& stats, bool cameraRays) 
   size_t shadowCount = 0;
   for (size_t j = 0; j < count; ++j) {
     const size_t ahead = j + kTexelPrefetchAhead;
-    if (textured_ && surfacesKnown && ahead < count && w.found[ahead])
+    if (prefetching && ahead < count && w.found[ahead])
       estimator_.prefetchTextures(w.surfaces[ahead]);
     const uint32_t k = w.live[j];
     bool wantsShadow;
