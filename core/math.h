@@ -76,13 +76,4 @@ inline bool refract(const Vec3& d, const Vec3& n, float eta, Vec3& out) {
   return true;
 }
 
-/// Orthonormal basis around unit n (Duff et al. 2017, "Building an Orthonormal Basis, Revisited").
-inline void orthonormalBasis(const Vec3& n, Vec3& t, Vec3& b) {
-  float sign = std::copysign(1.0f, n.z);
-  float a = -1.0f / (sign + n.z);
-  float bb = n.x * n.y * a;
-  t = {1.0f + sign * n.x * n.x * a, sign * bb, -sign * n.x};
-  b = {bb, sign + n.y * n.y * a, -n.y};
-}
-
 }  // namespace tray

@@ -1,8 +1,8 @@
 #pragma once
 #include <cstdint>
-#include <cstring>
 
 #include "core/math.h"
+#include "core/ray_lanes.h"
 
 namespace tray {
 
@@ -23,26 +23,6 @@ struct Ray {
   float time = 0.0f;
 };
 
-/// Offsets a surface point along its geometric normal by a few float ULPs scaled with the
-/// point's magnitude, so a ray leaving it never re-hits the same surface at any scene scale.
-/// Wächter & Binder, "A Fast and Robust Method for Avoiding Self-Intersection", Ray Tracing
-/// Gems ch. 6 (2019). `n` must point to the side the new ray leaves towards.
-inline float offsetRayOrigin(float p, float n) {
-  constexpr float kOrigin = 1.0f / 32.0f, kFloatScale = 1.0f / 65536.0f, kIntScale = 256.0f;
-  // Written as selects, not branches: the signs of p and n are random from one bounce to the
-  // next, so branches on them are mispredicted half the time.
-  const int32_t offset = static_cast<int32_t>(kIntScale * n);
-  int32_t bits;
-  std::memcpy(&bits, &p, sizeof bits);
-  bits += p < 0 ? -offset : offset;
-  float moved;
-  std::memcpy(&moved, &bits, sizeof moved);
-  return std::fabs(p) < kOrigin ? p + kFloatScale * n : moved;
-}
-inline Vec3 offsetRayOrigin(const Vec3& p, const Vec3& n) {
-  return {offsetRayOrigin(p.x, n.x), offsetRayOrigin(p.y, n.y), offsetRayOrigin(p.z, n.z)};
-}
-
 /// Writes into `r` a ray leaving surface point p (geometric normal ng) in direction d, offset
 /// to the side d goes, at shutter time `time` (the path's: SurfacePoint::time). Field by field
 /// into an existing ray: assigning `r = Ray{...}` makes the compiler build the ray in a
@@ -50,8 +30,7 @@ inline Vec3 offsetRayOrigin(const Vec3& p, const Vec3& n) {
 /// those stores: a store-forwarding stall per ray, which perf showed as about 15% of the path
 /// tracer's per-vertex step (docs/wavefront.md).
 inline void setSpawnRay(Ray& r, const Vec3& p, const Vec3& ng, const Vec3& d, float time) {
-  const Vec3 n = ng * (dot(d, ng) >= 0 ? 1.0f : -1.0f);  // exact, and a select, not a branch
-  r.o = offsetRayOrigin(p, n);
+  r.o = spawnOrigin(p, ng, d);
   r.d = d;
   r.tmin = 0.0f;
   r.tmax = kInfinity;
@@ -60,8 +39,7 @@ inline void setSpawnRay(Ray& r, const Vec3& p, const Vec3& ng, const Vec3& d, fl
 }
 /// A shadow ray from p towards target, stopping just before the target point, at `time`.
 inline void setSpawnRayTo(Ray& r, const Vec3& p, const Vec3& ng, const Vec3& target, float time) {
-  const Vec3 n = ng * (dot(target - p, ng) >= 0 ? 1.0f : -1.0f);
-  r.o = offsetRayOrigin(p, n);
+  r.o = spawnOrigin(p, ng, target - p);
   r.d = target - r.o;
   r.tmin = 0.0f;
   r.tmax = 1.0f - 1e-4f;

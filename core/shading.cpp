@@ -4,6 +4,7 @@
 #include <new>
 
 #include "core/alpha.h"
+#include "core/sampling.h"
 #include "core/unbuilt.h"
 
 namespace tray {

@@ -9,6 +9,7 @@
 #include "core/front_face.h"
 #include "core/shading.h"
 #include "core/unbuilt.h"
+#include "integrators/path_vertex_lanes.h"
 #include "materials/bsdf.h"
 
 namespace tray {
@@ -267,7 +268,7 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
                           ? farSideAbsorption(st.media, s.material, *v.m, s.frontFace)
                           : v.sigmaA;
   if (!isBlack(sigma)) f *= ls.infinite ? Color(0.0f) : transmittance(sigma, length(ls.p - s.p));
-  shadow.contribution = st.beta * f * ls.L * (w / ls.pdf);
+  shadow.contribution = neeContribution(st.beta, f, ls.L, w, ls.pdf);
   shadow.indirect = st.indirectNee;
   shadow.depth = st.depth;
   shadow.firstVertex = st.paths.atFirstVertex();
@@ -283,7 +284,7 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
   const Vec3 u = draws.next3D();  // the lobe choice, then the direction
   BsdfSample bs = bsdf.sample(v.wo, u.x, {u.y, u.z});
   if (!bs.valid()) return PathStep::kDone;
-  st.beta *= bs.f * (std::fabs(dot(bs.wi, v.n)) / bs.pdf);
+  st.beta = scatteredThroughput(st.beta, bs.f, bs.wi, v.n, bs.pdf);
   if (!isFinite(st.beta)) {
     reportNan(st, "path throughput", st.depth);
     st.nan = true;  // counted and discarded upstream

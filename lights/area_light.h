@@ -3,6 +3,8 @@
 #include "core/light.h"
 #include "core/sampling.h"
 #include "core/shape.h"
+// sampleTriangle, written once for scalar code and the SIMD stages.
+#include "lights/triangle_light_lanes.h"
 
 namespace tray {
 
@@ -57,28 +59,18 @@ class AreaLight final : public Light {
  private:
   AreaLight() = default;
   LightSample sampleTriangle(const Vec3& ref, Vec2 u) const {
+    const TriangleLightSampleOf<Vec3> t =
+        sampleTriangleLight(TriangleLightOf<Vec3>{p0_, e1_, e2_, n_, area_, doubleSided_}, ref, u);
     LightSample s;
-    Vec3 b = sampleUniformTriangle(u);
-    s.p = p0_ + b.y * e1_ + b.z * e2_;
-    Vec3 d = s.p - ref;
-    float dist2 = lengthSquared(d);
-    if (!(dist2 > 0)) return s;
-    s.wi = d / std::sqrt(dist2);
-    // emitsToward(n_, -s.wi, doubleSided_) on the cosine the pdf needs anyway: dot(n_, -wi)
-    // and -dot(n_, wi) are equal but for the sign of a zero, which neither test sees.
-    const float cosL = -dot(n_, s.wi);
-    if (!(doubleSided_ || cosL > 0)) return s;
-    s.pdf = trianglePdf(dist2, cosL);
+    if (!t.valid) return s;
+    s.p = t.p, s.wi = t.wi, s.pdf = t.pdf;
     s.L = Le_;
     return s;
   }
   LightSample sampleShape(const LightSampleContext& ctx, Vec2 u) const;
   float shapePdf(const LightSampleContext& ctx, const Vec3& wi, const Vec3& p, const Vec3& n) const;
-  /// Solid-angle pdf of a triangle point at squared distance dist2 whose normal makes cosine
-  /// cosL with the direction: area pdf 1/A times dA/dw = d^2 / |cos|.
   float trianglePdf(float dist2, float cosL) const {
-    float c = std::fabs(cosL);
-    return c > 0 ? dist2 / (c * area_) : 0.0f;
+    return triangleSolidAnglePdf(dist2, cosL, area_);
   }
 
   const Shape* shape_ = nullptr;  ///< null: a triangle

@@ -28,12 +28,11 @@ class EnvironmentLight final : public Light {
     if (u.x < share) {
       // A share of 1 leaves u.x as it was (u.x / 1 = u.x < 1): no division.
       if (ctx.transmits) u.x = std::min(u.x / share, 0.99999994f);
-      s.wi = Frame::fromNormal(ctx.n).toWorld(sampleCosineHemisphere(u));
+      s.wi = sampleCosineAbout(ctx.n, u);
     } else {
       u.x = (u.x - share) / (1.0f - share);
-      s.wi = sampleUniformSphere(u);
+      s.wi = normalize(sampleUniformSphere(u));
     }
-    s.wi = normalize(s.wi);
     s.L = Le_;
     s.pdf = pdf(ctx, s.wi, Vec3(), Vec3());
     s.infinite = true;

@@ -7,10 +7,8 @@ namespace tray {
 void Bsdf::initLobes(const ShadingMaterial& m, float eta) {
   lambertOnly_ = false;
   probCached_ = false;
-  wMetal_ = std::clamp(m.metallic, 0.0f, 1.0f);
-  wGlass_ = (1.0f - wMetal_) * std::clamp(m.transmission, 0.0f, 1.0f);
-  wPlastic_ = 1.0f - wMetal_ - wGlass_;
-  coat_ = std::clamp((1.0f - m.roughness) * 10.0f, 0.0f, 1.0f);
+  const GgxMixtureOf<Vec3> x = ggxMixture(m.metallic, m.transmission, m.roughness, m.baseColor);
+  wMetal_ = x.wMetal, wGlass_ = x.wGlass, wPlastic_ = x.wPlastic, coat_ = x.coat;
   const float alpha = m.roughness * m.roughness;
   coatTinted_ = m.specular != 1.0f || !(m.specularColor == Color(1.0f));
   metal_.value = GgxReflectionLobe::metal(alpha, m.baseColor);
@@ -45,34 +43,33 @@ bool Bsdf::isGgxMixture(const ShadingMaterial& m) {
       m.clearcoat > 0 || !isBlack(m.sheenColor) || m.specular != 1.0f ||
       !(m.specularColor == Color(1.0f)) || isLambertOnly(m))
     return false;
-  if (!(std::max(m.roughness * m.roughness, 1e-4f) >= GgxDistribution::kSmoothAlpha))
-    return false;  // GgxDistribution's alpha: a delta lobe
-  const float wMetal = std::clamp(m.metallic, 0.0f, 1.0f);
-  const bool coat = std::clamp((1.0f - m.roughness) * 10.0f, 0.0f, 1.0f) > 0;
+  const GgxMixtureOf<Vec3> x = ggxMixture(m.metallic, 0.0f, m.roughness, m.baseColor);
+  if (x.ggxDelta) return false;  // a mirror: the scalar code samples its delta lobe
   const Color& a = m.baseColor;
-  return wMetal > 0 || (1.0f - wMetal > 0 && (coat || a.x > 0 || a.y > 0 || a.z > 0));
+  return x.metalOn || (x.wPlastic > 0 && (x.coat > 0 || a.x > 0 || a.y > 0 || a.z > 0));
+}
+
+GgxMixtureOf<Vec3> Bsdf::mixture() const {
+  const bool specular = includes(kSpecularLobes);
+  GgxMixtureOf<Vec3> x;
+  x.wMetal = wMetal_, x.wGlass = wGlass_, x.wPlastic = wPlastic_, x.coat = coat_;
+  x.alpha = metal_->alpha();
+  x.albedo = diffuse_.albedo;
+  x.metalOn = wMetal_ > 0 && specular;
+  x.glassOn = wGlass_ > 0;  // eval passes the glass lobe's value only where includesGlass
+  x.coatOn = wPlastic_ > 0 && coat_ > 0 && specular;
+  x.diffuseOn = wPlastic_ > 0 && includes(kDiffuseLobes);
+  x.ggxDelta = metal_->isDelta();
+  return x;
 }
 
 float Bsdf::coatFresnel(const Vec3& wo) const {
   if (coatTinted_) return coat_ > 0 ? coat_ * maxComponent(coatLobe_->fresnel(wo.z)) : 0.0f;
-  return coat_ > 0 ? coat_ * fresnelDielectric(absCosTheta(wo), coatEta_) : 0.0f;
+  return coatFresnelOf(coat_, wo.z, coatEta_);
 }
 
 Bsdf::Probabilities Bsdf::computeProbabilities(const Vec3& wo) const {
-  // Roughly each lobe's share of the reflected energy; any positive choice is unbiased.
-  Probabilities p;
-  float fc = coatFresnel(wo);
-  p.coatFresnel = fc;
-  p.metal = wMetal_;
-  p.glass = wGlass_;
-  p.coat = wPlastic_ * fc;
-  p.diffuse = wPlastic_ * (1.0f - fc) * maxComponent(diffuse_.albedo);
-  float sum = p.metal + p.glass + p.coat + p.diffuse;
-  if (sum > 0) {
-    float inv = 1.0f / sum;
-    p.metal *= inv, p.glass *= inv, p.coat *= inv, p.diffuse *= inv;
-  }
-  return p;
+  return mixtureProbabilities(mixture(), coatFresnel(wo));
 }
 
 Color Bsdf::evalLocal(const Vec3& wo, const Vec3& wi) const {
@@ -122,44 +119,7 @@ float Bsdf::pdfLocal(const Vec3& wo, const Vec3& wi) const {
 
 Color Bsdf::mixtureEvalPdf(const Vec3& wo, const Vec3& wi, const Probabilities& p, float& pdf,
                            float& ggxPdf) const {
-  // evalLocal's sum and pdfLocal's, each in its own order. The metal and coat lobes are built
-  // with one alpha (initLobes), so the metal lobe's terms (half vector, D, G, pdf) are the
-  // coat's too: only Fresnel differs.
-  const bool metalF = wMetal_ > 0 && includes(kSpecularLobes);
-  const bool coatF = wPlastic_ > 0 && coat_ > 0 && includes(kSpecularLobes);
-  GgxReflectionLobe::Terms ggx;
-  if (metalF || coatF || p.metal > 0 || p.coat > 0) ggx = metal_->terms(wo, wi);
-  ggxPdf = ggx.pdf;
-  Color f(0.0f);
-  if (metalF) f += wMetal_ * metal_->eval(ggx);
-  if (wGlass_ > 0 && includesGlass(wo, wi)) f += wGlass_ * glass_->eval(wo, wi);
-  if (wPlastic_ > 0) {
-    if (coatF) f += (wPlastic_ * coat_) * coatLobe_->eval(ggx);
-    if (includes(kDiffuseLobes)) f += (wPlastic_ * (1.0f - p.coatFresnel)) * diffuse_.eval(wo, wi);
-  }
-  pdf = 0;
-  if (p.metal > 0) pdf += p.metal * ggx.pdf;
-  if (p.glass > 0) pdf += p.glass * glass_->pdf(wo, wi);
-  if (p.coat > 0) pdf += p.coat * ggx.pdf;
-  if (p.diffuse > 0) pdf += p.diffuse * diffuse_.pdf(wo, wi);
-  return f;
-}
-
-BsdfSample Bsdf::mixtureGgxSample(const GgxReflectionLobe& lobe, const Vec3& wo, Vec2 u,
-                                  const Probabilities& p) const {
-  BsdfSample s;
-  Vec3 wi;
-  if (wo.z == 0 || !lobe.sampleDirection(wo, u, wi)) return s;
-  s.wi = wi;
-  float lobePdf;
-  s.f = mixtureEvalPdf(wo, wi, p, s.pdf, lobePdf);
-  if (!(lobePdf > 0)) {  // the lobe's own sample is invalid (rare): return it as lobe.sample would
-    s.f = lobe.eval(wo, wi);
-    s.pdf = 0;
-    return s;
-  }
-  if (!(s.pdf > 0) || !std::isfinite(s.pdf)) s.pdf = 0;
-  return s;
+  return tray::mixtureEvalPdf(mixture(), p, wo, wi, coatFresnelAt(), glassAt(p), pdf, ggxPdf);
 }
 
 BsdfSample Bsdf::sampleLocal(const Vec3& wo, float uc, Vec2 u) const {
@@ -179,12 +139,15 @@ BsdfSample Bsdf::sampleLocal(const Vec3& wo, float uc, Vec2 u) const {
     prob = probs[lobe];
     const float lo = lobe == 0 ? 0.0f : cdf[lobe - 1];
     if (prob > 0) ucLobe = std::min((uc - lo) / prob, 0.99999994f);
-    // A rough GGX lobe's own f and pdf would only be thrown away for the mixture's: the
-    // spheres scene spent ~1/3 of the BSDF's instructions on them (callgrind).
-    const GgxReflectionLobe* ggx = lobe == 0   ? &metal_.value
-                                   : lobe == 2 ? &coatLobe_.value
-                                               : nullptr;
-    if (ggx && prob > 0 && !ggx->isDelta()) return mixtureGgxSample(*ggx, wo, u, p);
+    // Metal, coat and Lambert, unless mirrors: the one-text sample, which evaluates only the
+    // mixture (a rough GGX lobe's own f and pdf would only be thrown away for the mixture's:
+    // the spheres scene spent ~1/3 of the BSDF's instructions on them, callgrind).
+    if (lobe == 3 || (lobe != 1 && !metal_->isDelta())) {
+      const MixtureSampleOf<Vec3> m = mixtureSample(mixture(), p, wo, uc, u, coatFresnelAt(), glassAt(p));
+      BsdfSample s;
+      s.wi = m.wi, s.f = m.f, s.pdf = m.pdf;
+      return s;
+    }
   }
   // The lobe's sample is built in place in the result (returned prvalues, then one named
   // variable): assigning it from a returned temporary cost a store-forwarding stall per sample

@@ -7,6 +7,7 @@
 #include "core/material.h"
 #include "core/sampling.h"
 #include "materials/dielectric.h"
+#include "materials/ggx_mixture_lanes.h"
 #include "materials/ggx_reflection.h"
 #include "materials/lambert.h"
 #include "materials/sheen.h"
@@ -101,10 +102,9 @@ class Bsdf {
   BsdfSample sampleLocal(const Vec3& wo, float uc, Vec2 u) const;
 
  private:
-  struct Probabilities {
-    float metal = 0, glass = 0, coat = 0, diffuse = 0;
-    float coatFresnel = 0;  ///< coatFresnel(wo), which the Lambert lobe's weight also reads
-  };
+  /// Each lobe's probability at wo, and coatFresnel(wo), which the Lambert lobe's weight also
+  /// reads (materials/ggx_mixture_lanes.h).
+  using Probabilities = MixtureProbabilitiesOf<float>;
   /// The one lobe with any weight, when there is only one (matte, pure metal, pure glass):
   /// sample, eval and pdf then skip the mixture's bookkeeping. Same values, fewer
   /// instructions (7% of the Cornell box render's, callgrind on bench/path_bench).
@@ -126,10 +126,7 @@ class Bsdf {
   /// The lone Lambert lobe in world space: only the cosines to n (and the frame to place the
   /// sampled direction).
   Color lambertEval(const Vec3& wo, const Vec3& wi, float& pdf) const {
-    const float cosO = dot(wo, frame_.n), cosI = dot(wi, frame_.n);
-    const bool same = cosO * cosI > 0;
-    pdf = same ? cosineHemispherePdf(std::fabs(cosI)) : 0.0f;
-    return same ? diffuse_.albedo * (1.0f / kPi) : Color(0.0f);
+    return lambertEvalPdf(diffuse_.albedo, dot(wo, frame_.n), dot(wi, frame_.n), pdf);
   }
   BsdfSample lambertSample(const Vec3& wo, Vec2 u) const {
     // LambertLobe::sample on wo's side (its local z: Lambert reads nothing else), then to world
@@ -155,10 +152,21 @@ class Bsdf {
   /// the whole GgxReflectionLobe::Terms: copying that out cost a store-forwarding stall.
   Color mixtureEvalPdf(const Vec3& wo, const Vec3& wi, const Probabilities& p, float& pdf,
                        float& ggxPdf) const;
-  /// sampleLocal's mixture choosing a non-delta GGX lobe (metal or coat): only the direction,
-  /// then the mixture's f and pdf, whose pass also gives the lobe's own pdf.
-  BsdfSample mixtureGgxSample(const GgxReflectionLobe& lobe, const Vec3& wo, Vec2 u,
-                              const Probabilities& p) const;
+  /// The mixture as the one-text functions read it (materials/ggx_mixture_lanes.h), with the
+  /// lobe kinds eval includes.
+  GgxMixtureOf<Vec3> mixture() const;
+  /// The coat's Fresnel colour at a microfacet cosine (exact, or KHR_materials_specular's tint).
+  auto coatFresnelAt() const {
+    return [this](float cosOM) { return coatLobe_->fresnel(cosOM); };
+  }
+  /// The glass lobe's value (where eval includes it) and pdf (where it can be sampled), for the
+  /// mixture's sums: the glass lobe stays scalar.
+  auto glassAt(const Probabilities& p) const {
+    return [this, &p](const Vec3& wo, const Vec3& wi, float& glassPdf) {
+      glassPdf = p.glass > 0 ? glass_->pdf(wo, wi) : 0.0f;
+      return wGlass_ > 0 && includesGlass(wo, wi) ? glass_->eval(wo, wi) : Color(0.0f);
+    };
+  }
   float coatFresnel(const Vec3& wo) const;
   // The base material (everything below the clearcoat), in world space.
   Color baseEval(const Vec3& wo, const Vec3& wi, float& pdf) const;

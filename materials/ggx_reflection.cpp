@@ -18,34 +18,12 @@ float GgxReflectionLobe::pdf(const Vec3& wo, const Vec3& wi) const {
 }
 
 GgxReflectionLobe::Terms GgxReflectionLobe::terms(const Vec3& wo, const Vec3& wi) const {
-  // f = F D G / (4 |cos_o cos_i|) with height-correlated G = 1 / ((1 + Lambda(wo)) +
-  // Lambda(wi)), and pdf = D_wo(wm) / (4 |wo.wm|) (Walter et al. eq. 14) with the visible
-  // normals' density D_wo = G1(wo) D |wo.wm| / |cos_o| (GgxDistribution::visibleD),
-  // G1(wo) = 1 / (1 + Lambda(wo)): the two share the half vector, D and 1 + Lambda(wo).
-  Terms t;
-  if (isDelta() || !sameHemisphere(wo, wi)) return t;
-  Vec3 wm = wi + wo;
-  if (lengthSquared(wm) == 0) return t;
-  wm = normalize(wm);
-  if (wm.z < 0) wm = -wm;
-  const float d = dist_.D(wm), onePlusLambdaO = 1.0f + dist_.lambda(wo);
-  t.cosOM = dot(wo, wm);
-  t.pdf = dist_.visibleD(wo, wm, d, onePlusLambdaO) / (4.0f * std::fabs(t.cosOM));
-  const float cosO = absCosTheta(wo), cosI = absCosTheta(wi);
-  if (cosO == 0 || cosI == 0) return t;
-  t.scale = d * (1.0f / (onePlusLambdaO + dist_.lambda(wi))) / (4.0f * cosO * cosI);
-  t.nonzero = true;
-  return t;
+  if (isDelta()) return {};
+  return ggxTerms(dist_.alpha(), wo, wi);
 }
 
 bool GgxReflectionLobe::sampleDirection(const Vec3& wo, Vec2 u, Vec3& wi) const {
-  // Sample visible normals on the upper side and mirror the answer for wo below.
-  const Vec3 woUp = wo.z < 0 ? -wo : wo;
-  const Vec3 wm = dist_.sampleVisibleNormal(woUp, u);
-  wi = -woUp + 2.0f * dot(woUp, wm) * wm;
-  if (wi.z <= 0) return false;  // shadowed by the microsurface: no sample (pbrt-v4 does the same)
-  if (wo.z < 0) wi = -wi;
-  return true;
+  return ggxSampleDirection(dist_.alpha(), wo, u, wi);
 }
 
 BsdfSample GgxReflectionLobe::sample(const Vec3& wo, Vec2 u) const {

@@ -2,6 +2,8 @@
 #include "materials/bsdf_sample.h"
 #include "materials/fresnel.h"
 #include "materials/microfacet.h"
+// terms and the sampled direction, written once for scalar code and the SIMD stages.
+#include "materials/ggx_reflection_lanes.h"
 
 namespace tray {
 
@@ -30,6 +32,7 @@ class GgxReflectionLobe {
     return l;
   }
   bool isDelta() const { return dist_.effectivelySmooth(); }
+  float alpha() const { return dist_.alpha(); }
   Color fresnel(float cosI) const {
     if (eta_ > 0 && tinted_) return tintedFresnel(fresnelDielectricAbs(cosI));
     return eta_ > 0 ? Color(fresnelDielectricAbs(cosI)) : fresnelSchlick(f0_, cosI);
@@ -42,12 +45,7 @@ class GgxReflectionLobe {
   /// (with the same operations as eval and pdf, so the same floats). They depend on alpha
   /// alone, so two lobes of one roughness (the mixture's metal and coat) share them and differ
   /// only in eval(Terms)'s Fresnel factor.
-  struct Terms {
-    float cosOM = 0;       ///< wo . wm, Fresnel's cosine
-    float scale = 0;       ///< D G / (4 |cos_o cos_i|)
-    float pdf = 0;         ///< pdf(wo, wi)
-    bool nonzero = false;  ///< false: eval is its early-out zero
-  };
+  using Terms = GgxTermsOf<float>;
   Terms terms(const Vec3& wo, const Vec3& wi) const;
   /// eval(wo, wi) from terms(wo, wi).
   Color eval(const Terms& t) const { return t.nonzero ? fresnel(t.cosOM) * t.scale : Color(0.0f); }

@@ -1,6 +1,8 @@
 #pragma once
 #include "core/sampling.h"
 #include "materials/bsdf_sample.h"
+// eval, pdf and sample, written once for scalar code and the SIMD stages.
+#include "materials/lambert_lanes.h"
 
 namespace tray {
 
@@ -8,17 +10,20 @@ namespace tray {
 struct LambertLobe {
   Color albedo;
   Color eval(const Vec3& wo, const Vec3& wi) const {
-    return sameHemisphere(wo, wi) ? albedo * (1.0f / kPi) : Color(0.0f);
+    float unused;
+    return lambertEvalPdf(albedo, wo.z, wi.z, unused);
   }
   float pdf(const Vec3& wo, const Vec3& wi) const {
-    return sameHemisphere(wo, wi) ? cosineHemispherePdf(absCosTheta(wi)) : 0.0f;
+    float p;
+    lambertEvalPdf(albedo, wo.z, wi.z, p);
+    return p;
   }
   BsdfSample sample(const Vec3& wo, Vec2 u) const {
+    const LambertSampleOf<Vec3> l = lambertSample(albedo, wo.z, u);
     BsdfSample s;
-    s.wi = sampleCosineHemisphere(u);
-    s.wi.z = wo.z < 0 ? -s.wi.z : s.wi.z;  // a select: the side is random per bounce
-    s.pdf = cosineHemispherePdf(absCosTheta(s.wi));
-    s.f = albedo * (1.0f / kPi);
+    s.wi = l.wi;
+    s.pdf = l.pdf;
+    s.f = l.f;
     return s;
   }
 };

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "core/sampling.h"
+
 namespace tray {
 
 namespace {

@@ -37,7 +37,7 @@ TEST(SampleCosineHemisphere, InteriorUnchanged) {
     const Vec3 w = sampleCosineHemisphere(u);
     EXPECT_FLOAT_EQ(w.z, std::sqrt(std::max(0.0f, 1.0f - w.x * w.x - w.y * w.y)));
   }
-  EXPECT_EQ(sampleCosineHemisphere({0.5f, 0.5f}).z, 1.0f);
+  EXPECT_EQ(sampleCosineHemisphere(Vec2{0.5f, 0.5f}).z, 1.0f);
 }
 
 /// Distance in units in the last place of the float nearest `exact`.
@@ -101,7 +101,7 @@ TEST(SampleUniformDiskConcentric, BothWedgesOnTheCircleOfTheirRadius) {
       EXPECT_NEAR(d.x, r * std::cos(theta), 4e-7) << u.x << ", " << u.y;
       EXPECT_NEAR(d.y, r * std::sin(theta), 4e-7) << u.x << ", " << u.y;
     }
-  EXPECT_EQ(sampleUniformDiskConcentric({0.5f, 0.5f}).x, 0.0f);
+  EXPECT_EQ(sampleUniformDiskConcentric(Vec2{0.5f, 0.5f}).x, 0.0f);
 }
 
 }  // namespace

@@ -271,7 +271,7 @@ TEST(Sheen, AlbedoTableMatchesMonteCarlo) {
       double sum = 0;
       for (int i = 0; i < n; ++i) {
         const float a = (i + 0.5f) / n, b = (i * 0.618034f) - std::floor(i * 0.618034f);
-        sum += sheen.eval(wo, sampleCosineHemisphere({a, b})) * kPi;
+        sum += sheen.eval(wo, sampleCosineHemisphere(Vec2{a, b})) * kPi;
       }
       const double E = sum / n;
       EXPECT_NEAR(sheen.albedo(wo.z), E, 0.01 + 0.02 * E) << roughness << " " << angle;

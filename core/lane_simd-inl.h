@@ -1,0 +1,264 @@
+// The SIMD lane: one vector of floats of a Highway target, as a value type with the operators
+// and the lane ops (core/lane_ops.h) of one float, so that the one-text headers (*_lanes.h)
+// compile for it unchanged. A thin wrapper rather than Highway's own types: those live in
+// hwy's namespace, where TRay's lane ops cannot join them (argument-dependent lookup), and have
+// no && || ! on masks. Everything inlines to Highway's ops: no cost (docs/lanes.md).
+//
+// Highway's -inl.h convention: included once per target after hwy/highway.h (before any
+// *_lanes.h in SIMD mode), guarded per target by HWY_TARGET_TOGGLE.
+#if defined(TRAY_CORE_LANE_SIMD_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef TRAY_CORE_LANE_SIMD_INL_H_
+#undef TRAY_CORE_LANE_SIMD_INL_H_
+#else
+#define TRAY_CORE_LANE_SIMD_INL_H_
+#endif
+
+#include "core/lane_ops.h"
+#include "core/simd_lanes.h"
+#include "hwy/highway.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace tray {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+// The scalar lane's ops, beside the vector ones below: a name declared here hides tray's.
+using tray::absOf;
+using tray::allOf;
+using tray::anyOf;
+using tray::bitsOf;
+using tray::copySignOf;
+using tray::floatFromBits;
+using tray::floorOf;
+using tray::isFiniteOf;
+using tray::isInfOf;
+using tray::maxOf;
+using tray::minOf;
+using tray::noneOf;
+using tray::select;
+using tray::sqrtOf;
+using tray::truncateToInt;
+
+#if HWY_TARGET != HWY_SCALAR
+using DF = hn::ScalableTag<float>;
+using DI = hn::RebindToSigned<DF>;
+static_assert(HWY_MAX_BYTES / sizeof(float) <= kMaxSimdLanes);
+
+/// A lane mask (one bit per float lane).
+struct MaskVec {
+  hn::Mask<DF> m;
+  MaskVec() = default;
+  HWY_INLINE MaskVec(hn::Mask<DF> x) : m(x) {}  // NOLINT: a lane mask is its mask
+  /// Every lane set, or none.
+  HWY_INLINE explicit MaskVec(bool all) : m(hn::FirstN(DF(), all ? hn::Lanes(DF()) : 0)) {}
+};
+/// A vector of floats: one lane per vertex.
+struct FloatVec {
+  hn::Vec<DF> v;
+  FloatVec() = default;
+  HWY_INLINE FloatVec(hn::Vec<DF> x) : v(x) {}           // NOLINT: a lane is its vector
+  HWY_INLINE FloatVec(float s) : v(hn::Set(DF(), s)) {}  // NOLINT: constants broadcast
+};
+/// A vector of 32-bit integers, lane for lane with FloatVec.
+struct IntVec {
+  hn::Vec<DI> v;
+  IntVec() = default;
+  HWY_INLINE IntVec(hn::Vec<DI> x) : v(x) {}             // NOLINT
+  HWY_INLINE IntVec(int32_t s) : v(hn::Set(DI(), s)) {}  // NOLINT
+};
+struct Vec2Vec {
+  FloatVec x, y;
+};
+/// core/math.h's Vec3, one per lane: the same operators, each in the same order.
+struct Vec3Vec {
+  FloatVec x, y, z;
+};
+}  // namespace HWY_NAMESPACE
+template <>
+struct LaneTypes<HWY_NAMESPACE::FloatVec> {
+  using Mask = HWY_NAMESPACE::MaskVec;
+  using Int = HWY_NAMESPACE::IntVec;
+  using V2 = HWY_NAMESPACE::Vec2Vec;
+  using V3 = HWY_NAMESPACE::Vec3Vec;
+};
+namespace HWY_NAMESPACE {
+
+HWY_INLINE FloatVec operator+(FloatVec a, FloatVec b) {
+  return hn::Add(a.v, b.v);
+}
+HWY_INLINE FloatVec operator-(FloatVec a, FloatVec b) {
+  return hn::Sub(a.v, b.v);
+}
+HWY_INLINE FloatVec operator*(FloatVec a, FloatVec b) {
+  return hn::Mul(a.v, b.v);
+}
+HWY_INLINE FloatVec operator/(FloatVec a, FloatVec b) {
+  return hn::Div(a.v, b.v);
+}
+HWY_INLINE FloatVec operator-(FloatVec a) {
+  return hn::Neg(a.v);
+}
+HWY_INLINE FloatVec& operator+=(FloatVec& a, FloatVec b) {
+  return a = a + b;
+}
+HWY_INLINE FloatVec& operator-=(FloatVec& a, FloatVec b) {
+  return a = a - b;
+}
+HWY_INLINE FloatVec& operator*=(FloatVec& a, FloatVec b) {
+  return a = a * b;
+}
+HWY_INLINE MaskVec operator<(FloatVec a, FloatVec b) {
+  return {hn::Lt(a.v, b.v)};
+}
+HWY_INLINE MaskVec operator<=(FloatVec a, FloatVec b) {
+  return {hn::Le(a.v, b.v)};
+}
+HWY_INLINE MaskVec operator>(FloatVec a, FloatVec b) {
+  return {hn::Gt(a.v, b.v)};
+}
+HWY_INLINE MaskVec operator>=(FloatVec a, FloatVec b) {
+  return {hn::Ge(a.v, b.v)};
+}
+HWY_INLINE MaskVec operator==(FloatVec a, FloatVec b) {
+  return {hn::Eq(a.v, b.v)};
+}
+HWY_INLINE MaskVec operator!=(FloatVec a, FloatVec b) {
+  return {hn::Ne(a.v, b.v)};
+}
+// Masks combine lane by lane; both operands are always computed (no short circuit).
+HWY_INLINE MaskVec operator&&(MaskVec a, MaskVec b) {
+  return {hn::And(a.m, b.m)};
+}
+HWY_INLINE MaskVec operator||(MaskVec a, MaskVec b) {
+  return {hn::Or(a.m, b.m)};
+}
+HWY_INLINE MaskVec operator!(MaskVec a) {
+  return {hn::Not(a.m)};
+}
+
+HWY_INLINE IntVec operator+(IntVec a, IntVec b) {
+  return hn::Add(a.v, b.v);
+}
+HWY_INLINE IntVec operator-(IntVec a) {
+  return hn::Neg(a.v);
+}
+HWY_INLINE IntVec operator&(IntVec a, IntVec b) {
+  return hn::And(a.v, b.v);
+}
+HWY_INLINE IntVec operator*(IntVec a, IntVec b) {
+  return hn::Mul(a.v, b.v);
+}
+HWY_INLINE MaskVec operator==(IntVec a, IntVec b) {
+  return {hn::RebindMask(DF(), hn::Eq(a.v, b.v))};
+}
+HWY_INLINE MaskVec operator>(IntVec a, IntVec b) {
+  return {hn::RebindMask(DF(), hn::Gt(a.v, b.v))};
+}
+
+HWY_INLINE FloatVec select(MaskVec m, FloatVec a, FloatVec b) {
+  return hn::IfThenElse(m.m, a.v, b.v);
+}
+HWY_INLINE IntVec select(MaskVec m, IntVec a, IntVec b) {
+  return hn::IfThenElse(hn::RebindMask(DI(), m.m), a.v, b.v);
+}
+HWY_INLINE FloatVec maxOf(FloatVec a, FloatVec b) {
+  return select(a < b, b, a);
+}
+HWY_INLINE FloatVec minOf(FloatVec a, FloatVec b) {
+  return select(b < a, b, a);
+}
+HWY_INLINE FloatVec absOf(FloatVec a) {
+  return hn::Abs(a.v);
+}
+HWY_INLINE FloatVec sqrtOf(FloatVec a) {
+  return hn::Sqrt(a.v);
+}
+HWY_INLINE FloatVec floorOf(FloatVec a) {
+  return hn::Floor(a.v);
+}
+HWY_INLINE FloatVec copySignOf(FloatVec magnitude, FloatVec sign) {
+  return hn::CopySign(magnitude.v, sign.v);
+}
+HWY_INLINE MaskVec isInfOf(FloatVec a) {
+  return {hn::IsInf(a.v)};
+}
+HWY_INLINE MaskVec isFiniteOf(FloatVec a) {
+  return {hn::IsFinite(a.v)};
+}
+HWY_INLINE bool anyOf(MaskVec m) {
+  return !hn::AllFalse(DF(), m.m);
+}
+HWY_INLINE bool allOf(MaskVec m) {
+  return hn::AllTrue(DF(), m.m);
+}
+HWY_INLINE bool noneOf(MaskVec m) {
+  return hn::AllFalse(DF(), m.m);
+}
+HWY_INLINE IntVec truncateToInt(FloatVec a) {
+  return hn::ConvertTo(DI(), a.v);
+}
+HWY_INLINE IntVec bitsOf(FloatVec a) {
+  return hn::BitCast(DI(), a.v);
+}
+HWY_INLINE FloatVec floatFromBits(IntVec bits) {
+  return hn::BitCast(DF(), bits.v);
+}
+/// All bits set in the lanes of m, none elsewhere (an integer flag per lane).
+HWY_INLINE IntVec maskBits(MaskVec m) {
+  return hn::VecFromMask(DI(), hn::RebindMask(DI(), m.m));
+}
+
+// Vec3 per lane: core/math.h's operators, operation for operation.
+HWY_INLINE Vec3Vec operator+(const Vec3Vec& a, const Vec3Vec& b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+HWY_INLINE Vec3Vec operator-(const Vec3Vec& a, const Vec3Vec& b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+HWY_INLINE Vec3Vec operator*(const Vec3Vec& a, const Vec3Vec& b) {
+  return {a.x * b.x, a.y * b.y, a.z * b.z};
+}
+HWY_INLINE Vec3Vec operator*(const Vec3Vec& a, FloatVec s) {
+  return {a.x * s, a.y * s, a.z * s};
+}
+HWY_INLINE Vec3Vec operator*(FloatVec s, const Vec3Vec& a) {
+  return {a.x * s, a.y * s, a.z * s};
+}
+/// Vec3's a / s: a * (1 / s).
+HWY_INLINE Vec3Vec operator/(const Vec3Vec& a, FloatVec s) {
+  return a * (FloatVec(1.0f) / s);
+}
+HWY_INLINE Vec3Vec operator-(const Vec3Vec& a) {
+  return {-a.x, -a.y, -a.z};
+}
+HWY_INLINE FloatVec dot(const Vec3Vec& a, const Vec3Vec& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+HWY_INLINE Vec3Vec cross(const Vec3Vec& a, const Vec3Vec& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+HWY_INLINE FloatVec lengthSquared(const Vec3Vec& a) {
+  return dot(a, a);
+}
+HWY_INLINE FloatVec length(const Vec3Vec& a) {
+  return sqrtOf(dot(a, a));
+}
+HWY_INLINE Vec3Vec normalize(const Vec3Vec& a) {
+  return a / length(a);
+}
+HWY_INLINE FloatVec maxComponent(const Vec3Vec& a) {
+  return maxOf(a.x, maxOf(a.y, a.z));
+}
+HWY_INLINE MaskVec isBlack(const Vec3Vec& c) {
+  return c.x == 0.0f && c.y == 0.0f && c.z == 0.0f;
+}
+HWY_INLINE Vec3Vec select(MaskVec m, const Vec3Vec& a, const Vec3Vec& b) {
+  return {select(m, a.x, b.x), select(m, a.y, b.y), select(m, a.z, b.z)};
+}
+#endif  // HWY_TARGET != HWY_SCALAR
+
+}  // namespace HWY_NAMESPACE
+}  // namespace tray
+HWY_AFTER_NAMESPACE();
+
+#endif  // TRAY_CORE_LANE_SIMD_INL_H_
