@@ -9,8 +9,8 @@
 
 #include "accel/registry.h"
 #include "bench/image_error.h"
-#include "core/render_setup.h"
-#include "core/renderer.h"
+#include "render/render_setup.h"
+#include "render/renderer.h"
 #include "integrators/registry.h"
 #include "io/gltf_loader.h"
 

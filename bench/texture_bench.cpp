@@ -18,8 +18,8 @@
 #include <vector>
 
 #include "accel/registry.h"
-#include "core/render_setup.h"
-#include "core/renderer.h"
+#include "render/render_setup.h"
+#include "render/renderer.h"
 #include "core/texture_pyramid.h"
 #include "core/texture_sampler.h"
 #include "integrators/registry.h"

@@ -71,21 +71,6 @@ const char* typeName(const OptionSpec& spec) {
   return "";
 }
 
-/// "pixel-sampler" -> "pixelSampler": the attribute names EXR readers already know.
-std::string camelCase(const std::string& name) {
-  std::string out;
-  bool upper = false;
-  for (char c : name) {
-    if (c == '-') {
-      upper = true;
-      continue;
-    }
-    out += upper ? char(std::toupper(static_cast<unsigned char>(c))) : c;
-    upper = false;
-  }
-  return out;
-}
-
 /// CLI11 2.1 sums a flag's values with std::stoll, so `--debug-nan=xyz` threw
 /// std::invalid_argument past its own ParseError (found by fuzz/options_fuzz). This check runs
 /// CLI11's own conversion first and turns its exception into the usual one-line usage error.
@@ -121,18 +106,6 @@ void addRenderOptions(CLI::App& app, RenderSettings& settings) {
            },
            o.help())
         ->type_name(typeName(spec));
-  }
-}
-
-void addOptionMetadata(const RenderSettings& settings, ImageOutputOptions& out) {
-  const RenderSettings bound = withIntegratorOptions(settings);
-  for (const OptionSpec& spec : bound.declared()) {
-    if (!spec.affectsPixels) continue;
-    const std::string key = "tray:" + camelCase(spec.name);
-    if (spec.name == "spp")
-      out.floatMetadata.emplace_back(key, float(bound.getInt("spp")));
-    else
-      out.stringMetadata.emplace_back(key, formatOptionValue(bound.value(spec.name)));
   }
 }
 

@@ -1,10 +1,10 @@
 #pragma once
-// The declared options (docs/options.md) on the command line and in the EXR metadata: what
-// tray-render does with the render-wide specs and those of every registered integrator.
+// The declared options (docs/options.md) on the command line: what tray-render does with the
+// render-wide specs and those of every registered integrator (their EXR metadata:
+// render/option_metadata.h).
 #include <CLI/CLI.hpp>
 
 #include "core/render_options.h"
-#include "io/image_output.h"
 
 namespace tray {
 
@@ -14,11 +14,5 @@ namespace tray {
 /// spec's type (tray::Error naming the option otherwise) and set in `settings`, which must
 /// outlive the app; ranges and choices are checked by validateOptions after parsing.
 void addRenderOptions(CLI::App& app, RenderSettings& settings);
-
-/// Appends to `out` one "tray:<option>" attribute (the name in camelCase: tray:pixelSampler,
-/// tray:maxDepth) per option that decides the pixels of this render: render-wide ones, the
-/// integrator's and the wrapped integrator's. Strings, except tray:spp, a float as readers
-/// before this table expect.
-void addOptionMetadata(const RenderSettings& settings, ImageOutputOptions& out);
 
 }  // namespace tray

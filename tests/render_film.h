@@ -5,7 +5,7 @@
 
 #include "accel/registry.h"
 #include "core/accelerator.h"
-#include "core/renderer.h"
+#include "render/renderer.h"
 #include "core/integrator.h"
 #include "integrators/registry.h"
 

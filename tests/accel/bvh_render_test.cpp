@@ -8,8 +8,8 @@
 
 #include "accel/registry.h"
 #include "core/accelerator.h"
-#include "core/render_setup.h"
-#include "core/renderer.h"
+#include "render/render_setup.h"
+#include "render/renderer.h"
 #include "integrators/registry.h"
 #include "io/gltf_loader.h"
 #include "tests/scene_builder.h"

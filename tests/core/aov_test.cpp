@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
-#include "core/renderer.h"
+#include "render/renderer.h"
 #include "integrators/registry.h"
 #include "tests/render_film.h"
 #include "tests/scene_builder.h"

@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "core/accelerator.h"
-#include "core/renderer.h"
+#include "render/renderer.h"
 #include "integrators/registry.h"
 #include "lights/light_set.h"
 #include "shapes/mesh_tangents.h"

@@ -7,7 +7,7 @@
 
 #include "core/aov.h"
 #include "core/error.h"
-#include "core/renderer.h"
+#include "render/renderer.h"
 #include "integrators/registry.h"
 #include "tests/raster_function.h"
 #include "tests/scene_builder.h"

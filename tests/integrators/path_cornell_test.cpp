@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "accel/registry.h"
-#include "core/renderer.h"
+#include "render/renderer.h"
 #include "integrators/path.h"
 #include "integrators/registry.h"
 #include "io/gltf_loader.h"

@@ -4,7 +4,7 @@
 #include <memory>
 
 #include "accel/registry.h"
-#include "core/renderer.h"
+#include "render/renderer.h"
 #include "integrators/registry.h"
 #include "tests/scene_builder.h"
 #include "tests/integrators/path_under_test.h"

@@ -15,8 +15,8 @@
 
 #include "accel/registry.h"
 #include "core/aov.h"
-#include "core/render_setup.h"
-#include "core/renderer.h"
+#include "render/render_setup.h"
+#include "render/renderer.h"
 #include "core/texture_sampler.h"
 #include "integrators/registry.h"
 #include "io/gltf_loader.h"

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "accel/registry.h"
-#include "core/render_setup.h"
-#include "core/renderer.h"
+#include "render/render_setup.h"
+#include "render/renderer.h"
 #include "integrators/registry.h"
 
 namespace tray::test {

@@ -6,8 +6,9 @@
 
 #include <filesystem>
 
-#include "cli/farm.h"
+#include "render/farm.h"
 #include "cli/option_cli.h"
+#include "render/option_metadata.h"
 #include "core/error.h"
 #include "integrators/registry.h"
 #include "io/image_input.h"

@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/renderer.h"
+#include "render/renderer.h"
 #include "tests/render_film.h"
 #include "tests/scene_builder.h"
 

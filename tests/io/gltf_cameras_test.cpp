@@ -7,7 +7,7 @@
 #include <fstream>
 
 #include "core/error.h"
-#include "core/render_setup.h"
+#include "render/render_setup.h"
 #include "io/gltf_loader.h"
 
 namespace tray {

@@ -16,8 +16,8 @@
 
 #include "core/accelerator.h"
 #include "core/error.h"
-#include "core/render_setup.h"
-#include "core/renderer.h"
+#include "render/render_setup.h"
+#include "render/renderer.h"
 #include "io/gltf_images.h"
 #include "io/gltf_loader.h"
 #include "tests/base64.h"

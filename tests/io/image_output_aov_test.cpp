@@ -12,7 +12,7 @@
 #include "accel/registry.h"
 #include "core/aov.h"
 #include "core/cryptomatte.h"
-#include "core/renderer.h"
+#include "render/renderer.h"
 #include "integrators/registry.h"
 #include "io/image_output.h"
 #include "tests/scene_builder.h"

@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "accel/registry.h"
-#include "core/renderer.h"
+#include "render/renderer.h"
 #include "integrators/registry.h"
 #include "shapes/csg.h"
 #include "shapes/mesh_solid.h"

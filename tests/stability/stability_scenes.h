@@ -10,7 +10,7 @@
 #include <utility>
 
 #include "accel/registry.h"
-#include "core/renderer.h"
+#include "render/renderer.h"
 #include "core/integrator.h"
 #include "tests/render_film.h"
 #include "tests/scene_builder.h"
