@@ -11,11 +11,24 @@ PreparedScene::PreparedScene(const Scene& scene, const CameraDesc& camera, Image
       cameraDesc_(camera),
       size_(size),
       camera_(Camera::create(camera, size.width, size.height)),
-      accel_(makeAccelerator(accelerator, scene)) {}
+      ownedAccel_(makeAccelerator(accelerator, scene)),
+      accel_(ownedAccel_.get()) {}
+
+PreparedScene::PreparedScene(const Scene& scene, const CameraDesc& camera, ImageSize size,
+                             const Accelerator& accelerator)
+    : scene_(&scene),
+      cameraDesc_(camera),
+      size_(size),
+      camera_(Camera::create(camera, size.width, size.height)),
+      accel_(&accelerator) {}
 
 PreparedScene::PreparedScene(const Scene& scene, ImageSize size, std::unique_ptr<Camera> camera,
                              std::unique_ptr<Accelerator> accelerator)
-    : scene_(&scene), size_(size), camera_(std::move(camera)), accel_(std::move(accelerator)) {}
+    : scene_(&scene),
+      size_(size),
+      camera_(std::move(camera)),
+      ownedAccel_(std::move(accelerator)),
+      accel_(ownedAccel_.get()) {}
 
 PreparedScene::PreparedScene(std::unique_ptr<Scene> scene, const CameraDesc& cameraDesc,
                              ImageSize size, std::unique_ptr<Camera> camera,
@@ -25,7 +38,8 @@ PreparedScene::PreparedScene(std::unique_ptr<Scene> scene, const CameraDesc& cam
       cameraDesc_(cameraDesc),
       size_(size),
       camera_(std::move(camera)),
-      accel_(std::move(accelerator)) {}
+      ownedAccel_(std::move(accelerator)),
+      accel_(ownedAccel_.get()) {}
 
 RenderContext PreparedScene::context(const RenderSettings& settings) const {
   return context(settings, *accel_);

@@ -22,6 +22,10 @@ class PreparedScene {
   /// accelerator named (accel/registry.h).
   PreparedScene(const Scene& scene, const CameraDesc& camera, ImageSize size,
                 const std::string& accelerator = "embree");
+  /// Borrows `scene` and an accelerator already built over it (benchmarks render one scene at
+  /// several image sizes).
+  PreparedScene(const Scene& scene, const CameraDesc& camera, ImageSize size,
+                const Accelerator& accelerator);
   /// Borrows `scene` with a camera and an accelerator of the caller's (test stand-ins).
   PreparedScene(const Scene& scene, ImageSize size, std::unique_ptr<Camera> camera,
                 std::unique_ptr<Accelerator> accelerator);
@@ -54,7 +58,8 @@ class PreparedScene {
   CameraDesc cameraDesc_;
   ImageSize size_;
   std::unique_ptr<Camera> camera_;
-  std::unique_ptr<Accelerator> accel_;
+  std::unique_ptr<Accelerator> ownedAccel_;  ///< null when the accelerator is borrowed
+  const Accelerator* accel_;
 };
 
 }  // namespace tray

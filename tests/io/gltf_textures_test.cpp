@@ -21,6 +21,7 @@
 #include "io/gltf_images.h"
 #include "io/gltf_loader.h"
 #include "tests/base64.h"
+#include "render/prepared_scene.h"
 
 namespace tray {
 namespace {
@@ -237,11 +238,10 @@ Render renderAmbient(const std::string& file, int w, int h, int threads = 0) {
   Scene scene = loadGltf((kSamples / file).string());
   scene.environment.ambient = Color(1.0f);
   CameraDesc cam = chooseCamera(scene, -1);
-  auto camera = Camera::create(cam, w, h);
-  auto accel = makeAccelerator("embree", scene);
   RenderSettings settings;
   settings.set("integrator", "whitted");
-  RenderContext ctx{scene, *accel, *camera, settings, w, h};
+  const PreparedScene prepared(scene, cam, {w, h});
+  const RenderContext ctx = prepared.context(settings);
   auto integrator = makeIntegrator(ctx);
   Film film(w, h);
   RenderOptions options;
