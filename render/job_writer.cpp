@@ -59,7 +59,8 @@ ImageOutputOptions JobWriter::metadataOf(const RenderState& now, double seconds)
                      {"tray:samplesPerPixel", float(samplesPerPixel_.value_or(0))}};
   addOptionMetadata(job_.settings, w);  // tray:integrator, tray:spp, tray:maxDepth, ...
   if (samplesPerPixel_)  // adaptive: the samples AOV counts them per pixel
-    w.floatMetadata.emplace_back("tray:samplesDone", float(done) * float(range_.end - range_.begin));
+    w.floatMetadata.emplace_back("tray:samplesDone",
+                                 float(done) * float(range_.end - range_.begin));
   return w;
 }
 
