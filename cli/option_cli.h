@@ -1,12 +1,29 @@
 #pragma once
-// The declared options (docs/options.md) on the command line: what tray-render does with the
-// render-wide specs and those of every registered integrator (their EXR metadata:
+// The declared options (docs/options-design.md) on the command line: what tray-render does with
+// the render-wide specs and those of every registered integrator (their EXR metadata:
 // render/option_metadata.h).
 #include <CLI/CLI.hpp>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "core/render_options.h"
 
 namespace tray {
+
+/// The --help groups of the declared options: render-wide ones, and integrators' own.
+inline constexpr const char* kRenderGroup = "Render options";
+inline constexpr const char* kIntegratorGroup = "Integrator options";
+
+/// The declared options as the command line offers them: the render-wide specs, then each
+/// registered integrator's, in registry order, with the integrator names filled in as the
+/// choices of --integrator and of a wrapper's inner option. addRenderOptions and the option
+/// reference (cli/options_doc.h) both read this.
+struct DeclaredOptions {
+  std::vector<OptionSpec> renderWide;
+  std::vector<std::pair<std::string, std::vector<OptionSpec>>> integrators;  ///< (name, specs)
+};
+DeclaredOptions declaredOptions();
 
 /// Adds one CLI11 option per declared name: the render-wide options and those of every
 /// registered integrator (an option several integrators declare, like --max-depth, is one

@@ -85,8 +85,8 @@ TEST(ExrMetadata, RenderSettingsVersionAndColorspace) {
   EXPECT_EQ(e.spec.get_string_attribute("tray:integrator"), "path");
   EXPECT_EQ(e.spec.get_float_attribute("tray:spp"), 3.0f);
   EXPECT_EQ(e.spec.get_string_attribute("tray:seed"), "42");
-  // Every pixel-affecting option of the path integrator, defaults included (docs/options.md);
-  // --debug-nan only prints, so it is not there.
+  // Every pixel-affecting option of the path integrator, defaults included
+  // (docs/options-design.md); --debug-nan only prints, so it is not there.
   EXPECT_EQ(e.spec.get_string_attribute("tray:maxDepth"), "8");
   EXPECT_EQ(e.spec.get_string_attribute("tray:clampIndirect"), "0");
   EXPECT_EQ(e.spec.get_string_attribute("tray:pixelSampler"), "auto");
