@@ -16,6 +16,7 @@
 #include "integrators/registry.h"
 #include "io/image_output.h"
 #include "tests/scene_builder.h"
+#include "tests/temp_dir.h"
 
 namespace fs = std::filesystem;
 
@@ -82,9 +83,7 @@ class AovExr : public ::testing::Test {
     RenderOptions opt;
     opt.aovs = AovSet::parse("all");
     renderImage(*integrator, film, opt);
-    const fs::path dir = fs::path(::testing::TempDir()) / "tray_image_output_aov";
-    fs::create_directories(dir);
-    const std::string path = (dir / "aovs.exr").string();
+    const std::string path = (test::testDir() / "aovs.exr").string();
     writeImage(film, path);
     image = readExr(path);
   }
