@@ -29,7 +29,7 @@ const float* matrix(const Exr& e, const char* name) {
 /// Renders `extra` with position and depth AOVs through pixel centres and checks the camera
 /// matrices against what each pixel saw.
 void checkCameraMatrices(const std::string& extra, int x0, int y0) {
-  const fs::path dir = tempFolder("exr_metadata");
+  const fs::path dir = testDir();
   const std::string scene = std::string(TRAY_SOURCE_DIR) + "/scenes/whitted.gltf";
   CliResult r = runCli(
       TRAY_RENDER_BIN,
@@ -74,7 +74,7 @@ TEST(ExrMetadata, CameraMatricesOfARegionAreThoseOfTheFullImage) {
 }
 
 TEST(ExrMetadata, RenderSettingsVersionAndColorspace) {
-  const fs::path dir = tempFolder("exr_metadata");
+  const fs::path dir = testDir();
   const std::string scene = std::string(TRAY_SOURCE_DIR) + "/scenes/whitted.gltf";
   CliResult r = runCli(TRAY_RENDER_BIN,
                        "'" + scene + "' --resolution 16x12 --integrator path --spp 3 --seed 42 " +

@@ -22,6 +22,7 @@
 #include "io/gltf_loader.h"
 #include "tests/base64.h"
 #include "render/prepared_scene.h"
+#include "tests/temp_dir.h"
 
 namespace tray {
 namespace {
@@ -32,9 +33,7 @@ const fs::path kSamples = fs::path(TRAY_SHARED_DIR) / "gltf-samples";
 
 fs::path freshFolder() {
   static std::atomic<int> counter{0};
-  fs::path dir = fs::path(::testing::TempDir()) /
-                 ("tray_tex_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-  fs::remove_all(dir);
+  fs::path dir = test::testDir() / ("doc" + std::to_string(counter++));
   fs::create_directories(dir);
   return dir;
 }

@@ -18,6 +18,7 @@
 #include "io/image_output.h"
 #include "tests/scene_builder.h"
 #include "render/prepared_scene.h"
+#include "tests/temp_dir.h"
 
 namespace fs = std::filesystem;
 
@@ -79,9 +80,7 @@ class AovExr : public ::testing::Test {
     opt.aovs = AovSet::parse("all");
     prepared.emplace(scene, lookAt({0, 1, 0}, {0, 1, -1}, 1.0f), ImageSize{W, H});
     Film film = prepared->render(settings, opt);
-    const fs::path dir = fs::path(::testing::TempDir()) / "tray_image_output_aov";
-    fs::create_directories(dir);
-    const std::string path = (dir / "aovs.exr").string();
+    const std::string path = (test::testDir() / "aovs.exr").string();
     writeImage(film, path);
     image = readExr(path);
   }
