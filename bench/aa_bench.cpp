@@ -9,8 +9,9 @@
 
 #include "accel/registry.h"
 #include "bench/image_error.h"
-#include "core/render_setup.h"
-#include "core/renderer.h"
+#include "render/render_setup.h"
+#include "render/prepared_scene.h"
+#include "render/renderer.h"
 #include "integrators/registry.h"
 #include "io/gltf_loader.h"
 
@@ -23,15 +24,12 @@ struct Run {
   RenderStats stats;
 };
 
-Run render(const Scene& scene, const Camera& camera, ImageSize size, const RenderSettings& s,
+Run render(const Scene& scene, const CameraDesc& camera, ImageSize size, const RenderSettings& s,
            int threads) {
-  auto accel = makeAccelerator("embree", scene);
-  RenderContext ctx{scene, *accel, camera, s, size.width, size.height};
-  auto integrator = makeIntegrator(ctx);
-  Film film(size.width, size.height);
   RenderOptions opt;
   opt.threads = threads;
-  RenderStats st = renderImage(*integrator, film, opt);
+  RenderStats st;
+  Film film = PreparedScene(scene, camera, size).render(s, opt, &st);
   return {std::move(film), st};
 }
 
@@ -54,13 +52,12 @@ int main(int argc, char** argv) {
     const CameraDesc cd = chooseCamera(scene, -1);
     const ImageSize size = resolveImageSize(argc > 2 ? argv[2] : "", cd);
     const int threads = argc > 3 ? std::stoi(argv[3]) : 0;
-    auto camera = Camera::create(cd, size.width, size.height);
     const double pixels = double(size.width) * size.height;
 
     std::printf("%s %dx%d: reference = 32x32 grid, whitted, box filter\n", path.c_str(), size.width,
                 size.height);
-    const Run reference = render(scene, *camera, size, grid(32), threads);
-    const Run grid4 = render(scene, *camera, size, grid(4), threads);
+    const Run reference = render(scene, cd, size, grid(32), threads);
+    const Run grid4 = render(scene, cd, size, grid(4), threads);
     const double gridRmse = compareBeauty(grid4.film, reference.film).rmse;
     const double gridRays = double(grid4.stats.rays.cameraRays);
     std::printf("%-28s %12s %10s %10s %9s\n", "method", "camera rays", "rays/px", "RMSE",
@@ -75,7 +72,7 @@ int main(int argc, char** argv) {
       s.set("inner", "whitted");
       s.set("aa-depth", 4);
       s.set("aa-threshold", t);
-      const Run a = render(scene, *camera, size, s, threads);
+      const Run a = render(scene, cd, size, s, threads);
       const double rays = double(a.stats.rays.cameraRays);
       const double e = compareBeauty(a.film, reference.film).rmse;
       char name[64];

@@ -10,7 +10,7 @@
 #include "accel/registry.h"
 #include "core/camera.h"
 #include "core/ray.h"
-#include "core/render_setup.h"
+#include "render/render_setup.h"
 #include "core/sampling.h"
 #include "core/scene.h"
 

@@ -15,7 +15,7 @@
 #include "bench/cpu_time.h"
 #include "bench/image_error.h"
 #include "bench/sky_maps.h"
-#include "core/render_setup.h"
+#include "render/render_setup.h"
 #include "io/image_output.h"
 #include "tests/render_film.h"
 #include "tests/scene_builder.h"

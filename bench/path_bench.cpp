@@ -21,8 +21,9 @@
 #include "accel/registry.h"
 #include "bench/image_error.h"
 #include "core/error.h"
-#include "core/render_setup.h"
-#include "core/renderer.h"
+#include "render/render_setup.h"
+#include "render/prepared_scene.h"
+#include "render/renderer.h"
 #include "core/sampler.h"
 #include "core/sampling.h"
 #include "integrators/path.h"
@@ -106,18 +107,17 @@ void equalError(const Scene& scene, const Accelerator& accel, const std::string&
   if (!std::filesystem::exists(refPath)) return;
   const Film ref = readReference(refPath);
   const int w = ref.width(), h = ref.height();
-  auto camera = Camera::create(scene.cameras.at(0), w, h);
+  const PreparedScene prepared(scene, scene.cameras.at(0), {w, h}, accel);
   std::printf("equal error: %dx%d, %d spp, against %s\n", w, h, base.getInt("spp"),
               refPath.c_str());
   double mse[2], rate[2];
   const char* names[2] = {"independent", "sobol"};
   for (int k = 0; k < 2; ++k) {
     base.set("sampler", names[k]);
-    RenderContext ctx{scene, accel, *camera, base, w, h};
-    Film film(w, h);
     RenderOptions options;
     options.threads = threads;
-    RenderStats stats = renderImage(*makeIntegrator(ctx), film, options);
+    RenderStats stats;
+    const Film film = prepared.render(base, options, &stats);
     const double rmse = compareBeauty(film, ref).rmse;
     mse[k] = rmse * rmse;
     rate[k] = double(w) * h * base.getInt("spp") / stats.seconds * 1e-6;
@@ -167,12 +167,12 @@ struct Measured {
   double perCpuSecond() const { return samples / cpu * 1e-6; }
 };
 
-Measured measure(const Scene& scene, const Accelerator& accel, const Camera& camera,
-                 RenderSettings settings, const std::string& integrator, int size, int threads) {
+/// `accel`: the prepared scene's or another built over its scene (a batch mode).
+Measured measure(const PreparedScene& prepared, const Accelerator& accel, RenderSettings settings,
+                 const std::string& integrator, int size, int threads) {
   settings.set("integrator", integrator);
   BatchTimingAccelerator timed(accel);
-  RenderContext ctx{scene, timed, camera, settings, size, size};
-  auto made = makeIntegrator(ctx);
+  auto made = makeIntegrator(prepared.context(settings, timed));
   Film film(size, size);
   RenderOptions options;
   options.threads = threads;
@@ -227,16 +227,14 @@ void replay(const Scene& scene, const Accelerator& accel, const RenderSettings& 
             int size) {
   RecordingAccelerator recorder(accel);
   const int small = std::max(16, size / 4);
-  auto smallCamera = Camera::create(chooseCamera(scene, -1), small, small);
-  RenderContext smallCtx{scene, recorder, *smallCamera, settings, small, small};
-  auto smallIntegrator = makeIntegrator(smallCtx);
+  const PreparedScene prepared(scene, chooseCamera(scene, -1), {small, small}, accel);
+  auto smallIntegrator = makeIntegrator(prepared.context(settings, recorder));
   Film smallFilm(small, small);
   RenderOptions one;
   one.threads = 1;
   renderImage(*smallIntegrator, smallFilm, one);
   // Timed again without the recorder's lock, for the share.
-  RenderContext plainCtx{scene, accel, *smallCamera, settings, small, small};
-  RenderStats smallStats = renderImage(*makeIntegrator(plainCtx), smallFilm, one);
+  RenderStats smallStats = renderImage(*prepared.integrator(settings), smallFilm, one);
   double closest = replaySeconds(accel, recorder.closest, false, 1);
   double shadowSeconds = replaySeconds(accel, recorder.shadow, true, 1);
   std::printf(
@@ -250,8 +248,8 @@ void replay(const Scene& scene, const Accelerator& accel, const RenderSettings& 
 int run(const std::string& path, const std::string& accelName, int threads, int size, int spp,
         bool replayRays, const std::string& sampler, bool error, bool batchModes) {
   Scene scene = benchScene(path);
-  auto camera = Camera::create(chooseCamera(scene, -1), size, size);
-  auto accel = makeAccelerator(accelName, scene);
+  const PreparedScene prepared(scene, chooseCamera(scene, -1), {size, size}, accelName);
+  const Accelerator& accel = prepared.accelerator();
   RenderSettings settings;
   settings.set("integrator", "path-scalar");  // the replay records the scalar driver's rays
   settings.set("spp", spp);
@@ -259,10 +257,10 @@ int run(const std::string& path, const std::string& accelName, int threads, int 
   settings.set("sampler", sampler);
   std::printf("path tracing %s: %dx%d, %d spp, max depth 8, %d threads, %s sampler, %s\n",
               path.c_str(), size, size, spp, threads, sampler.c_str(), accelName.c_str());
-  const Measured scalar = measure(scene, *accel, *camera, settings, "path-scalar", size, threads);
+  const Measured scalar = measure(prepared, accel, settings, "path-scalar", size, threads);
   print("path-scalar (one path at a time)", scalar, threads);
-  if (replayRays) replay(scene, *accel, settings, size);
-  const Measured wave = measure(scene, *accel, *camera, settings, "path", size, threads);
+  if (replayRays) replay(scene, accel, settings, size);
+  const Measured wave = measure(prepared, accel, settings, "path", size, threads);
   print("path (the wavefront driver, path-wavefront)", wave, threads);
   std::printf("  wavefront / scalar: %.2fx samples per CPU-second\n",
               wave.perCpuSecond() / scalar.perCpuSecond());
@@ -286,14 +284,14 @@ int run(const std::string& path, const std::string& accelName, int threads, int 
       }
     }
     for (const auto& [name, a] : modes) {
-      const Measured m = measure(scene, *a, *camera, settings, "path-wavefront", size, threads);
+      const Measured m = measure(prepared, *a, settings, "path-wavefront", size, threads);
       std::printf("  wavefront, %-26s %.3f Msamples per CPU-second (%.2fx scalar), traversal "
                   "%.0f%% (%.0f%% of it shadow rays)\n",
                   name.c_str(), m.perCpuSecond(), m.perCpuSecond() / scalar.perCpuSecond(),
                   100 * m.traversal, 100 * m.shadowShare);
     }
   }
-  double raw = rawTraversalMrays(*accel, scene.bounds(), threads);
+  double raw = rawTraversalMrays(accel, scene.bounds(), threads);
   std::printf("  raw %-11s %.2f Mrays/s (random incoherent closest hits)\n", accelName.c_str(),
               raw);
   std::printf("  path / raw      %.2f, path-wavefront / raw %.2f\n",
@@ -302,7 +300,7 @@ int run(const std::string& path, const std::string& accelName, int threads, int 
   if (error) {
     RenderSettings at64 = settings;
     at64.set("spp", 64);
-    equalError(scene, *accel, refPath, at64, threads);
+    equalError(scene, accel, refPath, at64, threads);
   }
   return 0;
 }

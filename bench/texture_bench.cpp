@@ -18,8 +18,9 @@
 #include <vector>
 
 #include "accel/registry.h"
-#include "core/render_setup.h"
-#include "core/renderer.h"
+#include "render/render_setup.h"
+#include "render/prepared_scene.h"
+#include "render/renderer.h"
 #include "core/texture_pyramid.h"
 #include "core/texture_sampler.h"
 #include "integrators/registry.h"
@@ -129,16 +130,14 @@ void pyramidMaking() {
       double(TexturePyramid::tileBytesAtMost(2048, 2048)) / 12 / t * 1e-6, checksum);
 }
 
-RenderStats render(const Scene& scene, const Camera& camera, ImageSize size, int threads) {
-  auto accel = makeAccelerator("embree", scene);
+RenderStats render(const Scene& scene, const CameraDesc& camera, ImageSize size, int threads) {
   RenderSettings s;
   s.set("integrator", "whitted");
-  RenderContext ctx{scene, *accel, camera, s, size.width, size.height};
-  auto integrator = makeIntegrator(ctx);
-  Film film(size.width, size.height);
   RenderOptions opt;
   opt.threads = threads;
-  return renderImage(*integrator, film, opt);
+  RenderStats stats;
+  PreparedScene(scene, camera, size).render(s, opt, &stats);
+  return stats;
 }
 
 }  // namespace
@@ -157,10 +156,9 @@ int main(int argc, char** argv) {
     CameraDesc cam = chooseCamera(textured, -1);
     ImageSize size = resolveImageSize(argc > 2 ? argv[2] : "", cam);
     const int threads = argc > 3 ? std::atoi(argv[3]) : 0;
-    auto camera = Camera::create(cam, size.width, size.height);
-    render(textured, *camera, size, threads);  // warm-up: MIP levels, caches
-    RenderStats a = render(textured, *camera, size, threads);
-    RenderStats b = render(plain, *camera, size, threads);
+    render(textured, cam, size, threads);  // warm-up: MIP levels, caches
+    RenderStats a = render(textured, cam, size, threads);
+    RenderStats b = render(plain, cam, size, threads);
     std::printf(
         "%s %dx%d whitted: textured %.3f s (%.2f Mrays/s), untextured %.3f s (%.2f Mrays/s): "
         "textures add %.0f%%\n",

@@ -14,8 +14,9 @@
 #include "bench/image_error.h"
 #include "bench/sweep.h"
 #include "core/error.h"
-#include "core/render_setup.h"
-#include "core/renderer.h"
+#include "render/render_setup.h"
+#include "render/prepared_scene.h"
+#include "render/renderer.h"
 #include "integrators/registry.h"
 #include "io/gltf_loader.h"
 #include "io/image_output.h"
@@ -35,21 +36,18 @@ Film referenceOfSize(const std::string& path, int width, int height) {
   return film;
 }
 
+/// The scene prepared once per accelerator.
 struct Bench {
   const Scene& scene;
-  const Camera& camera;
+  CameraDesc camera;
   ImageSize size;
-  std::map<std::string, std::unique_ptr<Accelerator>> accels;
+  std::map<std::string, PreparedScene> prepared;
 
-  const Accelerator& accel(const std::string& name) {
-    auto& a = accels[name];
-    if (!a) a = makeAccelerator(name, scene);
-    return *a;
-  }
   std::pair<Film, RenderStats> render(const RenderSettings& s, const std::string& accelName,
                                       int threads, const std::vector<std::string>& aovs = {}) {
-    RenderContext ctx{scene, accel(accelName), camera, s, size.width, size.height};
-    auto integrator = makeIntegrator(ctx);
+    const PreparedScene& p = prepared.try_emplace(accelName, scene, camera, size, accelName)
+                                 .first->second;
+    auto integrator = p.integrator(s);
     Film film(size.width, size.height);
     RenderOptions opt;
     opt.threads = threads;
@@ -90,8 +88,7 @@ int sweep(const std::string& scenePath, const std::string& resolution, const std
   scene.sourcePath = scenePath;
   CameraDesc cd = chooseCamera(scene, -1);
   ImageSize size = resolveImageSize(resolution, cd);
-  auto camera = Camera::create(cd, size.width, size.height);
-  Bench bench{scene, *camera, size, {}};
+  Bench bench{scene, cd, size, {}};
   fs::create_directories(outDir);
   const std::string stem = fs::path(scenePath).stem().string();
 

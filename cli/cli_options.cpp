@@ -2,6 +2,7 @@
 
 #include "accel/registry.h"
 #include "cli/option_cli.h"
+#include "cli/options_doc.h"
 #include "core/aov.h"
 
 namespace {
@@ -23,6 +24,25 @@ CLI::Validator nonNegative(const std::string& expected) {
         return {};
       },
       "", "non-negative");
+}
+
+/// The --help groups of the options declared here (those made from declarations are grouped
+/// by cli/option_cli.cpp). A name missing from `app` is a mistake in this table.
+void groupOptions(CLI::App& app) {
+  const std::vector<std::pair<const char*, std::vector<const char*>>> groups = {
+      {"Scene and camera",
+       {"--camera", "--scene", "--resolution", "--allow-any-path", "--ignore-required-extensions",
+        "--max-memory", "--texture-memory"}},
+      {"Output",
+       {"--output", "--float", "--output-colorspace", "--display", "--view", "--aov",
+        "--cryptomatte-ranks", "--aa-heatmap"}},
+      {"Frames, farm parts and checkpoints",
+       {"--frames", "--region", "--sample-range", "--checkpoint", "--resume"}},
+      {"Running", {"--threads", "--accel", "--quiet", "--progress", "--progress-step",
+                   "--progress-seconds", "--help", "--version"}},
+  };
+  for (const auto& [group, names] : groups)
+    for (const char* name : names) app.get_option(name)->group(group);
 }
 
 }  // namespace
@@ -103,4 +123,6 @@ void addCliOptions(CLI::App& app, CliOptions& o) {
   app.add_option("--frames", o.frames,
                  "render frames FIRST-LAST of the animation at --fps, each at time frame / fps, "
                  "to outputs named by a pattern: -o out.####.exr (or out.%04d.exr)");
+  groupOptions(app);
+  tray::addHelpMarkdownFlag(app, "Running");
 }

@@ -41,19 +41,10 @@ std::vector<CliOption> cliOptions() {
       }
     out.push_back({spec, {{owner, text}}});
   };
-  // Integrator names are known here, not in core or in a wrapper's own file: the help lists
-  // them (the registry checks them).
-  std::vector<std::string> names;
-  for (const auto& e : integratorRegistry()) names.push_back(e.name);
-  for (OptionSpec spec : renderOptions()) {
-    if (spec.name == "integrator") spec.choices = names;
-    add(spec, "");
-  }
-  for (const auto& e : integratorRegistry())
-    for (OptionSpec spec : e.options) {
-      if (spec.name == e.innerOption) spec.choices = names;
-      add(spec, e.name);
-    }
+  const DeclaredOptions declared = declaredOptions();
+  for (const OptionSpec& spec : declared.renderWide) add(spec, "");
+  for (const auto& [name, specs] : declared.integrators)
+    for (const OptionSpec& spec : specs) add(spec, name);
   return out;
 }
 
@@ -69,21 +60,6 @@ const char* typeName(const OptionSpec& spec) {
       return spec.choices.empty() ? "TEXT" : "NAME";
   }
   return "";
-}
-
-/// "pixel-sampler" -> "pixelSampler": the attribute names EXR readers already know.
-std::string camelCase(const std::string& name) {
-  std::string out;
-  bool upper = false;
-  for (char c : name) {
-    if (c == '-') {
-      upper = true;
-      continue;
-    }
-    out += upper ? char(std::toupper(static_cast<unsigned char>(c))) : c;
-    upper = false;
-  }
-  return out;
 }
 
 /// CLI11 2.1 sums a flag's values with std::stoll, so `--debug-nan=xyz` threw
@@ -104,14 +80,36 @@ CLI::Validator flagValueCheck() {
 
 }  // namespace
 
+DeclaredOptions declaredOptions() {
+  // Integrator names are known here, not in core or in a wrapper's own file: the help lists
+  // them (the registry checks them).
+  std::vector<std::string> names;
+  for (const auto& e : integratorRegistry()) names.push_back(e.name);
+  DeclaredOptions out;
+  for (OptionSpec spec : renderOptions()) {
+    if (spec.name == "integrator") spec.choices = names;
+    out.renderWide.push_back(std::move(spec));
+  }
+  for (const auto& e : integratorRegistry()) {
+    std::vector<OptionSpec> specs = e.options;
+    for (OptionSpec& spec : specs)
+      if (spec.name == e.innerOption) spec.choices = names;
+    out.integrators.emplace_back(e.name, std::move(specs));
+  }
+  return out;
+}
+
 void addRenderOptions(CLI::App& app, RenderSettings& settings) {
   for (const CliOption& o : cliOptions()) {
     const OptionSpec spec = o.spec;
     const std::string flag = "--" + spec.name;
+    const std::string group = o.parts.front().first.empty() ? kRenderGroup : kIntegratorGroup;
     if (spec.type == OptionType::kBool) {
       app.add_flag_function(
-          flag, [&settings, spec](int64_t count) { settings.set(spec.name, count > 0); }, o.help())
-          ->check(flagValueCheck());
+             flag, [&settings, spec](int64_t count) { settings.set(spec.name, count > 0); },
+             o.help())
+          ->check(flagValueCheck())
+          ->group(group);
       continue;
     }
     app.add_option_function<std::string>(
@@ -120,19 +118,8 @@ void addRenderOptions(CLI::App& app, RenderSettings& settings) {
              settings.setValue(spec.name, parseOptionValue(spec, text));
            },
            o.help())
-        ->type_name(typeName(spec));
-  }
-}
-
-void addOptionMetadata(const RenderSettings& settings, ImageOutputOptions& out) {
-  const RenderSettings bound = withIntegratorOptions(settings);
-  for (const OptionSpec& spec : bound.declared()) {
-    if (!spec.affectsPixels) continue;
-    const std::string key = "tray:" + camelCase(spec.name);
-    if (spec.name == "spp")
-      out.floatMetadata.emplace_back(key, float(bound.getInt("spp")));
-    else
-      out.stringMetadata.emplace_back(key, formatOptionValue(bound.value(spec.name)));
+        ->type_name(typeName(spec))
+        ->group(group);
   }
 }
 

@@ -1,12 +1,29 @@
 #pragma once
-// The declared options (docs/options.md) on the command line and in the EXR metadata: what
-// tray-render does with the render-wide specs and those of every registered integrator.
+// The declared options (docs/options-design.md) on the command line: what tray-render does with
+// the render-wide specs and those of every registered integrator (their EXR metadata:
+// render/option_metadata.h).
 #include <CLI/CLI.hpp>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "core/render_options.h"
-#include "io/image_output.h"
 
 namespace tray {
+
+/// The --help groups of the declared options: render-wide ones, and integrators' own.
+inline constexpr const char* kRenderGroup = "Render options";
+inline constexpr const char* kIntegratorGroup = "Integrator options";
+
+/// The declared options as the command line offers them: the render-wide specs, then each
+/// registered integrator's, in registry order, with the integrator names filled in as the
+/// choices of --integrator and of a wrapper's inner option. addRenderOptions and the option
+/// reference (cli/options_doc.h) both read this.
+struct DeclaredOptions {
+  std::vector<OptionSpec> renderWide;
+  std::vector<std::pair<std::string, std::vector<OptionSpec>>> integrators;  ///< (name, specs)
+};
+DeclaredOptions declaredOptions();
 
 /// Adds one CLI11 option per declared name: the render-wide options and those of every
 /// registered integrator (an option several integrators declare, like --max-depth, is one
@@ -14,11 +31,5 @@ namespace tray {
 /// spec's type (tray::Error naming the option otherwise) and set in `settings`, which must
 /// outlive the app; ranges and choices are checked by validateOptions after parsing.
 void addRenderOptions(CLI::App& app, RenderSettings& settings);
-
-/// Appends to `out` one "tray:<option>" attribute (the name in camelCase: tray:pixelSampler,
-/// tray:maxDepth) per option that decides the pixels of this render: render-wide ones, the
-/// integrator's and the wrapped integrator's. Strings, except tray:spp, a float as readers
-/// before this table expect.
-void addOptionMetadata(const RenderSettings& settings, ImageOutputOptions& out);
 
 }  // namespace tray

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <numeric>
 
-#include "cli/job_diff.h"
+#include "render/job_diff.h"
 #include "core/error.h"
 #include "core/light_paths.h"
 #include "core/render_state.h"

@@ -60,7 +60,7 @@ RenderContext declaring(const RenderContext& ctx, const std::vector<OptionSpec>&
   return bound;
 }
 
-int Integrator::samplesPerPixel() const {
+std::optional<int> Integrator::samplesPerPixel() const {
   return pixelSampler_.count();
 }
 
@@ -146,7 +146,7 @@ void Integrator::accumulatePixels(std::span<PixelTask> tasks, int begin, int end
 PixelValue Integrator::renderPixel(int x, int y, RayStats& stats, IdCoverage* coverage) const {
   PixelSums sums;
   PixelValue out;
-  out.samples = accumulate(x, y, 0, samplesPerPixel(), sums, out.primary, stats, coverage);
+  out.samples = accumulate(x, y, 0, pixelSampler_.count(), sums, out.primary, stats, coverage);
   out.radiance = sums.radiance();
   out.alpha = sums.coverage();
   return out;

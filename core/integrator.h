@@ -2,6 +2,7 @@
 #include <atomic>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -88,8 +89,8 @@ RenderContext declaring(const RenderContext& ctx, const std::vector<OptionSpec>&
 
 /// A light transport algorithm. Ray-based integrators implement Li; renderPixel's default
 /// averages the "spp" samples placed by the pixel sampler. Wrapping integrators (adaptive
-/// anti-aliasing) override renderPixel and call an inner integrator's Li (and report
-/// samplesPerPixel() == 0: their samples cannot be split into ranges).
+/// anti-aliasing) override renderPixel and call an inner integrator's Li (and report no
+/// samplesPerPixel(): their samples cannot be split into ranges).
 class Integrator {
  public:
   /// Resolves the render-wide filter, sampler and pixel-sampler names once, for every pixel.
@@ -109,9 +110,9 @@ class Integrator {
   /// object and material ids with the weight the sample has in the pixel.
   virtual PixelValue renderPixel(int x, int y, RayStats& stats,
                                  IdCoverage* coverage = nullptr) const;
-  /// Samples per pixel of renderPixel's estimator (the pixel sampler's count); 0 when the
+  /// Samples per pixel of renderPixel's estimator (the pixel sampler's count); none when the
   /// integrator places its own samples (adaptive) and accumulate() does not apply.
-  virtual int samplesPerPixel() const;
+  virtual std::optional<int> samplesPerPixel() const;
   /// Adds samples [begin, end) of pixel (x, y) to `sums`, each from its own counter-based
   /// Sampler(pixel, sample, seed): sums over consecutive ranges add up to renderPixel's. Fills
   /// `first` with what sample `begin` hit, `coverage` (when not null) as renderPixel does, and

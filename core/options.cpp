@@ -36,16 +36,6 @@ std::string formatBound(double v, OptionType type) {
   return formatOptionValue(OptionValue(float(v)));
 }
 
-/// "0..12", ">= 0" or "" for the spec's range.
-std::string rangeText(const OptionSpec& s) {
-  const bool lo = std::isfinite(s.min), hi = std::isfinite(s.max);
-  if (lo && hi) return formatBound(s.min, s.type) + ".." + formatBound(s.max, s.type);
-  const std::string what = s.type == OptionType::kInt ? "an integer " : "a finite value ";
-  if (lo) return what + ">= " + formatBound(s.min, s.type);
-  if (hi) return what + "<= " + formatBound(s.max, s.type);
-  return "";
-}
-
 [[noreturn]] void reject(const OptionSpec& s, const std::string& text, const std::string& why) {
   throw Error("--" + s.name + " " + text + ": expected " + why);
 }
@@ -60,6 +50,15 @@ OptionSpec make(std::string name, OptionType type, OptionValue def, std::string 
 }
 
 }  // namespace
+
+std::string rangeText(const OptionSpec& s) {
+  const bool lo = std::isfinite(s.min), hi = std::isfinite(s.max);
+  if (lo && hi) return formatBound(s.min, s.type) + ".." + formatBound(s.max, s.type);
+  const std::string what = s.type == OptionType::kInt ? "an integer " : "a finite value ";
+  if (lo) return what + ">= " + formatBound(s.min, s.type);
+  if (hi) return what + "<= " + formatBound(s.max, s.type);
+  return "";
+}
 
 OptionSpec intOption(std::string name, int64_t defaultValue, int64_t min, int64_t max,
                      std::string help) {

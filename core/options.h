@@ -1,6 +1,6 @@
 #pragma once
-// Options declared once (docs/options.md): each option is one OptionSpec beside the code that
-// reads it. The command line, validation, the farm job signature and the EXR metadata are all
+// Options declared once (docs/options-design.md): each option is one OptionSpec beside the code
+// that reads it. The command line, validation, the farm job signature and the EXR metadata are all
 // generated from these specs, so adding an option touches no other file. No CLI11 here: the
 // command-line layer (cli/option_cli.h) turns specs into CLI11 options.
 #include <cstdint>
@@ -54,6 +54,8 @@ OptionValue parseOptionValue(const OptionSpec& spec, const std::string& text);
 /// Throws tray::Error "--name value: expected ..." unless `value` is valid for `spec` (type,
 /// range, choices). An int given for a float option is accepted.
 void validateOptionValue(const OptionSpec& spec, const OptionValue& value);
+/// The spec's range as text: "0..12", "an integer >= 0", or "" for none (and for non-numbers).
+std::string rangeText(const OptionSpec& spec);
 /// The help text with the default and the valid values: "... (default 4; 0..12)".
 std::string describeOption(const OptionSpec& spec);
 

@@ -14,8 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "cli/farm.h"
+#include "render/farm.h"
 #include "cli/option_cli.h"
+#include "render/option_metadata.h"
 #include "core/error.h"
 #include "integrators/registry.h"
 #include "io/gltf_loader.h"

@@ -48,7 +48,7 @@ class Adaptive final : public Integrator {
   }
 
   /// Adaptive places its own samples: they cannot be split into sample ranges.
-  int samplesPerPixel() const override { return 0; }
+  std::optional<int> samplesPerPixel() const override { return std::nullopt; }
 
   PixelValue renderPixel(int x, int y, RayStats& stats, IdCoverage* coverage) const override {
     Accum acc;

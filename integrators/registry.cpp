@@ -12,7 +12,7 @@ namespace tray {
 namespace {
 
 // The integrator table: a new integrator is one file plus one line here (its options travel
-// with it, declared beside its code; docs/options.md).
+// with it, declared beside its code; docs/options-design.md).
 std::vector<IntegratorEntry>& table() {
   static std::vector<IntegratorEntry> entries = {
       {"whitted", "recursive ray tracing: Phong, shadows, mirror reflection, refraction",

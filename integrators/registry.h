@@ -1,5 +1,6 @@
 #pragma once
-// The integrator plugins by name: integrators/registry.cpp holds the table (docs/options.md).
+// The integrator plugins by name: integrators/registry.cpp holds the table
+// (docs/options-design.md).
 #include <memory>
 #include <string>
 #include <vector>

@@ -3,11 +3,13 @@
 // the ray origin and the "integrator" returns a function of it, so filters, sample positions
 // and adaptive subdivision can be checked against exact integrals. No accelerator is used.
 #include <atomic>
+#include <deque>
 #include <functional>
 #include <mutex>
 #include <vector>
 
 #include "core/integrator.h"
+#include "render/prepared_scene.h"
 
 namespace tray::test {
 
@@ -53,14 +55,17 @@ class RasterIntegrator final : public Integrator {
   mutable std::mutex mutex_;
 };
 
-/// Everything a RenderContext refers to, kept alive together.
+/// An empty scene seen through the raster camera, with no accelerator: each context's
+/// PreparedScene is kept alive with the world.
 struct RasterWorld {
   Scene scene;
-  NullAccelerator accel;
-  RasterCamera camera;
   RenderContext context(const RenderSettings& s, int w, int h) const {
-    return RenderContext{scene, accel, camera, s, w, h};
+    return prepared
+        .emplace_back(scene, ImageSize{w, h}, std::make_unique<RasterCamera>(),
+                      std::make_unique<NullAccelerator>())
+        .context(s);
   }
+  mutable std::deque<PreparedScene> prepared;
 };
 
 }  // namespace tray::test

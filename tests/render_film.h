@@ -3,11 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "accel/registry.h"
-#include "core/accelerator.h"
-#include "core/renderer.h"
-#include "core/integrator.h"
-#include "integrators/registry.h"
+#include "render/prepared_scene.h"
 
 namespace tray::test {
 
@@ -17,17 +13,10 @@ inline Film renderFilm(const Scene& scene, const CameraDesc& cam, int w, int h,
                        const RenderSettings& settings, RenderStats* stats = nullptr,
                        const std::vector<std::string>& aovs = {},
                        const std::string& accelerator = "embree", int threads = 0) {
-  auto camera = Camera::create(cam, w, h);
-  auto accel = makeAccelerator(accelerator, scene);
-  RenderContext ctx{scene, *accel, *camera, settings, w, h};
-  auto integrator = makeIntegrator(ctx);
-  Film film(w, h);
   RenderOptions options;
   options.aovs = aovs;
   options.threads = threads;
-  RenderStats st = renderImage(*integrator, film, options);
-  if (stats) *stats = st;
-  return film;
+  return PreparedScene(scene, cam, {w, h}, accelerator).render(settings, options, stats);
 }
 
 }  // namespace tray::test

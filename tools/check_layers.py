@@ -23,7 +23,8 @@ ALLOWED = {
     "lights": {"core"},
     "integrators": {"core", "materials", "lights"},
     "io": {"core", "shapes", "accel", "materials", "lights"},
-    "cli": {"core", "shapes", "accel", "materials", "lights", "integrators", "io"},
+    "render": {"core", "shapes", "accel", "materials", "lights", "integrators", "io"},
+    "cli": {"core", "shapes", "accel", "materials", "lights", "integrators", "io", "render"},
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([a-z_]+)/[^"]+"', re.MULTILINE)
 

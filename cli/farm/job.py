@@ -176,15 +176,13 @@ class FarmJob:
 # (frame FRAMES[i], {self.spec["split"]}), written by `tray-farm submit`; read or adapt it.
 # exec: scancel and time limits deliver SIGTERM to tray-render itself, which writes the part so
 # far (exit 143); --resume continues it, or any checkpoint, when the task runs again.
+# TRAY_FARM_ATTEMPT in the environment: 0 on a part's first run, N on its Nth retry.
 set -u
 FRAMES=({frames})
 PART_OPT=({opts})
 PART_VAL=({vals})
 OUTPUT=({" ".join(outs)})
 i=$SLURM_ARRAY_TASK_ID
-if [ -e {q(self.folder)}/state/test-fail-$i ] && [ "${{TRAY_FARM_ATTEMPT:-0}}" = 0 ]; then
-  echo "tray-farm test hook: part $i fails on its first attempt" >&2; exit 1
-fi
 exec {renderer} {args} {frame_arg} "${{PART_OPT[i]}}" "${{PART_VAL[i]}}" \\
   -o "${{OUTPUT[i]}}" --checkpoint {self.spec["checkpoint"]} --resume --progress plain
 """

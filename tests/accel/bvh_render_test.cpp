@@ -8,11 +8,12 @@
 
 #include "accel/registry.h"
 #include "core/accelerator.h"
-#include "core/render_setup.h"
-#include "core/renderer.h"
+#include "render/render_setup.h"
+#include "render/renderer.h"
 #include "integrators/registry.h"
 #include "io/gltf_loader.h"
 #include "tests/scene_builder.h"
+#include "render/prepared_scene.h"
 
 namespace tray {
 namespace {
@@ -55,9 +56,8 @@ Scene withHeadlight(Scene scene) {
 Film render(const Scene& scene, const std::string& accelName, RenderSettings settings, int w,
             int h) {
   CameraDesc cam = chooseCamera(scene, -1);
-  auto camera = Camera::create(cam, w, h);
-  auto accel = makeAccelerator(accelName, scene);
-  RenderContext ctx{scene, *accel, *camera, settings, w, h};
+  const PreparedScene prepared(scene, cam, {w, h}, accelName);
+  const RenderContext ctx = prepared.context(settings);
   auto integrator = makeIntegrator(ctx);
   Film film(w, h);
   renderImage(*integrator, film);

@@ -15,19 +15,11 @@
 #include <vector>
 
 #include "tests/exr_read.h"
+#include "tests/temp_dir.h"
 
 namespace tray::test {
 
 namespace fs = std::filesystem;
-
-/// A fresh, empty folder per test.
-inline fs::path tempFolder(const std::string& prefix) {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  fs::path dir = fs::path(::testing::TempDir()) / (prefix + "_" + info->name());
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
 
 struct CliResult {
   int exitCode = -1;

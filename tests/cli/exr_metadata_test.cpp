@@ -29,7 +29,7 @@ const float* matrix(const Exr& e, const char* name) {
 /// Renders `extra` with position and depth AOVs through pixel centres and checks the camera
 /// matrices against what each pixel saw.
 void checkCameraMatrices(const std::string& extra, int x0, int y0) {
-  const fs::path dir = tempFolder("exr_metadata");
+  const fs::path dir = testDir();
   const std::string scene = std::string(TRAY_SOURCE_DIR) + "/scenes/whitted.gltf";
   CliResult r = runCli(
       TRAY_RENDER_BIN,
@@ -74,7 +74,7 @@ TEST(ExrMetadata, CameraMatricesOfARegionAreThoseOfTheFullImage) {
 }
 
 TEST(ExrMetadata, RenderSettingsVersionAndColorspace) {
-  const fs::path dir = tempFolder("exr_metadata");
+  const fs::path dir = testDir();
   const std::string scene = std::string(TRAY_SOURCE_DIR) + "/scenes/whitted.gltf";
   CliResult r = runCli(TRAY_RENDER_BIN,
                        "'" + scene + "' --resolution 16x12 --integrator path --spp 3 --seed 42 " +
@@ -85,8 +85,8 @@ TEST(ExrMetadata, RenderSettingsVersionAndColorspace) {
   EXPECT_EQ(e.spec.get_string_attribute("tray:integrator"), "path");
   EXPECT_EQ(e.spec.get_float_attribute("tray:spp"), 3.0f);
   EXPECT_EQ(e.spec.get_string_attribute("tray:seed"), "42");
-  // Every pixel-affecting option of the path integrator, defaults included (docs/options.md);
-  // --debug-nan only prints, so it is not there.
+  // Every pixel-affecting option of the path integrator, defaults included
+  // (docs/options-design.md); --debug-nan only prints, so it is not there.
   EXPECT_EQ(e.spec.get_string_attribute("tray:maxDepth"), "8");
   EXPECT_EQ(e.spec.get_string_attribute("tray:clampIndirect"), "0");
   EXPECT_EQ(e.spec.get_string_attribute("tray:pixelSampler"), "auto");

@@ -2,7 +2,9 @@
 """tray-farm on a real one-machine Slurm cluster (tools/slurm-local.sh): a 2-frame x 4-part job
 merged bit for bit against single-machine renders, a part killed mid-way and resumed, a part
 that fails and is retried, a cancelled job, and bad input refused before anything is submitted.
-Exit 77 (ctest: skipped) only where Slurm cannot start, with the reason.
+The failing part is a wrapper tray-render given with --bin, not a hook in tray-farm's scripts.
+Each test writes into a folder of its own under $TMPDIR, removed after the run unless the test
+failed. Exit 77 (ctest: skipped) only where Slurm cannot start, with the reason.
 
 Usage: farm_slurm_test.py SOURCE_DIR BIN_DIR [unittest arguments]"""
 
@@ -19,6 +21,7 @@ import unittest
 SOURCE, BIN = (os.path.abspath(a) for a in sys.argv[1:3])
 FARM = os.path.join(BIN, "tray-farm")
 RENDER = os.path.join(BIN, "tray-render")
+MERGE = os.path.join(BIN, "tray-merge")
 SLURM_LOCAL = os.path.join(SOURCE, "tools", "slurm-local.sh")
 ANIMATED = os.path.join(SOURCE, "..", "shared", "gltf-features", "BoxAnimated.glb")
 CORNELL = os.path.join(SOURCE, "..", "shared", "reference", "cornell-box.gltf")
@@ -61,12 +64,33 @@ def same_pixels(a, b):
     return r.returncode == 0, r.stdout[-400:]
 
 
-class FarmOnSlurm(unittest.TestCase):
-    def setUp(self):
-        self.dir = tempfile.mkdtemp(prefix="farm-slurm-", dir=os.environ.get("TEST_TMPDIR"))
+def failing_bin(folder, task, calls):
+    """A --bin folder whose tray-render fails array task `task` on its first attempt
+    (TRAY_FARM_ATTEMPT 0), as a crashed machine would, and otherwise execs the real one (SIGTERM
+    still reaches the renderer); every call appends "TASK ATTEMPT" to `calls`."""
+    os.makedirs(folder)
+    wrapper = os.path.join(folder, "tray-render")
+    with open(wrapper, "w") as f:
+        f.write("""#!/bin/sh
+echo "$SLURM_ARRAY_TASK_ID ${TRAY_FARM_ATTEMPT:-unset}" >>'%s'
+if [ "$SLURM_ARRAY_TASK_ID" = %d ] && [ "${TRAY_FARM_ATTEMPT:-0}" = 0 ]; then
+  echo "test wrapper: part $SLURM_ARRAY_TASK_ID fails on its first attempt" >&2; exit 1
+fi
+exec '%s' "$@"
+""" % (calls, task, RENDER))
+    os.chmod(wrapper, 0o755)
+    os.symlink(MERGE, os.path.join(folder, "tray-merge"))
+    return folder
 
-    def tearDown(self):
-        shutil.rmtree(self.dir, ignore_errors=True)
+
+class FarmOnSlurm(unittest.TestCase):
+    folders = []  # (test id, folder): removed after the run unless that test failed
+
+    def setUp(self):
+        self.dir = os.path.join(tempfile.gettempdir(), "FarmOnSlurm." + self._testMethodName)
+        shutil.rmtree(self.dir, ignore_errors=True)  # kept by an earlier failed run
+        os.makedirs(self.dir)
+        self.folders.append((self.id(), self.dir))
 
     def farm(self, *args, expect=0):
         r = run([FARM] + list(args))
@@ -128,11 +152,15 @@ class FarmOnSlurm(unittest.TestCase):
         self.assertTrue(ok, diff)
 
     def test_failed_part_is_retried(self):
+        calls = os.path.join(self.dir, "calls.txt")
+        fake = failing_bin(os.path.join(self.dir, "bin"), 1, calls)
         folder = self.submit(ANIMATED, ["--frames", "1-1", "--split", "samples:2", "--retries",
-                                        "1", "--test-fail", "1"] + JOB)
+                                        "1", "--bin", fake] + JOB)
         self.wait_merged(folder, 1)
         parts = [r for r in records(folder) if r["kind"] == "parts"]
         self.assertEqual([p["tasks"] for p in parts], [[0, 1], [1]])  # only the failed one again
+        # The wrapper ran every part: part 1 failed once, then its retry (attempt 1) rendered.
+        self.assertEqual(sorted(text(calls).splitlines()), ["0 0", "1 0", "1 1"])
         self.assertEqual(text(os.path.join(folder, "state", "attempts-0")), "1")
         self.assertTrue(os.path.exists(os.path.join(self.dir, "out.0001.exr")))
 
@@ -184,22 +212,26 @@ class FarmOnSlurm(unittest.TestCase):
 
 
 def start_cluster():
-    """Starts the one-machine cluster; returns (stop_after, reason_if_it_cannot_start)."""
+    """Starts the one-machine cluster; returns (stop_after, cluster_folder_to_remove_after,
+    reason_if_it_cannot_start). The folder (config, munge key, state, logs) is removed after a
+    passing run only if this test created it: a cluster someone else set up keeps its own."""
     if os.geteuid() != 0:
-        return False, "the one-machine Slurm cluster runs its daemons as root; run as root"
+        return False, None, "the one-machine Slurm cluster runs its daemons as root; run as root"
     if not shutil.which("apt-get") and not shutil.which("slurmctld"):
-        return False, "no Slurm and no apt-get to install it"
+        return False, None, "no Slurm and no apt-get to install it"
+    conf = run([SLURM_LOCAL, "env"]).stdout.strip().split("=", 1)[1]
+    folder = os.path.dirname(conf)
+    created = not os.path.exists(folder)
     was_up = run([SLURM_LOCAL, "status"]).returncode == 0
     r = run([SLURM_LOCAL, "start"])
     if r.returncode != 0:
-        return False, "tools/slurm-local.sh start failed: " + r.stderr.strip()[-300:]
-    env = run([SLURM_LOCAL, "env"]).stdout.strip()
-    os.environ["SLURM_CONF"] = env.split("=", 1)[1]
-    return not was_up, None
+        return False, None, "tools/slurm-local.sh start failed: " + r.stderr.strip()[-300:]
+    os.environ["SLURM_CONF"] = conf
+    return not was_up, folder if created else None, None
 
 
 if __name__ == "__main__":
-    stop_after, reason = start_cluster()
+    stop_after, cluster_folder, reason = start_cluster()
     if reason:
         print("SKIPPED: Slurm cannot start here: " + reason)
         sys.exit(77)
@@ -208,4 +240,12 @@ if __name__ == "__main__":
     finally:
         if stop_after:
             run([SLURM_LOCAL, "stop"])
+    if stop_after and cluster_folder and result.wasSuccessful():
+        shutil.rmtree(cluster_folder, ignore_errors=True)
+    failed = {test.id() for test, _ in result.failures + result.errors}
+    for test_id, folder in FarmOnSlurm.folders:
+        if test_id in failed:
+            print("test files kept in " + folder)
+        else:
+            shutil.rmtree(folder, ignore_errors=True)
     sys.exit(0 if result.wasSuccessful() else 1)

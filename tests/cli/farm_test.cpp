@@ -32,7 +32,7 @@ std::string out(const fs::path& dir, const std::string& name) {
 }
 
 TEST(Farm, FourRegionsMergeBitForBit) {
-  const fs::path dir = tempFolder("farm");
+  const fs::path dir = testDir();
   ASSERT_EQ(runCli(TRAY_RENDER_BIN, kJobAllAovs + " " + out(dir, "full.exr"), dir).exitCode, 0);
   // Uneven quadrants that cut through 16-pixel tiles.
   const char* regions[] = {"0,0,13,11", "13,0,37,11", "0,11,13,29", "13,11,37,29"};
@@ -62,7 +62,7 @@ TEST(Farm, FourRegionsMergeBitForBit) {
 
 TEST(Farm, AdaptiveRegionsMergeBitForBit) {
   // Robust adaptive sampling looks at the 8 tiles around each pixel's: across region borders too.
-  const fs::path dir = tempFolder("farm");
+  const fs::path dir = testDir();
   const std::string job =
       "'" + kWhitted + "' --integrator adaptive --aa-robust --resolution 40x30 --aov samples";
   ASSERT_EQ(runCli(TRAY_RENDER_BIN, job + " " + out(dir, "full.exr"), dir).exitCode, 0);
@@ -87,7 +87,7 @@ int ulps(float a, float b) {
 }
 
 TEST(Farm, FourSampleRangesMergeWithinFloatRounding) {
-  const fs::path dir = tempFolder("farm");
+  const fs::path dir = testDir();
   const std::string job = kBaseJob +
                           " --aov depth,normal,position,albedo,objectid,materialid,samples,"
                           "lightpaths --seed 7 --resolution 37x29 --float";
@@ -141,7 +141,7 @@ TEST(Farm, FourSampleRangesMergeWithinFloatRounding) {
 }
 
 TEST(Farm, MergeRefusesIncompleteOrForeignParts) {
-  const fs::path dir = tempFolder("farm");
+  const fs::path dir = testDir();
   const std::string job = kSmallJob + " --resolution 40x8";  // 3 tiles
   for (const char* range : {"0,4", "4,8"})
     ASSERT_EQ(
@@ -220,7 +220,7 @@ TEST(Farm, MergeRefusesIncompleteOrForeignParts) {
 }
 
 TEST(Farm, PlainProgressIsOneParseableLinePerStep) {
-  const fs::path dir = tempFolder("farm");
+  const fs::path dir = testDir();
   // 64x48: 12 tiles of 16x16; a line each 25% (and none by time), the last at 100%.
   CliResult r = runTool(TRAY_RENDER_BIN,
                         "'" + kWhitted + "' --resolution 64x48 --progress plain --progress-step 25 "
@@ -248,7 +248,7 @@ TEST(Farm, PlainProgressIsOneParseableLinePerStep) {
 }
 
 TEST(Farm, BadRegionsAndRangesAreUsageErrors) {
-  const fs::path dir = tempFolder("farm");
+  const fs::path dir = testDir();
   const std::string job = "'" + kWhitted + "' --resolution 32x24 ";
   const std::string exr = out(dir, "x.exr");
   for (const std::string& bad :
@@ -268,7 +268,7 @@ TEST(Farm, BadRegionsAndRangesAreUsageErrors) {
 /// An interrupted render (a real SIGINT raised after `tiles` tiles), resumed, equals the
 /// uninterrupted one bit for bit; the partial file marks its unfinished pixels.
 void interruptAndResume(const std::string& job, int tiles) {
-  const fs::path dir = tempFolder("farm");
+  const fs::path dir = testDir();
   ASSERT_EQ(runCli(TRAY_RENDER_BIN, job + " " + out(dir, "full.exr"), dir).exitCode, 0);
   CliResult r = runCli(
       TRAY_RENDER_BIN,
@@ -355,8 +355,7 @@ bool waitForHandlers(pid_t child) {
 
 TEST(Farm, RealSignalsExit130And143WithThePartialImage) {
   for (int sig : {SIGINT, SIGTERM}) {
-    const fs::path dir = tempFolder("farm");
-    const fs::path image = dir / "long.exr";
+    const fs::path image = testDir() / ("long-" + std::to_string(sig) + ".exr");
     // Far too long to finish (hours): it stops only because of the signal.
     const pid_t child = spawnRender({kCornell, "--integrator", "path", "--resolution", "32x32",
                                      "--spp", "1000000", "-q", "-o", image.string()});
@@ -371,7 +370,7 @@ TEST(Farm, RealSignalsExit130And143WithThePartialImage) {
 }
 
 TEST(Farm, CheckpointSurvivesSigkillAndResumesBitForBit) {
-  const fs::path dir = tempFolder("farm");
+  const fs::path dir = testDir();
   const std::string args[] = {kCornell, "--integrator", "path",  "--resolution", "48x48",
                               "--spp",  "96",           "--aov", "depth,normal"};
   std::string job;

@@ -38,7 +38,7 @@ const std::string kBox = std::string(TRAY_SHARED_DIR) + "/gltf-features/BoxAnima
 std::vector<float> pixels(const fs::path& file) { return readExrFile(file).pixels; }
 
 TEST(Frames, TwoFramesDifferAndTheSameTimeRendersTheSamePixels) {
-  const fs::path dir = tempFolder("frames");
+  const fs::path dir = testDir();
   // fps 0.5: frame 0 at t = 0, frame 1 at t = 2 (the box risen and turned).
   const std::string common = "'" + kBox + "' --resolution 24x18 ";
   CliResult r = runCli(TRAY_RENDER_BIN,
@@ -57,7 +57,7 @@ TEST(Frames, TwoFramesDifferAndTheSameTimeRendersTheSamePixels) {
 }
 
 TEST(Frames, BadRequestsFailBeforeRendering) {
-  const fs::path dir = tempFolder("frames_bad");
+  const fs::path dir = testDir();
   const std::string box = "'" + kBox + "' --resolution 8x6 ";
   CliResult r = runCli(TRAY_RENDER_BIN, box + "--frames 0-1 -o '" + (dir / "one.exr").string() + "'", dir);
   EXPECT_EQ(r.exitCode, 2);

@@ -5,7 +5,11 @@
 set -euo pipefail
 build=$1 source=$2
 prefix=$(mktemp -d)
-trap 'rm -rf "$prefix"' EXIT
+# Removed when the test passes; kept, and named, when it fails.
+keep_if_failed() {
+  if [ $? -eq 0 ]; then rm -rf "$prefix"; else echo "test files kept in $prefix" >&2; fi
+}
+trap keep_if_failed EXIT
 cmake --install "$build" --prefix "$prefix" >/dev/null
 test -x "$prefix/bin/tray-render" && test -x "$prefix/bin/tray-merge"
 test -f "$prefix/share/tray/ocio/config.ocio"

@@ -9,6 +9,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "tests/temp_dir.h"
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -34,10 +36,8 @@ std::string quoted(const std::string& s) {
 class CliInvalidScene : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(CliInvalidScene, ExitsWithCode2AndOneLineNamingTheFile) {
-  const fs::path dir = fs::path(::testing::TempDir()) / "tray_cli_invalid";
-  fs::create_directories(dir);
+  const fs::path dir = tray::test::testDir();
   const fs::path out = dir / (GetParam() + ".exr"), err = dir / (GetParam() + ".stderr");
-  fs::remove(out);
   const std::string scene = (kInvalidDir / GetParam()).string();
   const std::string cmd = quoted(TRAY_RENDER_BIN) + " -q --resolution 8x8 -o " +
                           quoted(out.string()) + " " + quoted(scene) + " 2>" + quoted(err.string());

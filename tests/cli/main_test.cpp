@@ -20,7 +20,7 @@ size_t lines(const std::string& s) {
 }
 
 TEST(CliOptions, NegativeSeedCameraOrSceneIsAnErrorNotADefault) {
-  const fs::path dir = tempFolder("cli_main");
+  const fs::path dir = testDir();
   for (const std::string option : {"--seed", "--camera", "--scene"}) {
     for (const std::string value : {"-1", "-7"}) {
       const fs::path out = dir / "x.exr";
@@ -50,7 +50,7 @@ TEST(CliOptions, NegativeSeedCameraOrSceneIsAnErrorNotADefault) {
 // died with "terminate called" (found by fuzz/options_fuzz). Every declared flag now refuses a
 // value it does not understand in one line, and still takes the spellings CLI11 documents.
 TEST(CliOptions, AFlagWithAnUnknownValueIsOneLineNotACrash) {
-  const fs::path dir = tempFolder("cli_main");
+  const fs::path dir = testDir();
   for (const std::string flag : {"--debug-nan", "--transparent", "--aa-robust"}) {
     const fs::path out = dir / "flag.exr";
     CliResult r = runCli(TRAY_RENDER_BIN,
@@ -71,7 +71,7 @@ TEST(CliOptions, AFlagWithAnUnknownValueIsOneLineNotACrash) {
 }
 
 TEST(CliOptions, RequiredExtensionExits2UnlessIgnored) {
-  const fs::path dir = tempFolder("cli_main");
+  const fs::path dir = testDir();
   const fs::path scene = dir / "required.gltf";
   std::ofstream(scene) << R"({"asset":{"version":"2.0"},"extensionsUsed":["EXT_magic"],
       "extensionsRequired":["EXT_magic"],"scenes":[{"nodes":[]}]})";
@@ -92,7 +92,7 @@ TEST(CliOutOfMemory, ReportsThePhaseAndExits1) {
 #if defined(__SANITIZE_ADDRESS__)
   GTEST_SKIP() << "ASan reserves terabytes of address space: no address-space limit applies";
 #endif
-  const fs::path dir = tempFolder("cli_main");
+  const fs::path dir = testDir();
   if (std::system("prlimit --as=1000000000 true >/dev/null 2>&1") != 0)
     GTEST_SKIP() << "prlimit cannot limit the address space here";
   // 16384 x 16384 pixels of RGBA float are 4 GiB: more than the 3 GB address space allowed,
@@ -112,7 +112,7 @@ TEST(CliOutOfMemory, ReportsThePhaseAndExits1) {
 }
 
 TEST(CliHalfOverflow, ClampsTo65504AndWarnsOnce) {
-  const fs::path dir = tempFolder("cli_main");
+  const fs::path dir = testDir();
   // Nothing but a sphere in an environment of radiance 1e6, beyond half's 65504.
   const fs::path scene = dir / "bright.gltf";
   std::ofstream(scene) << R"({"asset": {"version": "2.0"}, "scene": 0,
@@ -146,7 +146,7 @@ TEST(CliFurnace, TheLostSampleIsNotBlack) {
   // the horizon with pdf 0, the path ended there, and the sample was exactly 0. Inside the
   // emissive enclosure the BSDF sample is the only estimator (no light samples from inside a
   // sphere light), so it must give 0.8 x 1.
-  const fs::path dir = tempFolder("cli_main");
+  const fs::path dir = testDir();
   const fs::path scene = fs::path(TRAY_SHARED_DIR) / "reference" / "furnace-sphere.gltf";
   if (!fs::exists(scene)) GTEST_SKIP() << scene << " is missing";
   CliResult r = runCli(TRAY_RENDER_BIN,
@@ -161,7 +161,7 @@ TEST(CliFurnace, TheLostSampleIsNotBlack) {
 }
 
 TEST(CliCamera, UnknownCameraIsOneLineListingTheCameras) {
-  const fs::path dir = tempFolder("cli_main");
+  const fs::path dir = testDir();
   for (const std::string value : {"1", "NoSuchNode"}) {
     CliResult r = runCli(TRAY_RENDER_BIN,
                          kScene + " --resolution 8x6 --camera " + value + " -o " +
@@ -176,7 +176,7 @@ TEST(CliCamera, UnknownCameraIsOneLineListingTheCameras) {
 }
 
 TEST(CliDefaultLight, NoDefaultLightLeavesAnUnlitAssetBlack) {
-  const fs::path dir = tempFolder("cli_main");
+  const fs::path dir = testDir();
   const fs::path scene = fs::path(TRAY_SHARED_DIR) / "gltf-samples" / "Box.glb";
   if (!fs::exists(scene)) GTEST_SKIP() << scene << " is missing";
   const std::string args = quoted(scene) + " -q --resolution 8x6 --float -o ";
@@ -201,7 +201,7 @@ TEST(CliDefaultLight, NoDefaultLightLeavesAnUnlitAssetBlack) {
 
 TEST(CliDefaultLight, ASkyBoxAroundTheCameraGetsAHeadlightNotABlackImage) {
   // An unlit sphere inside a 40 m box: the default key light and environment cannot get in.
-  const fs::path dir = tempFolder("cli_main");
+  const fs::path dir = testDir();
   const fs::path scene = dir / "skybox.gltf";
   std::ofstream(scene) << R"({"asset": {"version": "2.0"}, "extensionsUsed": ["TRAY_shape"],
     "scene": 0, "scenes": [{"nodes": [0, 1, 2]}],

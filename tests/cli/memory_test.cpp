@@ -48,7 +48,7 @@ void writeQuadScene(const fs::path& path, const std::string& image) {
 }
 
 TEST(CliMemory, An8192TextureRendersInBoundedMemoryWhateverTheCacheBudget) {
-  const fs::path dir = tempFolder("cli_memory");
+  const fs::path dir = testDir();
   // 8192 x 8192 RGB checker: about 240 KB as PNG, 768 MiB as float RGB.
   OIIO::ImageBuf checker(OIIO::ImageSpec(8192, 8192, 3, OIIO::TypeDesc::UINT8));
   const float a[3] = {0.9f, 0.2f, 0.1f}, b[3] = {0.1f, 0.3f, 0.8f};
@@ -79,7 +79,7 @@ TEST(CliMemory, An8192TextureRendersInBoundedMemoryWhateverTheCacheBudget) {
 }
 
 TEST(CliMemory, MaxMemoryRefusesASceneBeforeLoadingIt) {
-  const fs::path dir = tempFolder("cli_memory");
+  const fs::path dir = testDir();
   const fs::path sample = fs::path(TRAY_SHARED_DIR) / "gltf-samples" / "DamagedHelmet.glb";
   if (!fs::exists(sample)) GTEST_SKIP() << sample << " is missing";
   CliResult r = runCli(TRAY_RENDER_BIN,

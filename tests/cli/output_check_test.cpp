@@ -12,6 +12,8 @@
 #include <sstream>
 #include <string>
 
+#include "tests/temp_dir.h"
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -23,7 +25,7 @@ struct Case {
 };
 
 std::string runTray(const std::string& args, int& code) {
-  const fs::path err = fs::path(::testing::TempDir()) / "tray_output_check.stderr";
+  const fs::path err = tray::test::testDir() / "stderr.txt";
   const std::string cmd =
       std::string(TRAY_RENDER_BIN) + " -q /nonexistent/scene.gltf " + args + " 2>" + err.string();
   const int status = std::system(cmd.c_str());
@@ -35,11 +37,8 @@ std::string runTray(const std::string& args, int& code) {
 }
 
 TEST(CliOutputCheck, MistakesAreReportedBeforeTheSceneIsRead) {
-  // A folder of its own: a stray x.exr left in the shared temp folder failed the last check.
-  const fs::path dir = fs::path(::testing::TempDir()) / "tray_output_check";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  const std::string tmp = dir.string();
+  // The test's own folder: a stray x.exr left in a shared temp folder failed the last check.
+  const std::string tmp = tray::test::testDir().string();
   const Case cases[] = {
       {"extension", "-o " + tmp + "/x.tiff", "unsupported output format '.tiff'"},
       {"folder", "-o /nonexistent-folder/x.exr", "folder '/nonexistent-folder' does not exist"},

@@ -24,7 +24,7 @@ void expectRefused(const CliResult& r, const std::string& text, const fs::path& 
 }
 
 TEST(Shutter, BadValuesFailBeforeRendering) {
-  const fs::path dir = tempFolder("shutter_bad");
+  const fs::path dir = testDir();
   const fs::path out = dir / "a.exr";
   const std::string run =
       quoted(fs::path(kBox)) + " --resolution 8x6 --time 1 -o " + quoted(out) + " ";
@@ -45,7 +45,7 @@ TEST(Shutter, BadValuesFailBeforeRendering) {
 }
 
 TEST(Shutter, BlursWhatMovesAndKeepsEveryBitWhereNothingDoes) {
-  const fs::path dir = tempFolder("shutter_render");
+  const fs::path dir = testDir();
   const std::string box =
       quoted(fs::path(kBox)) + " --resolution 32x24 --spp 4 --threads 2 --time 1 ";
   CliResult r = runCli(TRAY_RENDER_BIN, box + "-o " + quoted(dir / "sharp.exr"), dir);
@@ -72,7 +72,7 @@ TEST(Shutter, BlursWhatMovesAndKeepsEveryBitWhereNothingDoes) {
 // --aov motion: Nuke's motion.u / motion.v, non-zero on the moving box, zero on its static
 // base (the camera does not move).
 TEST(Shutter, MotionVectorLayerShowsWhatMoves) {
-  const fs::path dir = tempFolder("shutter_vectors");
+  const fs::path dir = testDir();
   const std::string box =
       quoted(fs::path(kBox)) + " --resolution 32x24 --time 1 --aov motion,objectid --float ";
   CliResult r = runCli(TRAY_RENDER_BIN, box + "-o " + quoted(dir / "v.exr"), dir);

@@ -4,10 +4,11 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
-#include "core/renderer.h"
+#include "render/renderer.h"
 #include "integrators/registry.h"
 #include "tests/render_film.h"
 #include "tests/scene_builder.h"
+#include "render/prepared_scene.h"
 
 namespace tray {
 namespace {
@@ -32,11 +33,10 @@ TEST(Aov, LayersHoldDepthNormalAndIdsOfTheFirstHit) {
   addShape(s, std::make_shared<Plane>(), Mat4::identity(), floorMat);
   addSphere(s, {0, 1, -4}, 1.0f, ballMat);
   s.finalize();
-  auto accel = makeAccelerator("embree", s);
   CameraDesc cd = lookAt({0, 1, 0}, {0, 1, -1}, 1.0f);
   const int W = 33, H = 33;
-  auto camera = Camera::create(cd, W, H);
-  RenderContext ctx{s, *accel, *camera, {}, W, H};
+  const PreparedScene prepared(s, cd, {W, H});
+  const RenderContext ctx = prepared.context(RenderSettings{});
   auto integrator = makeIntegrator(ctx);
   Film film(W, H);
   RenderOptions opt;
@@ -55,7 +55,7 @@ TEST(Aov, LayersHoldDepthNormalAndIdsOfTheFirstHit) {
   EXPECT_EQ(film.pixel(mat, 16, 16)[0], float(ballMat));
   EXPECT_EQ(film.pixel(spp, 16, 16)[0], 1.0f);
   // Bottom-centre pixel: the floor, normal +Y, depth from the pixel's ray.
-  Ray r = camera->generateRay(16.5f, 32.5f);
+  Ray r = prepared.camera().generateRay(16.5f, 32.5f);
   float t = -r.o.y / r.d.y;
   EXPECT_NEAR(film.pixel(Z, 16, 32)[0], t * length(r.d), 1e-3f);
   EXPECT_NEAR(film.pixel(N, 16, 32)[1], 1.0f, 1e-5f);

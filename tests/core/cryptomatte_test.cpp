@@ -1,5 +1,7 @@
 // Cryptomatte: the hash and its float conversion against the specification's own examples, and
 // the ranking filter on a rendered scene (coverage from all samples, filter-weighted).
+#include <optional>
+
 #include "accel/registry.h"
 #include "core/cryptomatte.h"
 
@@ -13,10 +15,11 @@
 
 #include "core/aov.h"
 #include "core/error.h"
-#include "core/renderer.h"
+#include "render/renderer.h"
 #include "integrators/adaptive.h"
 #include "integrators/registry.h"
 #include "tests/scene_builder.h"
+#include "render/prepared_scene.h"
 
 namespace tray {
 namespace {
@@ -74,8 +77,7 @@ TEST(Cryptomatte, ParsesTheAovNames) {
 /// A floor (shape0) and a unit sphere (shape1) at (0, 1, -4), seen from (0, 1, 0).
 struct TwoObjects {
   Scene scene;
-  std::unique_ptr<Accelerator> accel;
-  std::unique_ptr<Camera> camera;
+  std::optional<PreparedScene> prepared;
   static constexpr int W = 33, H = 33;
   TwoObjects() {
     int floorMat = addMaterial(scene, diffuse(Color(0.2f)));
@@ -84,19 +86,14 @@ struct TwoObjects {
     addShape(scene, std::make_shared<Plane>(), Mat4::identity(), floorMat);
     addSphere(scene, {0, 1, -4}, 1.0f, ballMat);
     scene.finalize();
-    accel = makeAccelerator("embree", scene);
-    camera = Camera::create(lookAt({0, 1, 0}, {0, 1, -1}, 1.0f), W, H);
+    prepared.emplace(scene, lookAt({0, 1, 0}, {0, 1, -1}, 1.0f), ImageSize{W, H});
   }
   Film render(RenderSettings settings, const std::string& aovs, int ranks = 6, int threads = 0) {
-    RenderContext ctx{scene, *accel, *camera, settings, W, H};
-    auto integrator = makeIntegrator(ctx);
-    Film film(W, H);
     RenderOptions opt;
     opt.aovs = AovSet::parse(aovs);
     opt.cryptomatteRanks = ranks;
     opt.threads = threads;
-    renderImage(*integrator, film, opt);
-    return film;
+    return prepared->render(settings, opt);
   }
 };
 

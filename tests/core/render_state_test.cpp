@@ -10,6 +10,7 @@
 
 #include "io/image_input.h"
 #include "io/image_output.h"
+#include "tests/temp_dir.h"
 
 namespace tray {
 namespace {
@@ -41,7 +42,7 @@ TEST(RenderState, RoundTripsThroughExrBitForBit) {
   }
   Film film(w, h);
   storeState(state, film);
-  const std::string path = std::string(::testing::TempDir()) + "/render_state.exr";
+  const std::string path = (test::testDir() / "render_state.exr").string();
   writeImage(film, path);  // default options: half beauty; the state layer stays float
   const RenderState back = loadState(readExr(path).film);
   ASSERT_EQ(back.sums.size(), state.sums.size());

@@ -6,11 +6,12 @@
 #include <gtest/gtest.h>
 
 #include "core/accelerator.h"
-#include "core/renderer.h"
+#include "render/renderer.h"
 #include "integrators/registry.h"
 #include "lights/light_set.h"
 #include "shapes/mesh_tangents.h"
 #include "tests/scene_builder.h"
+#include "render/prepared_scene.h"
 
 namespace tray {
 namespace {
@@ -121,11 +122,10 @@ TEST(MaterialEvaluator, PathTracerSeesEmissiveTexturesAndDoesNotLightSampleThem)
   m.emissiveTexture.image = 0;
   Scene scene = quadScene(m, {constantImage({0.25f, 0.5f, 1.0f})});
   EXPECT_EQ(LightSet(scene).triangleCount(), 0u);  // left to BSDF sampling
-  auto camera = Camera::create(lookAt({0, 0, 5}, {0, 0, 0}, 0.3f), 16, 16);
-  auto accel = makeAccelerator("embree", scene);
   RenderSettings settings;
   settings.set("integrator", "path");
-  RenderContext ctx{scene, *accel, *camera, settings, 16, 16};
+  const PreparedScene prepared(scene, lookAt({0, 0, 5}, {0, 0, 0}, 0.3f), {16, 16});
+  const RenderContext ctx = prepared.context(settings);
   auto integrator = makeIntegrator(ctx);
   Film film(16, 16);
   renderImage(*integrator, film);

@@ -7,10 +7,11 @@
 
 #include "core/aov.h"
 #include "core/error.h"
-#include "core/renderer.h"
+#include "render/renderer.h"
 #include "integrators/registry.h"
 #include "tests/raster_function.h"
 #include "tests/scene_builder.h"
+#include "render/prepared_scene.h"
 
 namespace tray {
 namespace {
@@ -143,14 +144,13 @@ Scene sphereScene() {
 
 TEST(Adaptive, SameImageAndRayCountsForOneAndTwoThreads) {
   Scene scene = sphereScene();
-  auto accel = makeAccelerator("embree", scene);
   const int W = 48, H = 32;
-  auto camera = Camera::create(lookAt({0, 3, 6}, {0, 0.5f, 0}), W, H);
   for (bool robust : {false, true}) {
     RenderSettings s = adaptiveSettings();
     s.set("inner", "whitted");
     s.set("aa-robust", robust);
-    RenderContext ctx{scene, *accel, *camera, s, W, H};
+    const PreparedScene prepared(scene, lookAt({0, 3, 6}, {0, 0.5f, 0}), {W, H});
+    const RenderContext ctx = prepared.context(s);
     auto one = makeIntegrator(ctx), two = makeIntegrator(ctx);
     Result a = render(*one, W, H, 1), b = render(*two, W, H, 2);
     EXPECT_EQ(a.film.layers()[0].data, b.film.layers()[0].data) << robust;
@@ -189,12 +189,11 @@ Scene thinScene() {
 }
 
 Film renderThin(const Scene& scene, const RenderSettings& settings) {
-  auto accel = makeAccelerator("embree", scene);
   CameraDesc cd = lookAt({0, 0, 10}, {0, 0, 0});
   cd.type = CameraDesc::Type::kOrthographic;
   cd.ymag = kThinH * 0.5f * kUnit;
-  auto camera = Camera::create(cd, kThinW, kThinH);
-  RenderContext ctx{scene, *accel, *camera, settings, kThinW, kThinH};
+  const PreparedScene prepared(scene, cd, {kThinW, kThinH});
+  const RenderContext ctx = prepared.context(settings);
   auto integrator = makeIntegrator(ctx);
   return render(*integrator, kThinW, kThinH).film;
 }

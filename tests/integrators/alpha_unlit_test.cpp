@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "core/render_setup.h"
+#include "render/render_setup.h"
 #include "io/gltf_loader.h"
 #include "tests/render_film.h"
 #include "tests/scene_builder.h"

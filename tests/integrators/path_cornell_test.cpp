@@ -6,11 +6,12 @@
 #include <cmath>
 
 #include "accel/registry.h"
-#include "core/renderer.h"
+#include "render/renderer.h"
 #include "integrators/path.h"
 #include "integrators/registry.h"
 #include "io/gltf_loader.h"
 #include "tests/integrators/path_under_test.h"
+#include "render/prepared_scene.h"
 
 namespace tray {
 namespace {
@@ -22,14 +23,13 @@ struct Image {
 };
 
 Image renderCornell(const Scene& scene, int spp, const std::string& sampler = "independent") {
-  auto camera = Camera::create(scene.cameras.at(0), kSize, kSize);
-  auto accel = makeAccelerator("embree", scene);
   RenderSettings settings;
   settings.set("integrator", test::pathUnderTest());
   settings.set("spp", spp);
   settings.set("max-depth", 8);
   settings.set("sampler", sampler);
-  RenderContext ctx{scene, *accel, *camera, settings, kSize, kSize};
+  const PreparedScene prepared(scene, scene.cameras.at(0), {kSize, kSize});
+  const RenderContext ctx = prepared.context(settings);
   auto integrator = makeIntegrator(ctx);
   Film film(kSize, kSize);
   RenderOptions options;

@@ -6,12 +6,13 @@
 #include <cmath>
 
 #include "accel/registry.h"
-#include "core/renderer.h"
+#include "render/renderer.h"
 #include "integrators/path.h"
 #include "integrators/registry.h"
 #include "tests/integrators/path_probe.h"
 #include "tests/scene_builder.h"
 #include "tests/integrators/path_under_test.h"
+#include "render/prepared_scene.h"
 
 namespace tray {
 namespace {
@@ -102,13 +103,12 @@ TEST(PathLights, NonFiniteSamplesAreCountedDiscardedAndReportedWithDebugNan) {
   s.environment.background = Color(0.5f);
   s.finalize();
   for (bool debug : {false, true}) {
-    auto accel = makeAccelerator("embree", s);
-    auto camera = Camera::create(lookAt({0, 0, 4}, {0, 0, 0}, 0.6f), 8, 8);
     RenderSettings st;
     st.set("integrator", test::pathUnderTest());
     st.set("spp", 2);
     st.set("debug-nan", debug);
-    RenderContext ctx{s, *accel, *camera, st, 8, 8};
+    const PreparedScene prepared(s, lookAt({0, 0, 4}, {0, 0, 0}, 0.6f), {8, 8});
+    const RenderContext ctx = prepared.context(st);
     auto integrator = makeIntegrator(ctx);
     Film film(8, 8);
     ::testing::internal::CaptureStderr();

@@ -3,9 +3,8 @@
 // (closed forms at one point): the camera and size only complete the render context.
 #include <memory>
 
-#include "accel/registry.h"
-#include "core/renderer.h"
 #include "integrators/registry.h"
+#include "render/prepared_scene.h"
 #include "tests/scene_builder.h"
 #include "tests/integrators/path_under_test.h"
 
@@ -13,15 +12,11 @@ namespace tray::test {
 
 struct PathProbe {
   PathProbe(const Scene& scene, int maxDepth)
-      : accel(makeAccelerator("embree", scene)),
-        camera(Camera::create(lookAt({0, 1, 3}, {0, 0, 0}), 4, 4)),
-        ctx{scene, *accel, *camera, settingsWithDepth(maxDepth), 4, 4},
-        path(makeIntegrator(ctx, pathUnderTest())) {}
+      : prepared(scene, lookAt({0, 1, 3}, {0, 0, 0}), {4, 4}),
+        path(makeIntegrator(prepared.context(settingsWithDepth(maxDepth)), pathUnderTest())) {}
   Color Li(const Ray& ray, Sampler& sampler) { return path->Li(ray, sampler, stats, nullptr); }
 
-  std::unique_ptr<Accelerator> accel;
-  std::unique_ptr<Camera> camera;
-  RenderContext ctx;
+  PreparedScene prepared;
   std::unique_ptr<Integrator> path;
   RayStats stats;
 

@@ -3,7 +3,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/renderer.h"
+#include "render/renderer.h"
 #include "materials/bsdf.h"
 #include "materials/medium_stack.h"
 #include "tests/integrators/path_probe.h"

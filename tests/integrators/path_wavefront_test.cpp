@@ -15,13 +15,14 @@
 
 #include "accel/registry.h"
 #include "core/aov.h"
-#include "core/render_setup.h"
-#include "core/renderer.h"
+#include "render/render_setup.h"
+#include "render/renderer.h"
 #include "core/texture_sampler.h"
 #include "integrators/registry.h"
 #include "io/gltf_loader.h"
 #include "tests/integrators/render_job.h"
 #include "tests/scene_builder.h"
+#include "render/prepared_scene.h"
 
 namespace tray {
 namespace {
@@ -159,12 +160,11 @@ TEST(PathWavefront, MotionBlurredSameAsScalar) {
 // pixel at a time.
 TEST(PathWavefront, PathRunsTheWavefrontDriver) {
   const Scene scene = cornell();
-  auto camera = Camera::create(chooseCamera(scene, -1), 8, 8);
-  auto accel = makeAccelerator("embree", scene);
   auto batch = [&](const std::string& name) {
     RenderSettings settings;
     settings.set("integrator", name);
-    RenderContext ctx{scene, *accel, *camera, settings, 8, 8};
+    const PreparedScene prepared(scene, chooseCamera(scene, -1), {8, 8});
+    const RenderContext ctx = prepared.context(settings);
     return makeIntegrator(ctx)->pixelBatch();
   };
   EXPECT_GT(batch("path"), 1);
@@ -236,10 +236,10 @@ TEST(PathWavefront, SampleRangesAddUpToTheWhole) {
   job.integrator = "path-wavefront";
   RenderState whole, part;
   render(cornell(), job, &whole);
-  job.sampleEnd = 3;
+  job.samples = SampleRange{0, 3};
   render(cornell(), job, &part);
   RenderState rest;
-  job.sampleBegin = 3, job.sampleEnd = 8;
+  job.samples = SampleRange{3, 8};
   render(cornell(), job, &rest);
   for (size_t p = 0; p < whole.sums.size(); ++p) {
     PixelSums sum = part.sums[p];
@@ -289,16 +289,14 @@ class StoppingAccelerator final : public Accelerator {
 // ignored the signal; Farm.RealSignalsExit130And143WithThePartialImage waited on it.)
 TEST(PathWavefront, StopBetweenWavesWritesOnlyWholePixels) {
   const Scene& scene = cornell();
-  auto camera = Camera::create(chooseCamera(scene, -1), 16, 16);
-  auto embree = makeAccelerator("embree", scene);
+  const PreparedScene prepared(scene, chooseCamera(scene, -1), {16, 16});
   RenderSettings settings;
   settings.set("integrator", "path");
   constexpr int kSpp = 300;
   static_assert(kPathWaveSize % kSpp != 0 && kPathWaveSize / kSpp >= 2);
   settings.set("spp", kSpp);
   auto renderWith = [&](const Accelerator& accel, const std::atomic<bool>* stop, Film& film) {
-    RenderContext ctx{scene, accel, *camera, settings, 16, 16};
-    auto integrator = makeIntegrator(ctx);
+    auto integrator = makeIntegrator(prepared.context(settings, accel));
     RenderOptions options;
     options.threads = 1;
     options.stop = stop;
@@ -307,14 +305,14 @@ TEST(PathWavefront, StopBetweenWavesWritesOnlyWholePixels) {
     return std::make_pair(stats, state);
   };
   std::atomic<bool> stop{false};
-  const StoppingAccelerator stopping(*embree, stop);
+  const StoppingAccelerator stopping(prepared.accelerator(), stop);
   Film stopped(16, 16);
   const auto [stoppedStats, stoppedState] = renderWith(stopping, &stop, stopped);
   EXPECT_TRUE(stoppedStats.interrupted);
   const size_t wholePixels = kPathWaveSize / kSpp;
   EXPECT_EQ(stoppedStats.pixelsDone, wholePixels);
   Film whole(16, 16);
-  const auto [wholeStats, wholeState] = renderWith(*embree, nullptr, whole);
+  const auto [wholeStats, wholeState] = renderWith(prepared.accelerator(), nullptr, whole);
   EXPECT_EQ(wholeStats.pixelsDone, 256u);
   for (size_t p = 0; p < 256; ++p) {
     EXPECT_EQ(stoppedState.done[p], p < wholePixels ? 1 : 0) << p;

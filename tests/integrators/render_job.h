@@ -8,10 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "accel/registry.h"
-#include "core/render_setup.h"
-#include "core/renderer.h"
-#include "integrators/registry.h"
+#include <optional>
+
+#include "render/prepared_scene.h"
 
 namespace tray::test {
 
@@ -28,27 +27,25 @@ struct Job {
   int size = 24, spp = 8, threads = 1, tileSize = 16;
   uint64_t seed = 0;
   std::vector<std::string> aovs;
-  int sampleBegin = 0, sampleEnd = 0;
+  std::optional<SampleRange> samples;  ///< none: every sample
 };
 
 inline Render render(const Scene& scene, const Job& job, RenderState* state = nullptr) {
-  auto camera = Camera::create(chooseCamera(scene, -1), job.size, job.size);
-  auto accel = makeAccelerator(job.accel, scene);
+  const PreparedScene prepared(scene, chooseCamera(scene, -1), {job.size, job.size}, job.accel);
   RenderSettings settings;
   settings.set("integrator", job.integrator);
   if (!job.inner.empty()) settings.set("inner", job.inner);
   settings.set("spp", job.spp);
   settings.set("sampler", job.sampler);
   settings.set("seed", int64_t(job.seed));
-  RenderContext ctx{scene, *accel, *camera, settings, job.size, job.size};
-  auto integrator = makeIntegrator(ctx);
+  auto integrator = prepared.integrator(settings);
   Render r;
   r.film = Film(job.size, job.size);
   RenderOptions options;
   options.threads = job.threads;
   options.tileSize = job.tileSize;
   options.aovs = job.aovs;
-  options.sampleBegin = job.sampleBegin, options.sampleEnd = job.sampleEnd;
+  options.samples = job.samples;
   RenderState fresh;
   r.stats = renderImage(*integrator, r.film, state ? *state : fresh, options);
   return r;

@@ -6,12 +6,14 @@
 
 #include <filesystem>
 
-#include "cli/farm.h"
+#include "render/farm.h"
 #include "cli/option_cli.h"
+#include "render/option_metadata.h"
 #include "core/error.h"
 #include "integrators/registry.h"
 #include "io/image_input.h"
 #include "tests/raster_function.h"
+#include "tests/temp_dir.h"
 
 namespace tray::test {
 namespace {
@@ -150,8 +152,7 @@ TEST(ToyIntegrator, PixelOptionsDecideTheJobSignature) {
 TEST(ToyIntegrator, PixelOptionsLandInTheExrMetadata) {
   ImageOutputOptions out;
   addOptionMetadata(parse("--integrator toy --toy-gain 2.5 --spp 4 --seed 9 --toy-verbose"), out);
-  const std::filesystem::path path =
-      std::filesystem::path(::testing::TempDir()) / "toy_metadata.exr";
+  const std::filesystem::path path = testDir() / "toy_metadata.exr";
   writeImage(Film(2, 2), path.string(), out);
   const ImageOutputOptions read = readExr(path.string()).options;
   EXPECT_EQ(metadataString(read, "tray:integrator"), "toy");

@@ -8,6 +8,7 @@
 #include "accel/registry.h"
 #include "integrators/whitted.h"
 #include "tests/scene_builder.h"
+#include "render/prepared_scene.h"
 
 namespace tray {
 namespace {
@@ -34,9 +35,8 @@ Material redMetal() {
 
 /// Whitted's radiance along a ray from (x0, y0, 5) straight down -Z onto the sphere.
 Color radianceAt(const Scene& s, float x0, float y0) {
-  auto accel = makeAccelerator("embree", s);
-  auto camera = Camera::create(lookAt({0, 0, 5}, {0, 0, 0}), 8, 8);
-  RenderContext ctx{s, *accel, *camera, {}, 8, 8};
+  const PreparedScene prepared(s, lookAt({0, 0, 5}, {0, 0, 0}), {8, 8});
+  const RenderContext ctx = prepared.context(RenderSettings{});
   auto whitted = makeWhitted(ctx);
   Sampler sampler(0, 0, 0);
   RayStats stats;

@@ -1,11 +1,14 @@
+#include <optional>
+
 #include "accel/registry.h"
 #include "integrators/whitted.h"
 
 #include <gtest/gtest.h>
 
-#include "core/renderer.h"
+#include "render/renderer.h"
 #include "tests/render_film.h"
 #include "tests/scene_builder.h"
+#include "render/prepared_scene.h"
 
 namespace tray {
 namespace {
@@ -93,9 +96,8 @@ TEST(Whitted, SphereCastsShadowOnFloor) {
   addSphere(s, {0, 1.5f, 0}, 0.5f, mat);
   s.lights.push_back(pointLight({0, 4, 0}, Color(16.0f)));
   s.finalize();
-  auto accel = makeAccelerator("embree", s);
-  auto camera = Camera::create(lookAt({0, 6, 0.01f}, {0, 0, 0}), 8, 8);
-  RenderContext ctx{s, *accel, *camera, {}, 8, 8};
+  const PreparedScene prepared(s, lookAt({0, 6, 0.01f}, {0, 0, 0}), {8, 8});
+  const RenderContext ctx = prepared.context(RenderSettings{});
   auto whitted = makeWhitted(ctx);
   Sampler sampler(0, 0, 0);
   RayStats stats;
@@ -122,9 +124,8 @@ TEST(Whitted, MirrorReflectsEmitterScaledByReflectance) {
   addSphere(s, {2, 1, 0}, 0.5f, gm);  // a ray from (0,1,0) towards (1,0,0) bounces to it
   s.environment.background = Color(0.1f, 0.2f, 0.3f);
   s.finalize();
-  auto accel = makeAccelerator("embree", s);
-  auto camera = Camera::create(lookAt({0, 1, 5}, {0, 0, 0}), 8, 8);
-  RenderContext ctx{s, *accel, *camera, {}, 8, 8};
+  const PreparedScene prepared(s, lookAt({0, 1, 5}, {0, 0, 0}), {8, 8});
+  const RenderContext ctx = prepared.context(RenderSettings{});
   auto whitted = makeWhitted(ctx);
   Sampler sampler(0, 0, 0);
   RayStats stats;
@@ -139,8 +140,7 @@ TEST(Whitted, MirrorReflectsEmitterScaledByReflectance) {
 
 struct GlassSphere {
   Scene scene;
-  std::unique_ptr<Accelerator> accel;
-  std::unique_ptr<Camera> camera;
+  std::optional<PreparedScene> prepared;
   std::unique_ptr<Integrator> whitted;
   explicit GlassSphere(int maxDepth) {
     Material glass = diffuse(Color(0.0f));
@@ -149,11 +149,10 @@ struct GlassSphere {
     addSphere(scene, {0, 0, 0}, 1.0f, addMaterial(scene, glass));
     scene.environment.background = Color(1.0f, 0.5f, 0.25f);
     scene.finalize();
-    accel = makeAccelerator("embree", scene);
-    camera = Camera::create(lookAt({0, 0, 5}, {0, 0, 0}), 4, 4);
+    prepared.emplace(scene, lookAt({0, 0, 5}, {0, 0, 0}), ImageSize{4, 4});
     RenderSettings st;
     st.set("max-depth", maxDepth);
-    whitted = makeWhitted(RenderContext{scene, *accel, *camera, st, 4, 4});
+    whitted = makeWhitted(prepared->context(st));
   }
 };
 

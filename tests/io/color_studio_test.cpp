@@ -17,6 +17,7 @@
 #include "core/film.h"
 #include "io/color.h"
 #include "io/image_output.h"
+#include "tests/temp_dir.h"
 
 namespace fs = std::filesystem;
 
@@ -28,7 +29,7 @@ const std::string kRepoConfig = std::string(TRAY_SOURCE_DIR) + "/ocio/config.oci
 /// ACEScg as scene_linear and ACES2065-1 as aces_interchange, as the ACES studio configs do;
 /// `interchange` false leaves the role out (no way in for Rec.709).
 std::string writeStudioConfig(const std::string& name, bool interchange) {
-  const fs::path path = fs::temp_directory_path() / name;
+  const fs::path path = test::testDir() / name;
   std::ofstream f(path);
   f << "ocio_profile_version: 2.1\n"
        "roles:\n"
@@ -104,7 +105,7 @@ TEST(ColorStudio, AlbedoAovIsConvertedLikeTheBeauty) {
     float* a = film.pixel(albedo, x, 0);
     a[0] = 1, a[1] = 0, a[2] = 0;
   }
-  const std::string path = (fs::temp_directory_path() / "tray-albedo-acescg.exr").string();
+  const std::string path = (test::testDir() / "albedo-acescg.exr").string();
   ImageOutputOptions o;
   o.halfFloat = false;
   o.colorspace = "ACEScg";
@@ -120,7 +121,6 @@ TEST(ColorStudio, AlbedoAovIsConvertedLikeTheBeauty) {
   EXPECT_NEAR(px[size_t(r)], 0.6131f, 1e-3f);
   EXPECT_NEAR(px[size_t(ar)], px[size_t(r)], 1e-6f);  // before: 1 (Rec.709) in an ACEScg file
   EXPECT_NEAR(px[size_t(ag)], 0.0702f, 1e-3f);
-  fs::remove(path);
 }
 
 TEST(ColorStudio, OiiotoolDisplaysTrayExrsWithTraysConfig) {
@@ -128,15 +128,14 @@ TEST(ColorStudio, OiiotoolDisplaysTrayExrsWithTraysConfig) {
   const ColorPipeline repo(kRepoConfig);
   EXPECT_EQ(repo.canonicalName("Linear"), "lin_rec709");
   Film film(2, 2);
-  const std::string exr = (fs::temp_directory_path() / "tray-oiio-display.exr").string();
-  const std::string png = (fs::temp_directory_path() / "tray-oiio-display.png").string();
+  const std::string exr = (test::testDir() / "oiio-display.exr").string();
+  const std::string png = (test::testDir() / "oiio-display.png").string();
   setenv("OCIO", kRepoConfig.c_str(), 1);
   writeImage(film, exr, {});
   const std::string cmd = "oiiotool " + exr + " --ociodisplay sRGB Standard -o " + png;
   if (std::system("command -v oiiotool >/dev/null") != 0) GTEST_SKIP() << "no oiiotool";
   EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
   EXPECT_TRUE(fs::exists(png));
-  fs::remove(exr), fs::remove(png);
 }
 
 }  // namespace

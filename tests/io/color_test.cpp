@@ -9,6 +9,7 @@
 #include <filesystem>
 
 #include "core/error.h"
+#include "tests/temp_dir.h"
 
 namespace fs = std::filesystem;
 
@@ -141,7 +142,7 @@ TEST(Color, Chromaticities) {
 }
 
 TEST(Color, MissingConfigNamesTheFile) {
-  const std::string missing = ::testing::TempDir() + "tray_no_such_config.ocio";
+  const std::string missing = (test::testDir() / "no_such_config.ocio").string();
   try {
     ColorPipeline p(missing);
     FAIL() << "no error";
@@ -153,7 +154,7 @@ TEST(Color, MissingConfigNamesTheFile) {
 TEST(Color, HonoursOcioEnvironment) {
   // A copy of the repo's config under another name: the pipeline must come from $OCIO.
   // This is the only test here that touches instance(), which is created on first use.
-  const std::string copy = ::testing::TempDir() + "tray_color_test_config.ocio";
+  const std::string copy = (test::testDir() / "color_test_config.ocio").string();
   fs::copy_file(kRepoConfig, copy, fs::copy_options::overwrite_existing);
   ASSERT_EQ(setenv("OCIO", copy.c_str(), 1), 0);
   EXPECT_EQ(ColorPipeline::defaultConfigPath(), copy);
@@ -165,7 +166,6 @@ TEST(Color, HonoursOcioEnvironment) {
   unsetenv("OCIO");
   // Without $OCIO the default is an existing config (beside the binary or in the source tree).
   EXPECT_TRUE(fs::is_regular_file(ColorPipeline::defaultConfigPath()));
-  fs::remove(copy);
 }
 
 }  // namespace

@@ -48,7 +48,7 @@ std::string loadError(const std::string& path) {
 }
 
 TEST(EnvironmentMap, ReadsExrAndHdrAsWritten) {
-  const fs::path dir = tempFolder("envmap");
+  const fs::path dir = testDir();
   for (const char* name : {"m.exr", "m.hdr"}) {
     std::vector<std::string> warnings;
     const auto map = loadEnvironmentMap(writeMap(dir / name, 16, 8), &warnings);
@@ -65,7 +65,7 @@ TEST(EnvironmentMap, ReadsExrAndHdrAsWritten) {
 }
 
 TEST(EnvironmentMap, TaggedColorspaceIsConvertedToLinearRec709) {
-  const fs::path dir = tempFolder("envmap");
+  const fs::path dir = testDir();
   // A flat ACEScg colour: its luminance stays (both spaces share Y up to the white's
   // adaptation), its components change.
   std::vector<float> px(8 * 4 * 3);
@@ -87,7 +87,7 @@ TEST(EnvironmentMap, TaggedColorspaceIsConvertedToLinearRec709) {
 }
 
 TEST(EnvironmentMap, BadFilesGiveOneLineNamingTheFile) {
-  const fs::path dir = tempFolder("envmap");
+  const fs::path dir = testDir();
   const std::string missing = (dir / "missing.exr").string();
   EXPECT_NE(loadError(missing).find(missing + ": environment map not found"), std::string::npos);
   const std::string garbage = (dir / "garbage.exr").string();
@@ -109,7 +109,7 @@ TEST(EnvironmentMap, BadFilesGiveOneLineNamingTheFile) {
 }
 
 TEST(EnvironmentMap, NotTwoToOneWarnsAndIsUsed) {
-  const fs::path dir = tempFolder("envmap");
+  const fs::path dir = testDir();
   std::vector<std::string> warnings;
   const auto map = loadEnvironmentMap(writeMap(dir / "square.exr", 8, 8), &warnings);
   EXPECT_EQ(map->width, 8);
@@ -118,7 +118,7 @@ TEST(EnvironmentMap, NotTwoToOneWarnsAndIsUsed) {
 }
 
 TEST(EnvironmentMap, CommandLineRefusesBadMapsBeforeRendering) {
-  const fs::path dir = tempFolder("envmap");
+  const fs::path dir = testDir();
   const std::string scene = std::string(TRAY_SOURCE_DIR) + "/scenes/whitted.gltf";
   const std::string nan = writeMap(dir / "nan.exr", 16, 8, NAN);
   for (const std::string& map : {(dir / "missing.exr").string(), nan}) {
@@ -155,7 +155,7 @@ std::string writeScene(const fs::path& dir, const std::string& env) {
 }
 
 TEST(EnvironmentMap, TrayEnvironmentNamesAnImageByPathOrIndex) {
-  const fs::path dir = tempFolder("envmap");
+  const fs::path dir = testDir();
   for (const char* image : {R"("map.exr")", "0"}) {
     const Scene s = loadGltf(
         writeScene(dir, std::string(R"({"image": )") + image + R"(, "rotation": 30, "intensity": 2})"),
@@ -182,7 +182,7 @@ TEST(EnvironmentMap, TrayEnvironmentNamesAnImageByPathOrIndex) {
 }
 
 TEST(EnvironmentMap, TrayEnvironmentImageFollowsTheUriRules) {
-  const fs::path dir = tempFolder("envmap");
+  const fs::path dir = testDir();
   for (const auto& [env, message] : std::vector<std::pair<std::string, std::string>>{
            {R"({"image": "../map.exr"})", "TRAY_environment image: URI '../map.exr' contains '..'"},
            {R"({"image": "nothere.exr"})", "URI 'nothere.exr': file not found"},

@@ -18,6 +18,7 @@
 #include "tests/error_of.h"
 #include "io/gltf_loader.h"
 #include "tests/base64.h"
+#include "tests/temp_dir.h"
 
 namespace tray {
 namespace {
@@ -113,9 +114,7 @@ class Doc {
   Scene load(const std::string& rest, const LoadOptions& options = {},
              LoadReport* report = nullptr) const {
     static std::atomic<int> counter{0};
-    const fs::path dir = fs::path(::testing::TempDir()) /
-                         ("tray_anim_" + std::to_string(::getpid()) + "_" +
-                          std::to_string(counter++));
+    const fs::path dir = test::testDir() / ("doc" + std::to_string(counter++));
     fs::create_directories(dir);
     const fs::path file = dir / "scene.gltf";
     std::ofstream(file) << "{\"asset\":{\"version\":\"2.0\"},\"buffers\":[{\"byteLength\":"

@@ -7,8 +7,9 @@
 #include <fstream>
 
 #include "core/error.h"
-#include "core/render_setup.h"
+#include "render/render_setup.h"
 #include "io/gltf_loader.h"
+#include "tests/temp_dir.h"
 
 namespace tray {
 namespace {
@@ -18,9 +19,7 @@ namespace fs = std::filesystem;
 /// Three perspective cameras (yfov 0.5, 0.6, 0.7 tell them apart), placed by nodes in the
 /// order cameras[2], cameras[0], cameras[1]; camera 1 is named, the others are not.
 Scene loadJson(const std::string& json) {
-  const fs::path dir = fs::path(::testing::TempDir()) / ("tray_cams_" + std::to_string(getpid()));
-  fs::create_directories(dir);
-  const fs::path file = dir / "cams.gltf";
+  const fs::path file = test::testDir() / "cams.gltf";
   std::ofstream(file) << json;
   Scene s = loadGltf(file.string());
   s.sourcePath = "cams.gltf";

@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "tests/error_of.h"
 #include "tests/base64.h"
+#include "tests/temp_dir.h"
 
 namespace tray {
 namespace {
@@ -153,9 +154,7 @@ using tray::test::base64;
 
 fs::path freshFolder() {
   static std::atomic<int> counter{0};
-  fs::path dir = fs::path(::testing::TempDir()) /
-                 ("tray_gltf_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-  fs::remove_all(dir);
+  fs::path dir = tray::test::testDir() / ("doc" + std::to_string(counter++));
   fs::create_directories(dir);
   return dir;
 }

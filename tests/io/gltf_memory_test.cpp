@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "io/gltf_loader.h"
+#include "tests/temp_dir.h"
 
 namespace fs = std::filesystem;
 
@@ -93,10 +94,9 @@ TEST(GltfMemory, PlacedObjectsAreCapped) {
   }
 }
 
-/// A folder of its own under the test temp dir.
+/// A folder of its own in the test's folder.
 fs::path freshFolder(const std::string& name) {
-  const fs::path dir = fs::path(::testing::TempDir()) / ("gltf_memory_" + name);
-  fs::remove_all(dir);
+  const fs::path dir = test::testDir() / name;
   fs::create_directories(dir);
   return dir;
 }

@@ -14,6 +14,7 @@
 #include "core/error.h"
 #include "io/gltf_loader.h"
 #include "tests/base64.h"
+#include "tests/temp_dir.h"
 
 namespace tray {
 namespace {
@@ -53,9 +54,7 @@ json validDoc() {
 /// Loads `doc` from a fresh folder; returns the error message ("" if it loaded).
 std::string loadError(const json& doc) {
   static std::atomic<int> counter{0};
-  const fs::path dir = fs::path(::testing::TempDir()) /
-                       ("tray_raw_fields_" + std::to_string(getpid()) + "_" +
-                        std::to_string(counter++));
+  const fs::path dir = test::testDir() / ("doc" + std::to_string(counter++));
   fs::create_directories(dir);
   const fs::path file = dir / "doc.gltf";
   std::ofstream(file) << doc.dump();

@@ -16,11 +16,13 @@
 
 #include "core/accelerator.h"
 #include "core/error.h"
-#include "core/render_setup.h"
-#include "core/renderer.h"
+#include "render/render_setup.h"
+#include "render/renderer.h"
 #include "io/gltf_images.h"
 #include "io/gltf_loader.h"
 #include "tests/base64.h"
+#include "render/prepared_scene.h"
+#include "tests/temp_dir.h"
 
 namespace tray {
 namespace {
@@ -31,9 +33,7 @@ const fs::path kSamples = fs::path(TRAY_SHARED_DIR) / "gltf-samples";
 
 fs::path freshFolder() {
   static std::atomic<int> counter{0};
-  fs::path dir = fs::path(::testing::TempDir()) /
-                 ("tray_tex_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-  fs::remove_all(dir);
+  fs::path dir = test::testDir() / ("doc" + std::to_string(counter++));
   fs::create_directories(dir);
   return dir;
 }
@@ -237,11 +237,10 @@ Render renderAmbient(const std::string& file, int w, int h, int threads = 0) {
   Scene scene = loadGltf((kSamples / file).string());
   scene.environment.ambient = Color(1.0f);
   CameraDesc cam = chooseCamera(scene, -1);
-  auto camera = Camera::create(cam, w, h);
-  auto accel = makeAccelerator("embree", scene);
   RenderSettings settings;
   settings.set("integrator", "whitted");
-  RenderContext ctx{scene, *accel, *camera, settings, w, h};
+  const PreparedScene prepared(scene, cam, {w, h});
+  const RenderContext ctx = prepared.context(settings);
   auto integrator = makeIntegrator(ctx);
   Film film(w, h);
   RenderOptions options;

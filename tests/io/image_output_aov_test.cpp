@@ -7,15 +7,18 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <optional>
 #include <nlohmann/json.hpp>
 
 #include "accel/registry.h"
 #include "core/aov.h"
 #include "core/cryptomatte.h"
-#include "core/renderer.h"
+#include "render/renderer.h"
 #include "integrators/registry.h"
 #include "io/image_output.h"
 #include "tests/scene_builder.h"
+#include "render/prepared_scene.h"
+#include "tests/temp_dir.h"
 
 namespace fs = std::filesystem;
 
@@ -58,8 +61,7 @@ class AovExr : public ::testing::Test {
  protected:
   static constexpr int W = 33, H = 33;
   Scene scene;
-  std::unique_ptr<Accelerator> accel;
-  std::unique_ptr<Camera> camera;
+  std::optional<PreparedScene> prepared;
   ExrImage image;
 
   void SetUp() override {
@@ -70,21 +72,15 @@ class AovExr : public ::testing::Test {
     addSphere(scene, {2, 1, -4}, 1.0f, ballMat);
     scene.primitives[2].name = "right ball \"two\"";  // quotes must survive the JSON manifest
     scene.finalize();
-    accel = makeAccelerator("embree", scene);
-    camera = Camera::create(lookAt({0, 1, 0}, {0, 1, -1}, 1.0f), W, H);
     RenderSettings settings;
     settings.set("spp", 16);
     settings.set("pixel-sampler", "grid");
     settings.set("filter", "box");
-    RenderContext ctx{scene, *accel, *camera, settings, W, H};
-    auto integrator = makeIntegrator(ctx);
-    Film film(W, H);
     RenderOptions opt;
     opt.aovs = AovSet::parse("all");
-    renderImage(*integrator, film, opt);
-    const fs::path dir = fs::path(::testing::TempDir()) / "tray_image_output_aov";
-    fs::create_directories(dir);
-    const std::string path = (dir / "aovs.exr").string();
+    prepared.emplace(scene, lookAt({0, 1, 0}, {0, 1, -1}, 1.0f), ImageSize{W, H});
+    Film film = prepared->render(settings, opt);
+    const std::string path = (test::testDir() / "aovs.exr").string();
     writeImage(film, path);
     image = readExr(path);
   }
@@ -106,7 +102,7 @@ TEST_F(AovExr, DepthNormalPositionAndIdsAtKnownPixels) {
   double depth = 0;
   for (int i = 0; i < 4; ++i)
     for (int j = 0; j < 4; ++j) {
-      const Ray r = camera->generateRay(16 + (i + 0.5f) / 4, 32 + (j + 0.5f) / 4);
+      const Ray r = prepared->camera().generateRay(16 + (i + 0.5f) / 4, 32 + (j + 0.5f) / 4);
       depth += -r.o.y / r.d.y * length(r.d) / 16;
     }
   EXPECT_NEAR(image.at("Z", 16, 32), depth, 1e-3f);

@@ -1,5 +1,5 @@
 // writeImage: EXR layers, precision, colour metadata and windows read back with OIIO; PNG/JPEG
-// display encoding; atomic writes and one-line errors. Files go to ::testing::TempDir().
+// display encoding; atomic writes and one-line errors. Files go to the test's own testDir().
 #include "io/image_output.h"
 
 #include <OpenImageIO/imageio.h>
@@ -16,6 +16,7 @@
 
 #include "core/error.h"
 #include "tests/exr_read.h"
+#include "tests/temp_dir.h"
 
 namespace fs = std::filesystem;
 
@@ -25,16 +26,6 @@ namespace {
 // Pin the config: a developer's own $OCIO must not change what these tests expect.
 const bool kRepoConfig =
     setenv("OCIO", (std::string(TRAY_SOURCE_DIR) + "/ocio/config.ocio").c_str(), 1) == 0;
-
-/// A fresh, empty folder per test.
-fs::path tempFolder() {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  fs::path dir =
-      fs::path(::testing::TempDir()) / (std::string("tray_image_output_") + info->name());
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
 
 /// 3x2 film; beauty values include > 1 and negative; an "N" layer and a one-channel "Z" layer.
 Film testFilm() {
@@ -68,7 +59,7 @@ std::string contents(const fs::path& p) {
 
 TEST(ImageOutput, ExrRoundTrip) {
   ASSERT_TRUE(kRepoConfig);
-  const fs::path path = tempFolder() / "beauty.exr";
+  const fs::path path = test::testDir() / "beauty.exr";
   const Film film = testFilm();
   ImageOutputOptions o;
   o.stringMetadata = {{"tray:integrator", "path"}};
@@ -119,7 +110,7 @@ TEST(ImageOutput, ExrRoundTrip) {
 }
 
 TEST(ImageOutput, FloatOptionWritesFloat) {
-  const fs::path path = tempFolder() / "float.exr";
+  const fs::path path = test::testDir() / "float.exr";
   const Film film = testFilm();
   ImageOutputOptions o;
   o.halfFloat = false;
@@ -132,7 +123,7 @@ TEST(ImageOutput, FloatOptionWritesFloat) {
 }
 
 TEST(ImageOutput, HalfIsTheDefault) {
-  const fs::path path = tempFolder() / "half.exr";
+  const fs::path path = test::testDir() / "half.exr";
   Film film(2, 2);
   film.pixel(Film::kBeauty, 0, 0)[0] = 0.1f;  // half: 0.0999755859375
   writeImage(film, path.string());
@@ -145,7 +136,7 @@ TEST(ImageOutput, HalfIsTheDefault) {
 TEST(ImageOutput, HalfClampsBeyond65504InsteadOfInfinity) {
   // Half's largest finite value is 65504; 1e6 used to become +Inf silently. Each channel is
   // clamped on its own; float output keeps every value.
-  const fs::path dir = tempFolder();
+  const fs::path dir = test::testDir();
   Film film(2, 1);
   float* p = film.pixel(Film::kBeauty, 0, 0);
   p[0] = 1e6f, p[1] = -1e6f, p[2] = 65504.0f, p[3] = 1.0f;
@@ -171,7 +162,7 @@ TEST(ImageOutput, HalfClampsBeyond65504InsteadOfInfinity) {
 }
 
 TEST(ImageOutput, DataAndDisplayWindows) {
-  const fs::path path = tempFolder() / "region.exr";
+  const fs::path path = test::testDir() / "region.exr";
   ImageOutputOptions o;
   o.fullWidth = 20, o.fullHeight = 10, o.xOffset = 5, o.yOffset = 7;
   writeImage(testFilm(), path.string(), o);
@@ -187,7 +178,7 @@ TEST(ImageOutput, DataAndDisplayWindows) {
 }
 
 TEST(ImageOutput, AcesCgConvertsOnlyTheBeautyRgb) {
-  const fs::path path = tempFolder() / "acescg.exr";
+  const fs::path path = test::testDir() / "acescg.exr";
   Film film(2, 1);
   const int n = film.addLayer("N", {"X", "Y", "Z"});
   float* red = film.pixel(Film::kBeauty, 0, 0);
@@ -216,7 +207,7 @@ TEST(ImageOutput, AcesCgConvertsOnlyTheBeautyRgb) {
 }
 
 TEST(ImageOutput, PngIsDisplayReferredSrgb) {
-  const fs::path path = tempFolder() / "beauty.png";
+  const fs::path path = test::testDir() / "beauty.png";
   Film film(3, 1);
   const float values[3] = {0.5f, 2.0f, -1.0f};
   for (int x = 0; x < 3; ++x) {
@@ -239,7 +230,7 @@ TEST(ImageOutput, PngIsDisplayReferredSrgb) {
 }
 
 TEST(ImageOutput, JpegThroughTheDisplayView) {
-  const fs::path path = tempFolder() / "beauty.JPG";  // extensions are case-insensitive
+  const fs::path path = test::testDir() / "beauty.JPG";  // extensions are case-insensitive
   Film film(16, 16);
   for (int y = 0; y < 16; ++y)
     for (int x = 0; x < 16; ++x) {
@@ -256,7 +247,7 @@ TEST(ImageOutput, JpegThroughTheDisplayView) {
 }
 
 TEST(ImageOutput, MissingFolderThrowsAndCreatesNothing) {
-  const fs::path dir = tempFolder();
+  const fs::path dir = test::testDir();
   const std::string path = (dir / "no_such_folder" / "out.exr").string();
   try {
     writeImage(testFilm(), path);
@@ -270,7 +261,7 @@ TEST(ImageOutput, MissingFolderThrowsAndCreatesNothing) {
 }
 
 TEST(ImageOutput, UnsupportedExtensionThrows) {
-  const fs::path dir = tempFolder();
+  const fs::path dir = test::testDir();
   for (const char* name : {"out.tif", "out", "out.exr.bak"}) {
     const std::string path = (dir / name).string();
     try {
@@ -285,7 +276,7 @@ TEST(ImageOutput, UnsupportedExtensionThrows) {
 }
 
 TEST(ImageOutput, BadColorspaceKeepsTheExistingFile) {
-  const fs::path dir = tempFolder();
+  const fs::path dir = test::testDir();
   const fs::path path = dir / "keep.exr";
   writeImage(testFilm(), path.string());
   const std::string before = contents(path);
@@ -306,7 +297,7 @@ TEST(ImageOutput, BadColorspaceKeepsTheExistingFile) {
 TEST(ImageOutput, FailedWriteLeavesTheExistingFileIntact) {
   // A real mid-write failure: cap this process's file size (RLIMIT_FSIZE) below the new
   // image's size, so write(2) fails with EFBIG part-way through the temporary file.
-  const fs::path dir = tempFolder();
+  const fs::path dir = test::testDir();
   const fs::path path = dir / "big.exr";
   writeImage(testFilm(), path.string());
   const std::string before = contents(path);
@@ -344,7 +335,7 @@ TEST(ImageOutput, FailedWriteLeavesTheExistingFileIntact) {
 TEST(ImageOutput, WriteImagesIsAllOrNothing) {
   // The second output fails (an unknown display for the PNG) after the first is written under
   // its temporary name: neither file changes, no temporary is left.
-  const fs::path dir = tempFolder();
+  const fs::path dir = test::testDir();
   const fs::path exr = dir / "a.exr", png = dir / "a.png";
   writeImages(testFilm(), {exr.string(), png.string()});
   const std::string exrBefore = contents(exr), pngBefore = contents(png);

@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include "tests/temp_dir.h"
+
 namespace fs = std::filesystem;
 
 namespace tray {
@@ -17,8 +19,7 @@ void writeFile(const fs::path& path, const std::string& text) {
 }
 
 TEST(SceneHash, FollowsTheSceneAndEveryFileItsUrisName) {
-  const fs::path dir = fs::path(::testing::TempDir()) / "scene_hash";
-  fs::remove_all(dir);
+  const fs::path dir = test::testDir();
   fs::create_directories(dir / "tex");
   // A buffer whose URI is percent-encoded, an image in a subfolder, a data: URI.
   const std::string gltf =
@@ -60,9 +61,7 @@ TEST(SceneHash, FollowsTheSceneAndEveryFileItsUrisName) {
 // The --env map shapes the pixels but is no URI of the scene: an edited map under the same
 // path must change the job's content hash, a copy elsewhere must not.
 TEST(SceneHash, FollowsTheEnvironmentMapOutsideTheScene) {
-  const fs::path dir = fs::path(::testing::TempDir()) / "scene_hash_env";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = test::testDir();
   writeFile(dir / "scene.gltf", R"({"asset":{"version":"2.0"}})");
   writeFile(dir / "sky.exr", "sky1");
   const std::string scene = (dir / "scene.gltf").string(), sky = (dir / "sky.exr").string();

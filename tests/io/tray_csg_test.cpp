@@ -9,6 +9,7 @@
 #include "shapes/box.h"
 #include "shapes/sphere.h"
 #include "tests/base64.h"
+#include "tests/temp_dir.h"
 
 namespace tray {
 namespace {
@@ -40,7 +41,7 @@ std::string writeGltf(const std::string& name, const std::string& nodes, const s
         std::to_string(bytes.size()) + R"(,"uri":"data:application/octet-stream;base64,)" + enc +
         R"("}])";
   }
-  std::string path = ::testing::TempDir() + "/" + name;
+  std::string path = (test::testDir() / name).string();
   std::ofstream(path) << R"({"asset":{"version":"2.0"},"extensionsUsed":["TRAY_shape"],"scene":0,
 "scenes":[{"nodes":[)" + roots +
                              R"(]}],

@@ -3,12 +3,13 @@
 #include <gtest/gtest.h>
 
 #include "accel/registry.h"
-#include "core/renderer.h"
+#include "render/renderer.h"
 #include "integrators/registry.h"
 #include "shapes/csg.h"
 #include "shapes/mesh_solid.h"
 #include "tests/scene_builder.h"
 #include "tests/shapes/solid_meshes.h"
+#include "render/prepared_scene.h"
 
 namespace tray {
 namespace {
@@ -21,9 +22,8 @@ CsgChild child(std::shared_ptr<const Shape> s, const Mat4& m = Mat4::identity(),
 }
 
 Film render(const Scene& scene, const CameraDesc& cam, int w, int h) {
-  auto camera = Camera::create(cam, w, h);
-  auto accel = makeAccelerator("embree", scene);
-  RenderContext ctx{scene, *accel, *camera, RenderSettings{}, w, h};  // Whitted, 1 spp, centre
+  const PreparedScene prepared(scene, cam, {w, h});  // Whitted, 1 spp, centre
+  const RenderContext ctx = prepared.context(RenderSettings{});
   auto integrator = makeIntegrator(ctx);
   Film film(w, h);
   renderImage(*integrator, film, RenderOptions{});

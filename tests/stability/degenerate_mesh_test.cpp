@@ -20,6 +20,7 @@
 #include "io/gltf_loader.h"
 #include "tests/stability/stability_scenes.h"
 #include "tests/integrators/path_under_test.h"
+#include "tests/temp_dir.h"
 
 namespace tray {
 namespace {
@@ -166,10 +167,7 @@ TEST(CodeBuiltMesh, WithoutTheFallbackNanNormalsPoisonPixels) {
 std::string writeGltf(const TriangleMesh& m) {
   static_assert(sizeof(Vec3) == 12, "positions and normals are written as packed float3");
   static int counter = 0;
-  const fs::path dir =
-      fs::path(::testing::TempDir()) /
-      ("tray_degenerate_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-  fs::remove_all(dir);
+  const fs::path dir = test::testDir() / ("mesh" + std::to_string(counter++));
   fs::create_directories(dir);
   std::ofstream bin(dir / "scene.bin", std::ios::binary);
   auto bytes = [&](const void* p, size_t n) {

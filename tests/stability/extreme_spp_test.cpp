@@ -15,6 +15,7 @@
 #include "integrators/registry.h"
 #include "tests/stability/stability_scenes.h"
 #include "tests/integrators/path_under_test.h"
+#include "render/prepared_scene.h"
 
 namespace tray {
 namespace {
@@ -46,9 +47,8 @@ SceneWithCamera uniformEmitter(float radiance) {
 /// The red channel of each of the pixel's samples, traced as Integrator::renderPixel traces
 /// them (same sampler streams, same offsets; the box filter weighs each by 1).
 std::vector<float> pixelSamples(const SceneWithCamera& a, const RenderSettings& st) {
-  auto camera = Camera::create(a.camera, 1, 1);
-  auto accel = makeAccelerator("embree", a.scene);
-  RenderContext ctx{a.scene, *accel, *camera, st, 1, 1};
+  const PreparedScene prepared(a.scene, a.camera, {1, 1});
+  const RenderContext ctx = prepared.context(st);
   auto integrator = makeIntegrator(ctx);
   const int spp = st.getInt("spp");
   const PixelSampler ps(PixelSampler::parse(st.getString("pixel-sampler"), spp), spp, 0.5f);
@@ -58,7 +58,7 @@ std::vector<float> pixelSamples(const SceneWithCamera& a, const RenderSettings& 
     Sampler sampler(0, uint32_t(i), st.getInt64("seed"));
     const Vec2 d = ps.offset(i, sampler.next2D());
     out.push_back(
-        integrator->Li(camera->generateRay(0.5f + d.x, 0.5f + d.y), sampler, stats, nullptr).x);
+        integrator->Li(prepared.camera().generateRay(0.5f + d.x, 0.5f + d.y), sampler, stats, nullptr).x);
   }
   return out;
 }

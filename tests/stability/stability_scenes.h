@@ -10,11 +10,12 @@
 #include <utility>
 
 #include "accel/registry.h"
-#include "core/renderer.h"
+#include "render/renderer.h"
 #include "core/integrator.h"
 #include "tests/render_film.h"
 #include "tests/scene_builder.h"
 #include "tests/integrators/path_under_test.h"
+#include "render/prepared_scene.h"
 
 namespace tray::stability {
 
@@ -95,9 +96,8 @@ class FixedEpsilonDirect final : public Integrator {
 };
 
 inline Film renderFixedEpsilon(const SceneWithCamera& a, int w, int h, float epsilon) {
-  auto camera = Camera::create(a.camera, w, h);
-  auto accel = makeAccelerator("embree", a.scene);
-  RenderContext ctx{a.scene, *accel, *camera, RenderSettings{}, w, h};
+  const PreparedScene prepared(a.scene, a.camera, {w, h});
+  const RenderContext ctx = prepared.context(RenderSettings{});
   FixedEpsilonDirect integrator(ctx, epsilon);
   Film film(w, h);
   renderImage(integrator, film);

@@ -5,7 +5,11 @@ set -euo pipefail
 source=$1
 python3 "$source/tools/check_layers.py" "$source"
 tree=$(mktemp -d)
-trap 'rm -rf "$tree"' EXIT
+# Removed when the test passes; kept, and named, when it fails.
+keep_if_failed() {
+  if [ $? -eq 0 ]; then rm -rf "$tree"; else echo "test files kept in $tree" >&2; fi
+}
+trap keep_if_failed EXIT
 for d in core shapes accel materials lights integrators io cli; do cp -r "$source/$d" "$tree/"; done
 printf '#include "integrators/registry.h"\n' >>"$tree/core/scene.h"
 if out=$(python3 "$source/tools/check_layers.py" "$tree" 2>&1); then

@@ -6,9 +6,11 @@
 Renders the box at 4 spp with the all-sample albedo and normal, denoises it, and requires the
 denoised RMSE to be several times below the noisy one; then checks the one-line errors (exit 2)
 for a render without the auxiliary layers and for a missing denoiser. Exits 77 (ctest: skipped)
-with a message when pyoidn is not installed (tools/setup-denoise.sh).
+with a message when pyoidn is not installed (tools/setup-denoise.sh). WORK_DIR is removed
+unless the test fails.
 """
 import os
+import shutil
 import subprocess
 import sys
 
@@ -16,7 +18,6 @@ render_bin, source_dir, shared_dir, work = sys.argv[1:5]
 denoise = os.path.join(source_dir, "tools", "tray-denoise")
 scene = os.path.join(shared_dir, "reference", "cornell-box.gltf")
 reference = os.path.join(shared_dir, "reference", "cornell-box.ref.exr")
-os.makedirs(work, exist_ok=True)
 
 
 def run(*args, env=None):
@@ -31,6 +32,8 @@ if probe.returncode != 0 or not os.path.exists(reference):
 
 import numpy as np  # noqa: E402  (after the skip: python3-numpy comes with the denoiser set-up)
 import OpenImageIO as oiio  # noqa: E402
+
+os.makedirs(work, exist_ok=True)
 
 
 def read(path, names):
@@ -54,6 +57,7 @@ assert r.returncode == 0, r.stderr
 r = run(denoise, noisy_exr, "-o", out_exr)
 if r.returncode == 2 and "not installed" in r.stderr:
     print("SKIP:", r.stderr.strip())
+    shutil.rmtree(work)
     sys.exit(77)
 assert r.returncode == 0, r.stderr
 
@@ -77,4 +81,5 @@ if run("/usr/bin/python3", "-c", "import pyoidn").returncode != 0:
     env = dict(os.environ, TRAY_OIDN_PYTHON="/nonexistent/python3", XDG_DATA_HOME="/nonexistent")
     r = run("/usr/bin/python3", denoise, noisy_exr, "-o", os.path.join(work, "x.exr"), env=env)
     assert r.returncode == 2 and "not installed" in r.stderr and r.stderr.count("\n") == 1, r
+shutil.rmtree(work)
 print("ok")

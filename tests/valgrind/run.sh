@@ -9,7 +9,11 @@ set -u
 render=$1 src=$2 shared=$3
 command -v valgrind >/dev/null 2>&1 || { echo "valgrind not installed: skipped"; exit 77; }
 out=$(mktemp -d "${TMPDIR:-/tmp}/tray_valgrind.XXXXXX")
-trap 'rm -rf "$out"' EXIT
+# Removed when the test passes; kept, and named, when it fails.
+keep_if_failed() {
+  if [ $? -eq 0 ]; then rm -rf "$out"; else echo "test files kept in $out" >&2; fi
+}
+trap keep_if_failed EXIT
 status=0
 check() {  # check NAME SCENE ARGS...
   name=$1 scene=$2

@@ -1,12 +1,16 @@
 #pragma once
+// The tile loop: every pixel of a film rendered with an integrator, tiles in parallel, with
+// progress, checkpoints and a stop flag. The render job (render/render_job.h) drives it.
 #include <atomic>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/film.h"
-#include "core/render_state.h"
 #include "core/integrator.h"
+#include "core/render_state.h"
+#include "render/image_part.h"
 
 namespace tray {
 
@@ -22,9 +26,9 @@ struct RenderOptions {
   /// Where the film lies in the integrator's image: film pixel (0, 0) is image pixel
   /// (x0, y0) (region renders). Pixels keep their image coordinates, hence their samples.
   int x0 = 0, y0 = 0;
-  /// Renders samples [sampleBegin, sampleEnd) of each pixel; sampleEnd 0: to the last. Other
-  /// than the whole range needs an integrator with samplesPerPixel() > 0.
-  int sampleBegin = 0, sampleEnd = 0;
+  /// Renders only these samples of each pixel (none: all of them). Needs an integrator with a
+  /// number of samples per pixel (not adaptive, which places its own).
+  std::optional<SampleRange> samples;
   /// When it becomes true (a signal handler), workers stop after their current pixel (the
   /// wavefront: its current wave of paths); only whole pixels are written.
   const std::atomic<bool>* stop = nullptr;

@@ -1,14 +1,13 @@
-#include "cli/farm.h"
+#include "render/farm.h"
 
 #include <algorithm>
 #include <cctype>
-#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
 #include <vector>
 
-#include "cli/job_diff.h"
+#include "render/job_diff.h"
 #include "core/error.h"
 #include "integrators/registry.h"
 #include "io/image_input.h"
@@ -33,18 +32,6 @@ std::vector<int> parseInts(const std::string& text, size_t count) {
     v.push_back(value);
   }
   return v.size() == count && text.back() != ',' ? v : std::vector<int>{};
-}
-
-std::atomic<bool> gStop{false};
-std::atomic<int> gSignal{0};
-static_assert(std::atomic<bool>::is_always_lock_free && std::atomic<int>::is_always_lock_free,
-              "signal handlers may only touch lock-free atomics");
-
-extern "C" void onInterrupt(int sig) {
-  int none = 0;
-  gSignal.compare_exchange_strong(none, sig);
-  gStop.store(true);
-  std::signal(sig, SIG_DFL);  // async-signal-safe; a second signal stops at once
 }
 
 }  // namespace
@@ -88,29 +75,19 @@ PixelRegion parseRegion(const std::string& text, int width, int height) {
   return r;
 }
 
-SampleRange parseSampleRange(const std::string& text, int samplesPerPixel,
+SampleRange parseSampleRange(const std::string& text, std::optional<int> samplesPerPixel,
                              const std::string& integrator) {
-  if (text.empty()) return {0, samplesPerPixel};
-  if (samplesPerPixel == 0)
+  if (text.empty()) return {0, samplesPerPixel.value_or(0)};
+  if (!samplesPerPixel)
     throw Error("--sample-range: the " + integrator +
                 " integrator places its own samples in each pixel, so its renders cannot be split "
                 "by samples (split them with --region)");
   const std::vector<int> v = parseInts(text, 2);
   if (v.empty()) throw Error("--sample-range " + text + ": expected a,b (samples a..b-1)");
-  if (v[0] < 0 || v[0] >= v[1] || v[1] > samplesPerPixel)
+  if (v[0] < 0 || v[0] >= v[1] || v[1] > *samplesPerPixel)
     throw Error("--sample-range " + text + ": expected 0 <= a < b <= " +
-                std::to_string(samplesPerPixel) + " (the samples per pixel)");
+                std::to_string(*samplesPerPixel) + " (the samples per pixel)");
   return {v[0], v[1]};
-}
-
-const std::atomic<bool>& installInterruptHandlers() {
-  std::signal(SIGINT, onInterrupt);
-  std::signal(SIGTERM, onInterrupt);
-  return gStop;
-}
-
-int interruptSignal() {
-  return gSignal.load();
 }
 
 bool loadCheckpoint(const std::string& path, const std::string& job, const PixelRegion& region,

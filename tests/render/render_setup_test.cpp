@@ -1,6 +1,6 @@
 // Default lighting: an unlit glTF asset (most Khronos samples) must not render black, and a
 // scene with any light of its own must be left alone.
-#include "core/render_setup.h"
+#include "render/render_setup.h"
 
 #include <gtest/gtest.h>
 

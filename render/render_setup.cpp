@@ -1,4 +1,4 @@
-#include "core/render_setup.h"
+#include "render/render_setup.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,7 +1,7 @@
 #pragma once
-// Farm rendering on the command line: regions, sample ranges, interruption, checkpoints and
-// resuming (docs/farm.md).
-#include <atomic>
+// Farm rendering: regions and sample ranges as the command line spells them, job signatures,
+// checkpoints and resuming (docs/farm.md).
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -9,29 +9,18 @@
 #include "core/render_state.h"
 #include "core/render_options.h"
 #include "io/image_output.h"
+#include "render/image_part.h"
 
 namespace tray {
-
-/// Pixels x0 <= x < x1, y0 <= y < y1 of the full image.
-struct PixelRegion {
-  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
-  int width() const { return x1 - x0; }
-  int height() const { return y1 - y0; }
-};
 
 /// Parses --region "x0,y0,x1,y1" (x1, y1 exclusive); empty: the whole width x height image.
 /// Throws tray::Error (usage) unless the region is non-empty and inside the image.
 PixelRegion parseRegion(const std::string& text, int width, int height);
 
-/// Samples begin <= i < end of every pixel.
-struct SampleRange {
-  int begin = 0, end = 0;
-};
-
-/// Parses --sample-range "a,b" (samples a..b-1); empty: all samplesPerPixel samples. Throws
-/// tray::Error (usage) for a range outside [0, samplesPerPixel) or an integrator that places its
-/// own samples (samplesPerPixel 0: adaptive).
-SampleRange parseSampleRange(const std::string& text, int samplesPerPixel,
+/// Parses --sample-range "a,b" (samples a..b-1); empty: all samplesPerPixel samples ({0, 0}
+/// for an integrator that places its own, adaptive). Throws tray::Error (usage) for a range
+/// outside [0, samplesPerPixel) or an integrator that places its own samples.
+SampleRange parseSampleRange(const std::string& text, std::optional<int> samplesPerPixel,
                              const std::string& integrator);
 
 /// What a job renders besides its option values.
@@ -55,12 +44,6 @@ std::string jobSignature(const RenderSettings& settings, const JobFrame& frame);
 
 /// The first .exr of `outputs` (empty if none): where checkpoints go and --resume reads.
 std::string firstExr(const std::vector<std::string>& outputs);
-
-/// Installs SIGINT and SIGTERM handlers that set the returned flag and remember the signal;
-/// each restores the default action, so a second signal ends the process at once.
-const std::atomic<bool>& installInterruptHandlers();
-/// The first signal received (0: none); the exit code is 128 + it (130 SIGINT, 143 SIGTERM).
-int interruptSignal();
 
 /// Loads the checkpoint at `path` for resuming: its film (AOVs of the pixels done) and state.
 /// Returns false, loading nothing, when `path` is this render finished already. Throws

@@ -1,4 +1,4 @@
-#include "cli/job_diff.h"
+#include "render/job_diff.h"
 
 #include <sstream>
 

@@ -1,0 +1,85 @@
+#include "render/job_scene.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "accel/registry.h"
+#include "io/environment_map.h"
+#include "io/memory_estimate.h"
+
+namespace tray {
+namespace {
+
+/// The scene as read, with --env applied; the loader's warnings reported.
+std::unique_ptr<Scene> loadScene(const RenderJob& job, const LoadOptions& loadOptions,
+                                 const GltfDocument* document, LoadReport& report,
+                                 const RenderJobEvents& events) {
+  auto scene = std::make_unique<Scene>(document ? document->scene(loadOptions, &report)
+                                                : loadGltf(job.scene.path, loadOptions, &report));
+  scene->sourcePath = job.scene.path;
+  applyEnvironmentOptions(*scene, job.settings, &report.warnings);  // --env: read and checked
+  for (const auto& w : report.warnings) warn(events, w);
+  return scene;
+}
+
+/// Adds TRay's default lighting when the scene is unlit (and --no-default-light is not set);
+/// returns whether it did.
+bool lightUnlitScene(const RenderJob& job, Scene& scene, const CameraDesc& camera,
+                     const RenderJobEvents& events) {
+  // --no-default-light: nothing added; an unlit asset renders black (or lit by weak emitters).
+  if (job.settings.getBool("no-default-light")) return false;
+  if (!addDefaultLightingIfUnlit(scene, camera)) return false;
+  warn(events, job.scene.path +
+                   " has no lights of meaningful power: using TRay's default headlight and a 0.1 "
+                   "environment (docs/scene-format.md; --no-default-light turns it off)");
+  return true;
+}
+
+/// Refuses a scene whose accelerator would not fit, before it is built: the loader's estimate
+/// and the geometry (a deforming mesh: its triangles at every motion step).
+void checkAcceleratorMemory(const RenderJob& job, const Scene& scene, MemoryEstimate need,
+                            uint64_t limitBytes) {
+  for (const auto& m : scene.meshes)
+    need.geometry += m.triangleCount() * std::max<size_t>(1, m.positionSteps.size());
+  need.geometry *= kGeometryBytesPerTriangle;
+  checkMemory(job.scene.path, need, limitBytes);
+}
+
+}  // namespace
+
+void warn(const RenderJobEvents& events, const std::string& message) {
+  if (events.warning)
+    events.warning(message);
+  else
+    std::fprintf(stderr, "warning: %s\n", message.c_str());
+}
+
+void enterPhase(const RenderJobEvents& events, const char* phase) {
+  if (events.phase) events.phase(phase);
+}
+
+PreparedScene prepareJobScene(const RenderJob& job, const RenderJobEvents& events,
+                              const GltfDocument* document, int& placedCamera) {
+  enterPhase(events, "loading the scene");
+  const LoadOptions loadOptions = loadOptionsOf(job);
+  LoadReport report;
+  std::unique_ptr<Scene> scene = loadScene(job, loadOptions, document, report, events);
+
+  placedCamera = findCamera(*scene, job.camera);
+  CameraDesc cameraDesc = chooseCamera(*scene, job.camera);
+  applyLensOptions(cameraDesc, job.settings);
+  const bool defaultLight = lightUnlitScene(job, *scene, cameraDesc, events);
+  const ImageSize size = resolveImageSize(job.resolution, cameraDesc);
+  auto camera = Camera::create(cameraDesc, size.width, size.height);
+  checkAcceleratorMemory(job, *scene, report.memory, loadOptions.maxMemoryBytes);
+
+  enterPhase(events, "building the accelerator");
+  auto accel = makeAccelerator(job.accelerator, *scene);
+  if (defaultLight && useHeadlightIfEnclosed(*scene, cameraDesc, *accel))
+    warn(events, job.scene.path +
+                     ": the camera is enclosed (a sky box?) and the default key light cannot get "
+                     "in: a headlight at the camera replaces it");
+  return PreparedScene(std::move(scene), cameraDesc, size, std::move(camera), std::move(accel));
+}
+
+}  // namespace tray

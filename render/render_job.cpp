@@ -1,0 +1,187 @@
+#include "render/render_job.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+
+#include "core/animation_time.h"
+#include "core/aov.h"
+#include "core/cryptomatte.h"
+#include "core/error.h"
+#include "integrators/adaptive.h"
+#include "io/image_output.h"
+#include "io/scene_hash.h"
+#include "render/farm.h"
+#include "render/job_scene.h"
+#include "render/job_writer.h"
+
+namespace tray {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+/// What the job renders of the image: its region, sample range and AOV layers.
+struct JobPlan {
+  PixelRegion region;
+  SampleRange range;
+  std::vector<std::string> aovs;
+};
+
+JobPlan planOf(const RenderJob& job, const PreparedScene& scene, const Integrator& integrator) {
+  JobPlan plan;
+  plan.region = parseRegion(job.part.region, scene.width(), scene.height());
+  plan.range = parseSampleRange(job.part.sampleRange, integrator.samplesPerPixel(),
+                                job.settings.getString("integrator"));
+  plan.aovs = AovSet::parse(job.outputs.aovs);
+  if (!job.part.sampleRange.empty() && Cryptomatte::requested(plan.aovs))
+    throw Error(
+        "--sample-range with Cryptomatte AOVs: each part would keep only its own "
+        "top-ranked ids, which cannot be merged exactly (split by --region instead)");
+  return plan;
+}
+
+/// The renderer's options for the plan, with the job's progress (checkpoints are added by
+/// addCheckpoints).
+RenderOptions renderOptionsOf(const RenderJob& job, const JobPlan& plan,
+                              const RenderJobEvents& events) {
+  RenderOptions r;
+  r.threads = job.threads;
+  r.aovs = plan.aovs;
+  r.cryptomatteRanks = job.outputs.cryptomatteRanks;
+  if (!job.outputs.aaHeatmap.empty()) r.aovs.push_back("samples");  // the heatmap's source
+  r.x0 = plan.region.x0, r.y0 = plan.region.y0;
+  if (!job.part.sampleRange.empty()) r.samples = plan.range;
+  r.stop = events.stop;
+  r.onProgress = events.progress;
+  return r;
+}
+
+/// --resume: the film and state of the checkpoint in the first .exr output, if there is one.
+/// Returns false when that checkpoint is this render finished (nothing to do).
+bool resume(const RenderJob& job, const JobWriter& writer, const PreparedScene& scene,
+            const JobPlan& plan, Film& film, RenderState& state, double& previousSeconds,
+            const RenderJobEvents& events) {
+  const std::string path = firstExr(job.outputs.paths);
+  if (!std::filesystem::exists(path)) {
+    warn(events, path + ": no checkpoint to resume: rendering from the start");
+    return true;
+  }
+  return loadCheckpoint(path, writer.signature(), plan.region, scene.width(), scene.height(),
+                        plan.range, film, state, previousSeconds);
+}
+
+/// Every --checkpoint seconds, a copy of the pixels done so far goes to the first .exr output;
+/// `previousSeconds` (resumed renders) and the time since `started` make its render time.
+void addCheckpoints(RenderOptions& options, const RenderJob& job, const JobWriter& writer,
+                    double previousSeconds, Clock::time_point started,
+                    const RenderJobEvents& events) {
+  options.checkpointSeconds = job.part.checkpointSeconds;
+  options.onCheckpoint = [&job, &writer, &events, previousSeconds, started](
+                             const Film& f, const RenderState& s) {
+    Film copy = f;
+    const double elapsed = std::chrono::duration<double>(Clock::now() - started).count();
+    try {  // a failed checkpoint (full disk) costs the safety net, not the render
+      writer.write(copy, s, previousSeconds + elapsed, {firstExr(job.outputs.paths)}, false,
+                   events);
+    } catch (const Error& e) {
+      warn(events, std::string("checkpoint not written: ") + e.what());
+    }
+  };
+}
+
+}  // namespace
+
+void checkJobOutputs(const RenderJob& job) {
+  ImageOutputOptions check;
+  check.colorspace = job.outputs.colorspace;
+  check.display = job.outputs.display, check.view = job.outputs.view;
+  checkOutputs(job.outputs.paths, check);
+  if (!job.outputs.aaHeatmap.empty()) checkOutputs({job.outputs.aaHeatmap}, check);
+  if ((job.part.checkpointSeconds > 0 || job.part.resume) && firstExr(job.outputs.paths).empty())
+    throw Error("--checkpoint and --resume need an .exr output (-o NAME.exr)");
+}
+
+LoadOptions loadOptionsOf(const RenderJob& job) {
+  const RenderSettings& s = job.settings;
+  LoadOptions load;
+  load.scene = job.scene.index.value_or(-1);
+  load.allowAnyPath = job.scene.allowAnyPath;
+  load.time = animationTime(s);
+  load.animation = s.getString("animation");
+  if (const auto shutter = shutterOf(s); shutter && load.time) {
+    const float fps = s.getFloat("fps");
+    load.shutterOpen = shutter->at(*load.time, fps, 0.0f);
+    load.shutterClose = shutter->at(*load.time, fps, 1.0f);
+    load.motionSteps = int(s.getInt("motion-steps"));
+  }
+  const std::vector<std::string> aovs = AovSet::parse(job.outputs.aovs);
+  if (load.time && std::count(aovs.begin(), aovs.end(), "motion"))
+    load.previousTime = *load.time - 1.0f / s.getFloat("fps");
+  load.maxMemoryBytes = job.scene.maxMemoryBytes;
+  load.textureCacheMB = job.scene.textureMemoryMB;
+  load.ignoreRequiredExtensions = job.scene.ignoreRequiredExtensions;
+  return load;
+}
+
+std::string contentHashOf(const RenderJob& job) {
+  const std::string env = job.settings.getString("env");
+  return sceneContentHash(job.scene.path, job.scene.allowAnyPath,
+                          env.empty() ? std::vector<std::string>{}
+                                      : std::vector<std::string>{env});
+}
+
+uint64_t defaultMaxMemoryBytes() {
+  FILE* f = std::fopen("/proc/meminfo", "r");
+  if (!f) return 0;
+  unsigned long long kB = 0;
+  char line[256];
+  while (std::fgets(line, sizeof line, f))
+    if (std::sscanf(line, "MemTotal: %llu kB", &kB) == 1) break;
+  std::fclose(f);
+  return uint64_t(double(kB) / 1024.0 * 0.8 * 1048576.0);  // 80%, as --help says
+}
+
+RenderJobResult runRenderJob(const RenderJob& job, const RenderJobEvents& events,
+                             const GltfDocument* document) {
+  checkJobOutputs(job);
+  int placedCamera = -1;
+  const PreparedScene scene = prepareJobScene(job, events, document, placedCamera);
+  enterPhase(events, "rendering");
+  const auto integrator = scene.integrator(job.settings);
+  const JobPlan plan = planOf(job, scene, *integrator);
+  const JobWriter writer(job, outputOptionsOf(job, scene, plan.region),
+                         jobSignatureOf(job, scene, placedCamera), plan.range,
+                         integrator->samplesPerPixel());
+
+  RenderJobResult result;
+  result.width = scene.width(), result.height = scene.height();
+  Film film(plan.region.width(), plan.region.height());
+  result.pixels = size_t(film.width()) * film.height();
+  RenderState state;
+  double previousSeconds = 0;
+  if (job.part.resume &&
+      !resume(job, writer, scene, plan, film, state, previousSeconds, events)) {
+    result.outcome = RenderJobResult::Outcome::kAlreadyFinished;
+    return result;
+  }
+  if (events.started) events.started();
+  RenderOptions options = renderOptionsOf(job, plan, events);
+  const auto started = Clock::now();
+  if (job.part.checkpointSeconds > 0)
+    addCheckpoints(options, job, writer, previousSeconds, started, events);
+  result.stats = renderImage(*integrator, film, state, options);
+  const bool complete = !result.stats.interrupted;
+  if (events.finished) events.finished(complete);
+
+  enterPhase(events, "writing images");
+  writer.write(film, state, previousSeconds + result.stats.seconds, job.outputs.paths, true,
+               events);
+  if (!job.outputs.aaHeatmap.empty() && complete)
+    writeImage(samplesHeatmap(film), job.outputs.aaHeatmap);
+  result.outcome = complete ? RenderJobResult::Outcome::kComplete
+                            : RenderJobResult::Outcome::kInterrupted;
+  return result;
+}
+
+}  // namespace tray

@@ -1,0 +1,114 @@
+#pragma once
+// A render owned by the library: what to render (RenderJob, a plain description) and the one
+// route every render of a file takes (runRenderJob): scene -> default lighting -> memory check
+// -> accelerator -> integrator -> film -> outputs, with checkpoints, metadata and progress.
+// tray-render parses its options into a RenderJob and calls runRenderJob.
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/render_options.h"
+#include "io/gltf_loader.h"
+#include "render/renderer.h"
+
+namespace tray {
+
+/// The file to render and how to read it.
+struct JobScene {
+  std::string path;
+  std::optional<int> index;  ///< the glTF scene; none: the file's default
+  bool allowAnyPath = false;
+  bool ignoreRequiredExtensions = false;
+  /// sceneContentHash of the file and the --env map, when known (--frames hashes it once).
+  std::optional<std::string> contentHash;
+  uint64_t maxMemoryBytes = 0;  ///< refuse a scene that needs more (0: no limit)
+  double textureMemoryMB = 0;   ///< the texture tile budget (0: TRay's default)
+};
+
+/// What the render writes, and in which format.
+struct JobOutputs {
+  std::vector<std::string> paths{"out.exr"};
+  bool floatOutput = false;  ///< 32-bit EXR channels instead of half
+  std::string colorspace;    ///< empty: the config's linear Rec.709
+  std::string display, view;
+  std::string aovs;  ///< --aov's list, comma separated
+  int cryptomatteRanks = 6;
+  std::string aaHeatmap;  ///< an image of the samples per pixel; empty: none
+};
+
+/// Farm parts and checkpoints (docs/farm.md), in the command line's spelling.
+struct JobPart {
+  std::string region;       ///< "x0,y0,x1,y1"; empty: the whole image
+  std::string sampleRange;  ///< "a,b"; empty: every sample
+  double checkpointSeconds = 0;  ///< write a checkpoint this often (0: never)
+  bool resume = false;           ///< go on from the checkpoint in the first .exr output
+};
+
+/// Everything that decides one render of one file.
+struct RenderJob {
+  JobScene scene;
+  std::string camera;      ///< a glTF camera index or a node/camera name; empty: the default
+  std::string resolution;  ///< "WxH"; empty: 640 wide, the height from the camera's aspect
+  std::string accelerator = "embree";
+  int threads = 0;  ///< 0: every core
+  RenderSettings settings;  ///< the declared options: integrator, spp, env, lens, time ...
+  JobOutputs outputs;
+  JobPart part;
+};
+
+/// What the job tells its caller while it runs. Every member may be left empty.
+struct RenderJobEvents {
+  /// A warning (one line, without "warning: "); empty: printed on stderr.
+  std::function<void(const std::string&)> warning;
+  /// What the job is doing now ("loading the scene", "rendering", ...): an out-of-memory
+  /// message can name it.
+  std::function<void(const char*)> phase;
+  /// The film is ready (resumed, when resuming): the first tile starts now.
+  std::function<void()> started;
+  /// The fraction of tiles done, after each tile (serialised).
+  std::function<void(double)> progress;
+  /// Rendering ended (complete: every pixel done), before the outputs are written.
+  std::function<void(bool)> finished;
+  /// When it becomes true (a signal handler), the render stops after the pixels under way and
+  /// writes what it has.
+  const std::atomic<bool>* stop = nullptr;
+};
+
+struct RenderJobResult {
+  enum class Outcome {
+    kComplete,         ///< every pixel rendered and written
+    kInterrupted,      ///< stopped: the pixels done are written, with the state to resume
+    kAlreadyFinished,  ///< --resume found the render finished: nothing done
+  };
+  Outcome outcome = Outcome::kComplete;
+  RenderStats stats;
+  int width = 0, height = 0;  ///< the whole image's
+  size_t pixels = 0;          ///< the part's (region's)
+};
+
+/// Renders `job` and writes its outputs. `document`, when given (--frames), is the file parsed
+/// once: the scene is converted from it at the job's time instead of reading the file again.
+/// Throws tray::Error with a message for the user; output mistakes are found before the scene
+/// is read, and a render stopped or failed after its first pixel keeps what it wrote.
+RenderJobResult runRenderJob(const RenderJob& job, const RenderJobEvents& events = {},
+                             const GltfDocument* document = nullptr);
+
+/// Throws tray::Error for output mistakes (format, folder, colorspace, display/view, $OCIO,
+/// checkpoints without an EXR): runRenderJob checks them before any work, --frames before it
+/// parses the file.
+void checkJobOutputs(const RenderJob& job);
+
+/// How the job's scene is read (time, shutter, motion vectors, memory limits).
+LoadOptions loadOptionsOf(const RenderJob& job);
+
+/// The job's content hash: the scene and every file it names, and the --env map, whose pixels
+/// are not in the option's value (its path).
+std::string contentHashOf(const RenderJob& job);
+
+/// --max-memory's default: 80% of the machine's memory (0, no limit, when it cannot tell).
+uint64_t defaultMaxMemoryBytes();
+
+}  // namespace tray

@@ -1,0 +1,288 @@
+#include "render/renderer.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <chrono>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <vector>
+
+#include "core/aov.h"
+#include "core/cryptomatte.h"
+#include "core/error.h"
+
+namespace tray {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+void writeBeauty(Film& film, int x, int y, const PixelSums& s) {
+  const Color c = s.radiance();
+  float* px = film.pixel(Film::kBeauty, x, y);
+  px[0] = c.x, px[1] = c.y, px[2] = c.z, px[3] = s.coverage();
+}
+
+/// A copy of the pixels published as done (acquire: their film and sums writes are visible);
+/// the others read as zero, so the copy never races with workers writing them.
+void snapshot(const Film& film, const RenderState& state, const std::atomic<uint8_t>* done,
+              Film& outFilm, RenderState& outState) {
+  outFilm = Film(film.width(), film.height());
+  for (const FilmLayer& l : film.layers()) outFilm.addLayer(l.name, l.channels);
+  for (const auto& [key, value] : film.metadata()) outFilm.setMetadata(key, value);
+  outState = RenderState::empty(state.sums.size());
+  for (size_t p = 0; p < state.sums.size(); ++p) {
+    const int x = int(p % film.width()), y = int(p / film.width());
+    const bool finished = done[p].load(std::memory_order_acquire);
+    for (size_t l = 0; l < film.layers().size(); ++l) {
+      float* out = outFilm.pixel(int(l), x, y);
+      const size_t nc = film.layers()[l].channels.size();
+      if (finished)
+        for (size_t c = 0; c < nc; ++c) out[c] = film.pixel(int(l), x, y)[c];
+    }
+    if (finished) outState.sums[p] = state.sums[p], outState.done[p] = 1;
+  }
+}
+
+/// The samples of each pixel to render: none when the integrator places its own (adaptive),
+/// else options.samples or all of them. Throws for a range the integrator does not have.
+std::optional<SampleRange> samplesOf(const Integrator& integrator, const RenderOptions& options) {
+  const std::optional<int> spp = integrator.samplesPerPixel();
+  if (!options.samples) return spp ? std::optional(SampleRange{0, *spp}) : std::nullopt;
+  const SampleRange r = *options.samples;
+  if (spp && r.begin == 0 && r.end == *spp) return r;  // all of them
+  if (!spp || r.begin < 0 || r.begin >= r.end || r.end > *spp)
+    throw Error("sample range outside the integrator's samples", Error::Kind::kRender);
+  return r;
+}
+
+/// Throws unless the film (a region at options.x0, y0) lies inside the integrator's image.
+void checkRegion(const Integrator& integrator, const Film& film, const RenderOptions& options) {
+  const RenderContext& ctx = integrator.context();
+  if (options.x0 < 0 || options.y0 < 0 || options.x0 + film.width() > ctx.width ||
+      options.y0 + film.height() > ctx.height)
+    throw Error("the region lies outside the image", Error::Kind::kRender);
+}
+
+/// Throws unless the state matches the film and the integrator makes the AOVs asked for.
+void checkStateAndAovs(const Integrator& integrator, const Film& film, const RenderState& state,
+                       const RenderOptions& options) {
+  const size_t pixels = size_t(film.width()) * film.height();
+  if (state.sums.size() != pixels || state.done.size() != pixels)
+    throw Error("the render state does not match the film", Error::Kind::kRender);
+  if (AovSet::wantsLightPaths(options.aovs) && !integrator.splitsLightPaths())
+    throw Error(
+        "--aov: the light-path layers (lightpaths, diffuse_direct, ...) need "
+        "--integrator path or path-wavefront");
+}
+
+/// Motion vectors, only when the motion layer is asked for.
+std::optional<MotionVectors> motionVectorsFor(const RenderContext& ctx,
+                                              const std::vector<std::string>& aovs) {
+  std::optional<MotionVectors> vectors;
+  if (std::count(aovs.begin(), aovs.end(), "motion"))
+    vectors.emplace(ctx.scene, ctx.camera.desc(), ctx.width, ctx.height);
+  return vectors;
+}
+
+/// One renderImage call: the film, its state and the tiles the worker threads share.
+class TileRenderer {
+ public:
+  /// `samples`: samplesOf(integrator, options).
+  TileRenderer(const Integrator& integrator, Film& film, RenderState& state,
+               const RenderOptions& options, std::optional<SampleRange> samples)
+      : integrator_(integrator),
+        film_(film),
+        state_(state),
+        options_(options),
+        samples_(samples),
+        vectors_(motionVectorsFor(integrator.context(), options.aovs)),
+        aovs_(film, options.aovs, vectors_ ? &*vectors_ : nullptr),
+        crypto_(film, integrator.context().scene, options.aovs, options.cryptomatteRanks),
+        batch_(size_t(std::max(1, integrator.pixelBatch()))),
+        tileSize_(std::max(1, options.tileSize)),
+        tilesX_((film.width() + tileSize_ - 1) / tileSize_),
+        tileCount_(tilesX_ * ((film.height() + tileSize_ - 1) / tileSize_)),
+        done_(new std::atomic<uint8_t>[state.done.size()]) {
+    for (size_t p = 0; p < state.done.size(); ++p) {  // resumed pixels: their beauty again
+      done_[p].store(state.done[p], std::memory_order_relaxed);
+      if (state.done[p])
+        writeBeauty(film, int(p % film.width()), int(p / film.width()), state.sums[p]);
+    }
+  }
+
+  RenderStats run() {
+    start_ = lastCheckpoint_ = Clock::now();
+    tbb::task_arena arena(options_.threads > 0 ? options_.threads : tbb::task_arena::automatic);
+    arena.execute([&] {
+      tbb::parallel_for(tbb::blocked_range<int>(0, tileCount_, 1),
+                        [&](const tbb::blocked_range<int>& r) {
+                          for (int t = r.begin(); t != r.end(); ++t) renderTile(t);
+                        });
+    });
+    const size_t pixels = state_.done.size();
+    for (size_t p = 0; p < pixels; ++p) state_.done[p] = done_[p].load(std::memory_order_relaxed);
+    result_.pixelsDone = state_.pixelsDone();
+    result_.interrupted = result_.pixelsDone < pixels;
+    result_.seconds = std::chrono::duration<double>(Clock::now() - start_).count();
+    return result_;
+  }
+
+ private:
+  /// What one tile's worker reuses from pixel to pixel: per pixel of a batch, Cryptomatte's
+  /// ids (only filled for Cryptomatte) and the AOVs averaged over all samples (only where
+  /// accumulate() places the samples).
+  struct TileWork {
+    RayStats rays;
+    std::vector<IdCoverage> coverage;
+    std::vector<AovSums> aovSums;
+    std::vector<PixelTask> tasks;
+  };
+
+  bool stopped() const { return options_.stop && options_.stop->load(std::memory_order_relaxed); }
+
+  /// Writes a rendered pixel (film coordinates) and publishes it as done. `averaged` (when not
+  /// null) holds the AOVs averaged over all samples.
+  void finishPixel(int x, int y, const PixelSums& sums, const PixelValue& v, const IdCoverage* ids,
+                   const AovSums* averaged) {
+    const size_t p = size_t(y) * film_.width() + x;
+    state_.sums[p] = sums;
+    writeBeauty(film_, x, y, sums);
+    aovs_.write(film_, x, y, v, averaged);
+    if (ids) crypto_.write(film_, x, y, *ids);
+    done_[p].store(1, std::memory_order_release);
+  }
+
+  /// The integrator places its own samples: its mean, weight 1 (exact in double).
+  void renderOwnSamples(int x, int y, TileWork& work) {
+    IdCoverage& coverage = work.coverage[0];
+    coverage.clear();
+    IdCoverage* ids = crypto_.active() ? &coverage : nullptr;
+    PixelValue v = integrator_.renderPixel(x + options_.x0, y + options_.y0, work.rays, ids);
+    PixelSums sums;
+    sums.rgb[0] = v.radiance.x, sums.rgb[1] = v.radiance.y, sums.rgb[2] = v.radiance.z;
+    sums.alpha = v.alpha, sums.weight = 1;
+    finishPixel(x, y, sums, v, ids, nullptr);
+  }
+
+  /// Adds pixel (x, y) to the batch, rendering the batch once it is full. Tasks hold image
+  /// coordinates, so pixels keep their samples in region renders.
+  void queuePixel(int x, int y, TileWork& work) {
+    PixelTask& t = work.tasks.emplace_back();
+    t.x = x + options_.x0, t.y = y + options_.y0;
+    const size_t slot = work.tasks.size() - 1;
+    IdCoverage& ids = work.coverage[slot];
+    ids.clear();
+    t.coverage = crypto_.active() ? &ids : nullptr;
+    if (!work.aovSums.empty()) {
+      work.aovSums[slot].clear();
+      t.aovSums = &work.aovSums[slot];
+    }
+    if (work.tasks.size() == batch_) renderBatch(work);
+  }
+
+  /// The batch's samples, through the integrator's accumulatePixels (a wavefront traces them
+  /// together).
+  void renderBatch(TileWork& work) {
+    if (work.tasks.empty()) return;
+    integrator_.accumulatePixels(work.tasks, samples_->begin, samples_->end, work.rays,
+                                 options_.stop);
+    for (const PixelTask& t : work.tasks) {
+      if (!t.finished) continue;  // stopped before its last sample: left to a resume
+      PixelValue v;
+      v.primary = t.first;
+      v.samples = t.samples;
+      finishPixel(t.x - options_.x0, t.y - options_.y0, t.sums, v, t.coverage, t.aovSums);
+    }
+    work.tasks.clear();
+  }
+
+  void renderTile(int tile) {
+    TileWork work;
+    work.coverage.resize(samples_ ? batch_ : 1);
+    work.aovSums.resize(samples_ && aovs_.averaged() ? batch_ : 0);
+    for (AovSums& a : work.aovSums) aovs_.configure(a);
+    const int x0 = (tile % tilesX_) * tileSize_, y0 = (tile / tilesX_) * tileSize_;
+    const int x1 = std::min(x0 + tileSize_, film_.width());
+    const int y1 = std::min(y0 + tileSize_, film_.height());
+    for (int y = y0; y < y1; ++y)
+      for (int x = x0; x < x1; ++x) {
+        if (stopped()) break;
+        if (done_[size_t(y) * film_.width() + x].load(std::memory_order_relaxed)) continue;
+        if (samples_)
+          queuePixel(x, y, work);
+        else
+          renderOwnSamples(x, y, work);
+      }
+    if (!stopped()) renderBatch(work);
+    if (tileFinished(work.rays)) writeCheckpoint();
+  }
+
+  /// Counts a finished tile, reports progress and returns whether a checkpoint is due (and now
+  /// this worker's to write).
+  bool tileFinished(const RayStats& rays) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    result_.rays += rays;
+    ++tilesDone_;
+    if (options_.onProgress) options_.onProgress(double(tilesDone_) / tileCount_);
+    const auto now = Clock::now();
+    if (!options_.onCheckpoint || options_.checkpointSeconds <= 0 || checkpointing_ ||
+        std::chrono::duration<double>(now - lastCheckpoint_).count() <
+            options_.checkpointSeconds ||
+        tilesDone_ >= tileCount_ || stopped())
+      return false;
+    checkpointing_ = true;
+    lastCheckpoint_ = now;
+    return true;
+  }
+
+  /// Outside the lock: other tiles go on while the file is written.
+  void writeCheckpoint() {
+    Film copy(1, 1);
+    RenderState copyState;
+    snapshot(film_, state_, done_.get(), copy, copyState);
+    options_.onCheckpoint(copy, copyState);
+    std::lock_guard<std::mutex> lock(mutex_);
+    checkpointing_ = false;
+  }
+
+  const Integrator& integrator_;
+  Film& film_;
+  RenderState& state_;
+  const RenderOptions& options_;
+  const std::optional<SampleRange> samples_;  ///< none: the integrator places its own
+  const std::optional<MotionVectors> vectors_;
+  const AovSet aovs_;
+  const Cryptomatte crypto_;
+  const size_t batch_;  ///< pixels given to accumulatePixels at once (its pixelBatch())
+  const int tileSize_, tilesX_, tileCount_;
+  std::unique_ptr<std::atomic<uint8_t>[]> done_;  ///< published pixels (acquire / release)
+
+  std::mutex mutex_;  ///< guards what follows
+  RenderStats result_;
+  int tilesDone_ = 0;
+  bool checkpointing_ = false;
+  Clock::time_point start_, lastCheckpoint_;
+};
+
+}  // namespace
+
+RenderStats renderImage(const Integrator& integrator, Film& film, const RenderOptions& options) {
+  RenderState state;
+  return renderImage(integrator, film, state, options);
+}
+
+RenderStats renderImage(const Integrator& integrator, Film& film, RenderState& state,
+                        const RenderOptions& options) {
+  checkRegion(integrator, film, options);
+  const std::optional<SampleRange> samples = samplesOf(integrator, options);
+  if (state.done.empty()) state = RenderState::empty(size_t(film.width()) * film.height());
+  checkStateAndAovs(integrator, film, state, options);
+  TileRenderer tiles(integrator, film, state, options, samples);
+  return tiles.run();
+}
+
+}  // namespace tray
