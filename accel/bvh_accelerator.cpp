@@ -14,7 +14,7 @@
 #include "accel/bvh_batch.h"
 #include "accel/bvh_mesh.h"
 #include "accel/bvh_object_ray.h"
-#include "core/alpha.h"
+#include "textures/alpha.h"
 #include "core/motion.h"
 #include "core/scene.h"
 
@@ -290,7 +290,7 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
     return scene_.intersectShape(i, ray, h);
   }
 
-  /// The any-hit test of core/alpha.h for one mesh primitive, on the world-space ray (the hash
+  /// The any-hit test of textures/alpha.h for one mesh primitive, on the world-space ray (the hash
   /// of stochastic transparency reads it, as Embree's filter does).
   struct AlphaQuery {
     const Scene& scene;

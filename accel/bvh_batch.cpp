@@ -5,7 +5,7 @@
 
 #include "accel/bvh4_packet.h"
 #include "accel/bvh_object_ray.h"
-#include "core/alpha.h"
+#include "textures/alpha.h"
 
 namespace tray {
 namespace {

@@ -15,7 +15,7 @@
 
 namespace tray {
 
-/// An any-hit test on a mesh's triangles (alpha cut-outs, core/alpha.h): false = the ray passes
+/// An any-hit test on a mesh's triangles (alpha cut-outs, textures/alpha.h): false = the ray passes
 /// through triangle `triangle` at barycentrics (b1, b2). A function pointer and its data rather
 /// than a template, so that opaque meshes keep their own, unfiltered loops.
 struct TriangleFilter {

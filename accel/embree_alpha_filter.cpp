@@ -1,6 +1,6 @@
 #include "accel/embree_alpha_filter.h"
 
-#include "core/alpha.h"
+#include "textures/alpha.h"
 
 namespace tray {
 

@@ -1,5 +1,5 @@
 #pragma once
-// Alpha-tested triangles in Embree: filter callbacks (the any-hit test of core/alpha.h) on the
+// Alpha-tested triangles in Embree: filter callbacks (the any-hit test of textures/alpha.h) on the
 // triangle geometry of meshes whose material is not OPAQUE. Opaque meshes get no callback.
 #include <embree3/rtcore.h>
 

@@ -1,4 +1,4 @@
-// Highway's dynamic dispatch, as core/surface_batch.cpp: the transposition of eight of TRay's
+// Highway's dynamic dispatch, as integrators/surface_batch.cpp: the transposition of eight of TRay's
 // rays (array of structures) into Embree's 8-ray packet (structure of arrays), a field of eight
 // rays per store instead of a store per field and ray: by an 8 x 8 transpose in registers on
 // AVX2 and AVX-512, by gathers on the 128-bit targets. Copies only: the same bits as toLane in

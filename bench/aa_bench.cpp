@@ -13,7 +13,7 @@
 #include "render/prepared_scene.h"
 #include "render/renderer.h"
 #include "integrators/registry.h"
-#include "io/gltf_loader.h"
+#include "gltf/gltf_loader.h"
 
 using namespace tray;
 

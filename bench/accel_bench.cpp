@@ -28,7 +28,7 @@
 #include "core/camera.h"
 #include "core/sampling.h"
 #include "core/scene.h"
-#include "io/gltf_loader.h"
+#include "gltf/gltf_loader.h"
 
 using namespace tray;
 using Clock = std::chrono::steady_clock;

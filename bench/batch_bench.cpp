@@ -27,7 +27,7 @@
 #include "bench/cpu_time.h"
 #include "core/error.h"
 #include "integrators/path_wavefront.h"
-#include "io/gltf_loader.h"
+#include "gltf/gltf_loader.h"
 
 using namespace tray;
 

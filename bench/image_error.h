@@ -2,7 +2,7 @@
 // Error of a render against a reference image: the figures the speed/accuracy charts plot.
 #include <string>
 
-#include "core/film.h"
+#include "film/film.h"
 
 namespace tray {
 

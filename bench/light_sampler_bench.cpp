@@ -13,7 +13,7 @@
 
 #include "bench/cpu_time.h"
 #include "bench/image_error.h"
-#include "io/gltf_loader.h"
+#include "gltf/gltf_loader.h"
 #include "lights/bvh_light_sampler.h"
 #include "lights/light_set.h"
 #include "tests/light_scenes.h"

@@ -28,7 +28,7 @@
 #include "core/sampling.h"
 #include "integrators/path.h"
 #include "integrators/registry.h"
-#include "io/gltf_loader.h"
+#include "gltf/gltf_loader.h"
 
 using namespace tray;
 

@@ -1,4 +1,4 @@
-// surface_bench: the wavefront's surface stage (core/surface_batch.h, SIMD over a queue of
+// surface_bench: the wavefront's surface stage (integrators/surface_batch.h, SIMD over a queue of
 // hits) against Scene::surface called hit by hit, on one thread, in Mhits per CPU-second, on
 // the hits of camera rays (coherent: few primitives per wave) and of bounce rays (incoherent)
 // from bench/bench_rays.h, in waves of the wavefront's size. The SIMD stage runs with the
@@ -20,9 +20,9 @@
 #include "bench/bench_rays.h"
 #include "bench/cpu_time.h"
 #include "core/error.h"
-#include "core/surface_batch.h"
+#include "integrators/surface_batch.h"
 #include "integrators/path_wavefront.h"
-#include "io/gltf_loader.h"
+#include "gltf/gltf_loader.h"
 
 using namespace tray;
 

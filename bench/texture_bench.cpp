@@ -21,10 +21,10 @@
 #include "render/render_setup.h"
 #include "render/prepared_scene.h"
 #include "render/renderer.h"
-#include "core/texture_pyramid.h"
-#include "core/texture_sampler.h"
+#include "textures/texture_pyramid.h"
+#include "textures/texture_sampler.h"
 #include "integrators/registry.h"
-#include "io/gltf_loader.h"
+#include "gltf/gltf_loader.h"
 
 using namespace tray;
 

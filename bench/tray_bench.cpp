@@ -18,7 +18,7 @@
 #include "render/prepared_scene.h"
 #include "render/renderer.h"
 #include "integrators/registry.h"
-#include "io/gltf_loader.h"
+#include "gltf/gltf_loader.h"
 #include "io/image_output.h"
 
 namespace fs = std::filesystem;

@@ -3,7 +3,7 @@
 #include "accel/registry.h"
 #include "cli/option_cli.h"
 #include "cli/options_doc.h"
-#include "core/aov.h"
+#include "film/aov.h"
 
 namespace {
 

@@ -6,7 +6,7 @@
 #include "render/job_diff.h"
 #include "core/error.h"
 #include "core/light_paths.h"
-#include "core/render_state.h"
+#include "film/render_state.h"
 
 namespace tray {
 namespace {
@@ -28,7 +28,7 @@ Layout layout(const ExrHeader& h) {
   return l;
 }
 
-/// Layers the renderer averages over every sample (core/aov.h): sample-range parts merge into
+/// Layers the renderer averages over every sample (film/aov.h): sample-range parts merge into
 /// their mean weighted by each part's filter-weight sum (depth: by its hit weight, the alpha
 /// sum), as one machine would have averaged them (to the parts' float or half precision).
 bool averagedLayer(const std::string& name) {

@@ -152,7 +152,7 @@ class Integrator {
   /// Samples in the pixel sampler's pattern (accumulate's upper bound for `end`).
   int sampleCount() const { return pixelSampler_.count(); }
   /// What sampler() and cameraRay() draw from, for batch kernels that repeat them
-  /// (core/camera_batch.h): the pixel sampler, seed, sequence, and whether rays draw a time.
+  /// (integrators/camera_batch.h): the pixel sampler, seed, sequence, and whether rays draw a time.
   const PixelSampler& pixelSampler() const { return pixelSampler_; }
   uint64_t seed() const { return seed_; }
   Sampler::Sequence sequence() const { return sequence_; }

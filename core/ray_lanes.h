@@ -19,7 +19,9 @@
 #ifdef TRAY_LANES_BODY
 #undef TRAY_LANES_BODY
 #include "core/lane_ops.h"
-#include "core/lanes_begin.h"
+
+// After every include: opens the namespace of this mode (scalar or SIMD).
+#include "core/lanes_begin.h"  // IWYU pragma: keep
 
 /// One coordinate p of a surface point moved off the surface along n's coordinate: a few ULPs
 /// (256 n integer steps of p's float) away from 0, a fixed 2^-16 n near 0, where ULPs vanish

@@ -72,20 +72,20 @@ class Sampler {
   }
   uint32_t dimension() const { return dimension_; }
   /// A value's hash input is key + kDimensionStep * its dimension (mod 2^64); the SIMD kernels
-  /// (core/sampler_simd-inl.h) repeat it.
+  /// (integrators/sampler_simd-inl.h) repeat it.
   static constexpr uint64_t kDimensionStep = 0xbf58476d1ce4e5b9ull;
   Sequence sequence() const { return sequence_; }
   uint32_t reversedIndex() const { return reversedIndex_; }
   /// key + step * dimension (mod 2^64): the next draws' hashes are of drawBase() + step * j,
-  /// j = 1, 2, ... (core/sampler_batch.h makes them ahead in SIMD).
+  /// j = 1, 2, ... (integrators/sampler_batch.h makes them ahead in SIMD).
   uint64_t drawBase() const { return key_ + kDimensionStep * dimension_; }
-  /// Advances past a next3D() whose value was drawn ahead (core/sampler_batch.h): both
+  /// Advances past a next3D() whose value was drawn ahead (integrators/sampler_batch.h): both
   /// sequences take three dimensions per 3D draw.
   void skip3D() { dimension_ += 3; }
   /// The seed's own hash, the first step of every sample's key (the constructor's, and the
-  /// batch kernel's in core/camera_batch.cpp, which computes it once per render).
+  /// batch kernel's in integrators/camera_batch.cpp, which computes it once per render).
   static uint64_t seedKey(uint64_t seed) { return mix(seed ^ 0x9e3779b97f4a7c15ull); }
-  /// The sampler whose state a batch kernel computed (core/camera_batch.cpp repeats the
+  /// The sampler whose state a batch kernel computed (integrators/camera_batch.cpp repeats the
   /// constructor's and next2D's hashes over many samples at once).
   static Sampler fromState(uint64_t key, uint32_t reversedIndex, uint32_t dimension,
                            Sequence sequence) {

@@ -20,7 +20,9 @@
 #ifdef TRAY_LANES_BODY
 #undef TRAY_LANES_BODY
 #include "core/lane_ops.h"
-#include "core/lanes_begin.h"
+
+// After every include: opens the namespace of this mode (scalar or SIMD).
+#include "core/lanes_begin.h"  // IWYU pragma: keep
 
 /// std::clamp(v, lo, hi) as libstdc++ writes it, std::min(std::max(v, lo), hi): a NaN v stays
 /// NaN.

@@ -1,6 +1,6 @@
 #pragma once
-// Sizes and the target check shared by the SIMD kernels (core/camera_batch.cpp,
-// core/surface_batch.cpp, core/sampler_batch.cpp): Highway picks the vector width at run time, so
+// Sizes and the target check shared by the SIMD kernels (integrators/camera_batch.cpp,
+// integrators/surface_batch.cpp, integrators/sampler_batch.cpp): Highway picks the vector width at run time, so
 // buffers are sized for the widest target.
 #include <cstddef>
 

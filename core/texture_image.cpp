@@ -17,7 +17,7 @@ namespace {
 
 /// Codes of kChannels (grey replicated) through `table`: n texels from texel index `first` on,
 /// as RGB floats. Specialised per channel count and code width: MIP tiles read level 0 this
-/// way (core/texture_pyramid.cpp), and a loop that asks both per texel costs them twice.
+/// way (textures/texture_pyramid.cpp), and a loop that asks both per texel costs them twice.
 template <bool kWide, int kChannels>
 void decodeCodes(const unsigned char* bytes, const float* table, size_t first, int n, float* out) {
   constexpr size_t g = kChannels >= 3 ? 1 : 0;

@@ -3,7 +3,7 @@
 // images built in code) or, as the glTF loader stores it, the file's own 8- or 16-bit codes
 // with a table from code to linear float. The codes are shared by the sRGB and the linear
 // view of one image (decoded once); the texture filter reads them texel by texel through the
-// table (core/texture_pyramid.h), OIIO's paged fallback as float rows made on demand, so an
+// table (textures/texture_pyramid.h), OIIO's paged fallback as float rows made on demand, so an
 // 8192 x 8192 RGB PNG costs 192 MiB here instead of 768 MiB of floats per view
 // (docs/textures.md, "Memory").
 #include <cstdint>

@@ -5,7 +5,7 @@
 #include <cstdint>
 
 #include "core/error.h"
-#include "io/gltf_loader.h"
+#include "gltf/gltf_loader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {

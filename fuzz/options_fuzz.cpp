@@ -19,7 +19,7 @@
 #include "render/option_metadata.h"
 #include "core/error.h"
 #include "integrators/registry.h"
-#include "io/gltf_loader.h"
+#include "gltf/gltf_loader.h"
 
 namespace {
 

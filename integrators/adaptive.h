@@ -3,7 +3,7 @@
 // corners, subdivide where they differ, recurse to a maximum depth.
 #include <memory>
 
-#include "core/film.h"
+#include "film/film.h"
 #include "core/integrator.h"
 
 namespace tray {

@@ -1,4 +1,4 @@
-// Highway's dynamic dispatch, as core/surface_batch.cpp: compiled once per x86 target, with
+// Highway's dynamic dispatch, as integrators/surface_batch.cpp: compiled once per x86 target, with
 // -ffp-contract=off (as the whole project). Each lane runs PathEstimator::step's second half
 // for a lone Lambert lobe and a triangle light or the constant environment, from the same text
 // the scalar code runs (the *_lanes.h files, included by integrators/shading_simd-inl.h), so

@@ -7,7 +7,7 @@
 #include <new>
 
 #include "core/front_face.h"
-#include "core/shading.h"
+#include "textures/shading.h"
 #include "core/unbuilt.h"
 #include "integrators/path_vertex_lanes.h"
 #include "materials/bsdf.h"

@@ -8,7 +8,7 @@
 
 #include "core/integrator.h"
 #include "core/light_paths.h"
-#include "core/shading.h"
+#include "textures/shading.h"
 #include "integrators/glossy_batch.h"
 #include "integrators/matte_batch.h"
 #include "lights/light_set.h"
@@ -82,7 +82,7 @@ struct ShadowQuery {
   LobeSplit toLight;
 };
 
-/// A vertex's two 3D draws made ahead in SIMD (core/sampler_batch.h), or none (null): the light
+/// A vertex's two 3D draws made ahead in SIMD (integrators/sampler_batch.h), or none (null): the light
 /// sample's and then the BSDF sample's come from here in that order, each skipping the sampler
 /// past it; a vertex that draws only one (no light sample) takes `first` for its BSDF sample.
 struct DrawsAhead {
@@ -116,7 +116,7 @@ class PathEstimator {
   /// NEE (sets `shadow` and returns true in `wantsShadow` when a shadow ray must be tested),
   /// BSDF sampling and Russian roulette. Fills `primary` at the first surface if not null.
   /// `surface`: Scene::surface(state.ray, hit) when the caller has it (the wavefront computes
-  /// its queue's in SIMD, core/surface_batch.h); null: computed here. `ahead`: the sampler's
+  /// its queue's in SIMD, integrators/surface_batch.h); null: computed here. `ahead`: the sampler's
   /// next two 3D draws when the caller made them (the same numbers either way). `deferral`: a
   /// vertex with a lone Lambert lobe, or with the metal and plastic mixture (and both draws
   /// made ahead, no light-path split, no absorbing medium) whose light choice is one the

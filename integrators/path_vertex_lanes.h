@@ -19,7 +19,9 @@
 #ifdef TRAY_LANES_BODY
 #undef TRAY_LANES_BODY
 #include "core/lane_ops.h"
-#include "core/lanes_begin.h"
+
+// After every include: opens the namespace of this mode (scalar or SIMD).
+#include "core/lanes_begin.h"  // IWYU pragma: keep
 
 /// A light sample's estimate through the vertex: beta f L w / pdf, with f the BSDF times the
 /// cosine at the receiver, w the MIS weight and pdf the light sample's (choice x solid angle).

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <vector>
 
-#include "core/camera_batch.h"
-#include "core/sampler_batch.h"
+#include "integrators/camera_batch.h"
+#include "integrators/sampler_batch.h"
 #include "core/simd_lanes.h"
-#include "core/surface_batch.h"
+#include "integrators/surface_batch.h"
 #include "integrators/glossy_batch.h"
 #include "integrators/matte_batch.h"
 #include "integrators/path.h"
@@ -20,7 +20,7 @@ namespace {
 /// distance keeps the prefetched lines few, for CPUs with smaller caches).
 constexpr size_t kTexelPrefetchAhead = 32;
 
-/// Camera rays made per call of the SIMD kernel (core/camera_batch.h).
+/// Camera rays made per call of the SIMD kernel (integrators/camera_batch.h).
 constexpr size_t kCameraChunk = 256;
 
 /// The paths of one wave, their ray queues (structure of arrays: one array per field, so the
@@ -194,7 +194,7 @@ void PathWavefrontIntegrator::beginPathsInSimd(Wave& w, std::span<const PixelTas
     task = chunkTask, sample = chunkSample;
     for (size_t k = 0; k < c1 - c0; ++k) {
       const PixelTask& t = tasks[task];
-      // The camera ray straight into the path's state (no Ray temporary: core/camera_batch.h).
+      // The camera ray straight into the path's state (no Ray temporary: integrators/camera_batch.h).
       PathState& st = w.paths.emplace_back();
       cameraBatch_->setRay(w.cameraLanes, k, st.ray);
       st.beginCamera(t.x, t.y, wantsLightPaths(t) ? &w.lightPaths[c0 + k - g0] : nullptr);
@@ -223,7 +223,7 @@ void PathWavefrontIntegrator::bounce(Wave& w, RayStats& stats, bool cameraRays) 
     ctx_.accel.intersectCoherentBatch(w.rays, w.hits, w.found);
   else
     ctx_.accel.intersectBatch(w.rays, w.hits, w.found);
-  // The hits' surfaces in SIMD (core/surface_batch.h).
+  // The hits' surfaces in SIMD (integrators/surface_batch.h).
   const bool surfacesKnown = surfaces_.useful();
   // Texels are prefetched from the surfaces' uvs (docs/textures.md, "Prefetching").
   const bool prefetching = textured_ && surfacesKnown;

@@ -1,7 +1,7 @@
 #include "integrators/whitted.h"
 
-#include "core/alpha.h"
-#include "core/shading.h"
+#include "textures/alpha.h"
+#include "textures/shading.h"
 #include "lights/light_set.h"
 #include "materials/fresnel.h"
 

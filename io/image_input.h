@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "core/film.h"
+#include "film/film.h"
 #include "io/image_output.h"
 
 namespace tray {

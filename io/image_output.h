@@ -4,7 +4,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/film.h"
+#include "film/film.h"
 
 namespace tray {
 

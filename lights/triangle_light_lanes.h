@@ -19,8 +19,10 @@
 #ifdef TRAY_LANES_BODY
 #undef TRAY_LANES_BODY
 #include "core/lane_ops.h"
-#include "core/lanes_begin.h"
 #include "core/sampling_lanes.h"
+
+// After every include: opens the namespace of this mode (scalar or SIMD).
+#include "core/lanes_begin.h"  // IWYU pragma: keep
 
 /// An emissive triangle as sampling reads it: vertex 0, the edges to vertices 1 and 2, the unit
 /// front normal, the area and whether both faces emit.

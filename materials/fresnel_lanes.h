@@ -18,8 +18,10 @@
 #ifdef TRAY_LANES_BODY
 #undef TRAY_LANES_BODY
 #include "core/lane_ops.h"
-#include "core/lanes_begin.h"
 #include "core/sampling_lanes.h"
+
+// After every include: opens the namespace of this mode (scalar or SIMD).
+#include "core/lanes_begin.h"  // IWYU pragma: keep
 
 /// Exact unpolarised Fresnel reflectance of a dielectric interface (Born & Wolf; pbrt-v4
 /// 9.3.2). cosI is the cosine with the normal on the incident side's +z; eta = n_t / n_i for

@@ -20,10 +20,12 @@
 #ifdef TRAY_LANES_BODY
 #undef TRAY_LANES_BODY
 #include "core/lane_ops.h"
-#include "core/lanes_begin.h"
 #include "materials/fresnel_lanes.h"
 #include "materials/ggx_reflection_lanes.h"
 #include "materials/lambert_lanes.h"
+
+// After every include: opens the namespace of this mode (scalar or SIMD).
+#include "core/lanes_begin.h"  // IWYU pragma: keep
 
 /// The mixture at one shading point, as Bsdf::initLobes weighs it: metallic x GGX metal
 /// (Schlick Fresnel, F0 = albedo), (1 - metallic) transmission x glass, the rest plastic: coat

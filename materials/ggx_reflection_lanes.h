@@ -20,8 +20,10 @@
 #ifdef TRAY_LANES_BODY
 #undef TRAY_LANES_BODY
 #include "core/lane_ops.h"
-#include "core/lanes_begin.h"
 #include "materials/microfacet_lanes.h"
+
+// After every include: opens the namespace of this mode (scalar or SIMD).
+#include "core/lanes_begin.h"  // IWYU pragma: keep
 
 /// What eval and pdf share at one (wo, wi), computed once: the half vector, D and Lambda(wo).
 /// They depend on alpha alone, so two lobes of one roughness (a mixture's metal and coat)

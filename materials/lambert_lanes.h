@@ -18,8 +18,10 @@
 #ifdef TRAY_LANES_BODY
 #undef TRAY_LANES_BODY
 #include "core/lane_ops.h"
-#include "core/lanes_begin.h"
 #include "core/sampling_lanes.h"
+
+// After every include: opens the namespace of this mode (scalar or SIMD).
+#include "core/lanes_begin.h"  // IWYU pragma: keep
 
 /// f and pdf at cosines cosO, cosI (with any normal: the lobe reads nothing else).
 template <class V3, class F>

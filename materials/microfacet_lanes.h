@@ -21,8 +21,10 @@
 #ifdef TRAY_LANES_BODY
 #undef TRAY_LANES_BODY
 #include "core/lane_ops.h"
-#include "core/lanes_begin.h"
 #include "core/sampling_lanes.h"
+
+// After every include: opens the namespace of this mode (scalar or SIMD).
+#include "core/lanes_begin.h"  // IWYU pragma: keep
 
 /// GGX's alpha is kept at least this (glTF's roughness 0.01): below it D overflows float.
 inline constexpr float kGgxMinAlpha = 1e-4f;

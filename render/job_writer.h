@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "core/film.h"
-#include "core/render_state.h"
+#include "film/film.h"
+#include "film/render_state.h"
 #include "io/image_output.h"
 #include "render/farm.h"
 #include "render/prepared_scene.h"

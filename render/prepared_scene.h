@@ -7,9 +7,9 @@
 
 #include "core/accelerator.h"
 #include "core/camera.h"
-#include "core/film.h"
+#include "film/film.h"
 #include "core/integrator.h"
-#include "core/render_state.h"
+#include "film/render_state.h"
 #include "core/scene.h"
 #include "render/render_setup.h"
 #include "render/renderer.h"

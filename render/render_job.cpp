@@ -6,12 +6,12 @@
 #include <filesystem>
 
 #include "core/animation_time.h"
-#include "core/aov.h"
-#include "core/cryptomatte.h"
+#include "film/aov.h"
+#include "film/cryptomatte.h"
 #include "core/error.h"
 #include "integrators/adaptive.h"
 #include "io/image_output.h"
-#include "io/scene_hash.h"
+#include "gltf/scene_hash.h"
 #include "render/farm.h"
 #include "render/job_scene.h"
 #include "render/job_writer.h"

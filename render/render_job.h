@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "core/render_options.h"
-#include "io/gltf_loader.h"
+#include "gltf/gltf_loader.h"
 #include "render/renderer.h"
 
 namespace tray {

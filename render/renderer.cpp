@@ -11,8 +11,8 @@
 #include <optional>
 #include <vector>
 
-#include "core/aov.h"
-#include "core/cryptomatte.h"
+#include "film/aov.h"
+#include "film/cryptomatte.h"
 #include "core/error.h"
 
 namespace tray {

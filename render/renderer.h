@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "core/film.h"
+#include "film/film.h"
 #include "core/integrator.h"
-#include "core/render_state.h"
+#include "film/render_state.h"
 #include "render/image_part.h"
 
 namespace tray {

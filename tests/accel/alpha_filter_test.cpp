@@ -1,9 +1,9 @@
 // Alpha cut-outs and stochastic transparency in the accelerators: the any-hit test of
-// core/alpha.h as Embree's filter callbacks and the BVH's triangle loop apply it.
+// textures/alpha.h as Embree's filter callbacks and the BVH's triangle loop apply it.
 #include <gtest/gtest.h>
 
 #include "accel/registry.h"
-#include "core/alpha.h"
+#include "textures/alpha.h"
 #include "tests/scene_builder.h"
 
 namespace tray {

@@ -11,7 +11,7 @@
 #include "render/render_setup.h"
 #include "render/renderer.h"
 #include "integrators/registry.h"
-#include "io/gltf_loader.h"
+#include "gltf/gltf_loader.h"
 #include "tests/scene_builder.h"
 #include "render/prepared_scene.h"
 

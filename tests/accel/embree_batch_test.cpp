@@ -10,7 +10,7 @@
 #include "accel/registry.h"
 #include "core/sampler.h"
 #include "core/sampling.h"
-#include "io/gltf_loader.h"
+#include "gltf/gltf_loader.h"
 #include "tests/accel/batch_test_scenes.h"
 
 namespace tray {

@@ -9,7 +9,7 @@
 
 #include "accel/embree_accelerator.h"
 #include "accel/registry.h"
-#include "core/alpha.h"
+#include "textures/alpha.h"
 #include "tests/scene_builder.h"
 
 namespace tray {

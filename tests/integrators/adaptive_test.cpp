@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "core/aov.h"
+#include "film/aov.h"
 #include "core/error.h"
 #include "render/renderer.h"
 #include "integrators/registry.h"

@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "render/render_setup.h"
-#include "io/gltf_loader.h"
+#include "gltf/gltf_loader.h"
 #include "tests/render_film.h"
 #include "tests/scene_builder.h"
 

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "core/aov.h"
+#include "film/aov.h"
 #include "core/error.h"
 #include "tests/integrators/path_under_test.h"
 #include "tests/render_film.h"

@@ -9,7 +9,7 @@
 #include "render/renderer.h"
 #include "integrators/path.h"
 #include "integrators/registry.h"
-#include "io/gltf_loader.h"
+#include "gltf/gltf_loader.h"
 #include "tests/integrators/path_under_test.h"
 #include "render/prepared_scene.h"
 

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "io/gltf_loader.h"
+#include "gltf/gltf_loader.h"
 #include "tests/integrators/path_under_test.h"
 #include "tests/light_scenes.h"
 #include "tests/render_film.h"

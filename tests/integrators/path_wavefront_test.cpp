@@ -14,12 +14,12 @@
 #include <string>
 
 #include "accel/registry.h"
-#include "core/aov.h"
+#include "film/aov.h"
 #include "render/render_setup.h"
 #include "render/renderer.h"
-#include "core/texture_sampler.h"
+#include "textures/texture_sampler.h"
 #include "integrators/registry.h"
-#include "io/gltf_loader.h"
+#include "gltf/gltf_loader.h"
 #include "tests/integrators/render_job.h"
 #include "tests/scene_builder.h"
 #include "render/prepared_scene.h"

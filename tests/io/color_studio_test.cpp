@@ -14,7 +14,7 @@
 #include <fstream>
 
 #include "core/error.h"
-#include "core/film.h"
+#include "film/film.h"
 #include "io/color.h"
 #include "io/image_output.h"
 #include "tests/temp_dir.h"

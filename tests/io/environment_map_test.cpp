@@ -10,7 +10,7 @@
 
 #include "core/error.h"
 #include "core/render_options.h"
-#include "io/gltf_loader.h"
+#include "gltf/gltf_loader.h"
 #include "tests/cli/cli_run.h"
 
 namespace tray {

@@ -11,8 +11,8 @@
 #include <nlohmann/json.hpp>
 
 #include "accel/registry.h"
-#include "core/aov.h"
-#include "core/cryptomatte.h"
+#include "film/aov.h"
+#include "film/cryptomatte.h"
 #include "render/renderer.h"
 #include "integrators/registry.h"
 #include "io/image_output.h"

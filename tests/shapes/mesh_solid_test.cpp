@@ -6,7 +6,7 @@
 #include <random>
 
 #include "core/error.h"
-#include "io/gltf_loader.h"
+#include "gltf/gltf_loader.h"
 #include "shapes/box.h"
 #include "tests/shapes/solid_meshes.h"
 

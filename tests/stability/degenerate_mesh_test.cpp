@@ -17,7 +17,7 @@
 #include <sstream>
 
 #include "accel/registry.h"
-#include "io/gltf_loader.h"
+#include "gltf/gltf_loader.h"
 #include "tests/stability/stability_scenes.h"
 #include "tests/integrators/path_under_test.h"
 #include "tests/temp_dir.h"

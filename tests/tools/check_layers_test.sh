@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # tools/check_layers.py passes on the real tree and fails, naming the file and line, on a copy
-# with one deliberate wrong include (core/ including integrators/), as the build would.
+# with one deliberate wrong include (core/ including integrators/), as the build would; and on
+# one spelled with angle brackets (film/ including <render/...>).
 set -euo pipefail
 source=$1
 python3 "$source/tools/check_layers.py" "$source"
@@ -10,7 +11,7 @@ keep_if_failed() {
   if [ $? -eq 0 ]; then rm -rf "$tree"; else echo "test files kept in $tree" >&2; fi
 }
 trap keep_if_failed EXIT
-for d in core shapes accel materials lights integrators io cli; do cp -r "$source/$d" "$tree/"; done
+for d in core textures film shapes accel materials lights integrators io gltf render cli; do cp -r "$source/$d" "$tree/"; done
 printf '#include "integrators/registry.h"\n' >>"$tree/core/scene.h"
 if out=$(python3 "$source/tools/check_layers.py" "$tree" 2>&1); then
   echo "a wrong include passed the layer check" >&2
@@ -21,3 +22,15 @@ grep -q "core/scene.h:.*layer 'core' includes 'integrators/'" <<<"$out" || {
   exit 1
 }
 echo "wrong include refused: $out"
+# The same with <...>: a project header in angle brackets is still a layer's.
+cp "$source/core/scene.h" "$tree/core/scene.h"
+printf '#include <render/render_job.h>\n' >>"$tree/film/film.h"
+if out=$(python3 "$source/tools/check_layers.py" "$tree" 2>&1); then
+  echo "a wrong <...> include passed the layer check" >&2
+  exit 1
+fi
+grep -q "film/film.h:.*layer 'film' includes 'render/'" <<<"$out" || {
+  echo "unexpected message: $out" >&2
+  exit 1
+}
+echo "wrong <...> include refused: $out"

@@ -1,0 +1,71 @@
+#include "gltf/gltf_material_layers.h"
+
+#include "gltf/gltf_materials.h"
+#include "gltf/gltf_value.h"
+
+namespace tray {
+
+namespace {
+
+/// A textureInfo inside an extension object (glTF 2.0 §5.22: index, texCoord, and for normal
+/// textures scale), with its KHR_texture_transform.
+TextureRef readTextureInfo(const GltfContext& ctx, ExtensionReader& parent, const char* key,
+                           const std::string& where) {
+  TextureRef ref;
+  const tinygltf::Value* v = parent.value(key);
+  if (!v) return ref;
+  const std::string here = where + " " + key;
+  ExtensionReader r(ctx, *v, here);
+  const int index = r.integer("index", -1);
+  if (index < 0 || size_t(index) >= ctx.model.textures.size())
+    r.fail("refers to missing texture " + std::to_string(index));
+  ref.image = index;
+  ref.texCoord = r.integer("texCoord", 0);
+  if (ref.texCoord < 0) r.fail("has a negative texCoord");
+  ref.scale = float(r.number("scale", 1.0));
+  if (const tinygltf::Value* ext = r.value("extensions"); ext && ext->Has("KHR_texture_transform"))
+    readTextureTransform(ctx, ext->Get("KHR_texture_transform"), here, ref);
+  return ref;
+}
+
+}  // namespace
+
+void readMaterialLayers(const GltfContext& ctx, const tinygltf::Material& g,
+                        const std::string& where, Material& m) {
+  MaterialLayers& l = m.layers;
+  const auto& ext = g.extensions;
+  if (const auto* e = findExtension(ext, "KHR_materials_volume")) {
+    ExtensionReader r(ctx, *e, where + " KHR_materials_volume");
+    l.thickness = float(r.number("thicknessFactor", 0.0, 0.0));
+    l.attenuationColor = r.vec3("attenuationColor", l.attenuationColor, 0.0, 1.0);
+    // The extension's default distance is +infinity: no absorption. 0 is not a distance.
+    l.attenuationDistance = float(r.number("attenuationDistance", kInfinity, 0.0));
+    if (!(l.attenuationDistance > 0)) r.fail("'attenuationDistance' must be positive");
+    // thicknessTexture is read nowhere: TRay traces the real geometry (see MaterialLayers).
+  }
+  if (const auto* e = findExtension(ext, "KHR_materials_specular")) {
+    ExtensionReader r(ctx, *e, where + " KHR_materials_specular");
+    l.specular = float(r.number("specularFactor", 1.0, 0.0, 1.0));
+    // Colours above 1 are allowed by the extension (F0 is clamped to 1 after the IOR factor).
+    l.specularColor = r.vec3("specularColorFactor", l.specularColor, 0.0);
+    l.specularTexture = readTextureInfo(ctx, r, "specularTexture", r.where());
+    l.specularColorTexture = readTextureInfo(ctx, r, "specularColorTexture", r.where());
+  }
+  if (const auto* e = findExtension(ext, "KHR_materials_clearcoat")) {
+    ExtensionReader r(ctx, *e, where + " KHR_materials_clearcoat");
+    l.clearcoat = float(r.number("clearcoatFactor", 0.0, 0.0, 1.0));
+    l.clearcoatRoughness = float(r.number("clearcoatRoughnessFactor", 0.0, 0.0, 1.0));
+    l.clearcoatTexture = readTextureInfo(ctx, r, "clearcoatTexture", r.where());
+    l.clearcoatRoughnessTexture = readTextureInfo(ctx, r, "clearcoatRoughnessTexture", r.where());
+    l.clearcoatNormalTexture = readTextureInfo(ctx, r, "clearcoatNormalTexture", r.where());
+  }
+  if (const auto* e = findExtension(ext, "KHR_materials_sheen")) {
+    ExtensionReader r(ctx, *e, where + " KHR_materials_sheen");
+    l.sheenColor = r.vec3("sheenColorFactor", l.sheenColor, 0.0, 1.0);
+    l.sheenRoughness = float(r.number("sheenRoughnessFactor", 0.0, 0.0, 1.0));
+    l.sheenColorTexture = readTextureInfo(ctx, r, "sheenColorTexture", r.where());
+    l.sheenRoughnessTexture = readTextureInfo(ctx, r, "sheenRoughnessTexture", r.where());
+  }
+}
+
+}  // namespace tray

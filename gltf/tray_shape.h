@@ -1,0 +1,22 @@
+#pragma once
+// The TRAY_shape node extension: an analytic shape in place of (or instead of) a mesh.
+#include <memory>
+#include <string>
+
+#include "gltf/gltf_context.h"
+#include "core/shape.h"
+
+namespace tray {
+
+struct TrayShape {
+  std::shared_ptr<const Shape> shape;
+  int material = -1;  ///< glTF material index; -1: the default material
+};
+
+/// Parses a TRAY_shape object (docs/scene-format.md): {"type": "sphere" | "plane" | "box", ...,
+/// "material": index}. Every number must be finite, radius > 0, box min < max; unknown keys
+/// and unknown types are errors. `where` names the node in messages.
+TrayShape parseTrayShape(const GltfContext& ctx, const tinygltf::Value& value,
+                         const std::string& where);
+
+}  // namespace tray

@@ -1,0 +1,223 @@
+// Highway's dynamic dispatch: this file is compiled once per x86 target (SSSE3 ... AVX-512) by
+// foreach_target.h, and HWY_DYNAMIC_DISPATCH runs the best one the CPU has. Built with
+// -ffp-contract=off (core/CMakeLists.txt): every float expression is the scalar code's, in its
+// order, without fused multiply-adds, so each lane's bits are the scalar path's.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "integrators/camera_batch.cpp"
+#include "integrators/camera_batch.h"
+
+#include "hwy/foreach_target.h"  // IWYU pragma: keep
+#include "hwy/highway.h"
+// After highway.h, once per target: the sampler's hashes and Sobol' scrambles in SIMD.
+#include "integrators/sampler_simd-inl.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace tray {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+#if HWY_TARGET == HWY_SCALAR
+// One lane has no halves to pair: CameraRayBatch::make leaves CPUs with no SIMD target to the
+// scalar code, so this is never called.
+void GenerateCameraRays(const CameraBatchParams&, size_t, const int32_t*, const int32_t*,
+                        const uint32_t*, CameraRayLanes&) {}
+#else
+constexpr uint64_t kSobolPixelSalt = 0x5851f42d4c957f2dull;
+static_assert(HWY_MAX_BYTES / sizeof(float) <= CameraRayLanes::kMaxLanes);
+
+/// The samplers of one vector of samples: Sampler's constructor, then next2D. Writes the keys
+/// and reversed indices; returns the 2D point in u, v.
+HWY_INLINE void SamplersAndPoints(const CameraBatchParams& p, VU pixel, VU sample, uint64_t* key,
+                                  uint32_t* reversedIndex, VF& u, VF& v) {
+  const D64 d64;
+  const DHalf dh;
+  const DU du;
+  const size_t half = hn::Lanes(d64);
+  V64 k[2];
+  const VU reversed = ReverseBits(sample);
+  for (int h = 0; h < 2; ++h) {
+    const V64 pixel64 = hn::PromoteTo(d64, h ? hn::UpperHalf(dh, pixel) : hn::LowerHalf(pixel));
+    const V64 low = p.sobol
+                        ? hn::Set(d64, kSobolPixelSalt)
+                        : hn::PromoteTo(d64, h ? hn::UpperHalf(dh, sample) : hn::LowerHalf(sample));
+    // Independent: pixel << 32 | sample; Sobol': pixel << 32 ^ salt (the same for all samples).
+    const V64 word = p.sobol ? hn::Xor(hn::ShiftLeft<32>(pixel64), low)
+                             : hn::Or(hn::ShiftLeft<32>(pixel64), low);
+    k[h] = Mix(hn::Xor(hn::Set(d64, p.seedKey), word));
+    hn::StoreU(k[h], d64, key + h * half);
+  }
+  if (!p.sobol) {
+    // next1D twice: dimensions 1 and 2, the top 24 bits of each hash.
+    V64 a[2], b[2];
+    for (int h = 0; h < 2; ++h) {
+      a[h] = hn::ShiftRight<40>(Mix(k[h] + hn::Set(d64, kDimensionStep)));
+      b[h] = hn::ShiftRight<40>(Mix(k[h] + hn::Set(d64, kDimensionStep * 2)));
+    }
+    u = UnitOf24Bits(Low32(a[0], a[1]));
+    v = UnitOf24Bits(Low32(b[0], b[1]));
+    hn::StoreU(reversed, du, reversedIndex);
+    return;
+  }
+  // Sobol' next2D at dimension 2: one hash for the shuffle and the two scrambles.
+  V64 hash[2], remix[2];
+  for (int h = 0; h < 2; ++h) {
+    hash[h] = Mix(k[h] + hn::Set(d64, kDimensionStep * 2));
+    remix[h] = hash[h] * hn::Set(d64, kGolden);
+  }
+  const VU index = ReverseBits(CarryHash(reversed, Low32(hash[0], hash[1])));
+  const VU seedX = High32(hash[0], hash[1]), seedY = High32(remix[0], remix[1]);
+  const VU x = ReverseBits(CarryHash(index, seedX));
+  const VU y = ReverseBits(CarryHash(ReversedDimension1(index), seedY));
+  u = UnitOf24Bits(hn::ShiftRight<8>(x));
+  v = UnitOf24Bits(hn::ShiftRight<8>(y));
+  hn::StoreU(reversed, du, reversedIndex);
+}
+
+/// PixelSampler::offset(i, {u, v}) of each lane, written as it is, pattern by pattern.
+HWY_INLINE void Offsets(const CameraBatchParams& p, VI i, VF u, VF v, VF& ox, VF& oy) {
+  const DF df;
+  const DI di;
+  const VF one = hn::Set(df, 1.0f), two = hn::Set(df, 2.0f), radius = hn::Set(df, p.radius);
+  switch (PixelSampler::Pattern(p.pattern)) {
+    case PixelSampler::Pattern::kCenter:
+      ox = oy = hn::Zero(df);
+      return;
+    case PixelSampler::Pattern::kCorners: {
+      const VF half = hn::Set(df, 0.5f), minusHalf = hn::Set(df, -0.5f);
+      const VI x = hn::And(i, hn::Set(di, 1)), y = hn::And(i, hn::Set(di, 2));
+      ox = hn::IfThenElse(hn::RebindMask(df, x == hn::Zero(di)), minusHalf, half);
+      oy = hn::IfThenElse(hn::RebindMask(df, y == hn::Zero(di)), minusHalf, half);
+      return;
+    }
+    case PixelSampler::Pattern::kSequence:
+      ox = (two * u - one) * radius;
+      oy = (two * v - one) * radius;
+      return;
+    case PixelSampler::Pattern::kGrid:
+    case PixelSampler::Pattern::kJitter: {
+      // i / n and i % n: the float quotient, truncated, is off by at most one (n < 2^16,
+      // i < 2^31); one correction each way makes it exact.
+      const VI n = hn::Set(di, p.strata);
+      const VF nf = hn::Set(df, float(p.strata));
+      VI q = hn::ConvertTo(di, hn::ConvertTo(df, i) / nf);
+      VI r = i - q * n;
+      const auto under = r < hn::Zero(di);
+      q = hn::IfThenElse(under, q - hn::Set(di, 1), q);
+      r = hn::IfThenElse(under, r + n, r);
+      const auto over = hn::Not(r < n);
+      q = hn::IfThenElse(over, q + hn::Set(di, 1), q);
+      r = hn::IfThenElse(over, r - n, r);
+      const bool grid = PixelSampler::Pattern(p.pattern) == PixelSampler::Pattern::kGrid;
+      const VF dx = grid ? hn::Set(df, 0.5f) : u, dy = grid ? hn::Set(df, 0.5f) : v;
+      VF sx = (hn::ConvertTo(df, r) + dx) / nf, sy = (hn::ConvertTo(df, q) + dy) / nf;
+      if (!grid) {  // jitter's samples past the n x n strata are uniform
+        const auto rest = hn::RebindMask(df, hn::Not(i < hn::Set(di, p.strata * p.strata)));
+        sx = hn::IfThenElse(rest, u, sx);
+        sy = hn::IfThenElse(rest, v, sy);
+      }
+      ox = (two * sx - one) * radius;
+      oy = (two * sy - one) * radius;
+      return;
+    }
+  }
+}
+
+/// One vector of paths: samplers, offsets, then PerspectiveCamera::generateRay.
+/// Reads lanes from x, y, sample; writes them at entry k of out.
+HWY_INLINE void Block(const CameraBatchParams& p, const int32_t* x, const int32_t* y,
+                      const uint32_t* sample, size_t k, CameraRayLanes& out) {
+  const DF df;
+  const DI di;
+  const DU du;
+  const VI xi = hn::LoadU(di, x), yi = hn::LoadU(di, y);
+  const VU s = hn::LoadU(du, sample);
+  const VU pixel = hn::BitCast(du, yi) * hn::Set(du, p.imageWidth) + hn::BitCast(du, xi);
+  VF u, v, ox, oy;
+  SamplersAndPoints(p, pixel, s, out.key.data() + k, out.reversedIndex.data() + k, u, v);
+  Offsets(p, hn::BitCast(di, s), u, v, ox, oy);
+  hn::StoreU(ox, df, out.offsetX.data() + k);
+  hn::StoreU(oy, df, out.offsetY.data() + k);
+  // Integrator::cameraRay: the pixel centre plus the offset.
+  const VF half = hn::Set(df, 0.5f), one = hn::Set(df, 1.0f), two = hn::Set(df, 2.0f);
+  const VF rx = (hn::ConvertTo(df, xi) + half) + ox, ry = (hn::ConvertTo(df, yi) + half) + oy;
+  // PerspectiveCamera::generateRay: dirCam = ((2x/w - 1) tanHalfX, (1 - 2y/h) tanHalfY, -1).
+  const VF cx = (two * rx / hn::Set(df, p.width) - one) * hn::Set(df, p.tanHalfX);
+  const VF cy = (one - two * ry / hn::Set(df, p.height)) * hn::Set(df, p.tanHalfY);
+  const VF cz = hn::Set(df, -1.0f);
+  VF w[3];
+  for (int r = 0; r < 3; ++r)  // Transform::vector, its terms in order (the last one 0 * m)
+    w[r] = ((hn::Set(df, p.m[r][0]) * cx + hn::Set(df, p.m[r][1]) * cy) +
+            hn::Set(df, p.m[r][2]) * cz) +
+           hn::Set(df, p.translateZero[r]);
+  const VF length = hn::Sqrt((w[0] * w[0] + w[1] * w[1]) + w[2] * w[2]);
+  const VF inverse = one / length;  // normalize: a / s is a * (1 / s) (core/math.h)
+  hn::StoreU(w[0] * inverse, df, out.dirX.data() + k);
+  hn::StoreU(w[1] * inverse, df, out.dirY.data() + k);
+  hn::StoreU(w[2] * inverse, df, out.dirZ.data() + k);
+  hn::StoreU(hn::Set(df, p.znear) * length, df, out.tmin.data() + k);
+}
+
+void GenerateCameraRays(const CameraBatchParams& p, size_t n, const int32_t* x, const int32_t* y,
+                        const uint32_t* sample, CameraRayLanes& out) {
+  const size_t lanes = hn::Lanes(DF());
+  size_t k = 0;
+  for (; k + lanes <= n; k += lanes) Block(p, x + k, y + k, sample + k, k, out);
+  if (k == n) return;
+  // The last partial vector: padded inputs, and the lanes that exist copied out (out has room
+  // for whole vectors, CameraRayLanes::resize).
+  int32_t xs[CameraRayLanes::kMaxLanes] = {}, ys[CameraRayLanes::kMaxLanes] = {};
+  uint32_t ss[CameraRayLanes::kMaxLanes] = {};
+  for (size_t j = k; j < n; ++j) xs[j - k] = x[j], ys[j - k] = y[j], ss[j - k] = sample[j];
+  Block(p, xs, ys, ss, k, out);
+}
+
+#endif  // HWY_TARGET != HWY_SCALAR
+}  // namespace HWY_NAMESPACE
+}  // namespace tray
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace tray {
+HWY_EXPORT(GenerateCameraRays);
+
+void CameraRayLanes::resize(size_t n) {
+  // Whole vectors of the widest target: the kernel's last store may run past n.
+  const size_t padded = wholeSimdVectors(n);
+  if (key.size() >= padded) return;  // grown once, kept from call to call
+  key.resize(padded), reversedIndex.resize(padded);
+  offsetX.resize(padded), offsetY.resize(padded);
+  dirX.resize(padded), dirY.resize(padded), dirZ.resize(padded), tmin.resize(padded);
+}
+
+std::optional<CameraRayBatch> CameraRayBatch::make(const Camera& camera, const PixelSampler& pixels,
+                                                   uint64_t seed, Sampler::Sequence sequence,
+                                                   bool moving, int imageWidth) {
+  const std::optional<PinholeProjection> pinhole = camera.pinhole();
+  if (!pinhole || moving) return std::nullopt;
+  if (!hasSimdTarget()) return std::nullopt;
+  CameraRayBatch b;
+  CameraBatchParams& p = b.params_;
+  const Mat4& m = pinhole->toWorld.m;
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) p.m[r][c] = m.m[r][c];
+    p.translateZero[r] = m.m[r][3] * 0.0f;
+  }
+  p.width = pinhole->width, p.height = pinhole->height, p.znear = pinhole->znear;
+  p.tanHalfX = pinhole->tanHalfX, p.tanHalfY = pinhole->tanHalfY;
+  p.radius = pixels.radius(), p.strata = pixels.strata(), p.pattern = int32_t(pixels.pattern());
+  p.sobol = sequence == Sampler::Sequence::kSobol;
+  p.imageWidth = uint32_t(imageWidth);
+  p.seedKey = Sampler::seedKey(seed);
+  b.origin_ = pinhole->toWorld.point(Vec3(0.0f));
+  b.sequence_ = sequence;
+  return b;
+}
+
+void CameraRayBatch::generate(size_t n, const int32_t* x, const int32_t* y, const uint32_t* sample,
+                              CameraRayLanes& out) const {
+  out.resize(n);
+  HWY_DYNAMIC_DISPATCH(GenerateCameraRays)(params_, n, x, y, sample, out);
+}
+
+}  // namespace tray
+#endif  // HWY_ONCE
