@@ -14,9 +14,9 @@
 #include "accel/bvh_batch.h"
 #include "accel/bvh_mesh.h"
 #include "accel/bvh_object_ray.h"
-#include "textures/alpha.h"
 #include "core/motion.h"
 #include "core/scene.h"
+#include "textures/alpha.h"
 
 namespace tray {
 namespace {

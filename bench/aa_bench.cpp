@@ -9,11 +9,11 @@
 
 #include "accel/registry.h"
 #include "bench/image_error.h"
-#include "render/render_setup.h"
-#include "render/prepared_scene.h"
-#include "render/renderer.h"
-#include "integrators/registry.h"
 #include "gltf/gltf_loader.h"
+#include "integrators/registry.h"
+#include "render/prepared_scene.h"
+#include "render/render_setup.h"
+#include "render/renderer.h"
 
 using namespace tray;
 

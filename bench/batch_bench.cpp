@@ -26,8 +26,8 @@
 #include "bench/bench_rays.h"
 #include "bench/cpu_time.h"
 #include "core/error.h"
-#include "integrators/path_wavefront.h"
 #include "gltf/gltf_loader.h"
+#include "integrators/path_wavefront.h"
 
 using namespace tray;
 

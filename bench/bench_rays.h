@@ -10,9 +10,9 @@
 #include "accel/registry.h"
 #include "core/camera.h"
 #include "core/ray.h"
-#include "render/render_setup.h"
 #include "core/sampling.h"
 #include "core/scene.h"
+#include "render/render_setup.h"
 
 namespace tray::bench {
 

@@ -15,8 +15,8 @@
 #include "bench/cpu_time.h"
 #include "bench/image_error.h"
 #include "bench/sky_maps.h"
-#include "render/render_setup.h"
 #include "io/image_output.h"
+#include "render/render_setup.h"
 #include "tests/render_film.h"
 #include "tests/scene_builder.h"
 

@@ -15,20 +15,20 @@
 #include <filesystem>
 #include <mutex>
 
-#include "bench/cpu_time.h"
 #include "accel/bvh_accelerator.h"
 #include "accel/embree_accelerator.h"
 #include "accel/registry.h"
+#include "bench/cpu_time.h"
 #include "bench/image_error.h"
 #include "core/error.h"
-#include "render/render_setup.h"
-#include "render/prepared_scene.h"
-#include "render/renderer.h"
 #include "core/sampler.h"
 #include "core/sampling.h"
+#include "gltf/gltf_loader.h"
 #include "integrators/path.h"
 #include "integrators/registry.h"
-#include "gltf/gltf_loader.h"
+#include "render/prepared_scene.h"
+#include "render/render_setup.h"
+#include "render/renderer.h"
 
 using namespace tray;
 
@@ -205,7 +205,9 @@ void print(const std::string& integrator, const Measured& m, int threads) {
                 100 * m.traversal);
   if (m.stats.rays.simdVertices > 0)
     std::printf(
-        "    SIMD shading    %.0f%% of the traced segments' vertices (matte and glossy stages)\n",
+        "    SIMD shading    %.1f%% of the shaded vertices, %.0f%% of the traced segments "
+        "(matte and glossy stages)\n",
+        100.0 * double(m.stats.rays.simdVertices) / double(m.stats.rays.shadedVertices),
         100.0 * double(m.stats.rays.simdVertices) /
             double(m.stats.rays.cameraRays + m.stats.rays.secondaryRays));
   std::printf("    NaN samples     %llu\n", (unsigned long long)m.stats.rays.nanSamples);

@@ -18,13 +18,13 @@
 #include <vector>
 
 #include "accel/registry.h"
-#include "render/render_setup.h"
+#include "gltf/gltf_loader.h"
+#include "integrators/registry.h"
 #include "render/prepared_scene.h"
+#include "render/render_setup.h"
 #include "render/renderer.h"
 #include "textures/texture_pyramid.h"
 #include "textures/texture_sampler.h"
-#include "integrators/registry.h"
-#include "gltf/gltf_loader.h"
 
 using namespace tray;
 

@@ -14,12 +14,12 @@
 #include "bench/image_error.h"
 #include "bench/sweep.h"
 #include "core/error.h"
-#include "render/render_setup.h"
-#include "render/prepared_scene.h"
-#include "render/renderer.h"
-#include "integrators/registry.h"
 #include "gltf/gltf_loader.h"
+#include "integrators/registry.h"
 #include "io/image_output.h"
+#include "render/prepared_scene.h"
+#include "render/render_setup.h"
+#include "render/renderer.h"
 
 namespace fs = std::filesystem;
 using namespace tray;
@@ -45,8 +45,8 @@ struct Bench {
 
   std::pair<Film, RenderStats> render(const RenderSettings& s, const std::string& accelName,
                                       int threads, const std::vector<std::string>& aovs = {}) {
-    const PreparedScene& p = prepared.try_emplace(accelName, scene, camera, size, accelName)
-                                 .first->second;
+    const PreparedScene& p =
+        prepared.try_emplace(accelName, scene, camera, size, accelName).first->second;
     auto integrator = p.integrator(s);
     Film film(size.width, size.height);
     RenderOptions opt;

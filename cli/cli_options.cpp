@@ -38,8 +38,9 @@ void groupOptions(CLI::App& app) {
         "--cryptomatte-ranks", "--aa-heatmap"}},
       {"Frames, farm parts and checkpoints",
        {"--frames", "--region", "--sample-range", "--checkpoint", "--resume"}},
-      {"Running", {"--threads", "--accel", "--quiet", "--progress", "--progress-step",
-                   "--progress-seconds", "--help", "--version"}},
+      {"Running",
+       {"--threads", "--accel", "--quiet", "--progress", "--progress-step", "--progress-seconds",
+        "--help", "--version"}},
   };
   for (const auto& [group, names] : groups)
     for (const char* name : names) app.get_option(name)->group(group);

@@ -31,8 +31,8 @@ tray::RenderJob jobOf(const CliOptions& o) {
   if (o.scene >= 0) job.scene.index = o.scene;
   job.scene.allowAnyPath = o.allowAnyPath;
   job.scene.ignoreRequiredExtensions = o.ignoreRequiredExtensions;
-  job.scene.maxMemoryBytes = o.maxMemoryMB < 0 ? tray::defaultMaxMemoryBytes()
-                                               : uint64_t(o.maxMemoryMB * 1048576.0);
+  job.scene.maxMemoryBytes =
+      o.maxMemoryMB < 0 ? tray::defaultMaxMemoryBytes() : uint64_t(o.maxMemoryMB * 1048576.0);
   job.scene.textureMemoryMB = o.textureMemoryMB;
   job.camera = o.camera;
   job.resolution = o.resolution;
@@ -57,8 +57,8 @@ void printSummary(const tray::RenderJob& job, const tray::RenderJobResult& r) {
   const tray::RenderStats& stats = r.stats;
   std::printf("%s: %dx%d, %d spp, %s on %s: %.3f s, %.2f M rays, %.2f Mrays/s",
               job.scene.path.c_str(), r.width, r.height, int(job.settings.getInt("spp")),
-              job.settings.getString("integrator").c_str(), job.accelerator.c_str(),
-              stats.seconds, stats.rays.total() * 1e-6, stats.mraysPerSecond());
+              job.settings.getString("integrator").c_str(), job.accelerator.c_str(), stats.seconds,
+              stats.rays.total() * 1e-6, stats.mraysPerSecond());
   if (stats.rays.nanSamples)
     std::printf(", %llu NaN/Inf samples discarded", (unsigned long long)stats.rays.nanSamples);
   std::printf("\n");
@@ -139,7 +139,7 @@ int runFrames(const CliOptions& o, tray::RenderJob job) {
 /// output patterns and --progress. Throws tray::Error.
 void checkOptions(CliOptions& o) {
   tray::validateOptions(o.settings);  // ranges and choices, before any loading
-  tray::animationTime(o.settings);     // --time: "static" or seconds
+  tray::animationTime(o.settings);    // --time: "static" or seconds
   if (!o.frames.empty()) {
     tray::parseFrameRange(o.frames);
     if (o.settings.isSet("time"))

@@ -26,7 +26,9 @@ std::string cell(const std::string& text) {
   return out;
 }
 
-std::string code(const std::string& text) { return text.empty() ? "" : "`" + text + "`"; }
+std::string code(const std::string& text) {
+  return text.empty() ? "" : "`" + text + "`";
+}
 
 std::string joinedCode(const std::vector<std::string>& items, const std::string& separator) {
   std::string out;
@@ -34,8 +36,7 @@ std::string joinedCode(const std::vector<std::string>& items, const std::string&
   return out;
 }
 
-const char* kTableHead =
-    "| option | value | default | description |\n|---|---|---|---|\n";
+const char* kTableHead = "| option | value | default | description |\n|---|---|---|---|\n";
 
 /// One row for a declared option: its type and range or choices, its default, its help.
 std::string specRow(const OptionSpec& spec) {
@@ -113,8 +114,8 @@ std::string cliRow(const CLI::Option& option) {
   std::string value = type.empty() ? "flag" : type;
   if (!checks.empty()) value += ", " + checks;
   if (option.get_items_expected_max() > 1) value += ", repeatable";
-  return "| " + names + " | " + cell(value) + " | " + cell(code(option.get_default_str())) +
-         " | " + cell(option.get_description()) + " |\n";
+  return "| " + names + " | " + cell(value) + " | " + cell(code(option.get_default_str())) + " | " +
+         cell(option.get_description()) + " |\n";
 }
 
 const char* kIntro =

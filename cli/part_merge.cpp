@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <numeric>
 
-#include "render/job_diff.h"
 #include "core/error.h"
 #include "core/light_paths.h"
 #include "film/render_state.h"
+#include "render/job_diff.h"
 
 namespace tray {
 namespace {

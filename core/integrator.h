@@ -24,9 +24,12 @@ namespace tray {
 /// Counters gathered per tile and summed for the summary line.
 struct RayStats {
   uint64_t cameraRays = 0, shadowRays = 0, secondaryRays = 0, nanSamples = 0;
-  /// Path vertices whose light and BSDF samples a SIMD stage made (the wavefront's matte
-  /// vertices, integrators/matte_batch.h): benchmarks and tests read it.
+  /// Path vertices whose light and BSDF samples a SIMD stage made (the wavefront's matte and
+  /// glossy stages, integrators/matte_batch.h, glossy_batch.h): benchmarks and tests read it.
   uint64_t simdVertices = 0;
+  /// Path vertices that scatter (a surface hit below the depth limit, not unlit), by a SIMD
+  /// stage or by the scalar estimator: simdVertices' share of them is the stages' coverage.
+  uint64_t shadedVertices = 0;
   uint64_t total() const { return cameraRays + shadowRays + secondaryRays; }
   RayStats& operator+=(const RayStats& o) {
     cameraRays += o.cameraRays;
@@ -34,6 +37,7 @@ struct RayStats {
     secondaryRays += o.secondaryRays;
     nanSamples += o.nanSamples;
     simdVertices += o.simdVertices;
+    shadedVertices += o.shadedVertices;
     return *this;
   }
 };

@@ -1,7 +1,7 @@
 #pragma once
 // Sizes and the target check shared by the SIMD kernels (integrators/camera_batch.cpp,
-// integrators/surface_batch.cpp, integrators/sampler_batch.cpp): Highway picks the vector width at run time, so
-// buffers are sized for the widest target.
+// integrators/surface_batch.cpp, integrators/sampler_batch.cpp): Highway picks the vector width at
+// run time, so buffers are sized for the widest target.
 #include <cstddef>
 
 namespace tray {

@@ -127,18 +127,32 @@ void AovSet::write(Film& film, int x, int y, const PixelValue& v, const AovSums*
       case Kind::kDepth:
         p[0] = sums ? sums->meanDepth() : h.hit ? h.depth : kInfinity;
         break;
-      case Kind::kNormal: put(p, sums ? sums->meanNormal() : h.normal); break;
-      case Kind::kPosition: put(p, h.position); break;
-      case Kind::kAlbedo: put(p, sums ? sums->meanAlbedo() : h.albedo); break;
-      case Kind::kObjectId: p[0] = float(h.objectId); break;
-      case Kind::kMaterialId: p[0] = float(h.materialId); break;
-      case Kind::kSamples: p[0] = float(v.samples); break;
+      case Kind::kNormal:
+        put(p, sums ? sums->meanNormal() : h.normal);
+        break;
+      case Kind::kPosition:
+        put(p, h.position);
+        break;
+      case Kind::kAlbedo:
+        put(p, sums ? sums->meanAlbedo() : h.albedo);
+        break;
+      case Kind::kObjectId:
+        p[0] = float(h.objectId);
+        break;
+      case Kind::kMaterialId:
+        p[0] = float(h.materialId);
+        break;
+      case Kind::kSamples:
+        p[0] = float(v.samples);
+        break;
       case Kind::kMotion: {
         const Vec2 m = vectors_ ? vectors_->at(h) : Vec2{0, 0};
         p[0] = m.x, p[1] = m.y;
         break;
       }
-      case Kind::kPath: put(p, sums ? sums->path(s.path) : Color(0.0f)); break;
+      case Kind::kPath:
+        put(p, sums ? sums->path(s.path) : Color(0.0f));
+        break;
     }
   }
 }

@@ -3,9 +3,9 @@
 #include <vector>
 
 #include "core/aov_sums.h"
-#include "film/film.h"
 #include "core/integrator.h"
 #include "core/motion_vectors.h"
+#include "film/film.h"
 
 namespace tray {
 

@@ -7,9 +7,9 @@
 #include <string_view>
 #include <vector>
 
-#include "film/film.h"
 #include "core/id_coverage.h"
 #include "core/scene.h"
+#include "film/film.h"
 
 namespace tray {
 

@@ -13,7 +13,8 @@ Film::Film(int width, int height) : width_(width), height_(height) {
 int Film::addLayer(const std::string& name, const std::vector<std::string>& channels) {
   int existing = findLayer(name);
   if (existing >= 0) return existing;
-  layers_.push_back({name, channels, std::vector<float>(size_t(width_) * height_ * channels.size())});
+  layers_.push_back(
+      {name, channels, std::vector<float>(size_t(width_) * height_ * channels.size())});
   return int(layers_.size()) - 1;
 }
 

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "film/film.h"
 #include "core/pixel_sums.h"
+#include "film/film.h"
 
 namespace tray {
 

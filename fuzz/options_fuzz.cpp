@@ -8,18 +8,17 @@
 // Either must succeed or be refused: CLI11's ParseError or tray::Error. A crash, sanitizer
 // report, leak, hang or any other exception is a bug.
 #include <CLI/CLI.hpp>
-
 #include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
 
-#include "render/farm.h"
 #include "cli/option_cli.h"
-#include "render/option_metadata.h"
 #include "core/error.h"
-#include "integrators/registry.h"
 #include "gltf/gltf_loader.h"
+#include "integrators/registry.h"
+#include "render/farm.h"
+#include "render/option_metadata.h"
 
 namespace {
 

@@ -119,8 +119,8 @@ void readValues(const GltfContext& ctx, int accessor, AnimatedPath path, size_t 
                         (path == AnimatedPath::kWeights ? weights : 1);
   if (a.count != k.times.size() * perKey)
     ctx.fail(name + " has " + std::to_string(a.count) + " elements, expected " +
-             std::to_string(k.times.size() * perKey) + " for " +
-             std::to_string(k.times.size()) + " keyframes");
+             std::to_string(k.times.size() * perKey) + " for " + std::to_string(k.times.size()) +
+             " keyframes");
   k.values = readFloats(ctx, accessor);
   for (float v : k.values)
     if (!std::isfinite(v)) ctx.fail(name + " has a NaN or infinite value");
@@ -259,10 +259,10 @@ Mat4 animatedMatrix(const GltfContext& ctx, int index, const NodePose& pose) {
   // unless every key was zero.
   const double len = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
   if (!(len > 0)) ctx.fail(nameOf("node", index, n.name) + " is animated to a zero rotation");
-  const Mat4 m = Mat4::translate(t) *
-                 Mat4::rotate(float(q[0] / len), float(q[1] / len), float(q[2] / len),
-                              float(q[3] / len)) *
-                 Mat4::scale(s);
+  const Mat4 m =
+      Mat4::translate(t) *
+      Mat4::rotate(float(q[0] / len), float(q[1] / len), float(q[2] / len), float(q[3] / len)) *
+      Mat4::scale(s);
   if (!m.isFinite()) ctx.fail(nameOf("node", index, n.name) + " animated transform overflows");
   return m;
 }

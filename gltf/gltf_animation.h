@@ -14,10 +14,10 @@ enum class Interpolation { kLinear, kStep, kCubicSpline };
 
 /// One sampler's keyframes (glTF 2.0 §3.11, "Animation samplers").
 struct Keyframes {
-  std::vector<float> times;   ///< strictly increasing
+  std::vector<float> times;  ///< strictly increasing
   /// Per key `width` floats; CUBICSPLINE: in-tangent, value and out-tangent per key.
   std::vector<float> values;
-  int width = 1;              ///< floats per value: 3 (T, S), 4 (R), morph target count (weights)
+  int width = 1;  ///< floats per value: 3 (T, S), 4 (R), morph target count (weights)
   Interpolation mode = Interpolation::kLinear;
   bool quaternion = false;  ///< rotations: slerp on the shortest path, renormalised
 };

@@ -15,10 +15,10 @@
 namespace tray {
 
 struct BufferPlan {
-  uint64_t bytes = 0;   ///< sum of byteLength over the distinct buffers (BIN chunk included)
+  uint64_t bytes = 0;        ///< sum of byteLength over the distinct buffers (BIN chunk included)
   uint64_t mergedBytes = 0;  ///< byteLength of the merged duplicates (not in `bytes`)
-  int merged = 0;       ///< duplicate buffers redirected to their first occurrence
-  std::string json;     ///< the rewritten document when merged > 0, else empty
+  int merged = 0;            ///< duplicate buffers redirected to their first occurrence
+  std::string json;          ///< the rewritten document when merged > 0, else empty
 };
 
 /// Plans the buffers of a document's JSON text (already checked by checkJsonRoot). Files are

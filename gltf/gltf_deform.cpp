@@ -99,8 +99,7 @@ Deformer::Deformer(const GltfContext& ctx, const std::vector<NodePose>& poses,
     const std::string where = nameOf("mesh", node.mesh, mesh.name);
     for (size_t p = 1; p < mesh.primitives.size(); ++p)
       if (mesh.primitives[p].targets.size() != targets)
-        ctx.fail(where +
-                 " primitives have different numbers of morph targets (glTF 2.0 §3.7.2.2)");
+        ctx.fail(where + " primitives have different numbers of morph targets (glTF 2.0 §3.7.2.2)");
     if (targets == 0) continue;
     // glTF 2.0 §3.7.2.2: node.weights override mesh.weights; the animation overrides both.
     std::vector<float> w(targets, 0.0f);
@@ -200,8 +199,8 @@ namespace {
 
 /// Up to two sets of four influences per vertex (JOINTS_0/WEIGHTS_0, JOINTS_1/WEIGHTS_1), eight
 /// slots each in `index` / `weight`; joints checked against the skin's `jointCount`.
-void readInfluences(const GltfContext& ctx, int node, size_t primitive, size_t jointCount,
-                    size_t n, std::vector<int>& index, std::vector<float>& weight) {
+void readInfluences(const GltfContext& ctx, int node, size_t primitive, size_t jointCount, size_t n,
+                    std::vector<int>& index, std::vector<float>& weight) {
   const auto& gnode = ctx.model.nodes[size_t(node)];
   const auto& prim = ctx.model.meshes[size_t(gnode.mesh)].primitives[primitive];
   const std::string where =

@@ -4,8 +4,8 @@
 
 namespace tray {
 
-void loadEnvironmentImage(const GltfContext& ctx, const ImageBytes& images,
-                          const UriPolicy& policy, Scene& scene) {
+void loadEnvironmentImage(const GltfContext& ctx, const ImageBytes& images, const UriPolicy& policy,
+                          Scene& scene) {
   Environment& env = scene.environment;
   std::vector<std::string> warnings;
   if (!env.imagePath.empty()) {

@@ -10,7 +10,7 @@ namespace tray {
 
 /// Loads scene.environment's image, if it names one (io/environment_map.h), into
 /// scene.environment.map. Throws tray::Error "PATH: ..." for a refused, missing or bad map.
-void loadEnvironmentImage(const GltfContext& ctx, const ImageBytes& images,
-                          const UriPolicy& policy, Scene& scene);
+void loadEnvironmentImage(const GltfContext& ctx, const ImageBytes& images, const UriPolicy& policy,
+                          Scene& scene);
 
 }  // namespace tray

@@ -4,32 +4,33 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <climits>
 #include <cstdlib>
-#include <algorithm>
 #include <cstring>
 
 namespace tray {
 
-bool readRegularFile(const std::string& path, std::vector<unsigned char>& out,
-                     std::string& problem, uint64_t limit) {
+bool readRegularFile(const std::string& path, std::vector<unsigned char>& out, std::string& problem,
+                     uint64_t limit) {
   // O_NONBLOCK: opening a FIFO must not wait for a writer; fstat then refuses it.
   int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
   if (fd < 0) {
     problem = errno == ENOENT ? "file not found" : std::string("cannot open: ") + strerror(errno);
     return false;
   }
-  struct stat st {};
+  struct stat st{};
   bool ok = false;
   if (::fstat(fd, &st) != 0) {
     problem = std::string("cannot stat: ") + strerror(errno);
   } else if (!S_ISREG(st.st_mode)) {
     problem = "not a regular file";
   } else if (uint64_t(st.st_size) > limit) {
-    problem = limit == kMaxFileBytes ? "file is larger than the 2 GiB limit"
-                                     : "file would exceed the " + std::to_string(kMaxUriBytes >> 30) +
-                                           " GiB limit on all bytes a scene's URIs read";
+    problem = limit == kMaxFileBytes
+                  ? "file is larger than the 2 GiB limit"
+                  : "file would exceed the " + std::to_string(kMaxUriBytes >> 30) +
+                        " GiB limit on all bytes a scene's URIs read";
   } else {
     out.resize(size_t(st.st_size));
     size_t done = 0;
@@ -127,7 +128,7 @@ std::string UriPolicy::resolve(const std::string& uri, std::string& problem) con
     problem = quoted + " resolves outside the scene's folder";
     return "";
   }
-  struct stat st {};
+  struct stat st{};
   if (::stat(real.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) {
     problem = quoted + " is not a regular file";
     return "";

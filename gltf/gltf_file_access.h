@@ -16,8 +16,8 @@ constexpr uint64_t kMaxUriBytes = uint64_t(4) << 30;
 
 /// Reads a whole regular file of at most `limit` bytes. Devices, FIFOs and directories are
 /// refused, since reading them may block forever or never end. Returns false with `problem`.
-bool readRegularFile(const std::string& path, std::vector<unsigned char>& out,
-                     std::string& problem, uint64_t limit = kMaxFileBytes);
+bool readRegularFile(const std::string& path, std::vector<unsigned char>& out, std::string& problem,
+                     uint64_t limit = kMaxFileBytes);
 
 /// Decides which URIs a scene may read (docs/scene-format.md, "Validation"): relative paths
 /// inside the scene's folder only, unless allowAnyPath; never a scheme other than data:.

@@ -180,8 +180,7 @@ Scene convert(const tinygltf::Model& model, const std::string& path, const LoadO
   if (sceneIndex >= 0)
     addSceneNodes(ctx, objects, sceneIndex, defaultMaterial, meshes, deformer, stats, scene,
                   stepDeformers.empty() ? nullptr : &stepDeformers);
-  if (steps.count >= 2)
-    addMotionSteps(ctx, stepWorlds, deformer, steps, scene);
+  if (steps.count >= 2) addMotionSteps(ctx, stepWorlds, deformer, steps, scene);
   if (options.time && options.previousTime)
     addPreviousFrame(ctx, animations, which, objects.localMatrices, deformer, *options.previousTime,
                      scene);
@@ -221,18 +220,18 @@ GltfDocument::GltfDocument(const std::string& path, const LoadOptions& options,
   std::string problem;
   if (!readRegularFile(path, bytes, problem)) failFile(path, problem);
   const std::string folder = std::filesystem::path(path).parent_path().string();
-  parsed_.reset(new Parsed{path, UriPolicy(folder.empty() ? "." : folder, options.allowAnyPath),
-                           {}, {}, {}});
-  parsed_->model = parse(bytes, path, parsed_->policy, options, report, parsed_->images,
-                         parsed_->memory);
+  parsed_.reset(
+      new Parsed{path, UriPolicy(folder.empty() ? "." : folder, options.allowAnyPath), {}, {}, {}});
+  parsed_->model =
+      parse(bytes, path, parsed_->policy, options, report, parsed_->images, parsed_->memory);
 }
 
 GltfDocument::~GltfDocument() = default;
 
 Scene GltfDocument::scene(const LoadOptions& options, LoadReport* report) const {
   MemoryEstimate memory = parsed_->memory;  // each conversion counts its own textures
-  return convert(parsed_->model, parsed_->path, options, report, parsed_->images,
-                 parsed_->policy, memory);
+  return convert(parsed_->model, parsed_->path, options, report, parsed_->images, parsed_->policy,
+                 memory);
 }
 
 Scene loadGltfFromMemory(const unsigned char* data, size_t size, const std::string& name,

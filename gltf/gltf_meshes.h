@@ -3,8 +3,8 @@
 #include <functional>
 #include <vector>
 
-#include "gltf/gltf_context.h"
 #include "core/triangle_mesh.h"
+#include "gltf/gltf_context.h"
 
 namespace tray {
 
@@ -23,8 +23,8 @@ struct MeshStats {
 using VertexHook = std::function<void(size_t primitive, TriangleMesh& mesh)>;
 
 /// Converts glTF mesh `index`: triangle lists, strips and fans become indexed triangle lists;
-/// POSITION, NORMAL, TANGENT, TEXCOORD_0/1 and COLOR_0 are read. Fails on out-of-range indices and on
-/// NaN or infinite positions. A primitive without material gets `defaultMaterial`.
+/// POSITION, NORMAL, TANGENT, TEXCOORD_0/1 and COLOR_0 are read. Fails on out-of-range indices and
+/// on NaN or infinite positions. A primitive without material gets `defaultMaterial`.
 std::vector<TriangleMesh> convertMesh(const GltfContext& ctx, int index, int defaultMaterial,
                                       MeshStats& stats, const VertexHook& deform = {});
 

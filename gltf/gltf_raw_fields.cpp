@@ -11,7 +11,7 @@ namespace {
 
 using nlohmann::json;
 
-constexpr double kMaxId = 2147483647.0;         // tinygltf keeps ids in an int
+constexpr double kMaxId = 2147483647.0;          // tinygltf keeps ids in an int
 constexpr double kMaxSize = 9007199254740992.0;  // 2^53: exact as double and as size_t
 // --resolution allows 1..16384 pixels a side: a camera whose aspect ratio lies outside
 // [1/16384, 16384] cannot give an image at least one pixel high and wide.
@@ -75,9 +75,8 @@ struct Checker {
 
 void checkRawFields(const std::string& path, const json& root) {
   const Checker c{path};
-  c.each(root, "buffers", [&](const json& b, const std::string& w) {
-    c.integer(b, "byteLength", w, 1, kMaxSize);
-  });
+  c.each(root, "buffers",
+         [&](const json& b, const std::string& w) { c.integer(b, "byteLength", w, 1, kMaxSize); });
   c.each(root, "bufferViews", [&](const json& v, const std::string& w) {
     c.id(v, "buffer", w);
     c.integer(v, "byteOffset", w, 0, kMaxSize);

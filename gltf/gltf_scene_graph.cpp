@@ -242,8 +242,9 @@ ObjectTable convertObjects(const GltfContext& ctx) {
     t.nodeLights.push_back(nodeLight(ctx, int(i)));
     const auto& node = model.nodes[i];
     const tinygltf::Value* ext = findExtension(node.extensions, "TRAY_shape");
-    t.shapes.push_back(ext ? std::optional(parseTrayShape(ctx, *ext, nameOf("node", int(i), node.name)))
-                           : std::nullopt);
+    t.shapes.push_back(
+        ext ? std::optional(parseTrayShape(ctx, *ext, nameOf("node", int(i), node.name)))
+            : std::nullopt);
   }
   for (size_t i = 0; i < model.scenes.size(); ++i)
     t.environments.push_back(sceneEnvironment(ctx, int(i)));

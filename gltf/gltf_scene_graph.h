@@ -27,12 +27,12 @@ Mat4 localMatrix(const GltfContext& ctx, int index);
 /// so checked, used or not: a broken node fails the file even when no scene uses it). The walk
 /// of the chosen scene only places these.
 struct ObjectTable {
-  std::vector<CameraDesc> cameras;              ///< per glTF camera
-  std::vector<PunctualLightDesc> lights;        ///< per glTF light (KHR_lights_punctual)
-  std::vector<Mat4> localMatrices;              ///< per node: matrix or TRS (glTF 2.0 §3.5.2)
-  std::vector<int> nodeLights;                  ///< per node: its light, or -1
+  std::vector<CameraDesc> cameras;               ///< per glTF camera
+  std::vector<PunctualLightDesc> lights;         ///< per glTF light (KHR_lights_punctual)
+  std::vector<Mat4> localMatrices;               ///< per node: matrix or TRS (glTF 2.0 §3.5.2)
+  std::vector<int> nodeLights;                   ///< per node: its light, or -1
   std::vector<std::optional<TrayShape>> shapes;  ///< per node: its TRAY_shape, if any
-  std::vector<Environment> environments;        ///< per scene: its TRAY_environment
+  std::vector<Environment> environments;         ///< per scene: its TRAY_environment
 };
 
 /// Converts every object of the document once; throws (ctx.fail) on the first invalid one.

@@ -47,8 +47,9 @@ void warnUnsupported(const GltfContext& ctx) {
       if (texCoord > 1) ++highUv;
   }
   if (occlusion)
-    ctx.warn(count(occlusion, "material(s) with an occlusionTexture: ignored (occlusion is "
-                              "traced)"));
+    ctx.warn(count(occlusion,
+                   "material(s) with an occlusionTexture: ignored (occlusion is "
+                   "traced)"));
   if (highUv)
     ctx.warn(count(highUv, "texture reference(s) to TEXCOORD_2 or above: TEXCOORD_0 is used"));
 }

@@ -17,8 +17,7 @@ void checkExtensions(const GltfContext& ctx) {
   std::set<std::string> warned;
   for (const auto& e : ctx.model.extensionsRequired) {
     if (isKnownExtension(e)) continue;
-    if (!ctx.ignoreRequiredExtensions)
-      ctx.fail("required extension '" + e + "' is not supported");
+    if (!ctx.ignoreRequiredExtensions) ctx.fail("required extension '" + e + "' is not supported");
     if (warned.insert(e).second)
       ctx.warn("required extension '" + e + "' is not supported: rendering without it " +
                "(--ignore-required-extensions); the image may be wrong");
@@ -198,22 +197,15 @@ void checkScenes(const GltfContext& ctx, const std::vector<int>& parent) {
 }  // namespace
 
 bool isKnownExtension(const std::string& name) {
-  static const std::set<std::string> kKnown = {"KHR_lights_punctual",
-                                               "KHR_materials_emissive_strength",
-                                               "KHR_materials_transmission",
-                                               "KHR_materials_ior",
-                                               "KHR_materials_unlit",
-                                               "KHR_texture_transform",
-                                               "KHR_materials_volume",
-                                               "KHR_materials_specular",
-                                               "KHR_materials_clearcoat",
-                                               "KHR_materials_sheen",
-                                               "KHR_mesh_quantization",
-                                               "TRAY_shape",
-                                               "TRAY_materials_phong",
-                                               "TRAY_materials_priority",
-                                               "TRAY_environment",
-                                               "TRAY_camera"};
+  static const std::set<std::string> kKnown = {
+      "KHR_lights_punctual",        "KHR_materials_emissive_strength",
+      "KHR_materials_transmission", "KHR_materials_ior",
+      "KHR_materials_unlit",        "KHR_texture_transform",
+      "KHR_materials_volume",       "KHR_materials_specular",
+      "KHR_materials_clearcoat",    "KHR_materials_sheen",
+      "KHR_mesh_quantization",      "TRAY_shape",
+      "TRAY_materials_phong",       "TRAY_materials_priority",
+      "TRAY_environment",           "TRAY_camera"};
   return kKnown.count(name) != 0;
 }
 

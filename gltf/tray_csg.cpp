@@ -1,8 +1,8 @@
-#include "accel/registry.h"
 #include "gltf/tray_csg.h"
 
 #include <algorithm>
 
+#include "accel/registry.h"
 #include "core/error.h"
 #include "gltf/gltf_meshes.h"
 #include "gltf/gltf_scene_graph.h"

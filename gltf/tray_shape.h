@@ -3,8 +3,8 @@
 #include <memory>
 #include <string>
 
-#include "gltf/gltf_context.h"
 #include "core/shape.h"
+#include "gltf/gltf_context.h"
 
 namespace tray {
 

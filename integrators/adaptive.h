@@ -3,8 +3,8 @@
 // corners, subdivide where they differ, recurse to a maximum depth.
 #include <memory>
 
-#include "film/film.h"
 #include "core/integrator.h"
+#include "film/film.h"
 
 namespace tray {
 

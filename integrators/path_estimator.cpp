@@ -7,10 +7,10 @@
 #include <new>
 
 #include "core/front_face.h"
-#include "textures/shading.h"
 #include "core/unbuilt.h"
 #include "integrators/path_vertex_lanes.h"
 #include "materials/bsdf.h"
+#include "textures/shading.h"
 
 namespace tray {
 namespace {
@@ -132,10 +132,13 @@ void PathEstimator::escape(PathState& st) const {
   }
 }
 
-PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const Hit& hit,
-                             ShadowQuery& shadow, bool& wantsShadow, RayStats& stats,
-                             PrimaryHit* primary, const SurfacePoint* surface, DrawsAhead ahead,
-                             const ShadingDeferral* deferral, uint32_t path) const {
+PathStep PathEstimator::step(PathState& st, Sampler& sampler, const Hit* found, ShadowQuery& shadow,
+                             bool& wantsShadow, RayStats& stats, PrimaryHit* primary,
+                             const WavefrontVertex& wave) const {
+  const SurfacePoint* surface = wave.surface;
+  const DrawsAhead ahead = wave.ahead;
+  const ShadingDeferral* deferral = wave.deferral;
+  const uint32_t path = wave.path;
   wantsShadow = false;
   // KHR_materials_volume: the segment crosses the medium in effect, which absorbs.
   const Color sigmaA = st.media.currentAbsorption();
@@ -145,6 +148,7 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
     if (!absorbing) escape(st);
     return PathStep::kDone;
   }
+  const Hit& hit = *found;
   if (absorbing) {
     st.beta *= transmittance(sigmaA, hit.t * length(st.ray.d));
     if (isBlack(st.beta)) return PathStep::kDone;
@@ -214,6 +218,7 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
 
   // Shade on the side the ray arrived from.
   v.n = s.frontFace ? shadingN : -shadingN;
+  ++stats.shadedVertices;
   // A matte or glossy vertex goes to its SIMD stage before its Bsdf is built (it needs none).
   // (A plain material's stage is its factors' stage: for an inside vertex none, since both
   // stages need transmission 0.)
@@ -285,16 +290,7 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
   BsdfSample bs = bsdf.sample(v.wo, u.x, {u.y, u.z});
   if (!bs.valid()) return PathStep::kDone;
   st.beta = scatteredThroughput(st.beta, bs.f, bs.wi, v.n, bs.pdf);
-  if (!isFinite(st.beta)) {
-    reportNan(st, "path throughput", st.depth);
-    st.nan = true;  // counted and discarded upstream
-    return PathStep::kDone;
-  }
-  if (isBlack(st.beta)) return PathStep::kDone;
-  st.specular = bs.delta;
-  st.indirectEmission = st.indirectNee;
-  st.indirectNee = st.indirectNee || !bs.delta;
-  st.prevPdf = bs.pdf;
+  if (!throughputLives(st)) return PathStep::kDone;
   st.prev = v.here;
   st.prevEscapePmf = v.escapePmf;
   if (bs.transmission && v.refractive) {
@@ -306,10 +302,7 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, bool found, const 
                        : bs.delta                ? LightPathSplitter::deltaLobe(bs.transmission)
                                                  : bsdf.evalLobes(v.wo, bs.wi));
   setSpawnRay(st.ray, s.p, s.ng, bs.wi, s.time);
-  ++stats.secondaryRays;
-  ++st.depth;
-
-  return roulette(st, draws.sampler);
+  return nextSegment(st, draws.sampler, stats, bs.pdf, bs.delta);
 }
 
 template <bool glossy>
@@ -376,24 +369,13 @@ PathStep PathEstimator::finishDeferred(PathState& st, Sampler& sampler, const Sh
   const float pdf = m.pdf[q];
   if (!(pdf > 0)) return PathStep::kDone;
   st.beta = m.nextBeta[q];
-  if (!isFinite(st.beta)) {
-    reportNan(st, "path throughput", st.depth);
-    st.nan = true;
-    return PathStep::kDone;
-  }
-  if (isBlack(st.beta)) return PathStep::kDone;
-  st.specular = false;
-  st.indirectEmission = st.indirectNee;
-  st.indirectNee = true;
-  st.prevPdf = pdf;
+  if (!throughputLives(st)) return PathStep::kDone;
   st.prev.p = m.p[q], st.prev.n = m.n[q];
   st.prev.transmits = false, st.prev.belowMatters = m.belowMatters[q];
   st.ray.o = m.rayOrigin[q], st.ray.d = m.rayDir[q];
   st.ray.tmin = 0.0f, st.ray.tmax = kInfinity;  // setSpawnRay's
   st.ray.blend = BlendRays::kStochastic, st.ray.time = time;
-  ++stats.secondaryRays;
-  ++st.depth;
-  return roulette(st, sampler);
+  return nextSegment(st, sampler, stats, pdf, false);
 }
 
 }  // namespace tray

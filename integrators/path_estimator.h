@@ -8,11 +8,11 @@
 
 #include "core/integrator.h"
 #include "core/light_paths.h"
-#include "textures/shading.h"
 #include "integrators/glossy_batch.h"
 #include "integrators/matte_batch.h"
 #include "lights/light_set.h"
 #include "materials/medium_stack.h"
+#include "textures/shading.h"
 
 namespace tray {
 
@@ -82,9 +82,10 @@ struct ShadowQuery {
   LobeSplit toLight;
 };
 
-/// A vertex's two 3D draws made ahead in SIMD (integrators/sampler_batch.h), or none (null): the light
-/// sample's and then the BSDF sample's come from here in that order, each skipping the sampler
-/// past it; a vertex that draws only one (no light sample) takes `first` for its BSDF sample.
+/// A vertex's two 3D draws made ahead in SIMD (integrators/sampler_batch.h), or none (null): the
+/// light sample's and then the BSDF sample's come from here in that order, each skipping the
+/// sampler past it; a vertex that draws only one (no light sample) takes `first` for its BSDF
+/// sample.
 struct DrawsAhead {
   const Vec3* first = nullptr;
   const Vec3* second = nullptr;
@@ -106,27 +107,35 @@ struct ShadingDeferral {
   ShadingLanes& glossy;
 };
 
+/// What the wavefront made ahead for one vertex of its queue; the scalar driver makes none (the
+/// same numbers either way).
+struct WavefrontVertex {
+  /// Scene::surface(state.ray, hit), computed for the queue in SIMD
+  /// (integrators/surface_batch.h); null: step computes it.
+  const SurfacePoint* surface = nullptr;
+  /// The sampler's next two 3D draws, made for the queue in SIMD.
+  DrawsAhead ahead;
+  /// Where a vertex may wait for a SIMD shading stage: one with a lone Lambert lobe, or with
+  /// the metal and plastic mixture (and both draws made ahead, no light-path split, no
+  /// absorbing medium) whose light choice is one the stages sample (an emissive triangle or
+  /// the constant environment) or none is chosen, is queued in its stage's lanes with its
+  /// inputs as `path` (kDeferred, the sampler past both draws). Null: none.
+  const ShadingDeferral* deferral = nullptr;
+  uint32_t path = 0;
+};
 /// Unidirectional path tracing with next-event estimation and MIS (Veach 1997, ch. 9), written
 /// as a step per vertex. Thread-safe: all per-path data lives in PathState.
 class PathEstimator {
  public:
   explicit PathEstimator(const RenderContext& ctx);
   int maxDepth() const { return maxDepth_; }
-  /// Processes the result of tracing state.ray (`found`: `hit` is its closest hit): emission,
-  /// NEE (sets `shadow` and returns true in `wantsShadow` when a shadow ray must be tested),
-  /// BSDF sampling and Russian roulette. Fills `primary` at the first surface if not null.
-  /// `surface`: Scene::surface(state.ray, hit) when the caller has it (the wavefront computes
-  /// its queue's in SIMD, integrators/surface_batch.h); null: computed here. `ahead`: the sampler's
-  /// next two 3D draws when the caller made them (the same numbers either way). `deferral`: a
-  /// vertex with a lone Lambert lobe, or with the metal and plastic mixture (and both draws
-  /// made ahead, no light-path split, no absorbing medium) whose light choice is one the
-  /// stages sample (an emissive triangle or the constant environment) or none is chosen,
-  /// queued in its stage's lanes with its inputs as `path`: kDeferred, the sampler past both
-  /// draws.
-  PathStep step(PathState& state, Sampler& sampler, bool found, const Hit& hit, ShadowQuery& shadow,
+  /// Processes the result of tracing state.ray (`hit`: its closest hit, null when it escaped):
+  /// emission, NEE (sets `shadow` and returns true in `wantsShadow` when a shadow ray must be
+  /// tested), BSDF sampling and Russian roulette. Fills `primary` at the first surface if not
+  /// null. `wave`: what the wavefront made ahead for this vertex (none for the scalar driver).
+  PathStep step(PathState& state, Sampler& sampler, const Hit* hit, ShadowQuery& shadow,
                 bool& wantsShadow, RayStats& stats, PrimaryHit* primary,
-                const SurfacePoint* surface = nullptr, DrawsAhead ahead = {},
-                const ShadingDeferral* deferral = nullptr, uint32_t path = 0) const;
+                const WavefrontVertex& wave = {}) const;
   /// The rest of a deferred vertex once its stage's compute has run: entry q of `lanes`
   /// becomes the shadow query (wantsShadow) and the next segment, as step() would have made
   /// them, then Russian roulette.
@@ -157,7 +166,8 @@ class PathEstimator {
       Hit hit;
       const bool found = accel.intersect(state.ray, hit);
       bool wantsShadow;
-      const PathStep next = step(state, sampler, found, hit, shadow, wantsShadow, stats, primary);
+      const PathStep next =
+          step(state, sampler, found ? &hit : nullptr, shadow, wantsShadow, stats, primary);
       if (wantsShadow) resolveShadow(state, shadow, accel.occluded(shadow.ray));
       if (next == PathStep::kDone) break;
     }
@@ -178,6 +188,28 @@ class PathEstimator {
   template <bool glossy>
   bool defer(PathState& st, Sampler& sampler, Vertex& v, const ShadingMaterial& sm, float eta,
              DrawsAhead ahead, const ShadingDeferral& stages, uint32_t path) const;
+  /// After a BSDF sample set st.beta (scatter, or a SIMD stage for finishDeferred): false, the
+  /// path done, when the throughput is not finite (counted and discarded upstream) or black.
+  [[gnu::always_inline]] bool throughputLives(PathState& st) const {
+    if (!isFinite(st.beta)) {
+      reportNan(st, "path throughput", st.depth);
+      st.nan = true;
+      return false;
+    }
+    return !isBlack(st.beta);
+  }
+  /// What every BSDF sample records in the path, whoever made it (the caller has set st.prev
+  /// and st.ray): the MIS state the next hit reads, one more segment, then Russian roulette.
+  [[gnu::always_inline]] PathStep nextSegment(PathState& st, Sampler& sampler, RayStats& stats,
+                                              float pdf, bool delta) const {
+    st.specular = delta;
+    st.indirectEmission = st.indirectNee;
+    st.indirectNee = st.indirectNee || !delta;
+    st.prevPdf = pdf;
+    ++stats.secondaryRays;
+    ++st.depth;
+    return roulette(st, sampler);
+  }
   /// Russian roulette after a scattering (Arvo & Kirk 1990) with Mitsuba's survival
   /// probability, from the kRouletteDepth-th segment on.
   PathStep roulette(PathState& st, Sampler& sampler) const {

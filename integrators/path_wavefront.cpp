@@ -3,14 +3,14 @@
 #include <algorithm>
 #include <vector>
 
-#include "integrators/camera_batch.h"
-#include "integrators/sampler_batch.h"
 #include "core/simd_lanes.h"
-#include "integrators/surface_batch.h"
+#include "integrators/camera_batch.h"
 #include "integrators/glossy_batch.h"
 #include "integrators/matte_batch.h"
 #include "integrators/path.h"
 #include "integrators/path_estimator.h"
+#include "integrators/sampler_batch.h"
+#include "integrators/surface_batch.h"
 
 namespace tray {
 namespace {
@@ -194,7 +194,8 @@ void PathWavefrontIntegrator::beginPathsInSimd(Wave& w, std::span<const PixelTas
     task = chunkTask, sample = chunkSample;
     for (size_t k = 0; k < c1 - c0; ++k) {
       const PixelTask& t = tasks[task];
-      // The camera ray straight into the path's state (no Ray temporary: integrators/camera_batch.h).
+      // The camera ray straight into the path's state (no Ray temporary:
+      // integrators/camera_batch.h).
       PathState& st = w.paths.emplace_back();
       cameraBatch_->setRay(w.cameraLanes, k, st.ray);
       st.beginCamera(t.x, t.y, wantsLightPaths(t) ? &w.lightPaths[c0 + k - g0] : nullptr);
@@ -261,11 +262,13 @@ void PathWavefrontIntegrator::bounce(Wave& w, RayStats& stats, bool cameraRays) 
       estimator_.prefetchTextures(w.surfaces[ahead]);
     const uint32_t k = w.live[j];
     bool wantsShadow;
-    const PathStep step = estimator_.step(
-        w.paths[k], w.samplers[k], w.found[j], w.hits[j], w.shadows[shadowCount], wantsShadow,
-        stats, &w.primary[k], surfacesKnown ? &w.surfaces[j] : nullptr,
+    const WavefrontVertex made{
+        surfacesKnown ? &w.surfaces[j] : nullptr,
         drawsAhead_ ? DrawsAhead{&w.draws.first[j], &w.draws.second[j]} : DrawsAhead{},
-        deferring ? &deferral : nullptr, k);
+        deferring ? &deferral : nullptr, k};
+    const PathStep step =
+        estimator_.step(w.paths[k], w.samplers[k], w.found[j] ? &w.hits[j] : nullptr,
+                        w.shadows[shadowCount], wantsShadow, stats, &w.primary[k], made);
     if (wantsShadow) w.shadowPath[shadowCount++] = k;
     if (step == PathStep::kContinue) w.next.push_back(k);
   }

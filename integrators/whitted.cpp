@@ -1,9 +1,9 @@
 #include "integrators/whitted.h"
 
-#include "textures/alpha.h"
-#include "textures/shading.h"
 #include "lights/light_set.h"
 #include "materials/fresnel.h"
+#include "textures/alpha.h"
+#include "textures/shading.h"
 
 namespace tray {
 

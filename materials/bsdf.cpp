@@ -143,7 +143,8 @@ BsdfSample Bsdf::sampleLocal(const Vec3& wo, float uc, Vec2 u) const {
     // mixture (a rough GGX lobe's own f and pdf would only be thrown away for the mixture's:
     // the spheres scene spent ~1/3 of the BSDF's instructions on them, callgrind).
     if (lobe == 3 || (lobe != 1 && !metal_->isDelta())) {
-      const MixtureSampleOf<Vec3> m = mixtureSample(mixture(), p, wo, uc, u, coatFresnelAt(), glassAt(p));
+      const MixtureSampleOf<Vec3> m =
+          mixtureSample(mixture(), p, wo, uc, u, coatFresnelAt(), glassAt(p));
       BsdfSample s;
       s.wi = m.wi, s.f = m.f, s.pdf = m.pdf;
       return s;

@@ -7,10 +7,10 @@
 #include <sstream>
 #include <vector>
 
-#include "render/job_diff.h"
 #include "core/error.h"
 #include "integrators/registry.h"
 #include "io/image_input.h"
+#include "render/job_diff.h"
 
 namespace tray {
 namespace {

@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
+#include "core/render_options.h"
 #include "film/film.h"
 #include "film/render_state.h"
-#include "core/render_options.h"
 #include "io/image_output.h"
 #include "render/image_part.h"
 

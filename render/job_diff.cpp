@@ -31,8 +31,7 @@ std::string jobDifference(const std::string& here, const std::string& there) {
   for (const auto& [name, value] : a) {
     const std::string* other = find(b, name);
     if (!other) return "the field '" + name + "' is missing there";
-    if (*other != value)
-      return name + " is '" + *other + "' there, '" + value + "' here";
+    if (*other != value) return name + " is '" + *other + "' there, '" + value + "' here";
   }
   for (const auto& [name, value] : b)
     if (!find(a, name)) return "the field '" + name + "' is missing here";

@@ -10,12 +10,11 @@ std::string jobSignatureOf(const RenderJob& job, const PreparedScene& scene, int
   const JobOutputs& out = job.outputs;
   const std::string output = std::string(out.floatOutput ? "float," : "half,") +
                              (out.colorspace.empty() ? "default" : out.colorspace);
-  return jobSignature(job.settings,
-                      {job.scene.path, job.scene.index.value_or(-1), placedCamera, scene.width(),
-                       scene.height(), job.accelerator,
-                       out.aovs + (out.aaHeatmap.empty() ? "" : "+samples"),
-                       job.scene.contentHash ? *job.scene.contentHash : contentHashOf(job),
-                       output});
+  return jobSignature(
+      job.settings,
+      {job.scene.path, job.scene.index.value_or(-1), placedCamera, scene.width(), scene.height(),
+       job.accelerator, out.aovs + (out.aaHeatmap.empty() ? "" : "+samples"),
+       job.scene.contentHash ? *job.scene.contentHash : contentHashOf(job), output});
 }
 
 ImageOutputOptions outputOptionsOf(const RenderJob& job, const PreparedScene& scene,
@@ -58,7 +57,7 @@ ImageOutputOptions JobWriter::metadataOf(const RenderState& now, double seconds)
                      {"tray:sampleEnd", float(range_.end)},
                      {"tray:samplesPerPixel", float(samplesPerPixel_.value_or(0))}};
   addOptionMetadata(job_.settings, w);  // tray:integrator, tray:spp, tray:maxDepth, ...
-  if (samplesPerPixel_)  // adaptive: the samples AOV counts them per pixel
+  if (samplesPerPixel_)                 // adaptive: the samples AOV counts them per pixel
     w.floatMetadata.emplace_back("tray:samplesDone",
                                  float(done) * float(range_.end - range_.begin));
   return w;

@@ -7,10 +7,10 @@
 
 #include "core/accelerator.h"
 #include "core/camera.h"
-#include "film/film.h"
 #include "core/integrator.h"
-#include "film/render_state.h"
 #include "core/scene.h"
+#include "film/film.h"
+#include "film/render_state.h"
 #include "render/render_setup.h"
 #include "render/renderer.h"
 

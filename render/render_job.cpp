@@ -6,12 +6,12 @@
 #include <filesystem>
 
 #include "core/animation_time.h"
+#include "core/error.h"
 #include "film/aov.h"
 #include "film/cryptomatte.h"
-#include "core/error.h"
+#include "gltf/scene_hash.h"
 #include "integrators/adaptive.h"
 #include "io/image_output.h"
-#include "gltf/scene_hash.h"
 #include "render/farm.h"
 #include "render/job_scene.h"
 #include "render/job_writer.h"
@@ -77,8 +77,8 @@ void addCheckpoints(RenderOptions& options, const RenderJob& job, const JobWrite
                     double previousSeconds, Clock::time_point started,
                     const RenderJobEvents& events) {
   options.checkpointSeconds = job.part.checkpointSeconds;
-  options.onCheckpoint = [&job, &writer, &events, previousSeconds, started](
-                             const Film& f, const RenderState& s) {
+  options.onCheckpoint = [&job, &writer, &events, previousSeconds, started](const Film& f,
+                                                                            const RenderState& s) {
     Film copy = f;
     const double elapsed = std::chrono::duration<double>(Clock::now() - started).count();
     try {  // a failed checkpoint (full disk) costs the safety net, not the render
@@ -127,8 +127,7 @@ LoadOptions loadOptionsOf(const RenderJob& job) {
 std::string contentHashOf(const RenderJob& job) {
   const std::string env = job.settings.getString("env");
   return sceneContentHash(job.scene.path, job.scene.allowAnyPath,
-                          env.empty() ? std::vector<std::string>{}
-                                      : std::vector<std::string>{env});
+                          env.empty() ? std::vector<std::string>{} : std::vector<std::string>{env});
 }
 
 uint64_t defaultMaxMemoryBytes() {
@@ -160,8 +159,7 @@ RenderJobResult runRenderJob(const RenderJob& job, const RenderJobEvents& events
   result.pixels = size_t(film.width()) * film.height();
   RenderState state;
   double previousSeconds = 0;
-  if (job.part.resume &&
-      !resume(job, writer, scene, plan, film, state, previousSeconds, events)) {
+  if (job.part.resume && !resume(job, writer, scene, plan, film, state, previousSeconds, events)) {
     result.outcome = RenderJobResult::Outcome::kAlreadyFinished;
     return result;
   }
@@ -179,8 +177,8 @@ RenderJobResult runRenderJob(const RenderJob& job, const RenderJobEvents& events
                events);
   if (!job.outputs.aaHeatmap.empty() && complete)
     writeImage(samplesHeatmap(film), job.outputs.aaHeatmap);
-  result.outcome = complete ? RenderJobResult::Outcome::kComplete
-                            : RenderJobResult::Outcome::kInterrupted;
+  result.outcome =
+      complete ? RenderJobResult::Outcome::kComplete : RenderJobResult::Outcome::kInterrupted;
   return result;
 }
 

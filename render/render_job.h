@@ -41,8 +41,8 @@ struct JobOutputs {
 
 /// Farm parts and checkpoints (docs/farm.md), in the command line's spelling.
 struct JobPart {
-  std::string region;       ///< "x0,y0,x1,y1"; empty: the whole image
-  std::string sampleRange;  ///< "a,b"; empty: every sample
+  std::string region;            ///< "x0,y0,x1,y1"; empty: the whole image
+  std::string sampleRange;       ///< "a,b"; empty: every sample
   double checkpointSeconds = 0;  ///< write a checkpoint this often (0: never)
   bool resume = false;           ///< go on from the checkpoint in the first .exr output
 };
@@ -53,7 +53,7 @@ struct RenderJob {
   std::string camera;      ///< a glTF camera index or a node/camera name; empty: the default
   std::string resolution;  ///< "WxH"; empty: 640 wide, the height from the camera's aspect
   std::string accelerator = "embree";
-  int threads = 0;  ///< 0: every core
+  int threads = 0;          ///< 0: every core
   RenderSettings settings;  ///< the declared options: integrator, spp, env, lens, time ...
   JobOutputs outputs;
   JobPart part;

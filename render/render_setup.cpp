@@ -26,8 +26,7 @@ std::string cameraList(const Scene& scene) {
 }
 
 bool allDigits(const std::string& s) {
-  return !s.empty() && s.size() < 10 &&
-         s.find_first_not_of("0123456789") == std::string::npos;
+  return !s.empty() && s.size() < 10 && s.find_first_not_of("0123456789") == std::string::npos;
 }
 
 }  // namespace
@@ -52,8 +51,10 @@ int findCamera(const Scene& scene, const std::string& which) {
   }
   for (size_t i = 0; i < cams.size(); ++i)
     if (cams[i].nodeName == which || cams[i].name == which) return int(i);
-  throw Error(scene.sourcePath + ": --camera '" + which + "': no camera or camera node has "
-              "that name; " + cameraList(scene));
+  throw Error(scene.sourcePath + ": --camera '" + which +
+              "': no camera or camera node has "
+              "that name; " +
+              cameraList(scene));
 }
 
 CameraDesc chooseCamera(const Scene& scene, const std::string& which) {
@@ -111,8 +112,8 @@ EmissionSummary summarizeEmission(const Scene& scene) {
   EmissionSummary e;
   std::vector<float> exitance(scene.materials.size(), -1.0f);  // per material, lazily
   for (const Primitive& prim : scene.primitives) {
-    const int mi = prim.kind == Primitive::Kind::kMesh ? scene.meshes[prim.mesh].material
-                                                       : prim.material;
+    const int mi =
+        prim.kind == Primitive::Kind::kMesh ? scene.meshes[prim.mesh].material : prim.material;
     const Material& m = scene.material(mi);
     float& M = exitance[size_t(mi)];
     if (M < 0) {  // radiant exitance pi L of a Lambertian emitter, L = factor x mean texel
@@ -166,12 +167,16 @@ bool addDefaultLightingIfUnlit(Scene& scene, const CameraDesc& camera) {
 }
 
 bool useHeadlightIfEnclosed(Scene& scene, const CameraDesc& camera, const Accelerator& accel) {
-  if (scene.lights.empty() ||
-      scene.lights.back().type != PunctualLightDesc::Type::kDirectional)
+  if (scene.lights.empty() || scene.lights.back().type != PunctualLightDesc::Type::kDirectional)
     return false;
   const Vec3 eye = camera.toWorld.point(Vec3(0.0f));
   const Vec3 directions[] = {-scene.lights.back().direction,
-                             {1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+                             {1, 0, 0},
+                             {-1, 0, 0},
+                             {0, 1, 0},
+                             {0, -1, 0},
+                             {0, 0, 1},
+                             {0, 0, -1}};
   for (const Vec3& d : directions) {
     Hit hit;
     if (!accel.intersect(Ray{eye, d}, hit)) return false;  // light gets in (or out) that way

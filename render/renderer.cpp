@@ -11,9 +11,9 @@
 #include <optional>
 #include <vector>
 
+#include "core/error.h"
 #include "film/aov.h"
 #include "film/cryptomatte.h"
-#include "core/error.h"
 
 namespace tray {
 namespace {
@@ -230,8 +230,7 @@ class TileRenderer {
     if (options_.onProgress) options_.onProgress(double(tilesDone_) / tileCount_);
     const auto now = Clock::now();
     if (!options_.onCheckpoint || options_.checkpointSeconds <= 0 || checkpointing_ ||
-        std::chrono::duration<double>(now - lastCheckpoint_).count() <
-            options_.checkpointSeconds ||
+        std::chrono::duration<double>(now - lastCheckpoint_).count() < options_.checkpointSeconds ||
         tilesDone_ >= tileCount_ || stopped())
       return false;
     checkpointing_ = true;

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "film/film.h"
 #include "core/integrator.h"
+#include "film/film.h"
 #include "film/render_state.h"
 #include "render/image_part.h"
 

@@ -60,7 +60,7 @@ float textureAlpha(const TextureImage& image, const TextureRef& ref, Vec2 uv) {
 
 Color vertexColor(const TriangleMesh& m, uint32_t tri, float b1, float b2) {
   if (m.colors.empty()) return Color(1.0f);
-  const uint32_t *v = &m.indices[3 * size_t(tri)];
+  const uint32_t* v = &m.indices[3 * size_t(tri)];
   return (1.0f - b1 - b2) * m.colors[v[0]] + b1 * m.colors[v[1]] + b2 * m.colors[v[2]];
 }
 
@@ -106,7 +106,8 @@ float coverage(const Scene& scene, const Hit& hit) {
 
 float alphaHash(const Ray& r, uint32_t primitive, uint32_t triangle) {
   uint32_t h = mix(primitive * 0x9e3779b9u + triangle);
-  for (float f : {r.o.x, r.o.y, r.o.z, r.d.x, r.d.y, r.d.z}) h = mix(h ^ std::bit_cast<uint32_t>(f));
+  for (float f : {r.o.x, r.o.y, r.o.z, r.d.x, r.d.y, r.d.z})
+    h = mix(h ^ std::bit_cast<uint32_t>(f));
   return float(h >> 8) * 0x1p-24f;
 }
 

@@ -1,8 +1,9 @@
 #pragma once
 // Alpha coverage of mesh surfaces (glTF alphaMode MASK and BLEND), evaluated where a ray meets a
 // triangle. Both accelerators call alphaAccepts from their any-hit test (Embree's filter
-// callbacks in accel/embree_alpha_filter.cpp, the BVH's triangle loop in accel/bvh_accelerator.cpp),
-// so they agree hit for hit; shading (textures/shading.cpp) and Whitted's blend read the same alpha.
+// callbacks in accel/embree_alpha_filter.cpp, the BVH's triangle loop in
+// accel/bvh_accelerator.cpp), so they agree hit for hit; shading (textures/shading.cpp) and
+// Whitted's blend read the same alpha.
 #include <cstdint>
 
 #include "core/hit.h"
@@ -14,7 +15,9 @@ namespace tray {
 
 /// True if hits on a mesh with this material need the any-hit test (alphaMode not OPAQUE).
 /// Opaque meshes never reach the functions below: they cost nothing.
-inline bool needsAlphaTest(const Material& m) { return m.alphaMode != AlphaMode::kOpaque; }
+inline bool needsAlphaTest(const Material& m) {
+  return m.alphaMode != AlphaMode::kOpaque;
+}
 
 /// Linear alpha of texture image `ref.image` at uv (before the reference's transform): bilinear
 /// in the finest level with the sampler's wrap modes, 1 if the image has no alpha channel.

@@ -3,9 +3,9 @@
 #include <cmath>
 #include <new>
 
-#include "textures/alpha.h"
 #include "core/sampling.h"
 #include "core/unbuilt.h"
+#include "textures/alpha.h"
 
 namespace tray {
 
@@ -107,7 +107,8 @@ void MaterialEvaluator::modulate(const Hit& hit, const SurfacePoint& s,
       p.kind == Primitive::Kind::kMesh && hit.material < 0)
     mesh = &scene_.meshes[p.mesh];
   const bool vertexColored = mesh && !mesh->colors.empty();
-  const Color vertex = vertexColored ? vertexColor(*mesh, hit.triangle, hit.b1, hit.b2) : Color(1.0f);
+  const Color vertex =
+      vertexColored ? vertexColor(*mesh, hit.triangle, hit.b1, hit.b2) : Color(1.0f);
   if (vertexColored) out.baseColor *= vertex;
   if (mesh && m.alphaMode == AlphaMode::kBlend) out.alpha = coverage(scene_, hit);
   if (!prebuilt_[size_t(s.material)].textured) {
@@ -169,16 +170,16 @@ void MaterialEvaluator::modulate(const Hit& hit, const SurfacePoint& s,
     // KHR_materials_sheen: colour in RGB, roughness in alpha.
     if (l.sheenColorTexture.valid()) out.sheenColor *= lookup(l.sheenColorTexture);
     if (l.sheenRoughnessTexture.valid()) {
-      out.sheenRoughness *= textureAlpha(scene_.textures[size_t(l.sheenRoughnessTexture.image)],
-                                         l.sheenRoughnessTexture,
-                                         frameOf(l.sheenRoughnessTexture.texCoord).uv);
+      out.sheenRoughness *=
+          textureAlpha(scene_.textures[size_t(l.sheenRoughnessTexture.image)],
+                       l.sheenRoughnessTexture, frameOf(l.sheenRoughnessTexture.texCoord).uv);
     }
     if (l.clearcoatNormalTexture.valid()) {
       ShadingMaterial geometric = out;
       geometric.n = s.n;
-      out.clearcoatN = normalMapped(geometric, frameOf(l.clearcoatNormalTexture.texCoord),
-                                    lookup(l.clearcoatNormalTexture),
-                                    l.clearcoatNormalTexture.scale, s);
+      out.clearcoatN =
+          normalMapped(geometric, frameOf(l.clearcoatNormalTexture.texCoord),
+                       lookup(l.clearcoatNormalTexture), l.clearcoatNormalTexture.scale, s);
     }
   }
   finishPhong(m, out, base * vertex);

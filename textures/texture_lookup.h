@@ -13,7 +13,7 @@ namespace tray {
 
 class TexturePyramid;
 
-enum class TexelFilter { kClosest, kBilinear };  ///< OIIO's InterpClosest, InterpBilinear
+enum class TexelFilter { kClosest, kBilinear };         ///< OIIO's InterpClosest, InterpBilinear
 enum class MipFilter { kNone, kOneLevel, kTrilinear };  ///< OIIO's MipModeNoMIP, ...
 
 /// One lookup in OIIO's terms: (s, t) spans the image over [0, 1], t down from its first row

@@ -136,8 +136,8 @@ void TexturePyramid::readLevel0(int x0, int y0, int w, int h, float* out, size_t
   }
 }
 
-void TexturePyramid::readBlock(int level, int x0, int y0, int w, int h, float* out,
-                               size_t stride, bool fromTiles) const {
+void TexturePyramid::readBlock(int level, int x0, int y0, int w, int h, float* out, size_t stride,
+                               bool fromTiles) const {
   if (level == 0) return readLevel0(x0, y0, w, h, out, stride);
   const Level& l = levels_[size_t(level)];
   if (l.stored) {

@@ -78,8 +78,7 @@ class TexturePyramid {
     }
     const int tx = xa / kTile, ty = ya / kTile;
     if (xb / kTile != tx || yb / kTile != ty) {  // across a tile edge, or wrapped
-      for (int k = 0; k < 4; ++k)
-        v[k] = texel(level, k & 1 ? xb : xa, k & 2 ? yb : ya, scratch[k]);
+      for (int k = 0; k < 4; ++k) v[k] = texel(level, k & 1 ? xb : xa, k & 2 ? yb : ya, scratch[k]);
       return;
     }
     const float* tile = this->tile(level, tx, ty);
@@ -106,8 +105,8 @@ class TexturePyramid {
  private:
   struct Level {
     int width = 0, height = 0, tilesX = 0;
-    std::vector<float> storedTexels;  ///< levels past kComputed
-    const float* stored = nullptr;    ///< storedTexels.data(), or null
+    std::vector<float> storedTexels;                     ///< levels past kComputed
+    const float* stored = nullptr;                       ///< storedTexels.data(), or null
     std::unique_ptr<std::atomic<const float*>[]> tiles;  ///< levels 1..kComputed
   };
 
@@ -133,8 +132,8 @@ class TexturePyramid {
   /// The tile (tx, ty) of a tiled level, made if missing.
   const float* tile(int level, int tx, int ty) const {
     const Level& l = levels_[size_t(level)];
-    const float* t = l.tiles[size_t(ty) * size_t(l.tilesX) + size_t(tx)].load(
-        std::memory_order_acquire);
+    const float* t =
+        l.tiles[size_t(ty) * size_t(l.tilesX) + size_t(tx)].load(std::memory_order_acquire);
     return t ? t : makeTile(level, tx, ty);
   }
   /// Texels [x0, x0 + w) x [y0, y0 + h) of `level` (>= 1) into `out` (row j at out + j *

@@ -35,8 +35,7 @@ TextureSampler::TextureSampler(const std::vector<TextureImage>& images, double c
                                TextureBackend backend)
     : impl_(std::make_unique<Impl>(images)), cacheMB_(cacheMB > 0 ? cacheMB : budgetFor(images)) {
   for (const TextureImage& im : images) {
-    if (!im.valid())
-      throw Error("texture '" + im.name + "' has no pixels or a wrong pixel count");
+    if (!im.valid()) throw Error("texture '" + im.name + "' has no pixels or a wrong pixel count");
     impl_->pyramids.push_back(std::make_unique<TexturePyramid>(im));
   }
   // TRay's filter never evicts a tile, so it runs only when all the tiles it could make fit

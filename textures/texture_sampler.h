@@ -1,8 +1,8 @@
 #pragma once
 // Filtered texture lookups: the glTF sampler and KHR_texture_transform turned into a lookup of
-// TRay's own filter (textures/texture_lookup.h, OIIO 2.4.7's arithmetic over lazily made MIP tiles),
-// or of OpenImageIO's TextureSystem when the scene's MIP tiles would exceed the texture memory
-// budget (its cache pages them). Both give the same values bit for bit (docs/textures.md).
+// TRay's own filter (textures/texture_lookup.h, OIIO 2.4.7's arithmetic over lazily made MIP
+// tiles), or of OpenImageIO's TextureSystem when the scene's MIP tiles would exceed the texture
+// memory budget (its cache pages them). Both give the same values bit for bit (docs/textures.md).
 #include <memory>
 #include <vector>
 

@@ -3,8 +3,8 @@
 #include <gtest/gtest.h>
 
 #include "accel/registry.h"
-#include "textures/alpha.h"
 #include "tests/scene_builder.h"
+#include "textures/alpha.h"
 
 namespace tray {
 namespace {

@@ -8,12 +8,12 @@
 
 #include "accel/registry.h"
 #include "core/accelerator.h"
+#include "gltf/gltf_loader.h"
+#include "integrators/registry.h"
+#include "render/prepared_scene.h"
 #include "render/render_setup.h"
 #include "render/renderer.h"
-#include "integrators/registry.h"
-#include "gltf/gltf_loader.h"
 #include "tests/scene_builder.h"
-#include "render/prepared_scene.h"
 
 namespace tray {
 namespace {

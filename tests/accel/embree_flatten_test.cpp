@@ -9,8 +9,8 @@
 
 #include "accel/embree_accelerator.h"
 #include "accel/registry.h"
-#include "textures/alpha.h"
 #include "tests/scene_builder.h"
+#include "textures/alpha.h"
 
 namespace tray {
 namespace {

@@ -1,14 +1,14 @@
-#include "accel/registry.h"
 #include "film/aov.h"
 
 #include <gtest/gtest.h>
 
+#include "accel/registry.h"
 #include "core/error.h"
-#include "render/renderer.h"
 #include "integrators/registry.h"
+#include "render/prepared_scene.h"
+#include "render/renderer.h"
 #include "tests/render_film.h"
 #include "tests/scene_builder.h"
-#include "render/prepared_scene.h"
 
 namespace tray {
 namespace {

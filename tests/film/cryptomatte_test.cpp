@@ -1,8 +1,5 @@
 // Cryptomatte: the hash and its float conversion against the specification's own examples, and
 // the ranking filter on a rendered scene (coverage from all samples, filter-weighted).
-#include <optional>
-
-#include "accel/registry.h"
 #include "film/cryptomatte.h"
 
 #include <gtest/gtest.h>
@@ -11,15 +8,17 @@
 #include <bit>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <set>
 
-#include "film/aov.h"
+#include "accel/registry.h"
 #include "core/error.h"
-#include "render/renderer.h"
+#include "film/aov.h"
 #include "integrators/adaptive.h"
 #include "integrators/registry.h"
-#include "tests/scene_builder.h"
 #include "render/prepared_scene.h"
+#include "render/renderer.h"
+#include "tests/scene_builder.h"
 
 namespace tray {
 namespace {

@@ -15,9 +15,9 @@
 #include <functional>
 
 #include "core/error.h"
-#include "tests/error_of.h"
 #include "gltf/gltf_loader.h"
 #include "tests/base64.h"
+#include "tests/error_of.h"
 #include "tests/temp_dir.h"
 
 namespace tray {
@@ -84,9 +84,9 @@ TEST(Keyframes, SlerpHalfwayThrough90DegreesIs45OnTheShortPath) {
 }
 
 TEST(Keyframes, CubicRotationsAreNormalised) {
-  Keyframes k = keys({0, 1}, {0, 0, 0, 0, 0, 0, 0, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0,
-                              0, 0},
-                     4, Interpolation::kCubicSpline, true);
+  Keyframes k =
+      keys({0, 1}, {0, 0, 0, 0, 0, 0, 0, 1, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0}, 4,
+           Interpolation::kCubicSpline, true);
   std::vector<float> q = sampleKeyframes(k, 0.5f);
   EXPECT_NEAR(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3], 1, 1e-6);
 }
@@ -164,22 +164,25 @@ TEST(GltfAnimation, TimeReplacesTheNodeTranslationAndNoTimeKeepsIt) {
 TEST(GltfAnimation, InvalidSamplersNameTheAccessor) {
   Doc d;
   d.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3", 3);
-  d.floats({0, 1, 1}, "SCALAR", 1);                 // 1: times not strictly increasing
+  d.floats({0, 1, 1}, "SCALAR", 1);                  // 1: times not strictly increasing
   d.floats({0, 0, 0, 1, 0, 0, 2, 0, 0}, "VEC3", 3);  // 2: three translations
-  d.floats({0, 1, 2}, "SCALAR", 1);                 // 3: good times
+  d.floats({0, 1, 2}, "SCALAR", 1);                  // 3: good times
   d.floats({0, 0, 0, 1, 0, 0}, "VEC3", 3);           // 4: two translations only
   auto doc = [](int input, int output, const char* interpolation) {
-    return std::string(R"("nodes":[{"mesh":0}],"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+    return std::string(
+               R"("nodes":[{"mesh":0}],"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
        "animations":[{"channels":[{"sampler":0,"target":{"node":0,"path":"translation"}}],
                       "samplers":[{"input":)") +
            std::to_string(input) + ",\"output\":" + std::to_string(output) +
            ",\"interpolation\":\"" + interpolation + "\"}]}]";
   };
-  EXPECT_NE(errorOf([&] { d.load(doc(1, 2, "LINEAR")); })
-                .find("accessor 1 (animation input) is not strictly increasing at keyframe 2"),
+  EXPECT_NE(errorOf([&] {
+              d.load(doc(1, 2, "LINEAR"));
+            }).find("accessor 1 (animation input) is not strictly increasing at keyframe 2"),
             std::string::npos);
-  EXPECT_NE(errorOf([&] { d.load(doc(3, 4, "LINEAR")); })
-                .find("accessor 4 (animation output) has 2 elements, expected 3"),
+  EXPECT_NE(errorOf([&] {
+              d.load(doc(3, 4, "LINEAR"));
+            }).find("accessor 4 (animation output) has 2 elements, expected 3"),
             std::string::npos);
   // CUBICSPLINE needs in-tangent, value and out-tangent per key: 9 for 3 keys.
   EXPECT_NE(errorOf([&] { d.load(doc(3, 2, "CUBICSPLINE")); }).find("expected 9"),
@@ -192,8 +195,9 @@ TEST(GltfAnimation, InvalidSamplersNameTheAccessor) {
 TEST(GltfAnimation, AnimationIsChosenByIndexOrName) {
   Doc d = translatedTriangle();
   d.floats({1, 1, 1, 3, 3, 3}, "VEC3", 3);  // 3: scales
-  const std::string two = kTranslated.substr(0, kTranslated.size() - 1) +
-                          R"(,{"name":"grow","channels":[{"sampler":0,"target":{"node":0,"path":"scale"}}],
+  const std::string two =
+      kTranslated.substr(0, kTranslated.size() - 1) +
+      R"(,{"name":"grow","channels":[{"sampler":0,"target":{"node":0,"path":"scale"}}],
                       "samplers":[{"input":1,"output":3}]}])";
   LoadOptions o = at(1);
   auto corner = [&] { return d.load(two, o).primitives.at(0).toWorld.point({1, 0, 0}); };
@@ -264,8 +268,8 @@ Doc skinnedTriangle() {
   d.add(std::vector<uint8_t>{0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0}, 5121, "VEC4", 4);
   d.add(std::vector<uint8_t>{255, 0, 0, 0, 255, 0, 0, 0, 255, 0, 0, 0}, 5121, "VEC4", 4, true);
   // Inverse bind matrices: identity, and translate(0, 0, -1) for joint 1 (column major).
-  d.floats({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0,
-            0, -1, 1},
+  d.floats({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0,  1,
+            1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, -1, 1},
            "MAT4", 16);
   d.add(std::vector<uint8_t>{255, 0, 0, 0, 255, 0, 0, 0, 200, 0, 0, 0}, 5121, "VEC4", 4, true);
   return d;
@@ -302,7 +306,9 @@ TEST(GltfSkin, JointOutOfRangeIsAnError) {
   d.add(std::vector<uint8_t>{0, 0, 0, 0, 0, 0, 0, 0, 7, 0, 0, 0}, 5121, "VEC4", 4);  // 5
   std::string doc = skinDoc("[0,0,0,1]", 2);
   doc.replace(doc.find("\"JOINTS_0\":1"), 12, "\"JOINTS_0\":5");
-  EXPECT_NE(errorOf([&] { d.load(doc); }).find("accessor 5 (JOINTS_0) joint 7 at vertex 2 is out of range"),
+  EXPECT_NE(errorOf([&] {
+              d.load(doc);
+            }).find("accessor 5 (JOINTS_0) joint 7 at vertex 2 is out of range"),
             std::string::npos);
 }
 
@@ -347,7 +353,8 @@ TEST(GltfSamplesAnimated, RiggedSimpleBoundsMatchAnIndependentReading) {
 TEST(GltfSamplesAnimated, WalkingFiguresMatchAnIndependentReading) {
   // 19 joints each; CesiumMan mid-stride: its feet 0.97 apart along z (the walking direction).
   expectBounds(loadGltf((kFeatures / "CesiumMan.glb").string(), at(1)),
-               {-0.2021819f, -0.0014262f, -0.5075166f}, {0.1668429f, 1.4572350f, 0.4623297f}, 1e-4f);
+               {-0.2021819f, -0.0014262f, -0.5075166f}, {0.1668429f, 1.4572350f, 0.4623297f},
+               1e-4f);
   expectBounds(loadGltf((kFeatures / "RiggedFigure.glb").string(), at(0.5f)),
                {-0.4232015f, 0, -0.1208366f}, {0.4127010f, 1.4695586f, 0.2220496f}, 1e-4f);
 }

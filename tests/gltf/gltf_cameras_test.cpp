@@ -7,8 +7,8 @@
 #include <fstream>
 
 #include "core/error.h"
-#include "render/render_setup.h"
 #include "gltf/gltf_loader.h"
+#include "render/render_setup.h"
 #include "tests/temp_dir.h"
 
 namespace tray {
@@ -91,7 +91,8 @@ Scene lensCamera(const std::string& ext) {
   return loadJson(R"({"asset":{"version":"2.0"},"scenes":[{"nodes":[0]}],"nodes":[{"camera":0}],
     "extensionsUsed":["TRAY_camera"],
     "cameras":[{"type":"perspective","perspective":{"yfov":0.5,"znear":0.1},
-                "extensions":{"TRAY_camera":)" + ext + "}}]}");
+                "extensions":{"TRAY_camera":)" +
+                  ext + "}}]}");
 }
 
 TEST(GltfCameras, TrayCameraStatesTheThinLens) {
@@ -100,9 +101,9 @@ TEST(GltfCameras, TrayCameraStatesTheThinLens) {
   EXPECT_FLOAT_EQ(c.lensRadius, 0.05f);
   EXPECT_FLOAT_EQ(c.focusDistance, 4.0f);
   EXPECT_EQ(c.apertureBlades, 6);
-  for (const char* bad : {R"({"lensRadius":0.05})",
-                          R"({"lensRadius":0.1,"focusDistance":2,"apertureBlades":2})",
-                          R"({"lensradius":0.1})", R"({"lensRadius":-1,"focusDistance":2})"}) {
+  for (const char* bad :
+       {R"({"lensRadius":0.05})", R"({"lensRadius":0.1,"focusDistance":2,"apertureBlades":2})",
+        R"({"lensradius":0.1})", R"({"lensRadius":-1,"focusDistance":2})"}) {
     try {
       lensCamera(bad);
       ADD_FAILURE() << bad << " was accepted";

@@ -13,8 +13,8 @@
 #include <functional>
 
 #include "core/error.h"
-#include "tests/error_of.h"
 #include "tests/base64.h"
+#include "tests/error_of.h"
 #include "tests/temp_dir.h"
 
 namespace tray {
@@ -347,7 +347,8 @@ TEST(GltfTiny, TrayPhongAndPriority) {
 
 TEST(GltfTiny, KhrMaterialExtensionsAndTextures) {
   // The image is a real 1x1 PNG: images that materials use are decoded at load.
-  Scene s = TinyDoc().load(R"("images":[{"uri":"data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAIAAACQd1PeAAAADElEQVR4nGNoaGgAAAMEAYFL09IQAAAAAElFTkSuQmCC"}],
+  Scene s = TinyDoc().load(
+      R"("images":[{"uri":"data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAIAAACQd1PeAAAADElEQVR4nGNoaGgAAAMEAYFL09IQAAAAAElFTkSuQmCC"}],
       "textures":[{"source":0},{"source":0}],"materials":[{
       "emissiveFactor":[1,0.5,0],"doubleSided":true,
       "normalTexture":{"index":1,"texCoord":1,"scale":0.5},
@@ -372,7 +373,8 @@ TEST(GltfTiny, KhrMaterialExtensionsAndTextures) {
 }
 
 TEST(GltfTiny, MaterialLayerExtensions) {
-  Scene s = TinyDoc().load(R"("images":[{"uri":"data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAIAAACQd1PeAAAADElEQVR4nGNoaGgAAAMEAYFL09IQAAAAAElFTkSuQmCC"}],
+  Scene s = TinyDoc().load(
+      R"("images":[{"uri":"data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAIAAACQd1PeAAAADElEQVR4nGNoaGgAAAMEAYFL09IQAAAAAElFTkSuQmCC"}],
       "textures":[{"source":0}],"materials":[{"extensions":{
       "KHR_materials_transmission":{"transmissionFactor":1},
       "KHR_materials_volume":{"thicknessFactor":0.5,"attenuationColor":[0.5,0.25,1],
@@ -415,7 +417,8 @@ TEST(GltfTiny, MaterialLayerExtensions) {
   EXPECT_NE(e.find("KHR_materials_sheen 'sheenRoughnessFactor'"), std::string::npos) << e;
   e = error(R"("KHR_materials_volume":{"attenuationDistance":0})");
   EXPECT_NE(e.find("KHR_materials_volume 'attenuationDistance' must be positive"),
-            std::string::npos) << e;
+            std::string::npos)
+      << e;
   e = error(R"("KHR_materials_volume":{"attenuationColor":[2,0,0]})");
   EXPECT_NE(e.find("'attenuationColor'"), std::string::npos) << e;
   e = error(R"("KHR_materials_clearcoat":{"clearcoatTexture":{"index":7}})");
@@ -510,7 +513,8 @@ TEST(GltfTiny, DataOutsideMinMaxIsOneWarningNamingTheAccessor) {
     d.add<float>({0, 0, 0, 1, 0, 0, 0, 1, 0}, 5126, "VEC3", false, 3,
                  lying ? R"(,"min":[0,0,0],"max":[1,0.5,0])" : R"(,"min":[0,0,0],"max":[1,1,0])");
     d.indices({0, 1, 2});
-    d.add<uint8_t>({0, 0, 255, 0, 0, 255}, 5121, "VEC2", true, 2, R"(,"min":[0,0],"max":[255,255])");
+    d.add<uint8_t>({0, 0, 255, 0, 0, 255}, 5121, "VEC2", true, 2,
+                   R"(,"min":[0,0],"max":[255,255])");
     LoadReport report;
     const Scene s = d.load(rest, {}, &report);
     ASSERT_EQ(s.meshes.size(), 1u);
@@ -626,7 +630,7 @@ const fs::path kFeatures = fs::path(TRAY_SHARED_DIR) / "gltf-features";
 /// Three meshes over the one triangle, each with COLOR_0 as accessor 2, 3 and 4.
 TEST(GltfTiny, VertexColorFormats) {
   TinyDoc d = triangleDoc();
-  d.vec3({1, 0.5f, 0.25f, 0, 0, 0, 1, 1, 1});                                     // float RGB
+  d.vec3({1, 0.5f, 0.25f, 0, 0, 0, 1, 1, 1});  // float RGB
   d.add(std::vector<uint8_t>{255, 0, 51, 255, 0, 0, 0, 0, 0, 0, 0, 128}, 5121, "VEC4", true, 4);
   d.add(std::vector<uint16_t>{65535, 0, 13107, 65535, 0, 0, 0, 0, 0, 0, 0, 32768}, 5123, "VEC4",
         true, 4);

@@ -117,8 +117,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadField{"/nodes/1/camera", 0.5, "nodes[1].camera"},
         BadField{"/scenes/0/nodes/1", -1, "scenes[0].nodes[1]"},
         BadField{"/cameras/0/perspective/aspectRatio", 0, "cameras[0].perspective.aspectRatio"},
-        BadField{"/cameras/0/perspective/aspectRatio", 1e-30,
-                 "cameras[0].perspective.aspectRatio"},
+        BadField{"/cameras/0/perspective/aspectRatio", 1e-30, "cameras[0].perspective.aspectRatio"},
         BadField{"/cameras/0/perspective/aspectRatio", "1.5",
                  "cameras[0].perspective.aspectRatio"}),
     [](const ::testing::TestParamInfo<BadField>& info) {

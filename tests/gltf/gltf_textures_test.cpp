@@ -1,7 +1,5 @@
 // Textures from glTF files: decoding (sRGB, PNG/JPEG only, caps), samplers, embedded and
 // external images, the errors bad images give, and the Khronos texture test assets rendered.
-#include "accel/registry.h"
-#include "integrators/registry.h"
 #include "gltf/gltf_textures.h"
 
 #include <OpenImageIO/imageio.h>
@@ -14,14 +12,16 @@
 #include <filesystem>
 #include <fstream>
 
+#include "accel/registry.h"
 #include "core/accelerator.h"
 #include "core/error.h"
-#include "render/render_setup.h"
-#include "render/renderer.h"
 #include "gltf/gltf_images.h"
 #include "gltf/gltf_loader.h"
-#include "tests/base64.h"
+#include "integrators/registry.h"
 #include "render/prepared_scene.h"
+#include "render/render_setup.h"
+#include "render/renderer.h"
+#include "tests/base64.h"
 #include "tests/temp_dir.h"
 
 namespace tray {

@@ -1,17 +1,17 @@
-#include "accel/registry.h"
 #include "integrators/adaptive.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "film/aov.h"
+#include "accel/registry.h"
 #include "core/error.h"
-#include "render/renderer.h"
+#include "film/aov.h"
 #include "integrators/registry.h"
+#include "render/prepared_scene.h"
+#include "render/renderer.h"
 #include "tests/raster_function.h"
 #include "tests/scene_builder.h"
-#include "render/prepared_scene.h"
 
 namespace tray {
 namespace {

@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "render/render_setup.h"
 #include "gltf/gltf_loader.h"
+#include "render/render_setup.h"
 #include "tests/render_film.h"
 #include "tests/scene_builder.h"
 

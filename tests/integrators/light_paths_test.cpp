@@ -5,8 +5,8 @@
 
 #include <cmath>
 
-#include "film/aov.h"
 #include "core/error.h"
+#include "film/aov.h"
 #include "tests/integrators/path_under_test.h"
 #include "tests/render_film.h"
 #include "tests/scene_builder.h"

@@ -6,12 +6,12 @@
 #include <cmath>
 
 #include "accel/registry.h"
-#include "render/renderer.h"
+#include "gltf/gltf_loader.h"
 #include "integrators/path.h"
 #include "integrators/registry.h"
-#include "gltf/gltf_loader.h"
-#include "tests/integrators/path_under_test.h"
 #include "render/prepared_scene.h"
+#include "render/renderer.h"
+#include "tests/integrators/path_under_test.h"
 
 namespace tray {
 namespace {

@@ -6,13 +6,13 @@
 #include <cmath>
 
 #include "accel/registry.h"
-#include "render/renderer.h"
 #include "integrators/path.h"
 #include "integrators/registry.h"
-#include "tests/integrators/path_probe.h"
-#include "tests/scene_builder.h"
-#include "tests/integrators/path_under_test.h"
 #include "render/prepared_scene.h"
+#include "render/renderer.h"
+#include "tests/integrators/path_probe.h"
+#include "tests/integrators/path_under_test.h"
+#include "tests/scene_builder.h"
 
 namespace tray {
 namespace {

@@ -5,8 +5,8 @@
 
 #include "integrators/registry.h"
 #include "render/prepared_scene.h"
-#include "tests/scene_builder.h"
 #include "tests/integrators/path_under_test.h"
+#include "tests/scene_builder.h"
 
 namespace tray::test {
 

@@ -1,15 +1,15 @@
-#include "accel/registry.h"
 #include "integrators/path.h"
 
 #include <gtest/gtest.h>
 
-#include "render/renderer.h"
+#include "accel/registry.h"
 #include "materials/bsdf.h"
 #include "materials/medium_stack.h"
+#include "render/renderer.h"
 #include "tests/integrators/path_probe.h"
+#include "tests/integrators/path_under_test.h"
 #include "tests/render_film.h"
 #include "tests/scene_builder.h"
-#include "tests/integrators/path_under_test.h"
 
 namespace tray {
 namespace {

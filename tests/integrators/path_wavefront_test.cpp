@@ -15,14 +15,14 @@
 
 #include "accel/registry.h"
 #include "film/aov.h"
+#include "gltf/gltf_loader.h"
+#include "integrators/registry.h"
+#include "render/prepared_scene.h"
 #include "render/render_setup.h"
 #include "render/renderer.h"
-#include "textures/texture_sampler.h"
-#include "integrators/registry.h"
-#include "gltf/gltf_loader.h"
 #include "tests/integrators/render_job.h"
 #include "tests/scene_builder.h"
-#include "render/prepared_scene.h"
+#include "textures/texture_sampler.h"
 
 namespace tray {
 namespace {

@@ -5,10 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
-
-#include <optional>
 
 #include "render/prepared_scene.h"
 

@@ -1,5 +1,5 @@
-// The draws integrators/sampler_batch.h makes ahead in SIMD against Sampler::next3D, bit for bit, on
-// every SIMD target the CPU has: both sequences, random pixels, samples, seeds and dimensions
+// The draws integrators/sampler_batch.h makes ahead in SIMD against Sampler::next3D, bit for bit,
+// on every SIMD target the CPU has: both sequences, random pixels, samples, seeds and dimensions
 // (reached by mixed 1D/2D/3D draws), samplers picked in any order, partial vectors.
 #include "integrators/sampler_batch.h"
 

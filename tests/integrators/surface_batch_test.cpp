@@ -1,5 +1,5 @@
-// The SIMD surface points of integrators/surface_batch.h against Scene::surface, bit for bit, on every
-// SIMD target the CPU has: random placements, meshes with and without normals and uvs,
+// The SIMD surface points of integrators/surface_batch.h against Scene::surface, bit for bit, on
+// every SIMD target the CPU has: random placements, meshes with and without normals and uvs,
 // degenerate normals, material overrides, hits spread over many primitives, and the
 // primitives the kernel leaves to the scalar code.
 #include "integrators/surface_batch.h"

@@ -6,12 +6,12 @@
 
 #include <filesystem>
 
-#include "render/farm.h"
 #include "cli/option_cli.h"
-#include "render/option_metadata.h"
 #include "core/error.h"
 #include "integrators/registry.h"
 #include "io/image_input.h"
+#include "render/farm.h"
+#include "render/option_metadata.h"
 #include "tests/raster_function.h"
 #include "tests/temp_dir.h"
 

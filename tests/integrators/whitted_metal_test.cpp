@@ -7,8 +7,8 @@
 
 #include "accel/registry.h"
 #include "integrators/whitted.h"
-#include "tests/scene_builder.h"
 #include "render/prepared_scene.h"
+#include "tests/scene_builder.h"
 
 namespace tray {
 namespace {

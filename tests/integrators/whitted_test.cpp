@@ -1,14 +1,14 @@
-#include <optional>
-
-#include "accel/registry.h"
 #include "integrators/whitted.h"
 
 #include <gtest/gtest.h>
 
+#include <optional>
+
+#include "accel/registry.h"
+#include "render/prepared_scene.h"
 #include "render/renderer.h"
 #include "tests/render_film.h"
 #include "tests/scene_builder.h"
-#include "render/prepared_scene.h"
 
 namespace tray {
 namespace {

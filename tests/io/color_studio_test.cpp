@@ -5,9 +5,8 @@
 // Also: the default EXR space is the config's scene_linear, a config with no way in is refused
 // before rendering, the albedo AOV is converted like the beauty, and oiiotool can display
 // TRay's EXRs with TRay's config ("Linear" alias).
-#include <gtest/gtest.h>
-
 #include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
 
 #include <array>
 #include <filesystem>

@@ -7,17 +7,17 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <optional>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "accel/registry.h"
 #include "film/aov.h"
 #include "film/cryptomatte.h"
-#include "render/renderer.h"
 #include "integrators/registry.h"
 #include "io/image_output.h"
-#include "tests/scene_builder.h"
 #include "render/prepared_scene.h"
+#include "render/renderer.h"
+#include "tests/scene_builder.h"
 #include "tests/temp_dir.h"
 
 namespace fs = std::filesystem;

@@ -69,8 +69,7 @@ Scene floorWithTexturedEmitter(float factor, int lit) {
   for (int i = 0; i < 3 * lit; ++i) t.pixels[size_t(i)] = 1.0f;
   s.textures.push_back(t);
   glow.emissiveTexture.image = 0;
-  addMeshInstance(s, addMesh(s, quadMesh(0.5f, addMaterial(s, glow))),
-                  Mat4::translate({0, 1, 0}));
+  addMeshInstance(s, addMesh(s, quadMesh(0.5f, addMaterial(s, glow))), Mat4::translate({0, 1, 0}));
   s.finalize();
   return s;
 }

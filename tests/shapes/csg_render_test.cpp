@@ -3,13 +3,13 @@
 #include <gtest/gtest.h>
 
 #include "accel/registry.h"
-#include "render/renderer.h"
 #include "integrators/registry.h"
+#include "render/prepared_scene.h"
+#include "render/renderer.h"
 #include "shapes/csg.h"
 #include "shapes/mesh_solid.h"
 #include "tests/scene_builder.h"
 #include "tests/shapes/solid_meshes.h"
-#include "render/prepared_scene.h"
 
 namespace tray {
 namespace {

@@ -1,10 +1,10 @@
-#include "accel/registry.h"
 #include "shapes/mesh_solid.h"
 
 #include <gtest/gtest.h>
 
 #include <random>
 
+#include "accel/registry.h"
 #include "core/error.h"
 #include "gltf/gltf_loader.h"
 #include "shapes/box.h"

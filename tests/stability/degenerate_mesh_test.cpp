@@ -18,8 +18,8 @@
 
 #include "accel/registry.h"
 #include "gltf/gltf_loader.h"
-#include "tests/stability/stability_scenes.h"
 #include "tests/integrators/path_under_test.h"
+#include "tests/stability/stability_scenes.h"
 #include "tests/temp_dir.h"
 
 namespace tray {

@@ -13,9 +13,9 @@
 #include "core/filter.h"
 #include "core/pixel_sampler.h"
 #include "integrators/registry.h"
-#include "tests/stability/stability_scenes.h"
-#include "tests/integrators/path_under_test.h"
 #include "render/prepared_scene.h"
+#include "tests/integrators/path_under_test.h"
+#include "tests/stability/stability_scenes.h"
 
 namespace tray {
 namespace {
@@ -58,7 +58,9 @@ std::vector<float> pixelSamples(const SceneWithCamera& a, const RenderSettings& 
     Sampler sampler(0, uint32_t(i), st.getInt64("seed"));
     const Vec2 d = ps.offset(i, sampler.next2D());
     out.push_back(
-        integrator->Li(prepared.camera().generateRay(0.5f + d.x, 0.5f + d.y), sampler, stats, nullptr).x);
+        integrator
+            ->Li(prepared.camera().generateRay(0.5f + d.x, 0.5f + d.y), sampler, stats, nullptr)
+            .x);
   }
   return out;
 }

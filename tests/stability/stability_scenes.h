@@ -10,12 +10,12 @@
 #include <utility>
 
 #include "accel/registry.h"
-#include "render/renderer.h"
 #include "core/integrator.h"
+#include "render/prepared_scene.h"
+#include "render/renderer.h"
+#include "tests/integrators/path_under_test.h"
 #include "tests/render_film.h"
 #include "tests/scene_builder.h"
-#include "tests/integrators/path_under_test.h"
-#include "render/prepared_scene.h"
 
 namespace tray::stability {
 

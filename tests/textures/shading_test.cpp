@@ -1,17 +1,17 @@
 // MaterialEvaluator and the pixel footprint: textured factors, normal mapping with computed and
 // supplied tangents, and uv derivatives checked against rays through neighbouring pixels.
-#include "accel/registry.h"
 #include "textures/shading.h"
 
 #include <gtest/gtest.h>
 
+#include "accel/registry.h"
 #include "core/accelerator.h"
-#include "render/renderer.h"
 #include "integrators/registry.h"
 #include "lights/light_set.h"
+#include "render/prepared_scene.h"
+#include "render/renderer.h"
 #include "shapes/mesh_tangents.h"
 #include "tests/scene_builder.h"
-#include "render/prepared_scene.h"
 
 namespace tray {
 namespace {

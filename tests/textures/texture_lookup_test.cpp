@@ -12,18 +12,22 @@
 #include <cstring>
 #include <random>
 
+#include "tests/textures/random_texture.h"
 #include "textures/texture_pyramid.h"
 #include "textures/texture_sampler.h"
-#include "tests/textures/random_texture.h"
 
 namespace tray {
 namespace {
 
 std::vector<TextureImage> testImages() {
-  return {test::randomFloatImage(37, 5, 1),   test::randomFloatImage(1, 19, 2),
-          test::randomFloatImage(19, 1, 3),   test::randomFloatImage(1, 1, 4),
-          test::randomFloatImage(64, 64, 5),  test::randomFloatImage(131, 67, 6),
-          test::randomFloatImage(256, 96, 7), test::randomFloatImage(300, 200, 8),
+  return {test::randomFloatImage(37, 5, 1),
+          test::randomFloatImage(1, 19, 2),
+          test::randomFloatImage(19, 1, 3),
+          test::randomFloatImage(1, 1, 4),
+          test::randomFloatImage(64, 64, 5),
+          test::randomFloatImage(131, 67, 6),
+          test::randomFloatImage(256, 96, 7),
+          test::randomFloatImage(300, 200, 8),
           test::randomCodeImage(97, 61, 3, false, 9),
           test::randomCodeImage(50, 33, 1, true, 10),
           test::randomCodeImage(128, 128, 4, false, 11),
@@ -52,10 +56,12 @@ struct RandomLookups {
     return {length * std::cos(angle), length * std::sin(angle)};
   }
   TextureRef ref(int image) {
-    static const TextureFilter filters[] = {
-        TextureFilter::kNearest,           TextureFilter::kLinear,
-        TextureFilter::kNearestMipmapNearest, TextureFilter::kLinearMipmapNearest,
-        TextureFilter::kNearestMipmapLinear,  TextureFilter::kLinearMipmapLinear};
+    static const TextureFilter filters[] = {TextureFilter::kNearest,
+                                            TextureFilter::kLinear,
+                                            TextureFilter::kNearestMipmapNearest,
+                                            TextureFilter::kLinearMipmapNearest,
+                                            TextureFilter::kNearestMipmapLinear,
+                                            TextureFilter::kLinearMipmapLinear};
     static const TextureWrap wraps[] = {TextureWrap::kRepeat, TextureWrap::kClampToEdge,
                                         TextureWrap::kMirroredRepeat};
     TextureRef r;
@@ -84,15 +90,14 @@ TEST(TextureLookup, RandomLookupsEqualOiiosBitForBit) {
   for (int image = 0; image < int(images.size()); ++image)
     for (int i = 0; i < 4000; ++i) {
       const TextureRef r = random.ref(image);
-      const UvFootprint f{{random.uvCoordinate(), random.uvCoordinate()}, random.derivative(),
-                          random.derivative()};
+      const UvFootprint f{
+          {random.uvCoordinate(), random.uvCoordinate()}, random.derivative(), random.derivative()};
       const Color a = tray.sample(r, f), b = oiio.sample(r, f);
       ++compared;
       if (!sameBits(a, b) && ++differ <= 5)
-        ADD_FAILURE() << "image " << image << " uv " << f.uv.x << "," << f.uv.y << " dx "
-                      << f.dx.x << "," << f.dx.y << " dy " << f.dy.x << "," << f.dy.y << ": "
-                      << a.x << " " << a.y << " " << a.z << " against OIIO's " << b.x << " "
-                      << b.y << " " << b.z;
+        ADD_FAILURE() << "image " << image << " uv " << f.uv.x << "," << f.uv.y << " dx " << f.dx.x
+                      << "," << f.dx.y << " dy " << f.dy.x << "," << f.dy.y << ": " << a.x << " "
+                      << a.y << " " << a.z << " against OIIO's " << b.x << " " << b.y << " " << b.z;
     }
   EXPECT_EQ(differ, 0u) << "of " << compared << " lookups";
 }

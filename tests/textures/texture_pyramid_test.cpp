@@ -11,8 +11,8 @@
 #include <cstring>
 #include <random>
 
-#include "textures/texture_sampler.h"
 #include "tests/textures/random_texture.h"
+#include "textures/texture_sampler.h"
 
 namespace tray {
 namespace {
