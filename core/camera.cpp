@@ -1,5 +1,6 @@
 #include "core/camera.h"
 
+#include "core/camera_lanes.h"
 #include "core/error.h"
 #include "core/sampling.h"
 
@@ -43,12 +44,11 @@ class PerspectiveCamera final : public Camera {
     tanHalfX_ = tanHalfY_ * w_ / h_;
   }
   Ray generateRay(float x, float y) const override {
-    Vec3 dirCam{(2.0f * x / w_ - 1.0f) * tanHalfX_, (1.0f - 2.0f * y / h_) * tanHalfY_, -1.0f};
+    // core/camera_lanes.h: the SIMD camera kernel's text too.
     Ray r;
     r.o = toWorld_.point(Vec3(0.0f));
-    r.d = normalize(toWorld_.vector(dirCam));
-    // The point at view depth znear is znear * dirCam (dirCam.z = -1) in camera space.
-    r.tmin = znear_ * length(toWorld_.vector(dirCam));
+    pinholeRay(toWorld_.m.m, perspectiveDirection(x, y, w_, h_, tanHalfX_, tanHalfY_), znear_, r.d,
+               r.tmin);
     return r;
   }
   bool hasLens() const override { return lens_.radius > 0; }
@@ -58,8 +58,7 @@ class PerspectiveCamera final : public Camera {
   }
   Ray generateLensRay(float x, float y, const Vec2& u) const override {
     if (!hasLens()) return generateRay(x, y);
-    const Vec3 dirCam{(2.0f * x / w_ - 1.0f) * tanHalfX_, (1.0f - 2.0f * y / h_) * tanHalfY_,
-                      -1.0f};
+    const Vec3 dirCam = perspectiveDirection(x, y, w_, h_, tanHalfX_, tanHalfY_);
     return lens_.ray(toWorld_, Vec3(0.0f), dirCam, u, znear_);
   }
   void pixelSpread(const Vec3& p, Vec3& dx, Vec3& dy, Vec3& dir) const override {

@@ -40,8 +40,8 @@ struct CameraDesc {
 /// (blades 0, Shirley-Chiu concentric map) or a regular `blades`-gon with a vertex straight up.
 Vec2 sampleAperture(const Vec2& u, int blades);
 
-/// What a pinhole perspective camera's generateRay computes from: batch kernels (core/
-/// camera_batch.h) repeat its arithmetic operation for operation.
+/// What a pinhole perspective camera's generateRay computes from: the SIMD camera kernel
+/// (integrators/camera_batch.h) runs its one text, core/camera_lanes.h, over vectors.
 struct PinholeProjection {
   Transform toWorld;
   float width = 0, height = 0;  ///< the image's size in pixels

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/camera_lanes.h"
 #include "core/error.h"
 #include "core/filter.h"
 #include "core/motion.h"
@@ -70,13 +71,12 @@ Sampler Integrator::sampler(int x, int y, int i) const {
 }
 
 Ray Integrator::cameraRay(int x, int y, int i, Sampler& sampler, Vec2& offset) const {
-  const float cx = x + 0.5f, cy = y + 0.5f;
   offset = pixelSampler_.offset(i, sampler.next2D());
+  const float rx = rasterCoordinate(float(x), offset.x), ry = rasterCoordinate(float(y), offset.y);
   // A thin lens takes the next 2D point of the camera-ray group; a pinhole draws nothing
   // more, so its images keep every bit.
-  Ray ray = ctx_.camera.hasLens()
-                ? ctx_.camera.generateLensRay(cx + offset.x, cy + offset.y, sampler.next2D())
-                : ctx_.camera.generateRay(cx + offset.x, cy + offset.y);
+  Ray ray = ctx_.camera.hasLens() ? ctx_.camera.generateLensRay(rx, ry, sampler.next2D())
+                                  : ctx_.camera.generateRay(rx, ry);
   setShutterTime(ray, sampler);  // static objects keep every bit (docs/scene-format.md)
   return ray;
 }

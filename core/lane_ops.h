@@ -86,6 +86,15 @@ inline bool noneOf(bool m) {
 inline int32_t truncateToInt(float a) {
   return static_cast<int32_t>(a);
 }
+/// The integer's float value (C++'s conversion: rounded to nearest).
+inline float toFloatOf(int32_t a) {
+  return static_cast<float>(a);
+}
+/// a / n and a % n (C++'s: truncated), for 0 <= a < 2^31 and 0 < n < 2^16.
+inline void divModOf(int32_t a, int32_t n, int32_t& quotient, int32_t& remainder) {
+  quotient = a / n;
+  remainder = a % n;
+}
 /// The float's bits as an integer, and back.
 inline int32_t bitsOf(float a) {
   return std::bit_cast<int32_t>(a);

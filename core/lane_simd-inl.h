@@ -28,6 +28,7 @@ using tray::allOf;
 using tray::anyOf;
 using tray::bitsOf;
 using tray::copySignOf;
+using tray::divModOf;
 using tray::floatFromBits;
 using tray::floorOf;
 using tray::isFiniteOf;
@@ -37,6 +38,7 @@ using tray::minOf;
 using tray::noneOf;
 using tray::select;
 using tray::sqrtOf;
+using tray::toFloatOf;
 using tray::truncateToInt;
 
 #if HWY_TARGET != HWY_SCALAR
@@ -139,6 +141,9 @@ HWY_INLINE MaskVec operator!(MaskVec a) {
 HWY_INLINE IntVec operator+(IntVec a, IntVec b) {
   return hn::Add(a.v, b.v);
 }
+HWY_INLINE IntVec operator-(IntVec a, IntVec b) {
+  return hn::Sub(a.v, b.v);
+}
 HWY_INLINE IntVec operator-(IntVec a) {
   return hn::Neg(a.v);
 }
@@ -153,6 +158,9 @@ HWY_INLINE MaskVec operator==(IntVec a, IntVec b) {
 }
 HWY_INLINE MaskVec operator>(IntVec a, IntVec b) {
   return {hn::RebindMask(DF(), hn::Gt(a.v, b.v))};
+}
+HWY_INLINE MaskVec operator<(IntVec a, IntVec b) {
+  return {hn::RebindMask(DF(), hn::Lt(a.v, b.v))};
 }
 
 HWY_INLINE FloatVec select(MaskVec m, FloatVec a, FloatVec b) {
@@ -196,6 +204,23 @@ HWY_INLINE bool noneOf(MaskVec m) {
 }
 HWY_INLINE IntVec truncateToInt(FloatVec a) {
   return hn::ConvertTo(DI(), a.v);
+}
+HWY_INLINE FloatVec toFloatOf(IntVec a) {
+  return hn::ConvertTo(DF(), a.v);
+}
+/// a / n and a % n, truncated, for 0 <= a < 2^31 and 0 < n < 2^16 (no integer division in
+/// SIMD): the float quotient, truncated, is off by at most one; one correction each way makes
+/// it exact.
+HWY_INLINE void divModOf(IntVec a, int32_t n, IntVec& quotient, IntVec& remainder) {
+  const IntVec vn(n);
+  IntVec q = truncateToInt(toFloatOf(a) / FloatVec(float(n)));
+  IntVec r = a - q * vn;
+  const MaskVec under = r < IntVec(0);
+  q = select(under, q + IntVec(-1), q);
+  r = select(under, r + vn, r);
+  const MaskVec over = !(r < vn);
+  quotient = select(over, q + IntVec(1), q);
+  remainder = select(over, r - vn, r);
 }
 HWY_INLINE IntVec bitsOf(FloatVec a) {
   return hn::BitCast(DI(), a.v);

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "core/pixel_sampler_lanes.h"
 
 namespace tray {
 
@@ -60,27 +61,7 @@ PixelSampler::PixelSampler(Pattern pattern, int spp, float radius)
 }
 
 Vec2 PixelSampler::offset(int i, const Vec2& u) const {
-  switch (pattern_) {
-    case Pattern::kCenter:
-      return {0, 0};
-    case Pattern::kCorners:
-      return {(i & 1) ? 0.5f : -0.5f, (i & 2) ? 0.5f : -0.5f};
-    case Pattern::kSequence:
-      return {(2 * u.x - 1) * radius_, (2 * u.y - 1) * radius_};
-    case Pattern::kGrid:
-    case Pattern::kJitter: {
-      Vec2 s;  // position in [0,1)^2 of the support
-      if (pattern_ == Pattern::kJitter && i >= strata_ * strata_) {
-        s = u;
-      } else {
-        Vec2 d = pattern_ == Pattern::kGrid ? Vec2{0.5f, 0.5f} : u;
-        s = {(float(i % strata_) + d.x) / float(strata_),
-             (float(i / strata_) + d.y) / float(strata_)};
-      }
-      return {(2 * s.x - 1) * radius_, (2 * s.y - 1) * radius_};
-    }
-  }
-  return {0, 0};
+  return pixelOffset<float>(*this, i, u);  // the SIMD camera kernel's text too
 }
 
 }  // namespace tray

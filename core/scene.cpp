@@ -85,7 +85,6 @@ void shapeSurface(const Primitive& prim, const Transform& toWorld, const Ray& ra
                                                const Ray& ray, const Hit& hit, SurfacePoint& s) {
   uint32_t i0 = m.indices[3 * hit.triangle], i1 = m.indices[3 * hit.triangle + 1],
            i2 = m.indices[3 * hit.triangle + 2];
-  float b0 = 1.0f - hit.b1 - hit.b2;
   // A deforming mesh: its triangle where the ray found it. The static one is read in place:
   // vertexAt's copies went through the stack (callgrind, Cornell box).
   Vec3 deformed[3];
@@ -97,29 +96,12 @@ void shapeSurface(const Primitive& prim, const Transform& toWorld, const Ray& ra
     deformed[1] = deformedVertexAt(m, i1, ray.time);
     deformed[2] = deformedVertexAt(m, i2, ray.time);
   }
-  const Vec3 &p0 = *v0, &p1 = *v1, &p2 = *v2;
-  s.p = toWorld.point(b0 * p0 + hit.b1 * p1 + hit.b2 * p2);
-  const Vec3 ng = normalize(triangleFrontNormal(toWorld, p0, p1, p2));
-  s.front = ng;
-  if (!m.normals.empty()) {
-    Vec3 nl = b0 * m.normals[i0] + hit.b1 * m.normals[i1] + hit.b2 * m.normals[i2];
-    Vec3 nw = toWorld.normal(nl);
-    float len = length(nw);
-    const Vec3 n = len > 0 && std::isfinite(len) ? nw / len : ng;
-    s.n = n;
-    // Shading keeps the geometric normal on the shading normal's side (flat fallback
-    // otherwise); the front face for emission stays the winding's (s.front).
-    s.ng = dot(n, ng) < 0 ? -ng : ng;
-  } else {
-    s.n = ng;
-    s.ng = ng;
-  }
-  if (!m.uvs.empty()) {
-    s.uv = {b0 * m.uvs[i0].x + hit.b1 * m.uvs[i1].x + hit.b2 * m.uvs[i2].x,
-            b0 * m.uvs[i0].y + hit.b1 * m.uvs[i1].y + hit.b2 * m.uvs[i2].y};
-  } else {
-    s.uv = {hit.b1, hit.b2};
-  }
+  // The formula is core/surface_lanes.h's, which the SIMD surface kernel shares.
+  const uint32_t corner[3] = {i0, i1, i2};
+  const auto normal = [&](int k) -> const Vec3& { return m.normals[corner[k]]; };
+  const auto uv = [&](int k) -> const Vec2& { return m.uvs[corner[k]]; };
+  meshSurfaceOf(toWorld.m.m, toWorld.inv.m, hit.b1, hit.b2, *v0, *v1, *v2, !m.normals.empty(),
+                normal, !m.uvs.empty(), uv, s);
   s.material = hit.material >= 0 ? hit.material : m.material;
 }
 

@@ -1,6 +1,8 @@
 #pragma once
 #include "core/bounds.h"
 #include "core/math.h"
+// Points, vectors and normals placed, written once for scalar code and the SIMD kernels.
+#include "core/transform_lanes.h"
 
 namespace tray {
 
@@ -29,26 +31,15 @@ struct Transform {
   /// Throws tray::Error if m is singular or not finite.
   explicit Transform(const Mat4& matrix);
 
-  Vec3 point(const Vec3& p) const { return apply(m, p, 1.0f); }
-  Vec3 vector(const Vec3& v) const { return apply(m, v, 0.0f); }
+  Vec3 point(const Vec3& p) const { return transformPoint(m.m, p); }
+  Vec3 vector(const Vec3& v) const { return transformVector(m.m, v); }
   /// Normals transform by the inverse transpose (stay perpendicular under non-uniform scale).
-  Vec3 normal(const Vec3& n) const {
-    return {inv.m[0][0] * n.x + inv.m[1][0] * n.y + inv.m[2][0] * n.z,
-            inv.m[0][1] * n.x + inv.m[1][1] * n.y + inv.m[2][1] * n.z,
-            inv.m[0][2] * n.x + inv.m[1][2] * n.y + inv.m[2][2] * n.z};
-  }
-  Vec3 inversePoint(const Vec3& p) const { return apply(inv, p, 1.0f); }
-  Vec3 inverseVector(const Vec3& v) const { return apply(inv, v, 0.0f); }
+  Vec3 normal(const Vec3& n) const { return transformNormal(inv.m, n); }
+  Vec3 inversePoint(const Vec3& p) const { return transformPoint(inv.m, p); }
+  Vec3 inverseVector(const Vec3& v) const { return transformVector(inv.m, v); }
   Bounds3 bounds(const Bounds3& b) const;
   /// True when the transform flips handedness (negative determinant): triangle winding flips.
   bool swapsHandedness() const;
-
- private:
-  static Vec3 apply(const Mat4& a, const Vec3& p, float w) {
-    return {a.m[0][0] * p.x + a.m[0][1] * p.y + a.m[0][2] * p.z + a.m[0][3] * w,
-            a.m[1][0] * p.x + a.m[1][1] * p.y + a.m[1][2] * p.z + a.m[1][3] * w,
-            a.m[2][0] * p.x + a.m[2][1] * p.y + a.m[2][2] * p.z + a.m[2][3] * w};
-  }
 };
 
 }  // namespace tray

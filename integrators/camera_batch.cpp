@@ -1,15 +1,22 @@
 // Highway's dynamic dispatch: this file is compiled once per x86 target (SSSE3 ... AVX-512) by
-// foreach_target.h, and HWY_DYNAMIC_DISPATCH runs the best one the CPU has. Built with
-// -ffp-contract=off (core/CMakeLists.txt): every float expression is the scalar code's, in its
-// order, without fused multiply-adds, so each lane's bits are the scalar path's.
+// foreach_target.h, and HWY_DYNAMIC_DISPATCH runs the best one the CPU has. The pixel offsets
+// and rays are not written here: they are the one text of core/pixel_sampler_lanes.h and
+// core/camera_lanes.h, which PixelSampler::offset and PerspectiveCamera::generateRay run with
+// float, compiled here for each target's vectors (docs/lanes.md).
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "integrators/camera_batch.cpp"
 #include "integrators/camera_batch.h"
 
 #include "hwy/foreach_target.h"  // IWYU pragma: keep
 #include "hwy/highway.h"
-// After highway.h, once per target: the sampler's hashes and Sobol' scrambles in SIMD.
+// After highway.h, once per target: the sampler's hashes and Sobol' scrambles in SIMD, the SIMD
+// lane, then the one text for its vectors.
+#include "core/lane_simd-inl.h"
 #include "integrators/sampler_simd-inl.h"
+#define TRAY_LANES_SIMD
+#include "core/camera_lanes.h"
+#include "core/pixel_sampler_lanes.h"
+#undef TRAY_LANES_SIMD
 
 HWY_BEFORE_NAMESPACE();
 namespace tray {
@@ -73,56 +80,7 @@ HWY_INLINE void SamplersAndPoints(const CameraBatchParams& p, VU pixel, VU sampl
   hn::StoreU(reversed, du, reversedIndex);
 }
 
-/// PixelSampler::offset(i, {u, v}) of each lane, written as it is, pattern by pattern.
-HWY_INLINE void Offsets(const CameraBatchParams& p, VI i, VF u, VF v, VF& ox, VF& oy) {
-  const DF df;
-  const DI di;
-  const VF one = hn::Set(df, 1.0f), two = hn::Set(df, 2.0f), radius = hn::Set(df, p.radius);
-  switch (PixelSampler::Pattern(p.pattern)) {
-    case PixelSampler::Pattern::kCenter:
-      ox = oy = hn::Zero(df);
-      return;
-    case PixelSampler::Pattern::kCorners: {
-      const VF half = hn::Set(df, 0.5f), minusHalf = hn::Set(df, -0.5f);
-      const VI x = hn::And(i, hn::Set(di, 1)), y = hn::And(i, hn::Set(di, 2));
-      ox = hn::IfThenElse(hn::RebindMask(df, x == hn::Zero(di)), minusHalf, half);
-      oy = hn::IfThenElse(hn::RebindMask(df, y == hn::Zero(di)), minusHalf, half);
-      return;
-    }
-    case PixelSampler::Pattern::kSequence:
-      ox = (two * u - one) * radius;
-      oy = (two * v - one) * radius;
-      return;
-    case PixelSampler::Pattern::kGrid:
-    case PixelSampler::Pattern::kJitter: {
-      // i / n and i % n: the float quotient, truncated, is off by at most one (n < 2^16,
-      // i < 2^31); one correction each way makes it exact.
-      const VI n = hn::Set(di, p.strata);
-      const VF nf = hn::Set(df, float(p.strata));
-      VI q = hn::ConvertTo(di, hn::ConvertTo(df, i) / nf);
-      VI r = i - q * n;
-      const auto under = r < hn::Zero(di);
-      q = hn::IfThenElse(under, q - hn::Set(di, 1), q);
-      r = hn::IfThenElse(under, r + n, r);
-      const auto over = hn::Not(r < n);
-      q = hn::IfThenElse(over, q + hn::Set(di, 1), q);
-      r = hn::IfThenElse(over, r - n, r);
-      const bool grid = PixelSampler::Pattern(p.pattern) == PixelSampler::Pattern::kGrid;
-      const VF dx = grid ? hn::Set(df, 0.5f) : u, dy = grid ? hn::Set(df, 0.5f) : v;
-      VF sx = (hn::ConvertTo(df, r) + dx) / nf, sy = (hn::ConvertTo(df, q) + dy) / nf;
-      if (!grid) {  // jitter's samples past the n x n strata are uniform
-        const auto rest = hn::RebindMask(df, hn::Not(i < hn::Set(di, p.strata * p.strata)));
-        sx = hn::IfThenElse(rest, u, sx);
-        sy = hn::IfThenElse(rest, v, sy);
-      }
-      ox = (two * sx - one) * radius;
-      oy = (two * sy - one) * radius;
-      return;
-    }
-  }
-}
-
-/// One vector of paths: samplers, offsets, then PerspectiveCamera::generateRay.
+/// One vector of paths: samplers, offsets (pixelOffset), then the pinhole rays (pinholeRay).
 /// Reads lanes from x, y, sample; writes them at entry k of out.
 HWY_INLINE void Block(const CameraBatchParams& p, const int32_t* x, const int32_t* y,
                       const uint32_t* sample, size_t k, CameraRayLanes& out) {
@@ -132,29 +90,23 @@ HWY_INLINE void Block(const CameraBatchParams& p, const int32_t* x, const int32_
   const VI xi = hn::LoadU(di, x), yi = hn::LoadU(di, y);
   const VU s = hn::LoadU(du, sample);
   const VU pixel = hn::BitCast(du, yi) * hn::Set(du, p.imageWidth) + hn::BitCast(du, xi);
-  VF u, v, ox, oy;
+  VF u, v;
   SamplersAndPoints(p, pixel, s, out.key.data() + k, out.reversedIndex.data() + k, u, v);
-  Offsets(p, hn::BitCast(di, s), u, v, ox, oy);
-  hn::StoreU(ox, df, out.offsetX.data() + k);
-  hn::StoreU(oy, df, out.offsetY.data() + k);
-  // Integrator::cameraRay: the pixel centre plus the offset.
-  const VF half = hn::Set(df, 0.5f), one = hn::Set(df, 1.0f), two = hn::Set(df, 2.0f);
-  const VF rx = (hn::ConvertTo(df, xi) + half) + ox, ry = (hn::ConvertTo(df, yi) + half) + oy;
-  // PerspectiveCamera::generateRay: dirCam = ((2x/w - 1) tanHalfX, (1 - 2y/h) tanHalfY, -1).
-  const VF cx = (two * rx / hn::Set(df, p.width) - one) * hn::Set(df, p.tanHalfX);
-  const VF cy = (one - two * ry / hn::Set(df, p.height)) * hn::Set(df, p.tanHalfY);
-  const VF cz = hn::Set(df, -1.0f);
-  VF w[3];
-  for (int r = 0; r < 3; ++r)  // Transform::vector, its terms in order (the last one 0 * m)
-    w[r] = ((hn::Set(df, p.m[r][0]) * cx + hn::Set(df, p.m[r][1]) * cy) +
-            hn::Set(df, p.m[r][2]) * cz) +
-           hn::Set(df, p.translateZero[r]);
-  const VF length = hn::Sqrt((w[0] * w[0] + w[1] * w[1]) + w[2] * w[2]);
-  const VF inverse = one / length;  // normalize: a / s is a * (1 / s) (core/math.h)
-  hn::StoreU(w[0] * inverse, df, out.dirX.data() + k);
-  hn::StoreU(w[1] * inverse, df, out.dirY.data() + k);
-  hn::StoreU(w[2] * inverse, df, out.dirZ.data() + k);
-  hn::StoreU(hn::Set(df, p.znear) * length, df, out.tmin.data() + k);
+  // Named with the namespace: PixelSampler's own (tray) holds the scalar template too.
+  const Vec2Vec o =
+      HWY_NAMESPACE::pixelOffset<FloatVec>(p.pixels, IntVec(hn::BitCast(di, s)), Vec2Vec{u, v});
+  hn::StoreU(o.x.v, df, out.offsetX.data() + k);
+  hn::StoreU(o.y.v, df, out.offsetY.data() + k);
+  const FloatVec rx = rasterCoordinate(toFloatOf(IntVec(xi)), o.x);
+  const FloatVec ry = rasterCoordinate(toFloatOf(IntVec(yi)), o.y);
+  Vec3Vec d;
+  FloatVec tmin;
+  pinholeRay(p.toWorld, perspectiveDirection(rx, ry, p.width, p.height, p.tanHalfX, p.tanHalfY),
+             p.znear, d, tmin);
+  hn::StoreU(d.x.v, df, out.dirX.data() + k);
+  hn::StoreU(d.y.v, df, out.dirY.data() + k);
+  hn::StoreU(d.z.v, df, out.dirZ.data() + k);
+  hn::StoreU(tmin.v, df, out.tmin.data() + k);
 }
 
 void GenerateCameraRays(const CameraBatchParams& p, size_t n, const int32_t* x, const int32_t* y,
@@ -197,14 +149,11 @@ std::optional<CameraRayBatch> CameraRayBatch::make(const Camera& camera, const P
   if (!hasSimdTarget()) return std::nullopt;
   CameraRayBatch b;
   CameraBatchParams& p = b.params_;
-  const Mat4& m = pinhole->toWorld.m;
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) p.m[r][c] = m.m[r][c];
-    p.translateZero[r] = m.m[r][3] * 0.0f;
-  }
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) p.toWorld[r][c] = pinhole->toWorld.m.m[r][c];
   p.width = pinhole->width, p.height = pinhole->height, p.znear = pinhole->znear;
   p.tanHalfX = pinhole->tanHalfX, p.tanHalfY = pinhole->tanHalfY;
-  p.radius = pixels.radius(), p.strata = pixels.strata(), p.pattern = int32_t(pixels.pattern());
+  p.pixels = pixels;
   p.sobol = sequence == Sampler::Sequence::kSobol;
   p.imageWidth = uint32_t(imageWidth);
   p.seedKey = Sampler::seedKey(seed);

@@ -17,12 +17,9 @@ namespace tray {
 
 /// What the kernel reads, fixed for a render (plain values, computed once by CameraRayBatch).
 struct CameraBatchParams {
-  float m[3][3];           ///< the camera's rotation and scale (toWorld.m, upper left)
-  float translateZero[3];  ///< toWorld.m[r][3] * 0: Transform::vector's last term, kept for -0
+  float toWorld[4][4];  ///< the camera's matrix (PinholeProjection's toWorld.m)
   float width, height, znear, tanHalfX, tanHalfY;
-  float radius;         ///< the pixel sampler's
-  int32_t strata;       ///< the pixel sampler's n (grid, jitter)
-  int32_t pattern;      ///< PixelSampler::Pattern
+  PixelSampler pixels{PixelSampler::Pattern::kCenter, 1, 0.5f};
   int32_t sobol;        ///< 1: Sampler::Sequence::kSobol, 0: kIndependent
   uint32_t imageWidth;  ///< pixels per row (the sampler's pixel index)
   uint64_t seedKey;     ///< the sampler key's first hash, of the seed alone

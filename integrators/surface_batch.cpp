@@ -1,6 +1,8 @@
-// Highway's dynamic dispatch, as integrators/camera_batch.cpp: compiled once per x86 target, with
-// -ffp-contract=off (core/CMakeLists.txt), as core/scene.cpp is: every lane's arithmetic is
-// meshSurface's (core/scene.cpp), term by term in its order, so the bits are the same.
+// Highway's dynamic dispatch, as integrators/camera_batch.cpp: compiled once per x86 target. The
+// arithmetic is not here: it is meshSurfaceOf (core/surface_lanes.h), the one text that
+// Scene::surface runs with float, compiled here for each target's vectors (docs/lanes.md). This
+// file is the plumbing: hits grouped by primitive, their corners gathered, the results
+// scattered to the hits' SurfacePoints.
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "integrators/surface_batch.cpp"
 #include "integrators/surface_batch.h"
@@ -11,8 +13,11 @@
 #include "core/simd_lanes.h"
 #include "hwy/foreach_target.h"  // IWYU pragma: keep
 #include "hwy/highway.h"
-// After highway.h, once per target: Vec3 arithmetic over lanes.
-#include "integrators/vec3_simd-inl.h"
+// After highway.h, once per target: the SIMD lane, then the one text for its vectors.
+#include "core/lane_simd-inl.h"
+#define TRAY_LANES_SIMD
+#include "core/surface_lanes.h"
+#undef TRAY_LANES_SIMD
 
 HWY_BEFORE_NAMESPACE();
 namespace tray {
@@ -24,10 +29,9 @@ namespace hn = hwy::HWY_NAMESPACE;
 void SurfaceGroup(const SurfaceBatchPrimitive&, const int32_t*, size_t, const Hit*, const Ray*,
                   SurfacePoint*) {}
 #else
-using DF = hn::ScalableTag<float>;
-using DI = hn::RebindToSigned<DF>;
 using VF = hn::Vec<DF>;
 using VI = hn::Vec<DI>;
+using V3 = Vec3Vec;
 
 static_assert(HWY_MAX_BYTES / sizeof(float) <= kMaxSimdLanes);
 static_assert(sizeof(Hit) % 4 == 0 && offsetof(Hit, triangle) % 4 == 0 &&
@@ -45,24 +49,8 @@ HWY_NOINLINE V3 Gather3(const float* base, VI index) {
           hn::GatherIndex(df, base + 2, i)};
 }
 
-/// b0 a + b1 b + b2 c, componentwise, left to right (Vec3's operators).
-HWY_INLINE VF Blend(VF b0, VF a, VF b1, VF b, VF b2, VF c) {
-  return (b0 * a + b1 * b) + b2 * c;
-}
-
-/// Transform::normal: the inverse's columns, terms in order.
-HWY_INLINE V3 Normal(const SurfaceBatchPrimitive& p, const V3& n) {
-  const DF df;
-  V3 r;
-  VF* out[3] = {&r.x, &r.y, &r.z};
-  for (int c = 0; c < 3; ++c)
-    *out[c] = (hn::Set(df, p.inv[0][c]) * n.x + hn::Set(df, p.inv[1][c]) * n.y) +
-              hn::Set(df, p.inv[2][c]) * n.z;
-  return r;
-}
-
-/// The first `count` lanes of a group's vector (count <= lanes): meshSurface for each, then written
-/// to out at the hit's own index, with Scene::surface's frontFace, time and primitive.
+/// The first `count` lanes of a group's vector (count <= lanes): meshSurfaceOf for each, then
+/// written to out at the hit's own index, with Scene::surface's frontFace, time and primitive.
 HWY_INLINE void Block(const SurfaceBatchPrimitive& p, const int32_t* order, size_t count,
                       const Hit* hits, const Ray* rays, SurfacePoint* out) {
   const DF df;
@@ -79,69 +67,36 @@ HWY_INLINE void Block(const SurfaceBatchPrimitive& p, const int32_t* order, size
   const VI i0 = hn::GatherIndex(di, indices, corner);
   const VI i1 = hn::GatherIndex(di, indices + 1, corner);
   const VI i2 = hn::GatherIndex(di, indices + 2, corner);
-  const VF one = hn::Set(df, 1.0f);
-  const VF b0 = (one - b1) - b2;
-  const V3 p0 = Gather3(p.positions, i0), p1 = Gather3(p.positions, i1),
-           p2 = Gather3(p.positions, i2);
-  // s.p = toWorld.point(b0 p0 + b1 p1 + b2 p2).
-  const V3 local = {Blend(b0, p0.x, b1, p1.x, b2, p2.x), Blend(b0, p0.y, b1, p1.y, b2, p2.y),
-                    Blend(b0, p0.z, b1, p1.z, b2, p2.z)};
-  VF world[3];
-  for (int r = 0; r < 3; ++r)
-    world[r] = ((hn::Set(df, p.m[r][0]) * local.x + hn::Set(df, p.m[r][1]) * local.y) +
-                hn::Set(df, p.m[r][2]) * local.z) +
-               hn::Set(df, p.m[r][3]) * one;
-  // ng = normalize(toWorld.normal(cross(p1 - p0, p2 - p0))); normalize is a * (1 / |a|).
-  const V3 e1 = Sub(p1, p0), e2 = Sub(p2, p0);
-  const V3 c = {e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z, e1.x * e2.y - e1.y * e2.x};
-  const V3 ngw = Normal(p, c);
-  const VF ngInverse = one / hn::Sqrt(Dot(ngw, ngw));
-  const V3 ng = Scale(ngw, ngInverse);
-  V3 n = ng, side = ng;
-  if (p.hasNormals) {
-    const V3 n0 = Gather3(p.normals, i0), n1 = Gather3(p.normals, i1), n2 = Gather3(p.normals, i2);
-    const V3 nl = {Blend(b0, n0.x, b1, n1.x, b2, n2.x), Blend(b0, n0.y, b1, n1.y, b2, n2.y),
-                   Blend(b0, n0.z, b1, n1.z, b2, n2.z)};
-    const V3 nw = Normal(p, nl);
-    const VF len = hn::Sqrt(Dot(nw, nw));
-    // len > 0 && isfinite(len): a NaN fails both comparisons.
-    const auto usable = hn::And(hn::Lt(hn::Zero(df), len),
-                                hn::Lt(len, hn::Set(df, std::numeric_limits<float>::infinity())));
-    const VF inverse = one / len;
-    n = {hn::IfThenElse(usable, nw.x * inverse, ng.x), hn::IfThenElse(usable, nw.y * inverse, ng.y),
-         hn::IfThenElse(usable, nw.z * inverse, ng.z)};
-    const auto flip = hn::Lt(Dot(n, ng), hn::Zero(df));
-    side = {hn::IfThenElse(flip, hn::Neg(ng.x), ng.x), hn::IfThenElse(flip, hn::Neg(ng.y), ng.y),
-            hn::IfThenElse(flip, hn::Neg(ng.z), ng.z)};
-  }
-  VF u = b1, v = b2;
-  if (p.hasUvs) {
-    const VI i0u = i0 * hn::Set(di, 2), i1u = i1 * hn::Set(di, 2), i2u = i2 * hn::Set(di, 2);
-    const float* uvs = p.uvs;
-    u = Blend(b0, hn::GatherIndex(df, uvs, i0u), b1, hn::GatherIndex(df, uvs, i1u), b2,
-              hn::GatherIndex(df, uvs, i2u));
-    v = Blend(b0, hn::GatherIndex(df, uvs + 1, i0u), b1, hn::GatherIndex(df, uvs + 1, i1u), b2,
-              hn::GatherIndex(df, uvs + 1, i2u));
-  }
+  // Corner k's normal and uv, gathered where meshSurfaceOf reads them.
+  const VI vertex[3] = {i0, i1, i2};
+  const auto normal = [&](int k) { return Gather3(p.normals, vertex[k]); };
+  const auto uv = [&](int k) -> Vec2Vec {
+    const VI at = vertex[k] * hn::Set(di, 2);
+    return {hn::GatherIndex(df, p.uvs, at), hn::GatherIndex(df, p.uvs + 1, at)};
+  };
+  MeshSurfaceOf<FloatVec> s;
+  meshSurfaceOf(p.toWorld.m.m, p.toWorld.inv.m, FloatVec(b1), FloatVec(b2),
+                Gather3(p.positions, i0), Gather3(p.positions, i1), Gather3(p.positions, i2),
+                p.hasNormals, normal, p.hasUvs, uv, s);
   // To the hits' own SurfacePoints, lane by lane.
   HWY_ALIGN float lanes[14][kMaxSimdLanes];
-  const VF fields[14] = {world[0], world[1], world[2], side.x, side.y, side.z, n.x,
-                         n.y,      n.z,      u,        v,      ng.x,   ng.y,   ng.z};
-  for (int f = 0; f < 14; ++f) hn::Store(fields[f], df, lanes[f]);
+  const FloatVec fields[14] = {s.p.x, s.p.y, s.p.z,  s.ng.x, s.ng.y,    s.ng.z,    s.n.x,
+                               s.n.y, s.n.z, s.uv.x, s.uv.y, s.front.x, s.front.y, s.front.z};
+  for (int f = 0; f < 14; ++f) hn::Store(fields[f].v, df, lanes[f]);
   for (size_t l = 0; l < count; ++l) {
     const Hit& hit = hits[order[l]];
     const Ray& ray = rays[order[l]];
-    SurfacePoint& s = out[order[l]];
-    s.p = {lanes[0][l], lanes[1][l], lanes[2][l]};
+    SurfacePoint& o = out[order[l]];
+    o.p = {lanes[0][l], lanes[1][l], lanes[2][l]};
     const Vec3 sideNormal{lanes[3][l], lanes[4][l], lanes[5][l]};
-    s.ng = sideNormal;
-    s.n = {lanes[6][l], lanes[7][l], lanes[8][l]};
-    s.uv = {lanes[9][l], lanes[10][l]};
-    s.material = hit.material >= 0 ? hit.material : p.material;
-    s.primitive = hit.primitive;
-    s.front = {lanes[11][l], lanes[12][l], lanes[13][l]};
-    s.frontFace = dot(ray.d, sideNormal) < 0;
-    s.time = ray.time;
+    o.ng = sideNormal;
+    o.n = {lanes[6][l], lanes[7][l], lanes[8][l]};
+    o.uv = {lanes[9][l], lanes[10][l]};
+    o.material = hit.material >= 0 ? hit.material : p.material;
+    o.primitive = hit.primitive;
+    o.front = {lanes[11][l], lanes[12][l], lanes[13][l]};
+    o.frontFace = dot(ray.d, sideNormal) < 0;
+    o.time = ray.time;
   }
 }
 
@@ -182,10 +137,7 @@ SurfaceBatch::SurfaceBatch(const Scene& scene) : scene_(scene) {
     SurfaceBatchPrimitive& p = primitives_[i];
     batched_[i] = 1;
     p.material = mesh.material;
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 4; ++c) p.m[r][c] = prim.toWorld.m.m[r][c];
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) p.inv[r][c] = prim.toWorld.inv.m[r][c];
+    p.toWorld = prim.toWorld;
     p.indices = mesh.indices.data();
     p.positions = &mesh.positions.data()->x;
     p.hasNormals = !mesh.normals.empty();

@@ -17,8 +17,7 @@ namespace tray {
 struct SurfaceBatchPrimitive {
   bool hasNormals = false, hasUvs = false;
   int32_t material = 0;
-  float m[3][4];    ///< toWorld.m's first three rows (Transform::point)
-  float inv[3][3];  ///< toWorld.inv's upper left (Transform::normal reads it transposed)
+  Transform toWorld;
   const uint32_t* indices = nullptr;
   const float* positions = nullptr;  ///< Vec3s as floats
   const float* normals = nullptr;
@@ -50,7 +49,7 @@ class SurfaceBatch {
   const Scene& scene_;
   std::vector<SurfaceBatchPrimitive> primitives_;
   /// Per primitive: a static triangle mesh, the kernel's (else Scene::surface's); apart from
-  /// primitives_ so that the per-hit test reads a byte, not a 100-byte struct.
+  /// primitives_ so that the per-hit test reads a byte, not a struct of two matrices.
   std::vector<uint8_t> batched_;
   bool useful_ = false;
 };
