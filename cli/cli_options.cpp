@@ -96,7 +96,6 @@ void addCliOptions(CLI::App& app, CliOptions& o) {
                  "every SECONDS, write the progress so far to the first .exr output")
       ->check(CLI::NonNegativeNumber);
   app.add_flag("--resume", o.resume, "continue the render saved in the first .exr output");
-  app.add_option("--test-interrupt-after-tiles", o.testInterruptAfterTiles)->group("");
   app.add_option("--max-memory", o.maxMemoryMB,
                  "refuse a scene whose buffers, textures and geometry need more than MB "
                  "(default: 80% of physical memory; 0: no limit)")

@@ -32,7 +32,6 @@ struct CliOptions {
   std::string region, sampleRange;
   double checkpointSeconds = 0;
   bool resume = false;
-  int testInterruptAfterTiles = 0;
   std::string frames;  ///< --frames A-B; empty: one image
   double maxMemoryMB = -1;     ///< -1: 80% of physical memory; 0: no limit
   double textureMemoryMB = 0;  ///< 0: TextureSampler::budgetFor(the scene's images)

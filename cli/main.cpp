@@ -90,14 +90,12 @@ int run(const CliOptions& o, const tray::RenderJob& job,
   // First: a signal while the scene loads also stops the render (at its first pixel).
   const std::atomic<bool>& stop = tray::installInterruptHandlers();
   std::optional<tray::Progress> progress;  // its clock starts with the first tile
-  int tiles = 0;  // --test-interrupt-after-tiles: a real SIGINT at a chosen point
   tray::RenderJobEvents events;
   events.warning = [](const std::string& w) { std::fprintf(stderr, "warning: %s\n", w.c_str()); };
   events.phase = [](const char* phase) { gPhase = phase; };
   events.started = [&] { progress.emplace(o.progressSettings); };
   events.progress = [&](double f) {
     if (!stop.load()) progress->update(f);  // tiles cut short by a stop are not progress
-    if (++tiles == o.testInterruptAfterTiles) std::raise(SIGINT);
   };
   events.finished = [&](bool complete) { progress->finish(complete); };
   events.stop = &stop;

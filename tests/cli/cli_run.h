@@ -2,11 +2,14 @@
 // Running the real command-line tools from tests: exit status, stderr, child processes for
 // signals, and EXR files read back with OIIO (independently of TRay's own reader).
 #include <OpenImageIO/imageio.h>
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -77,6 +80,71 @@ inline int waitExit(pid_t pid) {
   int status = 0;
   waitpid(pid, &status, 0);
   return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
+}
+
+/// tray-render with `args` (shell-quoted, as for runCli), interrupted from outside by a real
+/// SIGINT: it runs on one thread with a `--progress plain` line per tile on stderr (a pipe
+/// read here line by line), and the signal is sent as soon as the first progress line is read,
+/// i.e. after its first finished tile. The render must last long enough after that tile that
+/// the signal cannot come after its last one (dozens of tiles of 10 ms or more); whatever tile
+/// it lands after, at least one tile is done and the render is partial. tray-render runs at
+/// nice 19, so that on a loaded machine it slows down rather than this process, whose
+/// wake-up on the line is the time the signal takes. `err` is all of
+/// tray-render's stderr, progress lines included (exit code -1: /bin/sh could not be started).
+inline CliResult interruptCli(const std::string& args) {
+  // exec, twice: the shell's pid becomes nice's, then tray-render's, the one signalled.
+  std::string cmd = "exec nice -n 19 '";
+  cmd += TRAY_RENDER_BIN;
+  cmd += "' ";
+  cmd += args;
+  cmd += " --threads 1 --progress plain --progress-step 1 --progress-seconds 0";
+  int pipeFds[2];
+  if (pipe2(pipeFds, O_CLOEXEC) != 0) return {};
+  posix_spawn_file_actions_t files;
+  posix_spawn_file_actions_init(&files);
+  posix_spawn_file_actions_addopen(&files, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_adddup2(&files, pipeFds[1], 2);  // dup2 clears O_CLOEXEC on fd 2
+  // Default dispositions and no blocked signal, whatever the test runner set for itself.
+  posix_spawnattr_t attr;
+  posix_spawnattr_init(&attr);
+  sigset_t none, defaults;
+  sigemptyset(&none);
+  sigemptyset(&defaults);
+  sigaddset(&defaults, SIGINT);
+  sigaddset(&defaults, SIGTERM);
+  posix_spawnattr_setsigmask(&attr, &none);
+  posix_spawnattr_setsigdefault(&attr, &defaults);
+  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
+  const char* argv[] = {"sh", "-c", cmd.c_str(), nullptr};
+  pid_t pid = -1;
+  const int spawned =
+      posix_spawn(&pid, "/bin/sh", &files, &attr, const_cast<char* const*>(argv), environ);
+  posix_spawn_file_actions_destroy(&files);
+  posix_spawnattr_destroy(&attr);
+  close(pipeFds[1]);  // EOF once tray-render exits
+  CliResult result;
+  if (spawned != 0) {
+    close(pipeFds[0]);
+    return result;
+  }
+  bool signalled = false;
+  size_t lineStart = 0;
+  char buffer[4096];
+  for (;;) {
+    const ssize_t n = read(pipeFds[0], buffer, sizeof buffer);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    result.err.append(buffer, size_t(n));
+    for (size_t end; !signalled && (end = result.err.find('\n', lineStart)) != std::string::npos;
+         lineStart = end + 1)
+      if (result.err.compare(lineStart, 9, "progress ") == 0) {
+        kill(pid, SIGINT);
+        signalled = true;
+      }
+  }
+  close(pipeFds[0]);
+  result.exitCode = waitExit(pid);
+  return result;
 }
 
 /// Same channels, windows and pixel bits (memcmp: NaN-safe, -0 differs from +0).

@@ -23,7 +23,13 @@ const std::string kWhitted = std::string(TRAY_SOURCE_DIR) + "/scenes/whitted.glt
 const std::string kBaseJob = "'" + kCornell + "' --integrator path --spp 8 --filter tent";
 const std::string kSmallJob =
     kBaseJob + " --aov depth,normal,position,albedo,objectid,materialid,samples";
-const std::string kJob = kSmallJob + " --seed 7 --resolution 37x29";
+// Long enough to interrupt from outside (interruptCli): on one thread, 7x6 tiles of about 23 ms
+// (16x16 pixels x 192 samples; the ones on the right and bottom edges cut), i.e. about 1 s left
+// after the first tile, when the signal is sent.
+const std::string kLongJob = "'" + kCornell +
+                             "' --integrator path --spp 192 --filter tent --aov depth,normal,"
+                             "position,albedo,objectid,materialid,samples --seed 7 --resolution "
+                             "101x93";
 // Regions keep every pixel whole, so they merge Cryptomatte layers too.
 const std::string kJobAllAovs = kBaseJob + " --aov all --seed 7 --resolution 37x29";
 
@@ -188,11 +194,9 @@ TEST(Farm, MergeRefusesIncompleteOrForeignParts) {
     std::ofstream(dir / "truncated.exr", std::ios::binary) << bytes.substr(0, bytes.size() - 200);
   }
   ASSERT_EQ(runCli(TRAY_RENDER_BIN, job + " " + out(dir, "full.exr"), dir).exitCode, 0);
-  ASSERT_EQ(runCli(TRAY_RENDER_BIN,
-                   job + " --threads 1 --test-interrupt-after-tiles 1 --sample-range 4,8 " +
-                       out(dir, "unfinished.exr"),
-                   dir)
-                .exitCode,
+  // A part interrupted after its first tile (refused by its header before the jobs are
+  // compared: a longer job than this test's, which is too short to interrupt from outside).
+  ASSERT_EQ(interruptCli(kLongJob + " --sample-range 4,192 " + out(dir, "unfinished.exr")).exitCode,
             130);
   const std::string a = "'" + (dir / "0,4.exr").string() + "'",
                     b = "'" + (dir / "4,8.exr").string() + "'";
@@ -265,15 +269,12 @@ TEST(Farm, BadRegionsAndRangesAreUsageErrors) {
   EXPECT_FALSE(fs::exists(dir / "x.png"));
 }
 
-/// An interrupted render (a real SIGINT raised after `tiles` tiles), resumed, equals the
-/// uninterrupted one bit for bit; the partial file marks its unfinished pixels.
-void interruptAndResume(const std::string& job, int tiles) {
+/// An interrupted render (a real SIGINT sent by interruptCli after its first tile), resumed,
+/// equals the uninterrupted one bit for bit; the partial file marks its unfinished pixels.
+void interruptAndResume(const std::string& job) {
   const fs::path dir = testDir();
   ASSERT_EQ(runCli(TRAY_RENDER_BIN, job + " " + out(dir, "full.exr"), dir).exitCode, 0);
-  CliResult r = runCli(
-      TRAY_RENDER_BIN,
-      job + " --test-interrupt-after-tiles " + std::to_string(tiles) + " " + out(dir, "part.exr"),
-      dir);
+  CliResult r = interruptCli(job + " " + out(dir, "part.exr"));
   ASSERT_EQ(r.exitCode, 130) << r.err;
   const Exr partial = readExrFile(dir / "part.exr");
   EXPECT_EQ(partial.spec.get_string_attribute("tray:status"), "partial");
@@ -292,6 +293,7 @@ void interruptAndResume(const std::string& job, int tiles) {
       if (partial.at(x, y, "tray.done") == 0) ++marked, alphaZero += partial.at(x, y, "A") == 0;
   EXPECT_EQ(marked, size_t(pixels - done));
   EXPECT_EQ(alphaZero, marked);
+  std::printf("interrupted after %g of %d pixels\n", double(done), pixels);
 
   r = runCli(TRAY_RENDER_BIN, job + " --resume " + out(dir, "part.exr"), dir);
   ASSERT_EQ(r.exitCode, 0) << r.err;
@@ -312,16 +314,18 @@ void interruptAndResume(const std::string& job, int tiles) {
 }
 
 TEST(Farm, InterruptedPathRenderResumesBitForBit) {
-  interruptAndResume(kJob, 2);
+  interruptAndResume(kLongJob);
 }
 
 TEST(Farm, InterruptedRegionSampleRangeResumesBitForBit) {
-  interruptAndResume(kJob + " --region 3,4,35,27 --sample-range 2,6", 1);
+  interruptAndResume(kLongJob + " --region 3,4,100,92 --sample-range 4,192");  // 7x6 tiles
 }
 
 TEST(Farm, InterruptedAdaptiveRenderResumesBitForBit) {
-  interruptAndResume("'" + kWhitted + "' --integrator adaptive --resolution 40x30 --aov samples",
-                     1);
+  // 7x5 tiles of about 33 ms on one thread (a low threshold and one more level: more squares).
+  interruptAndResume("'" + kWhitted +
+                     "' --integrator adaptive --resolution 100x75 --aa-threshold 0.005 "
+                     "--aa-depth 5 --aov samples");
 }
 
 /// Waits until `path` exists (a checkpoint was written) or the child exits.
