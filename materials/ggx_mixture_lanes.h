@@ -105,24 +105,32 @@ TRAY_LANE V3 mixtureEvalPdf(const GgxMixtureOf<V3>& x, const MixtureProbabilitie
                             const V3& wo, const V3& wi, CoatFresnel coatFresnel, Glass glass,
                             F& pdf, F& ggxPdf) {
   const V3 zero{F(0.0f), F(0.0f), F(0.0f)};
-  F glassPdf;
-  const V3 glassF = glass(wo, wi, glassPdf);
   const auto ggxOn =
       (x.metalOn || x.coatOn || p.metal > F(0.0f) || p.coat > F(0.0f)) && !x.ggxDelta;
   GgxTermsOf<F> t;
   if (anyOf(ggxOn)) t = ggxTerms(x.alpha, wo, wi);
   ggxPdf = select(ggxOn, t.pdf, F(0.0f));
-  const V3 metal = select(t.nonzero, fresnelSchlick(x.albedo, t.cosOM) * t.scale, zero);
+  // Each term only where some lane has it: for one float, the scalar Bsdf's branches.
   V3 f = zero;
-  f = f + select(x.metalOn, x.wMetal * metal, zero);
-  f = f + select(x.glassOn, x.wGlass * glassF, zero);
+  if (anyOf(x.metalOn)) {
+    const V3 metal = select(t.nonzero, fresnelSchlick(x.albedo, t.cosOM) * t.scale, zero);
+    f = f + select(x.metalOn, x.wMetal * metal, zero);
+  }
+  F glassPdf(0.0f);
+  if (anyOf(x.glassOn || p.glass > F(0.0f))) {
+    const V3 glassF = glass(wo, wi, glassPdf);
+    f = f + select(x.glassOn, x.wGlass * glassF, zero);
+  }
   if (anyOf(x.coatOn)) {
     const V3 coat = select(t.nonzero, coatFresnel(t.cosOM) * t.scale, zero);
     f = f + select(x.coatOn, (x.wPlastic * x.coat) * coat, zero);
   }
-  F lambertPdf;
-  const V3 lambert = lambertEvalPdf(x.albedo, wo.z, wi.z, lambertPdf);
-  f = f + select(x.diffuseOn, (x.wPlastic * (F(1.0f) - p.coatFresnel)) * lambert, zero);
+  F lambertPdf(0.0f);
+  const auto lambertOn = x.diffuseOn || p.diffuse > F(0.0f);
+  if (anyOf(lambertOn)) {
+    const V3 lambert = lambertEvalPdf(x.albedo, wo.z, wi.z, lambertPdf);
+    f = f + select(x.diffuseOn, (x.wPlastic * (F(1.0f) - p.coatFresnel)) * lambert, zero);
+  }
   pdf = F(0.0f);
   pdf = pdf + select(p.metal > F(0.0f), p.metal * t.pdf, F(0.0f));
   pdf = pdf + select(p.glass > F(0.0f), p.glass * glassPdf, F(0.0f));
