@@ -3,6 +3,7 @@
 // render options (--integrator, --spp, each integrator's own) come from their declarations
 // (cli/option_cli.h); these are the ones about files, threads, outputs and farm parts.
 #include <CLI/CLI.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,7 +15,7 @@ struct CliOptions {
   std::vector<std::string> outputs{"out.exr"};
   std::string resolution;
   std::string camera;  ///< --camera: a glTF camera index or a node/camera name; "" default
-  int scene = -1;
+  std::optional<int> scene;  ///< --scene; none: the file's default scene
   int threads = 0;
   std::string accel = "embree";
   bool floatOutput = false;
@@ -33,7 +34,7 @@ struct CliOptions {
   double checkpointSeconds = 0;
   bool resume = false;
   std::string frames;  ///< --frames A-B; empty: one image
-  double maxMemoryMB = -1;     ///< -1: 80% of physical memory; 0: no limit
+  std::optional<double> maxMemoryMB;  ///< --max-memory; none: 80% of physical memory; 0: no limit
   double textureMemoryMB = 0;  ///< 0: TextureSampler::budgetFor(the scene's images)
   tray::RenderSettings settings;
 };

@@ -28,11 +28,11 @@ const char* gPhase = "starting";
 tray::RenderJob jobOf(const CliOptions& o) {
   tray::RenderJob job;
   job.scene.path = o.scenePath;
-  if (o.scene >= 0) job.scene.index = o.scene;
+  job.scene.index = o.scene;
   job.scene.allowAnyPath = o.allowAnyPath;
   job.scene.ignoreRequiredExtensions = o.ignoreRequiredExtensions;
   job.scene.maxMemoryBytes =
-      o.maxMemoryMB < 0 ? tray::defaultMaxMemoryBytes() : uint64_t(o.maxMemoryMB * 1048576.0);
+      o.maxMemoryMB ? uint64_t(*o.maxMemoryMB * 1048576.0) : tray::defaultMaxMemoryBytes();
   job.scene.textureMemoryMB = o.textureMemoryMB;
   job.camera = o.camera;
   job.resolution = o.resolution;
