@@ -33,7 +33,11 @@ class Sampler {
         sequence_(sequence) {}
   // The draws are core/sampler_lanes.h's, which the SIMD kernels run too.
   /// Uniform in [0, 1).
-  float next1D() { return reserved1D(++dimension_); }
+  float next1D() {
+    if (sequence_ == Sequence::kIndependent)
+      return independentUnitOf<float>(dimensionHashOf(key_, ++dimension_));
+    return sobol1DOf<float>(dimensionHashOf(key_, ++dimension_), reversedIndex_);
+  }
   /// Two dimensions; with kSobol, the pair is one 2D Sobol' point (stratified jointly).
   Vec2 next2D() {
     if (sequence_ == Sequence::kIndependent) {

@@ -29,12 +29,23 @@
 // After every include: opens the namespace of this mode (scalar or SIMD).
 #include "core/lanes_begin.h"  // IWYU pragma: keep
 
+// The small steps below are inlined whatever the context, also with scalars (HWY_INLINE does so
+// for vectors); the draws that compose them (samplerKeyOf, sobol1DOf, 2DOf, 3DOf) are left to
+// GCC's heuristics, like the scalar code before them. Left to GCC, the steps moved its inlining
+// of the path estimator around and cost path-scalar 3-4% (path_bench, Cornell box); so, the
+// same speed.
+#ifdef TRAY_LANES_SIMD
+#define TRAY_SAMPLER_LANE TRAY_LANE
+#else
+#define TRAY_SAMPLER_LANE [[gnu::always_inline]] inline
+#endif
+
 /// A value's hash input is key + kSamplerDimensionStep * its dimension (mod 2^64).
 inline constexpr uint64_t kSamplerDimensionStep = 0xbf58476d1ce4e5b9ull;
 
 /// SplitMix64's finaliser (Steele et al. 2014): a strong 64-bit mixing function. U64: U64Of<F>.
 template <class U64>
-TRAY_LANE U64 mixOf(U64 z) {
+TRAY_SAMPLER_LANE U64 mixOf(U64 z) {
   z = (z ^ (z >> 30)) * U64(0xbf58476d1ce4e5b9ull);
   z = (z ^ (z >> 27)) * U64(0x94d049bb133111ebull);
   return z ^ (z >> 31);
@@ -52,32 +63,32 @@ TRAY_LANE U64Of<F> samplerKeyOf(uint64_t seedKey, UintOf<F> pixel, UintOf<F> sam
 
 /// The hash of the dimension `dimensions` on from base (a key, or Sampler::drawBase).
 template <class U64>
-TRAY_LANE U64 dimensionHashOf(U64 base, uint64_t dimensions) {
+TRAY_SAMPLER_LANE U64 dimensionHashOf(U64 base, uint64_t dimensions) {
   return mixOf(base + U64(kSamplerDimensionStep * dimensions));
 }
 
 /// float(bits) / 2^24 for bits < 2^24: exact.
 template <class F>
-TRAY_LANE F unitOf24Bits(UintOf<F> bits) {
+TRAY_SAMPLER_LANE F unitOf24Bits(UintOf<F> bits) {
   return toFloatOf(intFromBits(bits)) * F(1.0f / 16777216.0f);
 }
 
 /// An independent uniform in [0, 1) from its 64-bit hash: the top 24 bits.
 template <class F>
-TRAY_LANE F independentUnitOf(U64Of<F> hash) {
+TRAY_SAMPLER_LANE F independentUnitOf(U64Of<F> hash) {
   return unitOf24Bits<F>(low32Of(hash >> 40));
 }
 
 /// Sobol' fixed-point bits to [0, 1): the top 24 bits, so 1 is never reached.
 template <class F>
-TRAY_LANE F sobolUnitOf(UintOf<F> bits) {
+TRAY_SAMPLER_LANE F sobolUnitOf(UintOf<F> bits) {
   return unitOf24Bits<F>(bits >> 8);
 }
 
 /// The hash behind Owen scrambling, on bit-reversed digits: a multiply carries only from lower
 /// to higher bits, so output bit k depends on input bits 0..k alone. U: UintOf<F>.
 template <class U>
-TRAY_LANE U carryHashOf(U v, U seed) {
+TRAY_SAMPLER_LANE U carryHashOf(U v, U seed) {
   v = v ^ v * U(0x3d20adeau);
   v = v + seed;
   v = v * ((seed >> 16) | U(1u));
@@ -91,16 +102,16 @@ TRAY_LANE U carryHashOf(U v, U seed) {
 /// Pascal's matrix mod 2, also has a butterfly form: measured, the 3D draw takes 7% longer with
 /// it), so both dimensions and both lane types look up the tables (a vector: gathers).
 template <class U>
-TRAY_LANE U sobolReversedOf(const uint32_t (&t)[4][256], U v) {
+TRAY_SAMPLER_LANE U sobolReversedOf(const uint32_t (&t)[4][256], U v) {
   return gatherOf(t[0], v & U(255u)) ^ gatherOf(t[1], (v >> 8) & U(255u)) ^
          gatherOf(t[2], (v >> 16) & U(255u)) ^ gatherOf(t[3], v >> 24);
 }
 template <class U>
-TRAY_LANE U sobolReversedDimension1Of(U index) {
+TRAY_SAMPLER_LANE U sobolReversedDimension1Of(U index) {
   return sobolReversedOf(sobol::detail::kDimension1.byte, index);
 }
 template <class U>
-TRAY_LANE U sobolReversedDimension2Of(U index) {
+TRAY_SAMPLER_LANE U sobolReversedDimension2Of(U index) {
   return sobolReversedOf(sobol::detail::kDimension2.byte, index);
 }
 
@@ -108,22 +119,22 @@ TRAY_LANE U sobolReversedDimension2Of(U index) {
 /// dimensions: Owen-scrambled as if it were a value (Burley 2020 section 4), so every aligned
 /// block of 2^k indices maps to an aligned block of 2^k.
 template <class U>
-TRAY_LANE U sobolShuffleReversedOf(U reversedIndex, U seed) {
+TRAY_SAMPLER_LANE U sobolShuffleReversedOf(U reversedIndex, U seed) {
   return reverseBitsOf(carryHashOf(reversedIndex, seed));
 }
 
 /// Owen-scrambled Sobol' dimensions 0, 1 and 2 at a (shuffled) index, as 32 fixed-point bits:
 /// owenScramble(dimensionN(index)) with the bit reversals that cancel left out.
 template <class U>
-TRAY_LANE U sobolScrambled0Of(U index, U seed) {
+TRAY_SAMPLER_LANE U sobolScrambled0Of(U index, U seed) {
   return reverseBitsOf(carryHashOf(index, seed));
 }
 template <class U>
-TRAY_LANE U sobolScrambled1Of(U index, U seed) {
+TRAY_SAMPLER_LANE U sobolScrambled1Of(U index, U seed) {
   return reverseBitsOf(carryHashOf(sobolReversedDimension1Of(index), seed));
 }
 template <class U>
-TRAY_LANE U sobolScrambled2Of(U index, U seed) {
+TRAY_SAMPLER_LANE U sobolScrambled2Of(U index, U seed) {
   return reverseBitsOf(carryHashOf(sobolReversedDimension2Of(index), seed));
 }
 
@@ -159,5 +170,6 @@ TRAY_LANE Vec3Of<F> sobol3DOf(U64Of<F> hash, UintOf<F> reversedIndex) {
           sobolUnitOf<F>(sobolScrambled1Of(index, seedZ))};
 }
 
+#undef TRAY_SAMPLER_LANE
 #include "core/lanes_end.h"
 #endif  // TRAY_LANES_BODY
