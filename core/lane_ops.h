@@ -25,11 +25,17 @@ struct LaneTypes<float> {
   using Int = int32_t;
   using V2 = Vec2;
   using V3 = Vec3;
+  using Uint = uint32_t;  ///< unsigned 32-bit (wrapping) integers, lane for lane
+  using U64 = uint64_t;   ///< unsigned 64-bit integers (a vector of them: two halves)
 };
 template <class F>
 using MaskOf = typename LaneTypes<F>::Mask;
 template <class F>
 using IntOf = typename LaneTypes<F>::Int;
+template <class F>
+using UintOf = typename LaneTypes<F>::Uint;
+template <class F>
+using U64Of = typename LaneTypes<F>::U64;
 template <class F>
 using Vec2Of = typename LaneTypes<F>::V2;
 template <class F>
@@ -101,6 +107,33 @@ inline int32_t bitsOf(float a) {
 }
 inline float floatFromBits(int32_t bits) {
   return std::bit_cast<float>(bits);
+}
+
+// Unsigned lanes (UintOf, U64Of: C++'s own operators, wrapping, and these).
+/// The unsigned integer's bits as a signed one (the value for a < 2^31).
+inline int32_t intFromBits(uint32_t a) {
+  return std::bit_cast<int32_t>(a);
+}
+/// Bit k of a at bit 31 - k.
+inline uint32_t reverseBitsOf(uint32_t v) {
+  v = __builtin_bswap32(v);  // bytes, then the bits within each byte
+  v = ((v >> 1) & 0x55555555u) | ((v & 0x55555555u) << 1);
+  v = ((v >> 2) & 0x33333333u) | ((v & 0x33333333u) << 2);
+  return ((v >> 4) & 0x0f0f0f0fu) | ((v & 0x0f0f0f0fu) << 4);
+}
+/// The low and the high 32 bits of a 64-bit lane; a 32-bit lane widened to 64 bits.
+inline uint32_t low32Of(uint64_t a) {
+  return uint32_t(a);
+}
+inline uint32_t high32Of(uint64_t a) {
+  return uint32_t(a >> 32);
+}
+inline uint64_t widenOf(uint32_t a) {
+  return a;
+}
+/// table[index] (a vector: a gather, one index per lane).
+inline uint32_t gatherOf(const uint32_t* table, uint32_t index) {
+  return table[index];
 }
 
 }  // namespace tray

@@ -31,19 +31,27 @@ using tray::copySignOf;
 using tray::divModOf;
 using tray::floatFromBits;
 using tray::floorOf;
+using tray::gatherOf;
+using tray::high32Of;
+using tray::intFromBits;
 using tray::isFiniteOf;
 using tray::isInfOf;
+using tray::low32Of;
 using tray::maxOf;
 using tray::minOf;
 using tray::noneOf;
+using tray::reverseBitsOf;
 using tray::select;
 using tray::sqrtOf;
 using tray::toFloatOf;
 using tray::truncateToInt;
+using tray::widenOf;
 
 #if HWY_TARGET != HWY_SCALAR
 using DF = hn::ScalableTag<float>;
 using DI = hn::RebindToSigned<DF>;
+using DU = hn::RebindToUnsigned<DF>;
+using D64 = hn::Repartition<uint64_t, DU>;  // half as many lanes as DU
 static_assert(HWY_MAX_BYTES / sizeof(float) <= kMaxSimdLanes);
 
 /// A lane mask (one bit per float lane).
@@ -68,6 +76,21 @@ struct IntVec {
   HWY_INLINE IntVec(hn::Vec<DI> x) : v(x) {}             // NOLINT
   HWY_INLINE IntVec(int32_t s) : v(hn::Set(DI(), s)) {}  // NOLINT
 };
+/// A vector of unsigned 32-bit integers, lane for lane with FloatVec (wrapping arithmetic).
+struct UintVec {
+  hn::Vec<DU> v;
+  UintVec() = default;
+  HWY_INLINE UintVec(hn::Vec<DU> x) : v(x) {}              // NOLINT
+  HWY_INLINE UintVec(uint32_t s) : v(hn::Set(DU(), s)) {}  // NOLINT
+};
+/// Unsigned 64-bit integers, lane for lane with FloatVec: Highway's vectors of uint64 have half
+/// as many lanes, so two of them, FloatVec's lower lanes and its upper lanes.
+struct U64Vec {
+  hn::Vec<D64> lo, hi;
+  U64Vec() = default;
+  HWY_INLINE U64Vec(hn::Vec<D64> lower, hn::Vec<D64> upper) : lo(lower), hi(upper) {}
+  HWY_INLINE U64Vec(uint64_t s) : lo(hn::Set(D64(), s)), hi(lo) {}  // NOLINT
+};
 struct Vec2Vec {
   FloatVec x, y;
 };
@@ -82,6 +105,8 @@ struct LaneTypes<HWY_NAMESPACE::FloatVec> {
   using Int = HWY_NAMESPACE::IntVec;
   using V2 = HWY_NAMESPACE::Vec2Vec;
   using V3 = HWY_NAMESPACE::Vec3Vec;
+  using Uint = HWY_NAMESPACE::UintVec;
+  using U64 = HWY_NAMESPACE::U64Vec;
 };
 namespace HWY_NAMESPACE {
 
@@ -161,6 +186,85 @@ HWY_INLINE MaskVec operator>(IntVec a, IntVec b) {
 }
 HWY_INLINE MaskVec operator<(IntVec a, IntVec b) {
   return {hn::RebindMask(DF(), hn::Lt(a.v, b.v))};
+}
+
+HWY_INLINE UintVec operator+(UintVec a, UintVec b) {
+  return hn::Add(a.v, b.v);
+}
+HWY_INLINE UintVec operator*(UintVec a, UintVec b) {  // the low 32 bits of the product
+  return hn::Mul(a.v, b.v);
+}
+HWY_INLINE UintVec operator^(UintVec a, UintVec b) {
+  return hn::Xor(a.v, b.v);
+}
+HWY_INLINE UintVec operator&(UintVec a, UintVec b) {
+  return hn::And(a.v, b.v);
+}
+HWY_INLINE UintVec operator|(UintVec a, UintVec b) {
+  return hn::Or(a.v, b.v);
+}
+HWY_INLINE UintVec operator>>(UintVec a, int bits) {
+  return hn::ShiftRightSame(a.v, bits);
+}
+HWY_INLINE UintVec operator<<(UintVec a, int bits) {
+  return hn::ShiftLeftSame(a.v, bits);
+}
+HWY_INLINE IntVec intFromBits(UintVec a) {
+  return hn::BitCast(DI(), a.v);
+}
+/// sobol::reverseBits per lane: the bytes of each lane reversed, then the bits of each byte by
+/// a table of reversed nibbles.
+HWY_INLINE UintVec reverseBitsOf(UintVec a) {
+  const DU du;
+  const hn::Repartition<uint8_t, DU> d8;
+  alignas(16) static constexpr uint8_t kByteSwap[16] = {3,  2,  1, 0, 7,  6,  5,  4,
+                                                        11, 10, 9, 8, 15, 14, 13, 12};
+  alignas(16) static constexpr uint8_t kNibble[16] = {0x0, 0x8, 0x4, 0xc, 0x2, 0xa, 0x6, 0xe,
+                                                      0x1, 0x9, 0x5, 0xd, 0x3, 0xb, 0x7, 0xf};
+  const auto swapped = hn::TableLookupBytes(hn::BitCast(d8, a.v), hn::LoadDup128(d8, kByteSwap));
+  const auto lowNibbles = hn::And(swapped, hn::Set(d8, 0x0f));
+  const auto highNibbles = hn::BitCast(
+      d8, hn::And(hn::ShiftRight<4>(hn::BitCast(du, swapped)), hn::Set(du, 0x0f0f0f0fu)));
+  const auto table = hn::LoadDup128(d8, kNibble);
+  const auto low = hn::BitCast(du, hn::TableLookupBytes(table, lowNibbles));
+  return hn::Or(hn::ShiftLeft<4>(low), hn::BitCast(du, hn::TableLookupBytes(table, highNibbles)));
+}
+/// table[index] per lane.
+HWY_INLINE UintVec gatherOf(const uint32_t* table, UintVec index) {
+  return hn::GatherIndex(DU(), table, hn::BitCast(DI(), index.v));
+}
+
+HWY_INLINE U64Vec operator+(const U64Vec& a, const U64Vec& b) {
+  return {hn::Add(a.lo, b.lo), hn::Add(a.hi, b.hi)};
+}
+HWY_INLINE U64Vec operator*(const U64Vec& a, const U64Vec& b) {  // the low 64 bits
+  return {hn::Mul(a.lo, b.lo), hn::Mul(a.hi, b.hi)};
+}
+HWY_INLINE U64Vec operator^(const U64Vec& a, const U64Vec& b) {
+  return {hn::Xor(a.lo, b.lo), hn::Xor(a.hi, b.hi)};
+}
+HWY_INLINE U64Vec operator|(const U64Vec& a, const U64Vec& b) {
+  return {hn::Or(a.lo, b.lo), hn::Or(a.hi, b.hi)};
+}
+HWY_INLINE U64Vec operator>>(const U64Vec& a, int bits) {
+  return {hn::ShiftRightSame(a.lo, bits), hn::ShiftRightSame(a.hi, bits)};
+}
+HWY_INLINE U64Vec operator<<(const U64Vec& a, int bits) {
+  return {hn::ShiftLeftSame(a.lo, bits), hn::ShiftLeftSame(a.hi, bits)};
+}
+/// The low (even) and high (odd) 32-bit halves of the 64-bit lanes, in lane order.
+HWY_INLINE UintVec low32Of(const U64Vec& a) {
+  const DU du;
+  return hn::ConcatEven(du, hn::BitCast(du, a.hi), hn::BitCast(du, a.lo));
+}
+HWY_INLINE UintVec high32Of(const U64Vec& a) {
+  const DU du;
+  return hn::ConcatOdd(du, hn::BitCast(du, a.hi), hn::BitCast(du, a.lo));
+}
+HWY_INLINE U64Vec widenOf(UintVec a) {
+  const D64 d64;
+  const hn::Rebind<uint32_t, D64> dh;  // DU's lower or upper half
+  return {hn::PromoteTo(d64, hn::LowerHalf(dh, a.v)), hn::PromoteTo(d64, hn::UpperHalf(dh, a.v))};
 }
 
 HWY_INLINE FloatVec select(MaskVec m, FloatVec a, FloatVec b) {

@@ -1,21 +1,21 @@
 // Highway's dynamic dispatch: this file is compiled once per x86 target (SSSE3 ... AVX-512) by
-// foreach_target.h, and HWY_DYNAMIC_DISPATCH runs the best one the CPU has. The pixel offsets
-// and rays are not written here: they are the one text of core/pixel_sampler_lanes.h and
-// core/camera_lanes.h, which PixelSampler::offset and PerspectiveCamera::generateRay run with
-// float, compiled here for each target's vectors (docs/lanes.md).
+// foreach_target.h, and HWY_DYNAMIC_DISPATCH runs the best one the CPU has. The samplers, pixel
+// offsets and rays are not written here: they are the one text of core/sampler_lanes.h,
+// core/pixel_sampler_lanes.h and core/camera_lanes.h, which Sampler, PixelSampler::offset and
+// PerspectiveCamera::generateRay run with scalars, compiled here for each target's vectors
+// (docs/lanes.md).
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "integrators/camera_batch.cpp"
 #include "integrators/camera_batch.h"
 
 #include "hwy/foreach_target.h"  // IWYU pragma: keep
 #include "hwy/highway.h"
-// After highway.h, once per target: the sampler's hashes and Sobol' scrambles in SIMD, the SIMD
-// lane, then the one text for its vectors.
+// After highway.h, once per target: the SIMD lane, then the one text for its vectors.
 #include "core/lane_simd-inl.h"
-#include "integrators/sampler_simd-inl.h"
 #define TRAY_LANES_SIMD
 #include "core/camera_lanes.h"
 #include "core/pixel_sampler_lanes.h"
+#include "core/sampler_lanes.h"
 #undef TRAY_LANES_SIMD
 
 HWY_BEFORE_NAMESPACE();
@@ -29,55 +29,22 @@ namespace hn = hwy::HWY_NAMESPACE;
 void GenerateCameraRays(const CameraBatchParams&, size_t, const int32_t*, const int32_t*,
                         const uint32_t*, CameraRayLanes&) {}
 #else
-constexpr uint64_t kSobolPixelSalt = 0x5851f42d4c957f2dull;
 static_assert(HWY_MAX_BYTES / sizeof(float) <= CameraRayLanes::kMaxLanes);
 
 /// The samplers of one vector of samples: Sampler's constructor, then next2D. Writes the keys
-/// and reversed indices; returns the 2D point in u, v.
-HWY_INLINE void SamplersAndPoints(const CameraBatchParams& p, VU pixel, VU sample, uint64_t* key,
-                                  uint32_t* reversedIndex, VF& u, VF& v) {
+/// and reversed indices; returns the 2D point.
+HWY_INLINE Vec2Vec SamplersAndPoints(const CameraBatchParams& p, UintVec pixel, UintVec sample,
+                                     uint64_t* key, uint32_t* reversedIndex) {
   const D64 d64;
-  const DHalf dh;
-  const DU du;
-  const size_t half = hn::Lanes(d64);
-  V64 k[2];
-  const VU reversed = ReverseBits(sample);
-  for (int h = 0; h < 2; ++h) {
-    const V64 pixel64 = hn::PromoteTo(d64, h ? hn::UpperHalf(dh, pixel) : hn::LowerHalf(pixel));
-    const V64 low = p.sobol
-                        ? hn::Set(d64, kSobolPixelSalt)
-                        : hn::PromoteTo(d64, h ? hn::UpperHalf(dh, sample) : hn::LowerHalf(sample));
-    // Independent: pixel << 32 | sample; Sobol': pixel << 32 ^ salt (the same for all samples).
-    const V64 word = p.sobol ? hn::Xor(hn::ShiftLeft<32>(pixel64), low)
-                             : hn::Or(hn::ShiftLeft<32>(pixel64), low);
-    k[h] = Mix(hn::Xor(hn::Set(d64, p.seedKey), word));
-    hn::StoreU(k[h], d64, key + h * half);
-  }
-  if (!p.sobol) {
-    // next1D twice: dimensions 1 and 2, the top 24 bits of each hash.
-    V64 a[2], b[2];
-    for (int h = 0; h < 2; ++h) {
-      a[h] = hn::ShiftRight<40>(Mix(k[h] + hn::Set(d64, kDimensionStep)));
-      b[h] = hn::ShiftRight<40>(Mix(k[h] + hn::Set(d64, kDimensionStep * 2)));
-    }
-    u = UnitOf24Bits(Low32(a[0], a[1]));
-    v = UnitOf24Bits(Low32(b[0], b[1]));
-    hn::StoreU(reversed, du, reversedIndex);
-    return;
-  }
-  // Sobol' next2D at dimension 2: one hash for the shuffle and the two scrambles.
-  V64 hash[2], remix[2];
-  for (int h = 0; h < 2; ++h) {
-    hash[h] = Mix(k[h] + hn::Set(d64, kDimensionStep * 2));
-    remix[h] = hash[h] * hn::Set(d64, kGolden);
-  }
-  const VU index = ReverseBits(CarryHash(reversed, Low32(hash[0], hash[1])));
-  const VU seedX = High32(hash[0], hash[1]), seedY = High32(remix[0], remix[1]);
-  const VU x = ReverseBits(CarryHash(index, seedX));
-  const VU y = ReverseBits(CarryHash(ReversedDimension1(index), seedY));
-  u = UnitOf24Bits(hn::ShiftRight<8>(x));
-  v = UnitOf24Bits(hn::ShiftRight<8>(y));
-  hn::StoreU(reversed, du, reversedIndex);
+  const U64Vec k = samplerKeyOf<FloatVec>(p.seedKey, pixel, sample, p.sobol != 0);
+  hn::StoreU(k.lo, d64, key);
+  hn::StoreU(k.hi, d64, key + hn::Lanes(d64));
+  const UintVec reversed = reverseBitsOf(sample);
+  hn::StoreU(reversed.v, DU(), reversedIndex);
+  // Sobol': next2D at dimension 2. Independent: next1D twice, dimensions 1 and 2.
+  if (p.sobol) return sobol2DOf<FloatVec>(dimensionHashOf(k, 2), reversed);
+  return {independentUnitOf<FloatVec>(dimensionHashOf(k, 1)),
+          independentUnitOf<FloatVec>(dimensionHashOf(k, 2))};
 }
 
 /// One vector of paths: samplers, offsets (pixelOffset), then the pinhole rays (pinholeRay).
@@ -87,14 +54,14 @@ HWY_INLINE void Block(const CameraBatchParams& p, const int32_t* x, const int32_
   const DF df;
   const DI di;
   const DU du;
-  const VI xi = hn::LoadU(di, x), yi = hn::LoadU(di, y);
-  const VU s = hn::LoadU(du, sample);
-  const VU pixel = hn::BitCast(du, yi) * hn::Set(du, p.imageWidth) + hn::BitCast(du, xi);
-  VF u, v;
-  SamplersAndPoints(p, pixel, s, out.key.data() + k, out.reversedIndex.data() + k, u, v);
+  const auto xi = hn::LoadU(di, x), yi = hn::LoadU(di, y);
+  const UintVec s = hn::LoadU(du, sample);
+  const UintVec pixel =
+      UintVec(hn::BitCast(du, yi)) * UintVec(p.imageWidth) + UintVec(hn::BitCast(du, xi));
+  const Vec2Vec u =
+      SamplersAndPoints(p, pixel, s, out.key.data() + k, out.reversedIndex.data() + k);
   // Named with the namespace: PixelSampler's own (tray) holds the scalar template too.
-  const Vec2Vec o =
-      HWY_NAMESPACE::pixelOffset<FloatVec>(p.pixels, IntVec(hn::BitCast(di, s)), Vec2Vec{u, v});
+  const Vec2Vec o = HWY_NAMESPACE::pixelOffset<FloatVec>(p.pixels, intFromBits(s), u);
   hn::StoreU(o.x.v, df, out.offsetX.data() + k);
   hn::StoreU(o.y.v, df, out.offsetY.data() + k);
   const FloatVec rx = rasterCoordinate(toFloatOf(IntVec(xi)), o.x);

@@ -1,13 +1,18 @@
-// Highway's dynamic dispatch, as integrators/camera_batch.cpp: compiled once per x86 target. Integer
-// hashes and one exact int-to-float conversion per value: the same bits on every target.
+// Highway's dynamic dispatch, as integrators/camera_batch.cpp: compiled once per x86 target.
+// Integer hashes and one exact int-to-float conversion per value: the same bits on every target.
+// The draws are not written here: they are the one text of core/sampler_lanes.h, which Sampler runs
+// with scalar integers, compiled here for each target's vectors (docs/lanes.md).
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "integrators/sampler_batch.cpp"
 #include "integrators/sampler_batch.h"
 
 #include "hwy/foreach_target.h"  // IWYU pragma: keep
 #include "hwy/highway.h"
-// After highway.h, once per target: the sampler's hashes and Sobol' scrambles in SIMD.
-#include "integrators/sampler_simd-inl.h"
+// After highway.h, once per target: the SIMD lane, then the one text for its vectors.
+#include "core/lane_simd-inl.h"
+#define TRAY_LANES_SIMD
+#include "core/sampler_lanes.h"
+#undef TRAY_LANES_SIMD
 
 HWY_BEFORE_NAMESPACE();
 namespace tray {
@@ -20,50 +25,30 @@ void DrawTwo3D(int32_t, size_t, const uint64_t*, const uint32_t*, Vec3*, Vec3*) 
 #else
 static_assert(HWY_MAX_BYTES / sizeof(float) <= kMaxSimdLanes);
 
-/// Sampler::next1D with independent numbers, j dimensions on: toUnit(mix(base + step j)).
-HWY_INLINE VF Independent(const V64 base[2], uint64_t j) {
-  const D64 d64;
-  V64 top[2];
-  for (int h = 0; h < 2; ++h)
-    top[h] = hn::ShiftRight<40>(Mix(base[h] + hn::Set(d64, kDimensionStep * j)));
-  return UnitOf24Bits(Low32(top[0], top[1]));
-}
-
-/// Sampler::next3D with Sobol', the hash of dimension `j` on (j = 3: the next draw): the
-/// shuffled index, then dimensions 2, 0 and 1 scrambled with seeds from two 64-bit hashes.
-HWY_INLINE void Sobol3D(const V64 base[2], VU reversed, uint64_t j, VF& x, VF& y, VF& z) {
-  const D64 d64;
-  V64 hash[2], remix[2];
-  for (int h = 0; h < 2; ++h) {
-    hash[h] = Mix(base[h] + hn::Set(d64, kDimensionStep * j));
-    remix[h] = Mix(hn::Xor(hash[h], hn::Set(d64, 0x94d049bb133111ebull)));
-  }
-  const VU index = ReverseBits(CarryHash(reversed, Low32(hash[0], hash[1])));
-  const VU seedX = High32(remix[0], remix[1]), seedY = High32(hash[0], hash[1]),
-           seedZ = Low32(remix[0], remix[1]);
-  x = UnitOf24Bits(hn::ShiftRight<8>(ReverseBits(CarryHash(ReversedDimension2(index), seedX))));
-  y = UnitOf24Bits(hn::ShiftRight<8>(ReverseBits(CarryHash(index, seedY))));
-  z = UnitOf24Bits(hn::ShiftRight<8>(ReverseBits(CarryHash(ReversedDimension1(index), seedZ))));
-}
-
-/// One vector of samplers from entry k: their next two 3D draws, as Vec3s (x, y, z
-/// interleaved) at first + k and second + k.
+/// One vector of samplers from entry k: their next two 3D draws (Sampler::next3D, the hashes of
+/// dimensions 3 and 6 on from the draw base), as Vec3s (x, y, z interleaved) at first + k and
+/// second + k.
 HWY_INLINE void Block(int32_t sobol, const uint64_t* base, const uint32_t* reversedIndex,
                       Vec3* first, Vec3* second) {
   const DF df;
   const D64 d64;
-  const size_t half = hn::Lanes(d64);
-  const V64 b[2] = {hn::LoadU(d64, base), hn::LoadU(d64, base + half)};
-  VF v[6];
+  const U64Vec b(hn::LoadU(d64, base), hn::LoadU(d64, base + hn::Lanes(d64)));
+  Vec3Vec v[2];
   if (sobol) {
-    const VU reversed = hn::LoadU(DU(), reversedIndex);
-    Sobol3D(b, reversed, 3, v[0], v[1], v[2]);
-    Sobol3D(b, reversed, 6, v[3], v[4], v[5]);
+    const UintVec reversed = hn::LoadU(DU(), reversedIndex);
+    for (int d = 0; d < 2; ++d)
+      v[d] = sobol3DOf<FloatVec>(dimensionHashOf(b, 3u * (d + 1)), reversed);
   } else {
-    for (int j = 0; j < 6; ++j) v[j] = Independent(b, uint64_t(j + 1));
+    // Independent: three next1D() values in order.
+    for (int d = 0; d < 2; ++d) {
+      FloatVec c[3];
+      for (int j = 0; j < 3; ++j)
+        c[j] = independentUnitOf<FloatVec>(dimensionHashOf(b, uint64_t(3 * d + j + 1)));
+      v[d] = {c[0], c[1], c[2]};
+    }
   }
-  hn::StoreInterleaved3(v[0], v[1], v[2], df, &first->x);
-  hn::StoreInterleaved3(v[3], v[4], v[5], df, &second->x);
+  hn::StoreInterleaved3(v[0].x.v, v[0].y.v, v[0].z.v, df, &first->x);
+  hn::StoreInterleaved3(v[1].x.v, v[1].y.v, v[1].z.v, df, &second->x);
 }
 
 void DrawTwo3D(int32_t sobol, size_t n, const uint64_t* base, const uint32_t* reversedIndex,
