@@ -28,17 +28,16 @@ void GlossyVertices(const float*, const Color&, ShadingLanes&) {}
 struct Vertices {
   FrameOf<V3> frame;
   V3 wo;  ///< local
+  FloatVec eta;  ///< the coat's relative IOR
   GgxMixtureOf<V3> mixture;
   MixtureProbabilitiesOf<FloatVec> probabilities;
-  FloatVec eta;  ///< the coat's relative IOR
   explicit Vertices(const Fields& f)
       : frame(FrameOf<V3>::fromNormal(f.load(f.m.n))),
         wo(frame.toLocal(f.load(f.m.wo))),
+        eta(f.load(f.m.eta)),
         mixture(ggxMixture(f.load(f.m.metallic), FloatVec(0.0f), f.load(f.m.roughness),
                            f.load(f.m.albedo))),
-        probabilities(
-            mixtureProbabilities(mixture, coatFresnelOf(mixture.coat, wo.z, f.load(f.m.eta)))),
-        eta(f.load(f.m.eta)) {}
+        probabilities(mixtureProbabilities(mixture, coatFresnelOf(mixture.coat, wo.z, eta))) {}
   /// The coat's exact dielectric Fresnel at a microfacet cosine (no KHR_materials_specular
   /// tint here: Bsdf::isGgxMixture).
   auto coatFresnel() const {

@@ -12,25 +12,24 @@ keep_if_failed() {
 }
 trap keep_if_failed EXIT
 for d in core textures film shapes accel materials lights integrators io gltf render cli; do cp -r "$source/$d" "$tree/"; done
-printf '#include "integrators/registry.h"\n' >>"$tree/core/scene.h"
-if out=$(python3 "$source/tools/check_layers.py" "$tree" 2>&1); then
-  echo "a wrong include passed the layer check" >&2
-  exit 1
-fi
-grep -q "core/scene.h:.*layer 'core' includes 'integrators/'" <<<"$out" || {
-  echo "unexpected message: $out" >&2
-  exit 1
+# Appends `include` to `file` in the copy and expects the check to refuse it with a message
+# matching `says`; then restores the file.
+expect_refused() {
+  local file=$1 include=$2 says=$3 out
+  printf '%s\n' "$include" >>"$tree/$file"
+  if out=$(python3 "$source/tools/check_layers.py" "$tree" 2>&1); then
+    echo "a wrong include passed the layer check: $include in $file" >&2
+    exit 1
+  fi
+  grep -q "$says" <<<"$out" || {
+    echo "unexpected message: $out" >&2
+    exit 1
+  }
+  echo "wrong include refused: $out"
+  cp "$source/$file" "$tree/$file"
 }
-echo "wrong include refused: $out"
+expect_refused core/scene.h '#include "integrators/registry.h"' \
+  "core/scene.h:.*layer 'core' includes 'integrators/'"
 # The same with <...>: a project header in angle brackets is still a layer's.
-cp "$source/core/scene.h" "$tree/core/scene.h"
-printf '#include <render/render_job.h>\n' >>"$tree/film/film.h"
-if out=$(python3 "$source/tools/check_layers.py" "$tree" 2>&1); then
-  echo "a wrong <...> include passed the layer check" >&2
-  exit 1
-fi
-grep -q "film/film.h:.*layer 'film' includes 'render/'" <<<"$out" || {
-  echo "unexpected message: $out" >&2
-  exit 1
-}
-echo "wrong <...> include refused: $out"
+expect_refused film/film.h '#include <render/render_job.h>' \
+  "film/film.h:.*layer 'film' includes 'render/'"
