@@ -67,8 +67,11 @@ struct ChosenLightSample {
   FloatVec pdf;
   MaskVec ok, environment;
 };
-/// A triangle row per lane (row 0 where none was chosen: its values are not used).
-HWY_INLINE TriangleLightOf<V3> GatherTriangles(const float* table, IntVec row, V3& Le) {
+/// A triangle row per lane (row 0 where none was chosen: its values are not used). Not inlined:
+/// its 17 gathers inside the light sample made one straight block more than Valgrind's memcheck
+/// can instrument ("VEX temporary storage exhausted", the glossy stage on DamagedHelmet); the
+/// call ends a block, at a call's cost per vector (as integrators/surface_batch.cpp's Gather3).
+inline HWY_NOINLINE TriangleLightOf<V3> GatherTriangles(const float* table, IntVec row, V3& Le) {
   using T = MatteBatch;
   const IntVec at = select(row > IntVec(-1), row, IntVec(0)) * IntVec(T::kColumnCount);
   const auto column = [&](T::Column c) -> FloatVec {
