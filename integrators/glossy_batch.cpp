@@ -65,12 +65,14 @@ HWY_NOINLINE void LightSample(const Fields& f, const float* table, const Color& 
 }
 
 /// BSDF sampling of one vector of vertices: Bsdf::sampleLocal's mixture (the lobe choice, GGX
-/// visible normals or the cosine lobe, the mixture's value and pdf there), then to world space.
+/// visible normals, a mirror or the cosine lobe, the mixture's value and pdf there), then to
+/// world space.
 HWY_NOINLINE void ScatterSample(const Fields& f, const Vertices& v) {
   const MixtureSampleOf<V3> s =
       mixtureSample(v.mixture, v.probabilities, v.wo, f.load(f.m.lobeDraw), f.load(f.m.bsdfDraw),
                     v.coatFresnel(), NoGlass());
   StoreNextRay(f, s.f, v.frame.toWorld(s.wi), v.frame.n, s.pdf);
+  f.store(f.m.deltaSample, maskBits(s.delta));
 }
 
 void GlossyVertices(const float* table, const Color& envLe, ShadingLanes& lanes) {

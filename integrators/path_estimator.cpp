@@ -98,7 +98,8 @@ PathEstimator::PathEstimator(const RenderContext& ctx)
 
 PathEstimator::DeferStage PathEstimator::stageOf(const ShadingMaterial& sm) {
   if (Bsdf::isLambertOnly(sm)) return DeferStage::kMatte;
-  return Bsdf::isGgxMixture(sm) ? DeferStage::kGlossy : DeferStage::kNone;
+  if (Bsdf::isGgxMixture(sm)) return DeferStage::kGlossy;
+  return Bsdf::isSmoothGlass(sm) ? DeferStage::kDelta : DeferStage::kNone;
 }
 
 void PathEstimator::reportNan(const PathState& state, const char* what, int depth) const {
@@ -228,6 +229,8 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, const Hit* found, 
       if (defer<false>(st, sampler, v, sm, eta, ahead, *deferral, path)) return PathStep::kDeferred;
     } else if (stage == DeferStage::kGlossy) {
       if (defer<true>(st, sampler, v, sm, eta, ahead, *deferral, path)) return PathStep::kDeferred;
+    } else if (stage == DeferStage::kDelta) {
+      if (deferDelta(st, sampler, v, sm, eta, ahead, *deferral, path)) return PathStep::kDeferred;
     }
   }
   if (plain) evaluate();
@@ -312,8 +315,8 @@ bool PathEstimator::defer(PathState& st, Sampler& sampler, Vertex& v, const Shad
   // What the SIMD stages repeat: a lone Lambert lobe or the metal and plastic mixture (the
   // caller's test), both draws made, a light sample drawn (nextEvent's conditions: neither
   // BSDF is all deltas), nothing for light-path AOVs, no medium to attenuate by.
-  if (!ahead.first || !ahead.second || lights_.empty() || st.paths.active() || !isBlack(v.sigmaA) ||
-      (absorbingMedia_ && v.refractive))
+  if (!stages.lightStages || !ahead.first || !ahead.second || lights_.empty() ||
+      st.paths.active() || !isBlack(v.sigmaA) || (absorbingMedia_ && v.refractive))
     return false;
   // step's receiver for either BSDF: it does not transmit and has no clearcoat.
   v.here.p = v.s.p;
@@ -337,6 +340,7 @@ bool PathEstimator::defer(PathState& st, Sampler& sampler, Vertex& v, const Shad
   m.lightDraw[q] = {u.y, u.z}, m.bsdfDraw[q] = {ahead.second->y, ahead.second->z};
   m.pmf[q] = pmf;
   m.emitter[q] = chosen ? choice : int32_t(kNoLightChosen);
+  if constexpr (!glossy) m.deltaSample[q] = 0;
   if constexpr (glossy) {
     m.lobeDraw[q] = ahead.second->x;
     m.metallic[q] = sm.metallic, m.roughness[q] = sm.roughness, m.eta[q] = eta;
@@ -346,6 +350,46 @@ bool PathEstimator::defer(PathState& st, Sampler& sampler, Vertex& v, const Shad
   st.prevEscapePmf = v.escapePmf;
   sampler.skip3D(), sampler.skip3D();  // as the two draws would have advanced it
   return true;
+}
+
+bool PathEstimator::deferDelta(PathState& st, Sampler& sampler, const Vertex& v,
+                               const ShadingMaterial& sm, float eta, DrawsAhead ahead,
+                               const ShadingDeferral& stages, uint32_t path) const {
+  // What the delta stage repeats: scatter() for smooth glass, whose one draw (no light sample:
+  // nextEvent returns before drawing) is made ahead, with nothing for light-path AOVs. Media
+  // need nothing here: the segment's absorption is applied, and no shadow ray crosses one.
+  if (!ahead.first || st.paths.active()) return false;
+  ShadingLanes& m = stages.delta;
+  const size_t q = m.count++;
+  const SurfacePoint& s = v.s;
+  m.p[q] = s.p, m.ng[q] = s.ng, m.n[q] = v.n, m.wo[q] = v.wo;
+  m.albedo[q] = sm.baseColor, m.beta[q] = st.beta;
+  m.lobeDraw[q] = ahead.first->x, m.eta[q] = eta;
+  m.path[q] = path, m.time[q] = s.time;
+  m.material[q] = s.material, m.frontFace[q] = s.frontFace, m.refractive[q] = v.refractive;
+  st.prevEscapePmf = v.escapePmf;  // scatter's (no light was chosen here)
+  sampler.skip3D();                // as the one draw would have advanced it
+  return true;
+}
+
+PathStep PathEstimator::finishDelta(PathState& st, Sampler& sampler, const ShadingLanes& m,
+                                    size_t q, RayStats& stats) const {
+  // scatter() from the BSDF sample on: smooth glass transmits, so `here` sees both sides.
+  const float pdf = m.pdf[q];
+  if (!(pdf > 0)) return PathStep::kDone;
+  st.beta = m.nextBeta[q];
+  if (!throughputLives(st)) return PathStep::kDone;
+  st.prev.p = m.p[q], st.prev.n = m.n[q];
+  st.prev.transmits = true, st.prev.belowMatters = true;
+  if (m.transmitted[q] && m.refractive[q]) {
+    const int id = m.material[q];
+    st.media.cross(id, ctx_.scene.material(id), m.frontFace[q]);
+    st.etaFactor /= m.etaScale[q];
+  }
+  st.ray.o = m.rayOrigin[q], st.ray.d = m.rayDir[q];
+  st.ray.tmin = 0.0f, st.ray.tmax = kInfinity;  // setSpawnRay's
+  st.ray.blend = BlendRays::kStochastic, st.ray.time = m.time[q];
+  return nextSegment(st, sampler, stats, pdf, true);
 }
 
 PathStep PathEstimator::finishDeferred(PathState& st, Sampler& sampler, const ShadingLanes& m,
@@ -365,7 +409,8 @@ PathStep PathEstimator::finishDeferred(PathState& st, Sampler& sampler, const Sh
     shadow.firstVertex = st.paths.atFirstVertex();
     ++stats.shadowRays;
   }
-  // scatter() from the BSDF sample on (neither stage's BSDF has a delta lobe or transmits).
+  // scatter() from the BSDF sample on (neither stage's BSDF transmits; the glossy stage's
+  // sample may be a mirror's).
   const float pdf = m.pdf[q];
   if (!(pdf > 0)) return PathStep::kDone;
   st.beta = m.nextBeta[q];
@@ -375,7 +420,7 @@ PathStep PathEstimator::finishDeferred(PathState& st, Sampler& sampler, const Sh
   st.ray.o = m.rayOrigin[q], st.ray.d = m.rayDir[q];
   st.ray.tmin = 0.0f, st.ray.tmax = kInfinity;  // setSpawnRay's
   st.ray.blend = BlendRays::kStochastic, st.ray.time = time;
-  return nextSegment(st, sampler, stats, pdf, false);
+  return nextSegment(st, sampler, stats, pdf, m.deltaSample[q] != 0);
 }
 
 }  // namespace tray

@@ -99,12 +99,17 @@ enum class PathStep : uint8_t {
 };
 
 /// Where step() may leave a vertex for a SIMD shading stage: a matte one (a lone Lambert lobe,
-/// integrators/matte_batch.h) or a glossy one (the metal and plastic mixture,
-/// integrators/glossy_batch.h), each in its own lanes.
+/// integrators/matte_batch.h), a glossy one (the metal and plastic mixture,
+/// integrators/glossy_batch.h) or a delta one (smooth glass, integrators/delta_batch.h), each
+/// in its own lanes.
 struct ShadingDeferral {
-  const MatteBatch& lights;  ///< which light choices the stages sample (both the same)
+  const MatteBatch& lights;  ///< which light choices the stages sample (matte and glossy)
   ShadingLanes& matte;
   ShadingLanes& glossy;
+  ShadingLanes& delta;
+  /// The matte and glossy stages run (MatteBatch::useful: they sample some light); the delta
+  /// stage, which samples none, always does.
+  bool lightStages;
 };
 
 /// What the wavefront made ahead for one vertex of its queue; the scalar driver makes none (the
@@ -141,6 +146,9 @@ class PathEstimator {
   /// them, then Russian roulette.
   PathStep finishDeferred(PathState& state, Sampler& sampler, const ShadingLanes& lanes, size_t q,
                           ShadowQuery& shadow, bool& wantsShadow, RayStats& stats) const;
+  /// The same for entry q of the delta stage's lanes (no shadow ray: every lobe is a delta).
+  PathStep finishDelta(PathState& state, Sampler& sampler, const ShadingLanes& lanes, size_t q,
+                       RayStats& stats) const;
   const LightSet& lights() const { return lights_; }
   /// MaterialEvaluator::prefetchTextures, for a queue's vertices before they are shaded.
   bool textured() const { return materials_.textured(); }
@@ -188,6 +196,10 @@ class PathEstimator {
   template <bool glossy>
   bool defer(PathState& st, Sampler& sampler, Vertex& v, const ShadingMaterial& sm, float eta,
              DrawsAhead ahead, const ShadingDeferral& stages, uint32_t path) const;
+  /// Queues a smooth glass vertex (Bsdf::isSmoothGlass) in the delta stage's lanes when the
+  /// rest qualifies (its one draw made ahead, no light-path split); false: step goes on.
+  bool deferDelta(PathState& st, Sampler& sampler, const Vertex& v, const ShadingMaterial& sm,
+                  float eta, DrawsAhead ahead, const ShadingDeferral& stages, uint32_t path) const;
   /// After a BSDF sample set st.beta (scatter, or a SIMD stage for finishDeferred): false, the
   /// path done, when the throughput is not finite (counted and discarded upstream) or black.
   [[gnu::always_inline]] bool throughputLives(PathState& st) const {
@@ -241,7 +253,7 @@ class PathEstimator {
   void recordPrimary(PrimaryHit& primary, const PathState& st, const SurfacePoint& s,
                      const Vec3& shadingN, const Color& albedo) const;
   /// Which SIMD stage a vertex of material `sm` may go to (step's test, before its lights).
-  enum class DeferStage : uint8_t { kNone, kMatte, kGlossy };
+  enum class DeferStage : uint8_t { kNone, kMatte, kGlossy, kDelta };
   static DeferStage stageOf(const ShadingMaterial& sm);
   void reportNan(const PathState& state, const char* what, int depth) const;
   static constexpr int kMaxNanReports = 10;

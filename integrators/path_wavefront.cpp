@@ -5,6 +5,7 @@
 
 #include "core/simd_lanes.h"
 #include "integrators/camera_batch.h"
+#include "integrators/delta_batch.h"
 #include "integrators/glossy_batch.h"
 #include "integrators/matte_batch.h"
 #include "integrators/path.h"
@@ -43,6 +44,7 @@ struct Wave {
   SamplerDrawsAhead draws;  ///< each live path's next two 3D draws (when SIMD is available)
   ShadingLanes matte;       ///< the bounce's matte vertices, for the SIMD matte stage
   ShadingLanes glossy;      ///< the bounce's metal and plastic vertices, for the glossy stage
+  ShadingLanes delta;       ///< the bounce's smooth glass vertices, for the delta stage
   // The shadow queue: next-event estimates waiting for their rays (slots kept from one bounce
   // to the next; bounce() says how many are in use).
   std::vector<ShadowQuery> shadows;
@@ -130,6 +132,7 @@ class PathWavefrontIntegrator final : public Integrator {
   bool textured_;       ///< some material samples a texture: prefetch the queue's texels
   MatteBatch matte_;    ///< matte vertices' light and BSDF samples in SIMD (when useful)
   GlossyBatch glossy_;  ///< the same for metal and plastic vertices (when matte_ is useful)
+  DeltaBatch delta_;    ///< smooth glass vertices' BSDF samples in SIMD (when useful)
   std::optional<CameraRayBatch> cameraBatch_;  ///< nothing: cameras the kernel does not cover
 };
 
@@ -243,12 +246,12 @@ void PathWavefrontIntegrator::bounce(Wave& w, RayStats& stats, bool cameraRays) 
   if (drawsAhead_)
     SamplerBatch::drawTwo3D(sequence(), w.samplers.data(), w.live.data(), count, w.draws);
 
-  // Matte and glossy vertices wait in w.matte and w.glossy for the SIMD stages
-  // (integrators/matte_batch.h, glossy_batch.h), which sample the same lights; they need the
-  // draws made ahead.
-  const bool deferring = drawsAhead_ && matte_.useful();
-  if (deferring) w.matte.reset(count), w.glossy.reset(count);
-  const ShadingDeferral deferral{matte_, w.matte, w.glossy};
+  // Matte, glossy and smooth glass vertices wait in w.matte, w.glossy and w.delta for the SIMD
+  // stages (integrators/matte_batch.h, glossy_batch.h, delta_batch.h); the first two sample the
+  // same lights. They need the draws made ahead.
+  const bool deferring = drawsAhead_ && delta_.useful();
+  if (deferring) w.matte.reset(count), w.glossy.reset(count), w.delta.reset(count);
+  const ShadingDeferral deferral{matte_, w.matte, w.glossy, w.delta, matte_.useful()};
 
   w.next.clear();
   // step() writes a next-event estimate straight into the queue's next slot, setting what
@@ -286,6 +289,16 @@ void PathWavefrontIntegrator::bounce(Wave& w, RayStats& stats, bool cameraRays) 
   };
   if (deferring && w.matte.count > 0) matte_.compute(w.matte), finish(w.matte);
   if (deferring && w.glossy.count > 0) glossy_.compute(w.glossy), finish(w.glossy);
+  if (deferring && w.delta.count > 0) {
+    delta_.compute(w.delta);
+    stats.simdVertices += w.delta.count;
+    for (size_t q = 0; q < w.delta.count; ++q) {
+      const uint32_t k = w.delta.path[q];
+      if (estimator_.finishDelta(w.paths[k], w.samplers[k], w.delta, q, stats) ==
+          PathStep::kContinue)
+        w.next.push_back(k);
+    }
+  }
 
   w.shadowRays.resize(shadowCount), w.blocked.resize(shadowCount);
   for (size_t q = 0; q < shadowCount; ++q) w.shadowRays[q] = w.shadows[q].ray;

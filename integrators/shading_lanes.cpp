@@ -14,10 +14,13 @@ void ShadingLanes::reset(size_t size) {
                                &contribution, &rayOrigin, &rayDir, &nextBeta})
     v->resize(padded);
   lightDraw.resize(padded), bsdfDraw.resize(padded);
-  for (std::vector<float>* v : {&pmf, &lobeDraw, &metallic, &roughness, &eta, &pdf, &time})
+  for (std::vector<float>* v :
+       {&pmf, &lobeDraw, &metallic, &roughness, &eta, &pdf, &time, &etaScale})
     v->resize(padded);
-  emitter.resize(padded), lit.resize(padded);
-  path.resize(padded), belowMatters.resize(padded);
+  for (std::vector<int32_t>* v : {&emitter, &lit, &deltaSample, &transmitted, &material})
+    v->resize(padded);
+  for (std::vector<uint8_t>* v : {&belowMatters, &frontFace, &refractive}) v->resize(padded);
+  path.resize(padded);
 }
 
 void ShadingLanes::padInputs() {

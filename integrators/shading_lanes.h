@@ -1,6 +1,7 @@
 #pragma once
 // The vertices one bounce leaves to a SIMD shading stage (integrators/matte_batch.h,
-// integrators/glossy_batch.h): their inputs and results, one array per field.
+// integrators/glossy_batch.h, integrators/delta_batch.h): their inputs and results, one array
+// per field.
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -34,7 +35,8 @@ struct ShadingLanes {
   std::vector<float> pmf;
   std::vector<int32_t> emitter;
   // The glossy stage's inputs besides: the lobe choice (the BSDF draw's first number), the
-  // material's metallic and roughness and the relative IOR across the surface.
+  // material's metallic and roughness and the relative IOR across the surface. The delta
+  // stage's inputs are p, ng, n, wo, albedo (the glass tint), beta, lobeDraw and eta.
   std::vector<float> lobeDraw, metallic, roughness, eta;
   // Outputs: the shadow ray's origin and direction and the estimate it carries (when `lit`);
   // the next ray's origin and direction, the throughput after it and the BSDF sample's pdf
@@ -42,11 +44,21 @@ struct ShadingLanes {
   std::vector<Vec3> shadowOrigin, shadowDir, contribution, rayOrigin, rayDir, nextBeta;
   std::vector<float> pdf;
   std::vector<int32_t> lit;  ///< all bits set or none
+  /// The glossy stage's besides: whether the BSDF sample was a mirror's (a delta lobe; all bits
+  /// set or none). The matte stage's are never (PathEstimator::defer clears them).
+  std::vector<int32_t> deltaSample;
+  // The delta stage's outputs besides: whether the sample refracted (all bits set or none) and
+  // its etaScale (BsdfSample::etaScale).
+  std::vector<int32_t> transmitted;
+  std::vector<float> etaScale;
   // Not for the kernels: the wave's path the vertex belongs to, its rays' shutter time and
-  // LightSampleContext::belowMatters there.
+  // LightSampleContext::belowMatters there; for the delta stage, the surface's material, its
+  // side (SurfacePoint::frontFace) and whether it bounds a medium (a refraction crosses it).
   std::vector<uint32_t> path;
   std::vector<float> time;
   std::vector<uint8_t> belowMatters;
+  std::vector<int32_t> material;
+  std::vector<uint8_t> frontFace, refractive;
 
   /// Empties the lanes and makes room for `size` vertices (never shrinks).
   void reset(size_t size);

@@ -1,7 +1,8 @@
-// The SIMD shading stages' plumbing (integrators/matte_batch.cpp, glossy_batch.cpp): a vector
-// of ShadingLanes' vertices loaded and stored, the chosen lights gathered from the emitter
-// table and sampled, the shadow and next rays. The math is not here: it is the one text of the
-// *_lanes.h files (warps, Fresnel, GGX, Lambert, the mixture, triangle lights, MIS), which this
+// The SIMD shading stages' plumbing (integrators/matte_batch.cpp, glossy_batch.cpp,
+// delta_batch.cpp): a vector of ShadingLanes' vertices loaded and stored, the chosen lights
+// gathered from the emitter table and sampled, the shadow and next rays. The math is not here:
+// it is the one text of the *_lanes.h files (warps, Fresnel, GGX, Lambert, the mixture, smooth
+// glass, triangle lights, MIS), which this
 // file includes in SIMD mode, so that the stages compile from what the scalar code runs
 // (docs/lanes.md). Highway's -inl.h convention: included once per target after
 // hwy/highway.h, guarded per target by HWY_TARGET_TOGGLE.
@@ -23,6 +24,7 @@
 #include "core/sampling_lanes.h"
 #include "integrators/path_vertex_lanes.h"
 #include "lights/triangle_light_lanes.h"
+#include "materials/dielectric_lanes.h"
 #include "materials/ggx_mixture_lanes.h"
 #include "materials/lambert_lanes.h"
 #undef TRAY_LANES_SIMD

@@ -44,9 +44,24 @@ bool Bsdf::isGgxMixture(const ShadingMaterial& m) {
       !(m.specularColor == Color(1.0f)) || isLambertOnly(m))
     return false;
   const GgxMixtureOf<Vec3> x = ggxMixture(m.metallic, 0.0f, m.roughness, m.baseColor);
-  if (x.ggxDelta) return false;  // a mirror: the scalar code samples its delta lobe
   const Color& a = m.baseColor;
-  return x.metalOn || (x.wPlastic > 0 && (x.coat > 0 || a.x > 0 || a.y > 0 || a.z > 0));
+  const bool lambert = x.wPlastic > 0 && (a.x > 0 || a.y > 0 || a.z > 0);
+  // Mirrors (delta metal and coat) with a Lambert lobe beside them: the stage's light sample is
+  // the Lambert lobe's. Without one every lobe is a delta: no light sample, not this stage.
+  if (x.ggxDelta) return lambert;
+  return x.metalOn || lambert || (x.wPlastic > 0 && x.coat > 0);
+}
+
+bool Bsdf::isSmoothGlass(const ShadingMaterial& m) {
+  if (!std::isfinite(m.metallic) || !std::isfinite(m.roughness) || !std::isfinite(m.transmission) ||
+      m.clearcoat > 0 || !isBlack(m.sheenColor))
+    return false;
+  const GgxMixtureOf<Vec3> x = ggxMixture(m.metallic, m.transmission, m.roughness, m.baseColor);
+  // initLobes' classification: the glass lobe the only one active, with weight 1.
+  const Color& a = m.baseColor;
+  const bool coat = x.wPlastic > 0 && x.coat > 0,
+             diffuse = x.wPlastic > 0 && (a.x > 0 || a.y > 0 || a.z > 0);
+  return x.wGlass == 1 && !(x.wMetal > 0) && !coat && !diffuse && x.ggxDelta;
 }
 
 GgxMixtureOf<Vec3> Bsdf::mixture() const {
@@ -139,14 +154,15 @@ BsdfSample Bsdf::sampleLocal(const Vec3& wo, float uc, Vec2 u) const {
     prob = probs[lobe];
     const float lo = lobe == 0 ? 0.0f : cdf[lobe - 1];
     if (prob > 0) ucLobe = std::min((uc - lo) / prob, 0.99999994f);
-    // Metal, coat and Lambert, unless mirrors: the one-text sample, which evaluates only the
+    // Metal, coat and Lambert (mirrors too): the one-text sample, which evaluates only the
     // mixture (a rough GGX lobe's own f and pdf would only be thrown away for the mixture's:
     // the spheres scene spent ~1/3 of the BSDF's instructions on them, callgrind).
-    if (lobe == 3 || (lobe != 1 && !metal_->isDelta())) {
+    if (lobe != 1) {
       const MixtureSampleOf<Vec3> m =
           mixtureSample(mixture(), p, wo, uc, u, coatFresnelAt(), glassAt(p));
       BsdfSample s;
       s.wi = m.wi, s.f = m.f, s.pdf = m.pdf;
+      s.delta = m.delta;
       return s;
     }
   }

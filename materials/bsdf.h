@@ -82,13 +82,18 @@ class Bsdf {
     return m.metallic <= 0 && m.transmission <= 0 && !(m.roughness < 1.0f) &&
            (a.x > 0 || a.y > 0 || a.z > 0) && !(m.clearcoat > 0) && isBlack(m.sheenColor);
   }
-  /// Metal and plastic (GGX reflection, its dielectric coat and Lambert) and nothing else, rough
-  /// enough that no lobe is a delta: no transmission, clearcoat, sheen or KHR_materials_specular
-  /// tint, some lobe in use, not a lone Lambert lobe. The SIMD glossy stage repeats eval and
-  /// sample for it (integrators/glossy_batch.h): initLobes' Only::kMetal or kMixture, whose
-  /// lone metal lobe is the mixture with weight 1.
+  /// Metal and plastic (GGX reflection, its dielectric coat and Lambert) and nothing else: no
+  /// transmission, clearcoat, sheen or KHR_materials_specular tint, some lobe in use, not a lone
+  /// Lambert lobe, and some lobe that is not a delta (mirrors only beside a Lambert lobe). The
+  /// SIMD glossy stage repeats eval and sample for it (integrators/glossy_batch.h): initLobes'
+  /// Only::kMetal or kMixture, whose lone metal lobe is the mixture with weight 1.
   /// Out of line: inlined, it cost the matte vertices' step more than the call costs these.
   static bool isGgxMixture(const ShadingMaterial& m);
+  /// Smooth glass alone (initLobes' Only::kGlass below the smooth limit): metallic 0,
+  /// transmission 1, roughness small enough for two delta lobes, no clearcoat or sheen. Every
+  /// lobe is a delta (no light sample); the SIMD delta stage repeats sample for it
+  /// (integrators/delta_batch.h). Out of line, as isGgxMixture.
+  static bool isSmoothGlass(const ShadingMaterial& m);
   bool lambertOnly() const { return lambertOnly_; }
   const Frame& frame() const { return frame_; }
 

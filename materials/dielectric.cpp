@@ -47,23 +47,12 @@ float DielectricLobe::pdf(const Vec3& wo, const Vec3& wi) const {
 }
 
 BsdfSample DielectricLobe::sampleSmooth(const Vec3& wo, float uc) const {
+  const DeltaSampleOf<Vec3> d = sampleSmoothDielectric(wo, eta_, tint_, uc);
   BsdfSample s;
-  float R = fresnelDielectric(cosTheta(wo), eta_), T = 1.0f - R;
+  s.wi = d.wi, s.f = d.f, s.pdf = d.pdf;
+  s.etaScale = d.etaScale;
   s.delta = true;
-  if (uc < R) {
-    s.wi = {-wo.x, -wo.y, wo.z};
-    s.f = Color(R / absCosTheta(s.wi));
-    s.pdf = R;
-    return s;
-  }
-  float etap;
-  Vec3 wi;
-  if (!refractDirection(wo, Vec3(0, 0, 1), eta_, etap, wi) || wi.z == 0) return s;
-  s.wi = wi;
-  s.f = tint_ * (T / absCosTheta(wi) / (etap * etap));
-  s.pdf = T;
-  s.transmission = true;
-  s.etaScale = 1.0f / (etap * etap);
+  s.transmission = d.transmission;
   return s;
 }
 

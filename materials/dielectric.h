@@ -1,5 +1,7 @@
 #pragma once
 #include "materials/bsdf_sample.h"
+// sampleSmoothDielectric, written once for scalar code and the SIMD delta stage.
+#include "materials/dielectric_lanes.h"
 #include "materials/microfacet.h"
 
 namespace tray {

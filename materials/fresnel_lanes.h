@@ -52,5 +52,27 @@ TRAY_LANE V3 fresnelSchlick(const V3& f0, F cosI) {
   return f0 + (V3{F(1.0f), F(1.0f), F(1.0f)} - f0) * m5;
 }
 
+/// Refraction of w (pointing away from the surface) through normal n (+z side), eta = n_t /
+/// n_i seen from +z (pbrt-v4 eq. 9.3 form). False (per lane) on total internal reflection;
+/// etaRelative receives the eta actually used (inverted where w is below the surface). Where
+/// false, wt and etaRelative are not meaningful.
+template <class V3, class F>
+TRAY_LANE MaskOf<F> refractDirection(const V3& w, V3 n, F eta, F& etaRelative, V3& wt) {
+  F cosI = dot(n, w);
+  const auto below = cosI < F(0.0f);
+  if (anyOf(below)) {  // leaving the medium
+    eta = select(below, F(1.0f) / eta, eta);
+    cosI = select(below, -cosI, cosI);
+    n = select(below, -n, n);
+  }
+  const F sin2I = maxOf(F(0.0f), F(1.0f) - cosI * cosI);
+  const F sin2T = sin2I / (eta * eta);
+  const auto refracts = !(sin2T >= F(1.0f));
+  const F cosT = sqrtOf(F(1.0f) - sin2T);  // NaN where total internal reflection: not used
+  wt = -w / eta + (cosI / eta - cosT) * n;
+  etaRelative = eta;
+  return refracts;
+}
+
 #include "core/lanes_end.h"
 #endif  // TRAY_LANES_BODY

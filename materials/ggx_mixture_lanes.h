@@ -108,8 +108,13 @@ TRAY_LANE V3 mixtureEvalPdf(const GgxMixtureOf<V3>& x, const MixtureProbabilitie
   const auto ggxOn =
       (x.metalOn || x.coatOn || p.metal > F(0.0f) || p.coat > F(0.0f)) && !x.ggxDelta;
   GgxTermsOf<F> t;
-  if (anyOf(ggxOn)) t = ggxTerms(x.alpha, wo, wi);
-  ggxPdf = select(ggxOn, t.pdf, F(0.0f));
+  if (anyOf(ggxOn)) {
+    t = ggxTerms(x.alpha, wo, wi);
+    // Lanes whose GGX lobes are off (mirrors, or unused) add nothing, as for one float.
+    t.nonzero = t.nonzero && ggxOn;
+    t.pdf = select(ggxOn, t.pdf, F(0.0f));
+  }
+  ggxPdf = t.pdf;
   // Each term only where some lane has it: for one float, the scalar Bsdf's branches.
   V3 f = zero;
   if (anyOf(x.metalOn)) {
@@ -154,10 +159,15 @@ struct NoGlass {
 /// mixture's value and pdf there. pdf 0 (no sample) where the lobe has no probability, its own
 /// sample is invalid (no direction above the microsurface, or none its lobe gives density), or the
 /// mixture's pdf is not positive and finite.
+/// Below the smooth limit (x.ggxDelta) the metal and coat lobes are mirrors: their sample is
+/// the mirrored direction with f = weight Fresnel(cos_o) / |cos_i| and the lobe's probability
+/// as pdf (`delta`; none where wo lies in the surface), as Bsdf::sampleLocal weighs a delta
+/// lobe's sample in a mixture.
 template <class V3>
 struct MixtureSampleOf {
   V3 wi, f;
   decltype(V3::x) pdf;
+  MaskOf<decltype(V3::x)> delta;
 };
 template <class V3, class V2, class F, class CoatFresnel, class Glass>
 TRAY_LANE MixtureSampleOf<V3> mixtureSample(const GgxMixtureOf<V3>& x,
@@ -183,6 +193,15 @@ TRAY_LANE MixtureSampleOf<V3> mixtureSample(const GgxMixtureOf<V3>& x,
   lobeValid = lobeValid && (lambert || ggxPdf > F(0.0f));
   const auto valid = prob > F(0.0f) && lobeValid && pdf > F(0.0f) && isFiniteOf(pdf);
   s.pdf = select(valid, pdf, F(0.0f));
+  s.delta = x.ggxDelta && !lambert;
+  if (anyOf(s.delta)) {  // mirrors: GgxReflectionLobe::sample's delta branch, then weighted
+    const V3 mirror{-wo.x, -wo.y, wo.z};
+    const V3 fresnel = select(pastMetal, coatFresnel(wo.z), fresnelSchlick(x.albedo, wo.z));
+    const F weight = select(pastMetal, x.wPlastic * x.coat, x.wMetal);
+    s.wi = select(s.delta, mirror, s.wi);
+    s.f = select(s.delta, fresnel / absOf(mirror.z) * weight, s.f);
+    s.pdf = select(s.delta, select(prob > F(0.0f) && wo.z != F(0.0f), prob, F(0.0f)), s.pdf);
+  }
   return s;
 }
 

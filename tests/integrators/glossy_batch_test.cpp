@@ -2,9 +2,9 @@
 // - its kernel against the scalar pieces PathEstimator::step runs for the metal and plastic
 //   mixture (Bsdf::eval and sample, AreaLight::sample and EnvironmentLight::sample,
 //   powerHeuristic, spawnRay and spawnRayTo), bit for bit, on random vertices: metal, plastic
-//   and their blends, roughness from near the delta limit to past 1, wo above and below n,
-//   each lobe chosen, invalid samples (microsurface shadowing, a lobe of probability 0), and
-//   light choices of a triangle, the constant environment or none;
+//   and their blends, roughness from mirrors (delta metal and coat beside Lambert) to past 1,
+//   wo above and below n, each lobe chosen, invalid samples (microsurface shadowing, a lobe of
+//   probability 0), and light choices of a triangle, the constant environment or none;
 // - whole renders of random scenes through `path` (the wavefront, which defers its metal and
 //   plastic vertices to the stage) against `path-scalar`, bit for bit.
 #include "integrators/glossy_batch.h"
@@ -58,9 +58,10 @@ void randomMaterial(std::mt19937_64& rng, ShadingLanes& m, size_t q) {
   std::uniform_real_distribution<float> u01(0.0f, 1.0f);
   do {
     const float metallic[] = {0.0f, 1.0f, u01(rng), 1.3f, -0.2f, 0.5f};
-    const float roughness[] = {u01(rng), 0.04f, 1.0f, 0.95f, 1.2f, 0.5f * u01(rng)};
+    // 0.04: alpha 0.0016, just rough; 0.02: alpha 0.0004, mirrors (delta metal and coat).
+    const float roughness[] = {u01(rng), 0.04f, 1.0f, 0.95f, 1.2f, 0.5f * u01(rng), 0.02f};
     m.metallic[q] = metallic[std::uniform_int_distribution<int>(0, 5)(rng)];
-    m.roughness[q] = roughness[std::uniform_int_distribution<int>(0, 5)(rng)];
+    m.roughness[q] = roughness[std::uniform_int_distribution<int>(0, 6)(rng)];
     m.albedo[q] = {u01(rng), q % 4 == 0 ? 0.0f : u01(rng), u01(rng)};
     if (q % 17 == 0) m.albedo[q] = Color(0.0f);  // a black plastic: only its coat reflects
   } while (!Bsdf::isGgxMixture(materialOf(m, q)));
@@ -90,11 +91,14 @@ void randomVertex(std::mt19937_64& rng, const MatteBatch& batch, const LightSet&
 
 /// What the comparisons met, so that the test can tell it compared each case.
 struct Met {
-  int vertices = 0, litTriangle = 0, litEnvironment = 0, unlit = 0, sampled = 0, invalid = 0;
+  int vertices = 0, litTriangle = 0, litEnvironment = 0, unlit = 0, sampled = 0, invalid = 0,
+      mirrored = 0;
 };
 
 /// Entry q's outputs against the scalar pieces step() runs.
 void compareVertex(const LightSet& lights, const ShadingLanes& m, size_t q, Met& met) {
+  SCOPED_TRACE(testing::Message() << "metallic " << m.metallic[q] << ", roughness "
+                                  << m.roughness[q] << ", eta " << m.eta[q]);
   const Bsdf bsdf(materialOf(m, q), m.n[q], m.eta[q]);
   bool infinite;
   if (test::compareLightSample(lights, bsdf, m, q, infinite))
@@ -102,14 +106,14 @@ void compareVertex(const LightSet& lights, const ShadingLanes& m, size_t q, Met&
   else
     ++met.unlit;
   const BsdfSample bs = bsdf.sample(m.wo[q], m.lobeDraw[q], m.bsdfDraw[q]);
-  EXPECT_FALSE(bs.delta) << q;
   expectSameBits(m.pdf[q], bs.pdf, "pdf", q);
   ++met.vertices;
   if (!(bs.pdf > 0)) {
     ++met.invalid;
     return;
   }
-  ++met.sampled;
+  EXPECT_EQ(bool(m.deltaSample[q]), bs.delta) << q;
+  ++(bs.delta ? met.mirrored : met.sampled);
   const Color beta = m.beta[q] * (bs.f * (std::fabs(dot(bs.wi, m.n[q])) / bs.pdf));
   expectSameBits(m.nextBeta[q], beta, "throughput", q);
   const Ray next = spawnRay(m.p[q], m.ng[q], bs.wi, 0.0f);
@@ -143,6 +147,7 @@ TEST(GlossyBatch, KernelIsTheScalarStepBitForBit) {
     EXPECT_GT(met.unlit, met.vertices / 20);
     EXPECT_GT(met.sampled, met.vertices / 2);
     EXPECT_GT(met.invalid, 0);
+    EXPECT_GT(met.mirrored, met.vertices / 50);
     return met.vertices;
   });
 }
@@ -157,8 +162,12 @@ TEST(GlossyBatch, TakesMetalAndPlasticOnly) {
   sm.metallic = 1.0f;
   EXPECT_TRUE(Bsdf::isGgxMixture(sm));  // metal
   sm.roughness = 0.01f;
-  EXPECT_FALSE(Bsdf::isGgxMixture(sm));  // alpha 1e-4: a mirror
-  sm.roughness = 0.5f;
+  EXPECT_FALSE(Bsdf::isGgxMixture(sm));  // alpha 1e-4: a mirror alone (no light sample)
+  sm.metallic = 0.5f;
+  EXPECT_TRUE(Bsdf::isGgxMixture(sm));  // mirrors beside a Lambert lobe
+  sm.metallic = 0.0f, sm.baseColor = Color(0.0f);
+  EXPECT_FALSE(Bsdf::isGgxMixture(sm));  // a black plastic's mirror coat alone
+  sm.metallic = 1.0f, sm.baseColor = Color(0.5f), sm.roughness = 0.5f;
   for (const auto& change : std::vector<void (*)(ShadingMaterial&)>{
            [](ShadingMaterial& s) { s.transmission = 0.5f; },
            [](ShadingMaterial& s) { s.clearcoat = 0.5f; },
@@ -174,15 +183,15 @@ TEST(GlossyBatch, TakesMetalAndPlasticOnly) {
   EXPECT_FALSE(Bsdf::isGgxMixture(sm));  // no lobe scatters
 }
 
-/// A random scene of metal, plastic and matte triangles under emissive ones and a sky, with a
-/// glass sphere or a point light in some (left to the scalar code).
+/// A random scene of metal, plastic, mirror and matte triangles under emissive ones and a sky,
+/// with a glass sphere (the delta stage's) or a point light (the scalar code's) in some.
 Scene randomScene(std::mt19937_64& rng, int index) {
   Scene scene = emittersUnderSky(rng, 2);
   std::uniform_real_distribution<float> u01(0.0f, 1.0f);
   for (int k = 0; k < 12; ++k) {
     Material m = test::diffuse(Color(u01(rng), u01(rng), u01(rng)));
     m.metallic = k % 3 == 0 ? 1.0f : k % 3 == 1 ? 0.0f : u01(rng);
-    m.roughness = 0.05f + 0.9f * u01(rng);
+    m.roughness = k % 4 == 3 ? 0.01f : 0.05f + 0.9f * u01(rng);  // some mirrors
     test::addMeshInstance(
         scene, test::addMesh(scene, randomTriangle(rng, test::addMaterial(scene, m))), Mat4());
   }
