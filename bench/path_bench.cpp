@@ -206,7 +206,7 @@ void print(const std::string& integrator, const Measured& m, int threads) {
   if (m.stats.rays.simdVertices > 0)
     std::printf(
         "    SIMD shading    %.1f%% of the shaded vertices, %.0f%% of the traced segments "
-        "(matte and glossy stages)\n",
+        "(matte, glossy and delta stages)\n",
         100.0 * double(m.stats.rays.simdVertices) / double(m.stats.rays.shadedVertices),
         100.0 * double(m.stats.rays.simdVertices) /
             double(m.stats.rays.cameraRays + m.stats.rays.secondaryRays));

@@ -16,8 +16,7 @@ void Bsdf::initLobes(const ShadingMaterial& m, float eta) {
                         ? GgxReflectionLobe::dielectric(alpha, eta, m.specular, m.specularColor)
                         : GgxReflectionLobe::dielectric(alpha, eta);
   glass_.value = DielectricLobe(alpha, eta, m.baseColor);
-  if (m.clearcoat > 0) initClearcoat(m);
-  if (!isBlack(m.sheenColor)) initSheen(m);
+  layers_.init(m, frame_);
   hasNonDelta_ = (wMetal_ > 0 && !metal_->isDelta()) || (wGlass_ > 0 && !glass_->isDelta()) ||
                  (wPlastic_ > 0 && (!isBlack(m.baseColor) || (coat_ > 0 && !coatLobe_->isDelta())));
   // Lobes that can scatter at all (probabilities() gives the others probability 0). The
@@ -40,7 +39,7 @@ void Bsdf::initLobes(const ShadingMaterial& m, float eta) {
 
 bool Bsdf::isGgxMixture(const ShadingMaterial& m) {
   if (!std::isfinite(m.metallic) || !std::isfinite(m.roughness) || !(m.transmission <= 0) ||
-      m.clearcoat > 0 || !isBlack(m.sheenColor) || m.specular != 1.0f ||
+      BsdfLayers::anyApplies(m) || m.specular != 1.0f ||
       !(m.specularColor == Color(1.0f)) || isLambertOnly(m))
     return false;
   const GgxMixtureOf<Vec3> x = ggxMixture(m.metallic, 0.0f, m.roughness, m.baseColor);
@@ -54,7 +53,7 @@ bool Bsdf::isGgxMixture(const ShadingMaterial& m) {
 
 bool Bsdf::isSmoothGlass(const ShadingMaterial& m) {
   if (!std::isfinite(m.metallic) || !std::isfinite(m.roughness) || !std::isfinite(m.transmission) ||
-      m.clearcoat > 0 || !isBlack(m.sheenColor))
+      BsdfLayers::anyApplies(m))
     return false;
   const GgxMixtureOf<Vec3> x = ggxMixture(m.metallic, m.transmission, m.roughness, m.baseColor);
   // initLobes' classification: the glass lobe the only one active, with weight 1.
@@ -204,22 +203,72 @@ BsdfSample Bsdf::sampleLocal(const Vec3& wo, float uc, Vec2 u) const {
 
 Color Bsdf::eval(const Vec3& wo, const Vec3& wi) const {
   float unused;
-  if (clearcoat_ > 0 || sheenOn_) return eval(wo, wi, unused);
+  if (layers_.any()) return eval(wo, wi, unused);
   return evalLocal(frame_.toLocal(wo), frame_.toLocal(wi));
 }
 
 float Bsdf::pdf(const Vec3& wo, const Vec3& wi) const {
   float p;
-  if (clearcoat_ > 0 || sheenOn_) return eval(wo, wi, p), p;
+  if (layers_.any()) return eval(wo, wi, p), p;
   return pdfLocal(frame_.toLocal(wo), frame_.toLocal(wi));
 }
 
+template <size_t I>
+Color Bsdf::evalFrom(const Vec3& wo, const Vec3& wi, float& pdf) const {
+  if constexpr (I == BsdfLayers::kCount) {
+    return baseEval(wo, wi, pdf);
+  } else {
+    if (!layers_.on<I>()) return evalFrom<I + 1>(wo, wi, pdf);
+    const auto& layer = layers_.get<I>();
+    const auto at = layer.at(wo);
+    float layerPdf, belowPdf;
+    const Color f = layer.eval(wo, wi, layerPdf, lobeMask_);
+    const Color below = evalFrom<I + 1>(wo, wi, belowPdf);
+    pdf = at.probability * layerPdf + (1.0f - at.probability) * belowPdf;
+    return f + below * layer.baseScale(at, wi);
+  }
+}
+
+template <size_t I>
+BsdfSample Bsdf::sampleFrom(const Vec3& wo, float uc, Vec2 u) const {
+  if constexpr (I == BsdfLayers::kCount) {
+    return baseSample(wo, uc, u);
+  } else {
+    if (!layers_.on<I>()) return sampleFrom<I + 1>(wo, uc, u);
+    const auto& layer = layers_.get<I>();
+    const auto at = layer.at(wo);
+    BsdfSample s;
+    if (uc < at.probability) {
+      s = layer.sample(wo, u);
+      if (!s.valid()) return s;
+      if (s.delta) {  // the layer's mirror, chosen with its probability
+        s.pdf *= at.probability;
+        return s;
+      }
+    } else {
+      const float ucBelow = std::min((uc - at.probability) / (1.0f - at.probability), 0.99999994f);
+      s = sampleFrom<I + 1>(wo, ucBelow, u);
+      if (!s.valid()) return s;
+      if (s.delta) {  // a delta lobe below, weighted as eval weighs what lies below
+        s.f *= layer.baseScale(at, s.wi);
+        s.pdf *= 1.0f - at.probability;
+        return s;
+      }
+    }
+    // A continuous direction: the value and density of this layer and all below it (each lobe
+    // could have given it).
+    s.f = evalFrom<I>(wo, s.wi, s.pdf);
+    if (!(s.pdf > 0) || !std::isfinite(s.pdf)) s.pdf = 0;
+    return s;
+  }
+}
+
 Color Bsdf::layersEval(const Vec3& wo, const Vec3& wi, float& pdf) const {
-  return clearcoat_ > 0 ? layeredEval(wo, wi, pdf) : innerEval(wo, wi, pdf);
+  return evalFrom<0>(wo, wi, pdf);
 }
 
 BsdfSample Bsdf::layersSample(const Vec3& wo, float uc, Vec2 u) const {
-  return clearcoat_ > 0 ? layeredSample(wo, uc, u) : innerSample(wo, uc, u);
+  return sampleFrom<0>(wo, uc, u);
 }
 
 Color Bsdf::baseEval(const Vec3& wo, const Vec3& wi, float& pdf) const {

@@ -6,11 +6,11 @@
 #include "core/light_paths.h"
 #include "core/material.h"
 #include "core/sampling.h"
+#include "materials/bsdf_layers.h"
 #include "materials/dielectric.h"
 #include "materials/ggx_mixture_lanes.h"
 #include "materials/ggx_reflection.h"
 #include "materials/lambert.h"
-#include "materials/sheen.h"
 
 namespace tray {
 
@@ -23,10 +23,11 @@ namespace tray {
 /// alpha = roughness^2. The coat strength c fades from 1 to 0 as roughness goes 0.9 -> 1, so
 /// roughness 1 with metallic 0 is exactly Lambert: what exporters write for matte surfaces
 /// (Mitsuba's `diffuse`, the Cornell box) -- documented in docs/path-tracing.md.
-/// KHR_materials_specular weights and tints the plastic's coat Fresnel (GgxReflectionLobe);
-/// KHR_materials_clearcoat puts a GGX dielectric layer (IOR 1.5) with its own normal over all
-/// of it: f = c fc + (1 - c Fc(cos_o)) f_base (bsdf_clearcoat.cpp). KHR_materials_sheen goes
-/// between the two: f_base = f_sheen + f_pbr min(1 - s E(cos_o), 1 - s E(cos_i)) (bsdf_sheen.cpp).
+/// KHR_materials_specular weights and tints the plastic's coat Fresnel (GgxReflectionLobe).
+/// Layers go over all of it, each f = f_layer + baseScale f_below (materials/bsdf_layer.h),
+/// outermost first as materials/bsdf_layers.h registers them: KHR_materials_clearcoat's GGX
+/// dielectric coat with its own normal (clearcoat_layer.h), then KHR_materials_sheen's Charlie
+/// sheen (sheen_layer.h).
 /// Built per shading point on the stack; directions are world-space, the shading normal n
 /// faces wo's side.
 class Bsdf {
@@ -70,27 +71,27 @@ class Bsdf {
   }
   /// False when every lobe is a delta: light sampling cannot help and MIS is off.
   bool hasNonDelta() const {
-    return hasNonDelta_ || sheenOn_ || (clearcoat_ > 0 && !ccLobe_->isDelta());
+    return hasNonDelta_ || layers_.anyNonDelta();
   }
   /// True when light can also scatter to the far side of the surface.
   bool transmits() const { return wGlass_ > 0; }
   /// Nothing but a Lambert lobe of albedo m.baseColor (matte): the SIMD matte stage repeats
   /// eval and sample for it (integrators/matte_batch.h). The constructor's test: metallic 0,
-  /// roughness 1, no transmission, clearcoat or sheen, some albedo.
+  /// roughness 1, no transmission, no layer (clearcoat, sheen), some albedo.
   static bool isLambertOnly(const ShadingMaterial& m) {
     const Color& a = m.baseColor;
     return m.metallic <= 0 && m.transmission <= 0 && !(m.roughness < 1.0f) &&
-           (a.x > 0 || a.y > 0 || a.z > 0) && !(m.clearcoat > 0) && isBlack(m.sheenColor);
+           (a.x > 0 || a.y > 0 || a.z > 0) && !BsdfLayers::anyApplies(m);
   }
   /// Metal and plastic (GGX reflection, its dielectric coat and Lambert) and nothing else: no
-  /// transmission, clearcoat, sheen or KHR_materials_specular tint, some lobe in use, not a lone
+  /// transmission, layer (clearcoat, sheen) or KHR_materials_specular tint, some lobe in use, not a lone
   /// Lambert lobe, and some lobe that is not a delta (mirrors only beside a Lambert lobe). The
   /// SIMD glossy stage repeats eval and sample for it (integrators/glossy_batch.h): initLobes'
   /// Only::kMetal or kMixture, whose lone metal lobe is the mixture with weight 1.
   /// Out of line: inlined, it cost the matte vertices' step more than the call costs these.
   static bool isGgxMixture(const ShadingMaterial& m);
   /// Smooth glass alone (initLobes' Only::kGlass below the smooth limit): metallic 0,
-  /// transmission 1, roughness small enough for two delta lobes, no clearcoat or sheen. Every
+  /// transmission 1, roughness small enough for two delta lobes, no layer. Every
   /// lobe is a delta (no light sample); the SIMD delta stage repeats sample for it
   /// (integrators/delta_batch.h). Out of line, as isGgxMixture.
   static bool isSmoothGlass(const ShadingMaterial& m);
@@ -101,7 +102,7 @@ class Bsdf {
   /// float rounding. For light-path AOVs, at a path's first scattering only.
   LobeSplit evalLobes(const Vec3& wo, const Vec3& wi) const;
 
-  /// The same, in the local frame (tests use these directly), without clearcoat and sheen.
+  /// The same, in the local frame (tests use these directly), without the layers.
   Color evalLocal(const Vec3& wo, const Vec3& wi) const;
   float pdfLocal(const Vec3& wo, const Vec3& wi) const;
   BsdfSample sampleLocal(const Vec3& wo, float uc, Vec2 u) const;
@@ -173,28 +174,15 @@ class Bsdf {
     };
   }
   float coatFresnel(const Vec3& wo) const;
-  // The base material (everything below the clearcoat), in world space.
+  // The base material (everything below the layers), in world space.
   Color baseEval(const Vec3& wo, const Vec3& wi, float& pdf) const;
   BsdfSample baseSample(const Vec3& wo, float uc, Vec2 u) const;
-  // KHR_materials_sheen over the base (bsdf_sheen.cpp): the layer under the clearcoat.
-  void initSheen(const ShadingMaterial& m);
-  float sheenProbability(float sE) const;
-  Color sheenEval(const Vec3& wo, const Vec3& wi, float& pdf) const;
-  BsdfSample sheenSample(const Vec3& wo, float uc, Vec2 u) const;
-  Color innerEval(const Vec3& wo, const Vec3& wi, float& pdf) const {
-    return sheenOn_ ? sheenEval(wo, wi, pdf) : baseEval(wo, wi, pdf);
-  }
-  BsdfSample innerSample(const Vec3& wo, float uc, Vec2 u) const {
-    return sheenOn_ ? sheenSample(wo, uc, u) : baseSample(wo, uc, u);
-  }
-  // KHR_materials_clearcoat over the base (bsdf_clearcoat.cpp).
-  void initClearcoat(const ShadingMaterial& m);
-  /// c Fc(wo): the coat's reflectance seen from wo, which the base is weighted down by.
-  float clearcoatFresnel(const Vec3& wo) const;
-  /// Probability of sampling the coat rather than the base.
-  float clearcoatProbability(float cFc) const;
-  Color layeredEval(const Vec3& wo, const Vec3& wi, float& pdf) const;
-  BsdfSample layeredSample(const Vec3& wo, float uc, Vec2 u) const;
+  // The layers over the base (materials/bsdf_layers.h), from layer I down: I = 0 is all of it,
+  // I = BsdfLayers::kCount the base alone.
+  template <size_t I>
+  Color evalFrom(const Vec3& wo, const Vec3& wi, float& pdf) const;
+  template <size_t I>
+  BsdfSample sampleFrom(const Vec3& wo, float uc, Vec2 u) const;
   Frame frame_;
   float wMetal_, wGlass_, wPlastic_, coat_;
   // Built by initLobes: read only where their weights (wMetal_, wGlass_, wPlastic_ x coat_)
@@ -204,16 +192,7 @@ class Bsdf {
   LambertLobe diffuse_;
   float coatEta_;
   bool coatTinted_;  ///< KHR_materials_specular changed the coat's Fresnel
-  float clearcoat_ = 0;
-  // Set by initClearcoat and initSheen, read only while clearcoat_ > 0 or sheenOn_.
-  float baseEstimate_;
-  Slot<GgxReflectionLobe> ccLobe_;
-  Slot<Frame> ccFrame_;
-  bool ccOwnFrame_;  ///< the coat's normal differs from the base's
-  bool sheenOn_ = false;
-  Slot<Color> sheenColor_;
-  float sheenMax_;  ///< max component of sheenColor_: the albedo scaling's weight
-  Slot<CharlieSheen> sheen_;
+  BsdfLayers layers_;  ///< clearcoat, sheen, ...: those the material has
   bool hasNonDelta_;
   // probabilities()' last answer and the bits of its wo.z: one computation per vertex instead
   // of two (callgrind spheres 96x96 16spp: trace 613.2M -> 606.7M).
@@ -225,9 +204,8 @@ class Bsdf {
   bool lambertOnly_;
   Only only_;
   /// Lobe kinds eval includes (evalLobes evaluates a copy with one kind at a time).
-  enum LobeKind : uint8_t { kDiffuseLobes = 1, kSpecularLobes = 2, kTransmissionLobes = 4 };
-  uint8_t lobeMask_ = kDiffuseLobes | kSpecularLobes | kTransmissionLobes;
-  bool includes(LobeKind k) const { return lobeMask_ & k; }
+  uint8_t lobeMask_ = kAllLobes;
+  bool includes(LobeKinds k) const { return lobeMask_ & k; }
   /// A dielectric's value from wo to wi counts as specular (reflection) or transmission.
   bool includesGlass(const Vec3& wo, const Vec3& wi) const {
     return includes(sameHemisphere(wo, wi) ? kSpecularLobes : kTransmissionLobes);
