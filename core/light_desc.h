@@ -20,8 +20,6 @@ struct PunctualLightDesc {
   Vec3 direction{0, 0, -1};  ///< unit direction the light travels (spot, directional)
   float innerConeAngle = 0.0f;
   float outerConeAngle = kPi / 4.0f;
-  /// Spot attenuation at the unit direction from the light to a point (glTF's smooth falloff).
-  float spotFalloff(const Vec3& lightToPoint) const;
 };
 
 /// An equirectangular (latitude-longitude) radiance map in TRay's working space (linear

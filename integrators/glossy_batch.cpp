@@ -20,7 +20,7 @@ namespace HWY_NAMESPACE {
 
 #if HWY_TARGET == HWY_SCALAR
 // MatteBatch::useful() is false without a SIMD target: never called.
-void GlossyVertices(const float*, const Color&, ShadingLanes&) {}
+void GlossyVertices(const EmitterTables&, ShadingLanes&) {}
 #else
 
 /// The mixture of a vector of vertices, in their shading frames, computed once per vertex:
@@ -53,15 +53,14 @@ struct Vertices {
 /// Out of line, as ScatterSample: inlined into GlossyVertices, clang's sanitizer build of this
 /// file (tools/fuzz.sh) took 6.5 minutes and 4.6 GB.
 template <bool kEnvironment>
-HWY_NOINLINE void LightSample(const Fields& f, const float* table, const Color& environmentLe,
-                              const Vertices& v) {
+HWY_NOINLINE void LightSample(const Fields& f, const EmitterTables& tables, const Vertices& v) {
   const V3 p = f.load(f.m.p), ng = f.load(f.m.ng);
   const V3& n = v.frame.n;
-  const ChosenLightSample ls = SampleChosenLight<kEnvironment>(f, table, environmentLe, p, n);
+  const ChosenLightSample ls = SampleChosenLight<kEnvironment>(f, tables, p, n);
   FloatVec bsdfPdf, ggxPdf;
   const V3 e = mixtureEvalPdf(v.mixture, v.probabilities, v.wo, v.frame.toLocal(ls.wi),
                               v.coatFresnel(), NoGlass(), bsdfPdf, ggxPdf);
-  StoreLightSample<kEnvironment>(f, ls, e * absOf(dot(ls.wi, n)), bsdfPdf, p, ng);
+  StoreLightSample(f, ls, e * absOf(dot(ls.wi, n)), bsdfPdf, p, ng);
 }
 
 /// BSDF sampling of one vector of vertices: Bsdf::sampleLocal's mixture (the lobe choice, GGX
@@ -75,16 +74,16 @@ HWY_NOINLINE void ScatterSample(const Fields& f, const Vertices& v) {
   f.store(f.m.deltaSample, maskBits(s.delta));
 }
 
-void GlossyVertices(const float* table, const Color& envLe, ShadingLanes& lanes) {
+void GlossyVertices(const EmitterTables& tables, ShadingLanes& lanes) {
   const size_t n = hn::Lanes(DF());
   // Whole vectors: the inputs are padded (ShadingLanes::padInputs), and the outputs have room.
   for (size_t q = 0; q < lanes.count; q += n) {
     const Fields f{lanes, q};
     const Vertices v(f);
     if (noneOf(EnvironmentLanes(f)))
-      LightSample<false>(f, table, envLe, v);
+      LightSample<false>(f, tables, v);
     else
-      LightSample<true>(f, table, envLe, v);
+      LightSample<true>(f, tables, v);
     ScatterSample(f, v);
   }
 }
@@ -103,7 +102,7 @@ GlossyBatch::GlossyBatch(const MatteBatch& lights) : lights_(lights) {}
 void GlossyBatch::compute(ShadingLanes& lanes) const {
   if (lanes.count == 0) return;
   lanes.padInputs();
-  HWY_DYNAMIC_DISPATCH(GlossyVertices)(lights_.table(), lights_.environmentLe(), lanes);
+  HWY_DYNAMIC_DISPATCH(GlossyVertices)(lights_.tables(), lanes);
 }
 
 }  // namespace tray

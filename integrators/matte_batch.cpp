@@ -20,20 +20,20 @@ namespace HWY_NAMESPACE {
 
 #if HWY_TARGET == HWY_SCALAR
 // MatteBatch::useful() is false without a SIMD target: never called.
-void MatteVertices(const float*, const Color&, ShadingLanes&) {}
+void MatteVertices(const EmitterTables&, ShadingLanes&) {}
 #else
 
 /// Next-event estimation of one vector of vertices, as nextEvent runs it for a Lambert lobe
 /// (Bsdf::lambertEval: the cosines to n alone).
 template <bool kEnvironment>
-HWY_NOINLINE void LightSample(const Fields& f, const float* table, const Color& environmentLe) {
+HWY_NOINLINE void LightSample(const Fields& f, const EmitterTables& tables) {
   const V3 p = f.load(f.m.p), ng = f.load(f.m.ng), n = f.load(f.m.n);
-  const ChosenLightSample ls = SampleChosenLight<kEnvironment>(f, table, environmentLe, p, n);
+  const ChosenLightSample ls = SampleChosenLight<kEnvironment>(f, tables, p, n);
   const FloatVec cosI = dot(ls.wi, n);
   FloatVec bsdfPdf;
   const V3 fr =
       lambertEvalPdf(f.load(f.m.albedo), dot(f.load(f.m.wo), n), cosI, bsdfPdf) * absOf(cosI);
-  StoreLightSample<kEnvironment>(f, ls, fr, bsdfPdf, p, ng);
+  StoreLightSample(f, ls, fr, bsdfPdf, p, ng);
 }
 
 /// BSDF sampling of one vector of vertices, as Bsdf::lambertSample: the cosine lobe on wo's
@@ -45,15 +45,15 @@ HWY_NOINLINE void ScatterSample(const Fields& f) {
   StoreNextRay(f, s.f, FrameOf<V3>::fromNormal(n).toWorld(s.wi), n, s.pdf);
 }
 
-void MatteVertices(const float* table, const Color& environmentLe, ShadingLanes& lanes) {
+void MatteVertices(const EmitterTables& tables, ShadingLanes& lanes) {
   const size_t n = hn::Lanes(DF());
   // Whole vectors: the inputs are padded (ShadingLanes::padInputs), and the outputs have room.
   for (size_t q = 0; q < lanes.count; q += n) {
     const Fields f{lanes, q};
     if (noneOf(EnvironmentLanes(f)))
-      LightSample<false>(f, table, environmentLe);
+      LightSample<false>(f, tables);
     else
-      LightSample<true>(f, table, environmentLe);
+      LightSample<true>(f, tables);
     ScatterSample(f);
   }
 }
@@ -81,21 +81,35 @@ MatteBatch::MatteBatch(const LightSet& lights) : choices_(lights.size(), kOtherL
     // clang-format on
     table_.insert(table_.end(), row, row + kColumnCount);
   }
+  for (size_t i = 0; i < lights.size(); ++i) {
+    const PunctualLight* punctual = lights.punctualLight(i);
+    if (!punctual) continue;
+    const PunctualLightOf<Vec3>& l = punctual->lanes();
+    choices_[i] = kFirstPunctual - int32_t(punctual_.size() / kPunctualColumnCount);
+    // clang-format off
+    const float row[kPunctualColumnCount] = {
+        l.directional ? 1.0f : 0.0f, l.spot ? 1.0f : 0.0f,
+        l.position.x, l.position.y, l.position.z, l.direction.x, l.direction.y, l.direction.z,
+        l.intensity.x, l.intensity.y, l.intensity.z, l.cosOuter, l.cosInner};
+    // clang-format on
+    punctual_.insert(punctual_.end(), row, row + kPunctualColumnCount);
+  }
   const int environment = lights.constantEnvironment();
   if (environment >= 0) {
     choices_[size_t(environment)] = kConstantEnvironment;
     environmentLe_ = lights.light(size_t(environment)).Le(Vec3(0.0f, 0.0f, 1.0f));
   }
-  useful_ = hasSimdTarget() && (!table_.empty() || environment >= 0);
-  // A row of zeros where there is no emissive triangle: what the lanes gather when none of
-  // them chose one.
+  useful_ = hasSimdTarget() && (!table_.empty() || !punctual_.empty() || environment >= 0);
+  // A row of zeros where there is no emissive triangle (no punctual light): what the lanes
+  // gather when none of them chose one.
   if (table_.empty()) table_.assign(kColumnCount, 0.0f);
+  if (punctual_.empty()) punctual_.assign(kPunctualColumnCount, 0.0f);
 }
 
 void MatteBatch::compute(ShadingLanes& lanes) const {
   if (lanes.count == 0) return;
   lanes.padInputs();
-  HWY_DYNAMIC_DISPATCH(MatteVertices)(table_.data(), environmentLe_, lanes);
+  HWY_DYNAMIC_DISPATCH(MatteVertices)(tables(), lanes);
 }
 
 }  // namespace tray

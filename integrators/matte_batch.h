@@ -16,16 +16,25 @@
 
 namespace tray {
 
+/// What the stages' light samples read: the emissive triangles' and punctual lights' tables
+/// (MatteBatch::Column, PunctualColumn) and the constant environment's radiance.
+struct EmitterTables {
+  const float* triangles;
+  const float* punctual;
+  Color environmentLe;
+};
+
 /// The SIMD stage: the scene's emissive triangles as a table the kernel gathers from, and the
 /// constant environment's radiance.
 class MatteBatch {
  public:
   explicit MatteBatch(const LightSet& lights);
-  /// A SIMD target and a light the stage samples (an emissive triangle or the constant
-  /// environment): worth deferring vertices to.
+  /// A SIMD target and a light the stage samples (an emissive triangle, a punctual light or
+  /// the constant environment): worth deferring vertices to.
   bool useful() const { return useful_; }
   /// Light `index` as the lanes name it: a triangle's row of the table, kConstantEnvironment,
-  /// or kOtherLight when the stages do not sample it (the scalar code does; also for -1).
+  /// a punctual light's code (kFirstPunctual - row), or kOtherLight when the stages do not
+  /// sample it (the scalar code does: an image environment, an analytic shape; also for -1).
   int32_t choice(int index) const {
     return index >= 0 && size_t(index) < choices_.size() ? choices_[size_t(index)]
                                                          : int32_t(kOtherLight);
@@ -34,7 +43,10 @@ class MatteBatch {
   void compute(ShadingLanes& lanes) const;
   /// The emitter table (kColumnCount floats per row; the glossy stage gathers from it too).
   const float* table() const { return table_.data(); }
+  /// The punctual lights' table (kPunctualColumnCount floats per row), as the emitter table.
+  const float* punctualTable() const { return punctual_.data(); }
   const Color& environmentLe() const { return environmentLe_; }
+  EmitterTables tables() const { return {table_.data(), punctual_.data(), environmentLe_}; }
 
   /// Floats per row: vertex 0, the two edges, the unit front normal, the area, the radiance
   /// and whether both faces emit (1 or 0).
@@ -43,10 +55,18 @@ class MatteBatch {
     kP0x, kP0y, kP0z, kE1x, kE1y, kE1z, kE2x, kE2y, kE2z, kNx, kNy, kNz,
     kArea, kLeR, kLeG, kLeB, kDoubleSided, kColumnCount
   };
+  /// Floats per row of the punctual table: whether the light is directional and whether a spot
+  /// (1 or 0), its position, the direction its light travels, its intensity, and a spot's cone
+  /// cosines (PunctualLightOf).
+  enum PunctualColumn : uint8_t {
+    kDirectional, kSpot, kPx, kPy, kPz, kDx, kDy, kDz, kIr, kIg, kIb, kCosOuter, kCosInner,
+    kPunctualColumnCount
+  };
   // clang-format on
 
  private:
   std::vector<float> table_;      ///< kColumnCount floats per row
+  std::vector<float> punctual_;   ///< kPunctualColumnCount floats per row
   std::vector<int32_t> choices_;  ///< per light index
   Color environmentLe_{0.0f};
   bool useful_ = false;

@@ -401,7 +401,7 @@ PathStep PathEstimator::finishDeferred(PathState& st, Sampler& sampler, const Sh
     shadow.ray.o = m.shadowOrigin[q], shadow.ray.d = m.shadowDir[q];
     // setSpawnRay's toward the environment, setSpawnRayTo's toward a point.
     shadow.ray.tmin = 0.0f;
-    shadow.ray.tmax = m.emitter[q] == kConstantEnvironment ? kInfinity : 1.0f - 1e-4f;
+    shadow.ray.tmax = m.shadowUnbounded[q] ? kInfinity : 1.0f - 1e-4f;
     shadow.ray.blend = BlendRays::kStochastic, shadow.ray.time = time;
     shadow.contribution = m.contribution[q];
     shadow.indirect = st.indirectNee;

@@ -17,7 +17,7 @@ void ShadingLanes::reset(size_t size) {
   for (std::vector<float>* v :
        {&pmf, &lobeDraw, &metallic, &roughness, &eta, &pdf, &time, &etaScale})
     v->resize(padded);
-  for (std::vector<int32_t>* v : {&emitter, &lit, &deltaSample, &transmitted, &material})
+  for (std::vector<int32_t>* v : {&emitter, &lit, &shadowUnbounded, &deltaSample, &transmitted, &material})
     v->resize(padded);
   for (std::vector<uint8_t>* v : {&belowMatters, &frontFace, &refractive}) v->resize(padded);
   path.resize(padded);

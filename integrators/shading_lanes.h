@@ -16,6 +16,7 @@ enum EmitterChoice : int32_t {
   kNoLightChosen = -1,
   kConstantEnvironment = -2,  ///< the scene's constant environment
   kOtherLight = -3,           ///< a light the stages do not sample (never in the lanes)
+  kFirstPunctual = -4,        ///< row j of the punctual table is kFirstPunctual - j
 };
 
 /// The deferred vertices of one bounce, one array per field (Vec3 fields as arrays of Vec3:
@@ -44,6 +45,9 @@ struct ShadingLanes {
   std::vector<Vec3> shadowOrigin, shadowDir, contribution, rayOrigin, rayDir, nextBeta;
   std::vector<float> pdf;
   std::vector<int32_t> lit;  ///< all bits set or none
+  /// Whether the shadow ray is unbounded (toward the environment or a directional light; all
+  /// bits set or none): finishDeferred's tmax.
+  std::vector<int32_t> shadowUnbounded;
   /// The glossy stage's besides: whether the BSDF sample was a mirror's (a delta lobe; all bits
   /// set or none). The matte stage's are never (PathEstimator::defer clears them).
   std::vector<int32_t> deltaSample;

@@ -23,6 +23,7 @@
 #include "core/ray_lanes.h"
 #include "core/sampling_lanes.h"
 #include "integrators/path_vertex_lanes.h"
+#include "lights/punctual_light_lanes.h"
 #include "lights/triangle_light_lanes.h"
 #include "materials/dielectric_lanes.h"
 #include "materials/ggx_mixture_lanes.h"
@@ -60,14 +61,17 @@ struct Fields {
   void store(std::vector<int32_t>& v, IntVec a) const { hn::StoreU(a.v, DI(), &v[q]); }
 };
 
-/// The lanes' chosen light sampled: a triangle of MatteBatch's table (sampleTriangleLight), or
-/// the constant environment as EnvironmentLight::sample draws it for a receiver that does not
-/// transmit (sampleCosineAbout). pdf: the sample's times the choice's pmf; `ok` where a light
-/// was chosen and its sample is valid with some radiance (LightSet::sampleChosen's checks).
+/// The lanes' chosen light sampled: a triangle of MatteBatch's table (sampleTriangleLight), a
+/// punctual light of its punctual table (samplePunctualLight), or the constant environment as
+/// EnvironmentLight::sample draws it for a receiver that does not transmit
+/// (sampleCosineAbout). pdf: the sample's times the choice's pmf (a punctual light's 1 x pmf);
+/// `ok` where a light was chosen and its sample is valid with some radiance
+/// (LightSet::sampleChosen's checks); `delta` where it is a punctual light (no MIS);
+/// `unbounded` where the shadow ray has no end (the environment, a directional light).
 struct ChosenLightSample {
-  V3 wi, Le, target;  ///< target: the triangle's point (not for the environment)
+  V3 wi, Le, target;  ///< target: the triangle's or the point light's point (if bounded)
   FloatVec pdf;
-  MaskVec ok, environment;
+  MaskVec ok, unbounded, delta;
 };
 /// A triangle row per lane (row 0 where none was chosen: its values are not used). Not inlined:
 /// its 17 gathers inside the light sample made one straight block more than Valgrind's memcheck
@@ -90,6 +94,28 @@ inline HWY_NOINLINE TriangleLightOf<V3> GatherTriangles(const float* table, IntV
           column(T::kArea),
           column(T::kDoubleSided) > 0.0f};
 }
+/// A punctual light's row per lane (row 0 where none was chosen: its values are not used), as
+/// GatherTriangles and for the same reason out of line.
+inline HWY_NOINLINE PunctualLightOf<V3> GatherPunctual(const float* table, IntVec code) {
+  using T = MatteBatch;
+  const MaskVec punctual = code < IntVec(kFirstPunctual + 1);
+  const IntVec at =
+      select(punctual, IntVec(kFirstPunctual) - code, IntVec(0)) * IntVec(T::kPunctualColumnCount);
+  const auto column = [&](T::PunctualColumn c) -> FloatVec {
+    return hn::GatherIndex(DF(), table + c, at.v);
+  };
+  const auto vec3 = [&](T::PunctualColumn x, T::PunctualColumn y, T::PunctualColumn z) -> V3 {
+    return {column(x), column(y), column(z)};
+  };
+  PunctualLightOf<V3> l;
+  l.directional = column(T::kDirectional) > 0.0f;
+  l.spot = column(T::kSpot) > 0.0f;
+  l.position = vec3(T::kPx, T::kPy, T::kPz);
+  l.direction = vec3(T::kDx, T::kDy, T::kDz);
+  l.intensity = vec3(T::kIr, T::kIg, T::kIb);
+  l.cosOuter = column(T::kCosOuter), l.cosInner = column(T::kCosInner);
+  return l;
+}
 /// The lanes whose choice is the constant environment.
 HWY_INLINE MaskVec EnvironmentLanes(const Fields& f) {
   return f.load(f.m.emitter) == IntVec(kConstantEnvironment);
@@ -98,55 +124,71 @@ HWY_INLINE MaskVec EnvironmentLanes(const Fields& f) {
 /// both, so that a vector of triangle choices alone runs the triangles' code without selects
 /// (callgrind, Cornell box: the matte light sample spilled 60 more vector registers).
 template <bool kEnvironment>
-HWY_INLINE ChosenLightSample SampleChosenLight(const Fields& f, const float* table,
-                                               const Color& environmentLe, const V3& p,
-                                               const V3& n) {
+HWY_INLINE ChosenLightSample SampleChosenLight(const Fields& f, const EmitterTables& tables,
+                                               const V3& p, const V3& n) {
   const IntVec row = f.load(f.m.emitter);
   const V2 u = f.load(f.m.lightDraw);
   const FloatVec pmf = f.load(f.m.pmf);
   ChosenLightSample s;
-  const TriangleLightSampleOf<V3> t = sampleTriangleLight(GatherTriangles(table, row, s.Le), p, u);
+  const TriangleLightSampleOf<V3> t =
+      sampleTriangleLight(GatherTriangles(tables.triangles, row, s.Le), p, u);
   s.wi = t.wi, s.target = t.p, s.pdf = t.pdf * pmf;
   s.ok = row > IntVec(-1) && t.valid && s.pdf > 0.0f && !isBlack(s.Le);
-  s.environment = MaskVec(false);
+  s.unbounded = MaskVec(false), s.delta = MaskVec(false);
   if constexpr (kEnvironment) {
-    s.environment = EnvironmentLanes(f);
+    const MaskVec environment = EnvironmentLanes(f);
     const V3 wi = sampleCosineAbout(n, u);
     const FloatVec pdf = cosineHemispherePdf(dot(n, wi)) * pmf;
-    const V3 Le{environmentLe.x, environmentLe.y, environmentLe.z};
+    const Color& e = tables.environmentLe;
+    const V3 Le{e.x, e.y, e.z};
     const MaskVec ok = pdf > 0.0f && !isBlack(Le);
-    s.wi = select(s.environment, wi, s.wi);
-    s.Le = select(s.environment, Le, s.Le);
-    s.pdf = select(s.environment, pdf, s.pdf);
-    s.ok = (s.ok && !s.environment) || (s.environment && ok);
+    s.wi = select(environment, wi, s.wi);
+    s.Le = select(environment, Le, s.Le);
+    s.pdf = select(environment, pdf, s.pdf);
+    s.ok = (s.ok && !environment) || (environment && ok);
+    s.unbounded = environment;
+  }
+  const MaskVec punctual = row < IntVec(kFirstPunctual + 1);
+  if (anyOf(punctual)) {  // PunctualLight::sample: pdf 1, times the choice's pmf
+    const PunctualLightOf<V3> l = GatherPunctual(tables.punctual, row);
+    const PunctualLightSampleOf<V3> ps = samplePunctualLight(l, p);
+    const FloatVec pdf = FloatVec(1.0f) * pmf;
+    s.wi = select(punctual, ps.wi, s.wi);
+    s.Le = select(punctual, ps.L, s.Le);
+    s.target = select(punctual, l.position, s.target);
+    s.pdf = select(punctual, pdf, s.pdf);
+    s.ok = (punctual && ps.valid && pdf > 0.0f && !isBlack(ps.L)) || (!punctual && s.ok);
+    s.unbounded = s.unbounded || (punctual && l.directional);
+    s.delta = punctual;
   }
   return s;
 }
 
 /// The shadow ray toward a chosen light's sample: setSpawnRay(p, ng, wi) toward the
-/// environment (unbounded: finishDeferred sets tmax), setSpawnRayTo(p, ng, target) otherwise.
-template <bool kEnvironment>
+/// environment or a directional light (unbounded: finishDeferred sets tmax),
+/// setSpawnRayTo(p, ng, target) otherwise.
 HWY_INLINE void StoreShadowRay(const Fields& f, const ChosenLightSample& ls, const V3& p,
                                const V3& ng) {
-  if constexpr (!kEnvironment) {
+  if (noneOf(ls.unbounded)) {  // no selects when every lane's ray ends at its light
     const V3 origin = spawnOrigin(p, ng, ls.target - p);
     f.store(f.m.shadowOrigin, origin);
     f.store(f.m.shadowDir, ls.target - origin);
   } else {
-    const V3 origin = spawnOrigin(p, ng, select(ls.environment, ls.wi, ls.target - p));
+    const V3 origin = spawnOrigin(p, ng, select(ls.unbounded, ls.wi, ls.target - p));
     f.store(f.m.shadowOrigin, origin);
-    f.store(f.m.shadowDir, select(ls.environment, ls.wi, ls.target - origin));
+    f.store(f.m.shadowDir, select(ls.unbounded, ls.wi, ls.target - origin));
   }
+  f.store(f.m.shadowUnbounded, maskBits(ls.unbounded));
 }
 
 /// Next-event estimation's outputs: the contribution (beta f Le, MIS-weighted), the shadow ray
 /// and whether it is traced. fr: the BSDF toward the light times the cosine; bsdfPdf its pdf.
-template <bool kEnvironment>
 HWY_INLINE void StoreLightSample(const Fields& f, const ChosenLightSample& ls, const V3& fr,
                                  FloatVec bsdfPdf, const V3& p, const V3& ng) {
-  const FloatVec w = powerHeuristic(ls.pdf, bsdfPdf);
+  // nextEvent's weight: 1 for a delta light, the power heuristic otherwise.
+  const FloatVec w = select(ls.delta, FloatVec(1.0f), powerHeuristic(ls.pdf, bsdfPdf));
   f.store(f.m.contribution, neeContribution(f.load(f.m.beta), fr, ls.Le, w, ls.pdf));
-  StoreShadowRay<kEnvironment>(f, ls, p, ng);
+  StoreShadowRay(f, ls, p, ng);
   f.store(f.m.lit, maskBits(ls.ok && !isBlack(fr)));
 }
 

@@ -57,6 +57,11 @@ class LightSet {
   LightSample sampleChosen(int i, float pmf, const LightSampleContext& ctx, Vec2 u2) const;
   /// Light i as an area light, or null when it is another kind.
   const AreaLight* areaLight(size_t i) const { return i < area_.size() ? &area_[i] : nullptr; }
+  /// Light i as a punctual light, or null when it is another kind (they follow the area lights).
+  const PunctualLight* punctualLight(size_t i) const {
+    return i >= area_.size() && i - area_.size() < punctual_.size() ? &punctual_[i - area_.size()]
+                                                                    : nullptr;
+  }
 
   /// Index of the light that a hit on (primitive, triangle) belongs to, or -1 when that
   /// surface is not in the set (it may still glow: BSDF sampling then gets full weight).

@@ -2,6 +2,8 @@
 #include "core/light.h"
 #include "core/light_bounds.h"
 #include "core/light_desc.h"
+// samplePunctualLight, written once for scalar code and the SIMD stages.
+#include "lights/punctual_light_lanes.h"
 
 namespace tray {
 
@@ -11,7 +13,14 @@ namespace tray {
 class PunctualLight final : public Light {
  public:
   PunctualLight(const PunctualLightDesc& desc, float sceneRadius)
-      : desc_(desc), sceneRadius_(sceneRadius) {}
+      : desc_(desc), sceneRadius_(sceneRadius) {
+    lanes_.directional = desc.type == PunctualLightDesc::Type::kDirectional;
+    lanes_.spot = desc.type == PunctualLightDesc::Type::kSpot;
+    lanes_.position = desc.position, lanes_.direction = desc.direction;
+    lanes_.intensity = desc.intensity;
+    lanes_.cosOuter = std::cos(desc.outerConeAngle);
+    lanes_.cosInner = std::cos(desc.innerConeAngle);
+  }
 
   uint8_t flags() const override {
     return desc_.type == PunctualLightDesc::Type::kDirectional ? kLightDeltaDirection
@@ -44,25 +53,18 @@ class PunctualLight final : public Light {
                                false);
   }
   LightSample sample(const LightSampleContext& ctx, Vec2) const override {
+    const PunctualLightSampleOf<Vec3> l = samplePunctualLight(lanes_, ctx.p);
     LightSample s;
     s.delta = true;
-    if (desc_.type == PunctualLightDesc::Type::kDirectional) {
-      s.wi = -desc_.direction;
-      s.L = desc_.intensity;
-      s.infinite = true;
-      s.pdf = 1;
-      return s;
-    }
-    Vec3 d = desc_.position - ctx.p;
-    float dist2 = lengthSquared(d);
-    if (!(dist2 > 0)) return s;
-    s.wi = d / std::sqrt(dist2);
+    s.infinite = lanes_.directional;
+    if (!l.valid) return s;
+    s.wi = l.wi, s.L = l.L;
     s.p = desc_.position;
-    s.L = desc_.intensity * (desc_.spotFalloff(-s.wi) / dist2);
-    if (isBlack(s.L)) return s;
     s.pdf = 1;
     return s;
   }
+  /// The light as samplePunctualLight (and the SIMD stages' punctual table) reads it.
+  const PunctualLightOf<Vec3>& lanes() const { return lanes_; }
   float pdf(const LightSampleContext&, const Vec3&, const Vec3&, const Vec3&) const override {
     return 0.0f;  // a direction sampled otherwise never meets a delta light
   }
@@ -70,6 +72,7 @@ class PunctualLight final : public Light {
  private:
   PunctualLightDesc desc_;
   float sceneRadius_ = 1;  ///< for a directional light's power
+  PunctualLightOf<Vec3> lanes_;
 };
 
 }  // namespace tray

@@ -115,4 +115,29 @@ inline PunctualLightDesc pointLight(const Vec3& p, const Color& intensity) {
   return l;
 }
 
+inline PunctualLightDesc spotLight(const Vec3& p, const Vec3& direction, const Color& intensity,
+                                   float innerConeAngle, float outerConeAngle) {
+  PunctualLightDesc l = pointLight(p, intensity);
+  l.type = PunctualLightDesc::Type::kSpot;
+  l.direction = normalize(direction);
+  l.innerConeAngle = innerConeAngle, l.outerConeAngle = outerConeAngle;
+  return l;
+}
+
+inline PunctualLightDesc directionalLight(const Vec3& direction, const Color& irradiance) {
+  PunctualLightDesc l;
+  l.type = PunctualLightDesc::Type::kDirectional;
+  l.direction = normalize(direction);
+  l.intensity = irradiance;
+  return l;
+}
+
+/// One light of each KHR_lights_punctual kind: a point, a spot whose cone misses some points
+/// of [-3, 3]^3, and a directional light.
+inline void addPunctualLights(Scene& scene) {
+  scene.lights.push_back(pointLight({1, 3, 1}, Color(20.0f, 15.0f, 10.0f)));
+  scene.lights.push_back(spotLight({-1, 4, 0}, {0.2f, -1, 0.1f}, Color(30.0f), 0.2f, 0.6f));
+  scene.lights.push_back(directionalLight({0.3f, -1, -0.2f}, Color(2.0f, 2.0f, 1.5f)));
+}
+
 }  // namespace tray::test

@@ -31,7 +31,8 @@ using test::expectSameBits;
 using test::randomTriangle;
 using test::randomUnit;
 
-/// Emissive triangles (some double-sided) under a constant environment.
+/// Emissive triangles (some double-sided) under a constant environment, beside a point, a spot
+/// and a directional light.
 Scene emittersUnderSky(std::mt19937_64& rng, int count) {
   Scene scene;
   std::uniform_real_distribution<float> le(0.0f, 5.0f);
@@ -43,6 +44,7 @@ Scene emittersUnderSky(std::mt19937_64& rng, int count) {
         scene, test::addMesh(scene, randomTriangle(rng, test::addMaterial(scene, m))), Mat4());
   }
   scene.environment.background = {0.3f, 0.5f, 0.8f};
+  test::addPunctualLights(scene);
   return scene;
 }
 
@@ -91,8 +93,8 @@ void randomVertex(std::mt19937_64& rng, const MatteBatch& batch, const LightSet&
 
 /// What the comparisons met, so that the test can tell it compared each case.
 struct Met {
-  int vertices = 0, litTriangle = 0, litEnvironment = 0, unlit = 0, sampled = 0, invalid = 0,
-      mirrored = 0;
+  int vertices = 0, litTriangle = 0, litEnvironment = 0, litPunctual = 0, unlit = 0, sampled = 0,
+      invalid = 0, mirrored = 0;
 };
 
 /// Entry q's outputs against the scalar pieces step() runs.
@@ -101,8 +103,9 @@ void compareVertex(const LightSet& lights, const ShadingLanes& m, size_t q, Met&
                                   << m.roughness[q] << ", eta " << m.eta[q]);
   const Bsdf bsdf(materialOf(m, q), m.n[q], m.eta[q]);
   bool infinite;
+  const bool punctual = m.emitter[q] != kNoLightChosen && lights.light(m.path[q]).isDelta();
   if (test::compareLightSample(lights, bsdf, m, q, infinite))
-    ++(infinite ? met.litEnvironment : met.litTriangle);
+    ++(punctual ? met.litPunctual : infinite ? met.litEnvironment : met.litTriangle);
   else
     ++met.unlit;
   const BsdfSample bs = bsdf.sample(m.wo[q], m.lobeDraw[q], m.bsdfDraw[q]);
@@ -127,7 +130,7 @@ TEST(GlossyBatch, KernelIsTheScalarStepBitForBit) {
   const LightSet lights(scene);
   const MatteBatch matte(lights);
   const GlossyBatch batch(matte);
-  ASSERT_EQ(lights.size(), 5u);  // four triangles and the sky
+  ASSERT_EQ(lights.size(), 8u);  // four triangles, three punctual lights and the sky
   ASSERT_GE(lights.constantEnvironment(), 0);
   if (!hasSimdTarget()) GTEST_SKIP() << "no SIMD target: the wavefront keeps to scalar code";
   ASSERT_TRUE(matte.useful());
@@ -144,6 +147,7 @@ TEST(GlossyBatch, KernelIsTheScalarStepBitForBit) {
     // Every case was compared, not only skipped.
     EXPECT_GT(met.litTriangle, met.vertices / 20);
     EXPECT_GT(met.litEnvironment, met.vertices / 20);
+    EXPECT_GT(met.litPunctual, met.vertices / 20);
     EXPECT_GT(met.unlit, met.vertices / 20);
     EXPECT_GT(met.sampled, met.vertices / 2);
     EXPECT_GT(met.invalid, 0);

@@ -32,7 +32,7 @@ using test::randomTriangle;
 using test::randomUnit;
 
 /// Emissive triangles: random radiance (one black), some double-sided; under a constant
-/// environment when `sky`.
+/// environment and beside a point, a spot and a directional light when `sky`.
 Scene emitters(std::mt19937_64& rng, int count, bool sky) {
   Scene scene;
   std::uniform_real_distribution<float> le(0.0f, 5.0f);
@@ -44,6 +44,7 @@ Scene emitters(std::mt19937_64& rng, int count, bool sky) {
         scene, test::addMesh(scene, randomTriangle(rng, test::addMaterial(scene, m))), Mat4());
   }
   if (sky) scene.environment.background = {0.3f, 0.5f, 0.8f};
+  if (sky) test::addPunctualLights(scene);
   return scene;
 }
 
@@ -68,13 +69,16 @@ void randomVertex(std::mt19937_64& rng, const MatteBatch& batch, size_t lights, 
 
 /// Entry q's outputs against the scalar pieces step() runs; returns 1 when it was lit, and
 /// counts in environmentLit when by the environment.
-int compareVertex(const LightSet& lights, const ShadingLanes& m, size_t q, int& environmentLit) {
+int compareVertex(const LightSet& lights, const ShadingLanes& m, size_t q, int& environmentLit,
+                  int& punctualLit) {
   Material material = test::diffuse(m.albedo[q]);
   const Bsdf bsdf(material, m.n[q], 1.5f);
   EXPECT_TRUE(bsdf.lambertOnly());
   bool infinite;
   const bool lit = test::compareLightSample(lights, bsdf, m, q, infinite);
-  environmentLit += lit && infinite;
+  const bool punctual = m.emitter[q] != kNoLightChosen && lights.light(m.path[q]).isDelta();
+  environmentLit += lit && infinite && !punctual;
+  punctualLit += lit && punctual;
   const BsdfSample bs = bsdf.sample(m.wo[q], 0.0f, m.bsdfDraw[q]);
   expectSameBits(m.pdf[q], bs.pdf, "pdf", q);
   EXPECT_GT(m.pdf[q], 0.0f) << q;
@@ -91,11 +95,11 @@ TEST(MatteBatch, KernelIsTheScalarStepBitForBit) {
   const Scene scene = emitters(rng, 6, true);
   const LightSet lights(scene);
   const MatteBatch batch(lights);
-  ASSERT_EQ(lights.size(), 6u);  // the black triangle is not a light; the sky is
+  ASSERT_EQ(lights.size(), 9u);  // the black triangle is not a light; the sky and 3 punctual are
   if (!hasSimdTarget()) GTEST_SKIP() << "no SIMD target: the wavefront keeps to scalar code";
   ASSERT_TRUE(batch.useful());
   test::onEverySimdTarget(1000, [&] {
-    int compared = 0, lit = 0, environmentLit = 0;
+    int compared = 0, lit = 0, environmentLit = 0, punctualLit = 0;
     ShadingLanes m;
     for (int wave = 0; wave < 40 && !testing::Test::HasFailure(); ++wave) {
       const size_t count = std::uniform_int_distribution<size_t>(1, 100)(rng);  // partial vectors
@@ -104,17 +108,18 @@ TEST(MatteBatch, KernelIsTheScalarStepBitForBit) {
         randomVertex(rng, batch, lights.size(), m, m.count);
       batch.compute(m);
       for (size_t q = 0; q < count; ++q)
-        lit += compareVertex(lights, m, q, environmentLit), ++compared;
+        lit += compareVertex(lights, m, q, environmentLit, punctualLit), ++compared;
     }
     EXPECT_GT(lit, compared / 5);  // the light sample's arithmetic is compared, not only skipped
     EXPECT_LT(lit, compared);      // and so are the unlit cases
-    EXPECT_GT(environmentLit, compared / 20);  // and the sky's samples
+    EXPECT_GT(environmentLit, compared / 40);  // and the sky's samples (1 light of 9)
+    EXPECT_GT(punctualLit, compared / 20);     // and the punctual lights' (no MIS weight)
     return compared;
   });
 }
 
-/// A random scene: matte triangles under emissive ones, a floor, and what the stage leaves to
-/// the scalar code in some (a metal, an emissive sphere, a point light).
+/// A random scene: matte triangles under emissive ones, a floor, and in some a metal (the glossy
+/// stage's), an emissive sphere (the scalar code's) or a point light.
 Scene randomScene(std::mt19937_64& rng, int index) {
   Scene scene = emitters(rng, 3, index % 2 == 1);
   std::uniform_real_distribution<float> u01(0.0f, 1.0f);

@@ -47,7 +47,8 @@ inline void expectSameBits(const Vec3& got, const Vec3& want, const char* what, 
 
 /// Entry q's next-event outputs against what nextEvent computes with `bsdf`: the chosen
 /// light's sample (m.path[q] holds its index), the BSDF's value and pdf toward it, the shadow
-/// ray and the estimate. Returns whether it was lit; `infinite`: by the environment.
+/// ray and the estimate. Returns whether it was lit; `infinite`: by the environment or a
+/// directional light (an unbounded shadow ray).
 inline bool compareLightSample(const LightSet& lights, const Bsdf& bsdf, const ShadingLanes& m,
                                size_t q, bool& infinite) {
   const LightSampleContext ctx{m.p[q], m.n[q], false, false};
@@ -67,7 +68,8 @@ inline bool compareLightSample(const LightSet& lights, const Bsdf& bsdf, const S
                                      : spawnRayTo(m.p[q], m.ng[q], ls.p, 0.0f);
       expectSameBits(m.shadowOrigin[q], shadow.o, "shadow origin", q);
       expectSameBits(m.shadowDir[q], shadow.d, "shadow direction", q);
-      const float w = powerHeuristic(ls.pdf, bsdfPdf);
+      EXPECT_EQ(bool(m.shadowUnbounded[q]), ls.infinite) << q;
+      const float w = ls.delta ? 1.0f : powerHeuristic(ls.pdf, bsdfPdf);
       expectSameBits(m.contribution[q], m.beta[q] * f * ls.L * (w / ls.pdf), "contribution", q);
     }
   }

@@ -1,7 +1,7 @@
 #!/bin/sh
 # Memcheck over a few representative renders: a triangle-mesh scene through Embree with the path
 # tracer (the Cornell box), CSG (user geometry, all-hits queries), textures (OIIO decoding) and
-# the wavefront's glossy SIMD stage (DamagedHelmet),
+# the wavefront's glossy SIMD stage (DamagedHelmet) and its delta stage (TransmissionTest),
 # each tiny and on one thread so the whole test takes well under two minutes. Any invalid read
 # or write, use of uninitialised memory or bad free fails the test; leaks are not errors here
 # (ASan's LeakSanitizer covers them, README "Hardened input").
@@ -39,4 +39,6 @@ check textured "$src/scenes/textured.gltf"
 # The wavefront's glossy SIMD stage (textured metal and plastic): its light sample, inlined whole,
 # was once one block more than memcheck can instrument ("VEX temporary storage exhausted").
 check glossy-stage "$shared/gltf-samples/DamagedHelmet.glb" --integrator path --spp 1
+# The delta stage (smooth glass) and the punctual lights' gathers (the default key light).
+check delta-stage "$shared/gltf-samples/TransmissionTest.glb" --integrator path --spp 1
 exit $status
