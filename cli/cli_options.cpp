@@ -1,11 +1,16 @@
 #include "cli/cli_options.h"
 
+#include <cmath>
+#include <limits>
+
 #include "accel/registry.h"
 #include "cli/option_cli.h"
 #include "cli/options_doc.h"
 #include "film/aov.h"
 
 namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
 
 std::string joined(const std::vector<std::string>& names) {
   std::string s;
@@ -24,6 +29,28 @@ CLI::Validator nonNegative(const std::string& expected) {
         return {};
       },
       "", "non-negative");
+}
+
+/// A finite number in [lo, hi] (hi infinite: no upper bound). CLI11's Range and
+/// NonNegativeNumber let NaN through: every comparison with it is false.
+CLI::Validator finiteIn(double lo, double hi, const std::string& expected) {
+  return CLI::Validator(
+      [lo, hi, expected](std::string& value) -> std::string {
+        double v = 0;
+        if (!CLI::detail::lexical_cast(value, v) || !std::isfinite(v) || v < lo || v > hi)
+          return "'" + value + "': expected " + expected;
+        return {};
+      },
+      "", "finite number");
+}
+
+/// --resolution WxH: an explicitly empty value is a mistake (omit the option for the default).
+CLI::Validator nonEmpty(const std::string& expected) {
+  return CLI::Validator(
+      [expected](std::string& value) -> std::string {
+        return value.empty() ? "an empty value: expected " + expected : std::string();
+      },
+      "", "non-empty");
 }
 
 /// The --help groups of the options declared here (those made from declarations are grouped
@@ -62,7 +89,8 @@ void addCliOptions(CLI::App& app, CliOptions& o) {
       ->check(CLI::Range(0, 4096))
       ->capture_default_str();
   app.add_option("--resolution", o.resolution,
-                 "image size WxH (default 640 wide, height from the camera)");
+                 "image size WxH (default 640 wide, height from the camera)")
+      ->check(nonEmpty("WxH, e.g. 1280x720 (omit --resolution for the default)"));
   app.add_option("--camera", o.camera,
                  "the glTF camera to render: N for the file's cameras[N], or a node or camera "
                  "name (default: the placed camera of lowest index)")
@@ -94,18 +122,18 @@ void addCliOptions(CLI::App& app, CliOptions& o) {
                  "render samples a..b-1 of each pixel only: a part for tray-merge");
   app.add_option("--checkpoint", o.checkpointSeconds,
                  "every SECONDS, write the progress so far to the first .exr output")
-      ->check(CLI::NonNegativeNumber);
+      ->check(finiteIn(0, kInf, "a finite number of seconds >= 0"));
   app.add_flag("--resume", o.resume, "continue the render saved in the first .exr output");
   app.add_option("--max-memory", o.maxMemoryMB,
                  "refuse a scene whose buffers, textures and geometry need more than MB "
                  "(default: 80% of physical memory; 0: no limit)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(finiteIn(0, kInf, "a finite number of MB >= 0 (0: no limit)"));
   app.add_option("--texture-memory", o.textureMemoryMB,
                  "texture tile budget in MB: TRay filters when its MIP tiles fit, else OIIO's "
                  "cache pages them within it (default: all the scene's texture levels as "
                  "float tiles, at least 128 and at most a quarter of physical memory; never "
                  "changes pixels)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(finiteIn(0, kInf, "a finite number of MB >= 0"));
   app.add_flag("-q,--quiet", o.quiet, "no progress bar or summary (--progress none)");
   app.add_option("--progress", o.progress,
                  "bar (on a terminal), plain (one line 'progress P% elapsed S s eta S s' per "
@@ -114,11 +142,11 @@ void addCliOptions(CLI::App& app, CliOptions& o) {
       ->capture_default_str();
   app.add_option("--progress-step", o.progressSettings.stepPercent,
                  "--progress plain: a line each time progress passes a multiple of PERCENT")
-      ->check(CLI::Range(0.1, 100.0))
+      ->check(finiteIn(0.1, 100.0, "a percentage in [0.1, 100]"))
       ->capture_default_str();
   app.add_option("--progress-seconds", o.progressSettings.intervalSeconds,
                  "--progress plain: a line at least every SECONDS (0: only by --progress-step)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(finiteIn(0, kInf, "a finite number of seconds >= 0"))
       ->capture_default_str();
   app.add_option("--frames", o.frames,
                  "render frames FIRST-LAST of the animation at --fps, each at time frame / fps, "

@@ -18,10 +18,18 @@ int main(int argc, char** argv) {
   app.add_option("parts", parts, "part EXRs written by tray-render --region / --sample-range")
       ->required();
   app.add_option("-o,--output", output, "the merged .exr")->required();
+  // One line, in the form of every other error (CLI11 adds a second "Run with --help" line).
+  app.failure_message([](const CLI::App*, const CLI::Error& e) {
+    return std::string("tray-merge: error: ") + e.what() + " (see --help)\n";
+  });
   try {
     app.parse(argc, argv);
+    tray::checkMergeOutput(parts, output);
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
+  } catch (const tray::Error& e) {
+    std::fprintf(stderr, "tray-merge: error: %s\n", e.what());
+    return 2;
   }
   const char* phase = "reading the parts";  // for the out-of-memory message
   try {

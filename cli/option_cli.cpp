@@ -78,6 +78,16 @@ CLI::Validator flagValueCheck() {
       "", "flag value");
 }
 
+/// An option given with an empty value (`--env ''`) is a mistake, not the default: omit the
+/// option for that.
+CLI::Validator givenValue() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        return text.empty() ? "an empty value (omit the option for its default)" : std::string();
+      },
+      "", "non-empty");
+}
+
 }  // namespace
 
 DeclaredOptions declaredOptions() {
@@ -119,6 +129,7 @@ void addRenderOptions(CLI::App& app, RenderSettings& settings) {
            },
            o.help())
         ->type_name(typeName(spec))
+        ->check(givenValue())
         ->group(group);
   }
 }

@@ -1,7 +1,9 @@
 #include "cli/part_merge.h"
 
 #include <algorithm>
+#include <filesystem>
 #include <numeric>
+#include <system_error>
 
 #include "core/error.h"
 #include "core/light_paths.h"
@@ -179,6 +181,18 @@ void addPart(const Part& p, int samples, Film& out, std::vector<PixelSums>& tota
 }
 
 }  // namespace
+
+void checkMergeOutput(const std::vector<std::string>& parts, const std::string& output) {
+  namespace fs = std::filesystem;
+  for (const std::string& part : parts) {
+    std::error_code ec;
+    // equivalent() is false (with an error code) when the output does not exist yet.
+    if (part == output || fs::equivalent(part, output, ec))
+      throw Error(output + ": the output is also a part to merge: it would be replaced; " +
+                      "choose another name",
+                  Error::Kind::kInput);
+  }
+}
 
 ExrImage mergeParts(const std::vector<std::string>& paths) {
   if (paths.empty()) throw Error("no parts to merge");

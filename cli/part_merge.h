@@ -17,4 +17,8 @@ namespace tray {
 /// the part and the problem: another job, an unfinished part, overlapping or missing samples.
 ExrImage mergeParts(const std::vector<std::string>& paths);
 
+/// Refuses (tray::Error, an input mistake) an output that is one of the parts, by name or as
+/// the same file: merging would replace a part with the merged frame. Checked before reading.
+void checkMergeOutput(const std::vector<std::string>& parts, const std::string& output);
+
 }  // namespace tray

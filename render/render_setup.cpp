@@ -1,8 +1,10 @@
 #include "render/render_setup.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
-#include <cstdio>
+#include <cstdint>
+#include <system_error>
 #include <vector>
 
 #include "core/error.h"
@@ -200,10 +202,20 @@ ImageSize resolveImageSize(const std::string& text, const CameraDesc& camera) {
     s.height = std::max(1, int(std::lround(s.width / aspect)));
     return s;
   }
-  int consumed = 0;
-  if (std::sscanf(text.c_str(), "%dx%d%n", &s.width, &s.height, &consumed) != 2 ||
-      consumed != int(text.size()) || s.width <= 0 || s.height <= 0 || s.width > 16384 ||
-      s.height > 16384)
+  // Digits only, each side parsed whole (std::from_chars refuses what does not fit: no
+  // wrap-around, as sscanf's %d gave 4294967360x48 -> 64x48).
+  const auto side = [&](const char* first, const char* last, int& out) {
+    if (first == last || *first < '0' || *first > '9') return false;
+    int64_t v = 0;
+    const auto [end, ec] = std::from_chars(first, last, v);
+    if (ec != std::errc() || end != last || v < 1 || v > 16384) return false;
+    out = int(v);
+    return true;
+  };
+  const size_t x = text.find('x');
+  const char* begin = text.data();
+  if (x == std::string::npos || !side(begin, begin + x, s.width) ||
+      !side(begin + x + 1, begin + text.size(), s.height))
     throw Error("--resolution '" + text + "': expected WxH with 1..16384 pixels per side");
   return s;
 }

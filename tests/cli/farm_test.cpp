@@ -223,6 +223,41 @@ TEST(Farm, MergeRefusesIncompleteOrForeignParts) {
   EXPECT_FALSE(fs::exists(dir / "m.exr"));
 }
 
+TEST(Farm, MergeNeverWritesOverAPart) {
+  const fs::path dir = testDir();
+  const std::string job = kSmallJob + " --resolution 40x8";
+  for (const char* range : {"0,4", "4,8"})
+    ASSERT_EQ(
+        runCli(TRAY_RENDER_BIN,
+               job + " --sample-range " + range + " " + out(dir, std::string(range) + ".exr"), dir)
+            .exitCode,
+        0);
+  const fs::path part = dir / "0,4.exr";
+  const auto bytes = [](const fs::path& p) {
+    std::ifstream f(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(f), {});
+  };
+  const std::string before = bytes(part);
+  fs::create_symlink(part, dir / "link.exr");
+  const std::string parts = "'" + part.string() + "' '" + (dir / "4,8.exr").string() + "' ";
+  // The part by its own name, by another spelling of it, and through a link.
+  for (const std::string& output :
+       {part.string(), (dir / "." / "0,4.exr").string(), (dir / "link.exr").string()}) {
+    CliResult r = runMerge(parts + "-o '" + output + "'", dir);
+    EXPECT_EQ(r.exitCode, 2) << output;
+    EXPECT_NE(r.err.find("the output is also a part"), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+  EXPECT_EQ(bytes(part), before);  // the part untouched
+  // No parts at all: one line, in tray-merge's own form.
+  CliResult none = runMerge(out(dir, "m.exr"), dir);
+  EXPECT_EQ(none.exitCode, 2);
+  EXPECT_EQ(none.err.rfind("tray-merge: error: ", 0), 0u) << none.err;
+  EXPECT_EQ(std::count(none.err.begin(), none.err.end(), '\n'), 1) << none.err;
+  // The merge itself still works.
+  EXPECT_EQ(runMerge(parts + out(dir, "m.exr"), dir).exitCode, 0);
+}
+
 TEST(Farm, PlainProgressIsOneParseableLinePerStep) {
   const fs::path dir = testDir();
   // 64x48: 12 tiles of 16x16; a line each 25% (and none by time), the last at 100%.
@@ -260,7 +295,8 @@ TEST(Farm, BadRegionsAndRangesAreUsageErrors) {
         "--region 1,2,3 " + exr, "--region a,b,c,d " + exr, "--sample-range 0,2 " + exr,
         "--spp 4 --sample-range 3,2 " + exr, "--integrator adaptive --sample-range 0,1 " + exr,
         "--spp 4 --sample-range 0,2 --aov cryptomatte " + exr,
-        "--checkpoint 5 " + out(dir, "x.png")}) {
+        "--checkpoint 5 " + out(dir, "x.png"), "--checkpoint nan " + exr,
+        "--checkpoint inf " + exr}) {
     CliResult r = runCli(TRAY_RENDER_BIN, job + bad, dir);
     EXPECT_EQ(r.exitCode, 2) << bad;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << bad << ": " << r.err;

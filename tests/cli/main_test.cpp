@@ -46,6 +46,34 @@ TEST(CliOptions, NegativeSeedCameraOrSceneIsAnErrorNotADefault) {
   EXPECT_EQ(ok.exitCode, 0) << ok.err;
 }
 
+// Issue 40: NaN passed every range check of the options declared in the CLI (each comparison
+// with it is false), --resolution's %d wrapped 4294967360 to 64, and an empty --env or
+// --animation was taken for the default. Each is now one line and exit 2, with nothing written.
+TEST(CliOptions, NanHugeAndEmptyValuesAreRefused) {
+  const fs::path dir = testDir();
+  const fs::path out = dir / "x.png";
+  for (const std::string bad :
+       {"--max-memory nan", "--max-memory -nan", "--texture-memory NaN", "--checkpoint nan",
+        "--progress-step nan", "--progress-seconds inf", "--max-memory 1e999",
+        "--resolution 4294967360x48", "--resolution 64x4294967344", "--resolution ''",
+        "--resolution 64x48x", "--resolution +64x48", "--resolution ' 64x48'", "--env ''",
+        "--animation ''", "--max-depth ''"}) {
+    CliResult r =
+        runCli(TRAY_RENDER_BIN, kScene + " --resolution 8x6 " + bad + " -o " + quoted(out), dir);
+    EXPECT_EQ(r.exitCode, 2) << bad << ": " << r.err;
+    EXPECT_EQ(lines(r.err), 1u) << bad << ": " << r.err;
+    const std::string option = bad.substr(0, bad.find(' '));
+    EXPECT_NE(r.err.find(option), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out)) << bad;
+  }
+  // The edges still pass.
+  CliResult ok = runCli(TRAY_RENDER_BIN,
+                        kScene + " --resolution 16x1 --max-memory 0 --progress-step 100 " +
+                            "--progress-seconds 0 -o " + quoted(dir / "ok.png"),
+                        dir);
+  EXPECT_EQ(ok.exitCode, 0) << ok.err;
+}
+
 // CLI11 2.1 parsed `--debug-nan=xyz` with std::stoll and the exception escaped: tray-render
 // died with "terminate called" (found by fuzz/options_fuzz). Every declared flag now refuses a
 // value it does not understand in one line, and still takes the spellings CLI11 documents.
