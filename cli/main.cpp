@@ -1,6 +1,7 @@
 // tray-render: the command line. Parses options into a render job (render/render_job.h), runs
 // it and maps what happened to an exit code: 0 ok, 1 render error, 2 bad input or usage,
-// 130 / 143 interrupted (SIGINT / SIGTERM; the image so far is written).
+// 130 / 143 interrupted (SIGINT / SIGTERM; the image so far is written: EXRs as asked,
+// PNG/JPEG under NAME.partial.EXT).
 #include <CLI/CLI.hpp>
 #include <atomic>
 #include <csignal>
@@ -77,7 +78,7 @@ int exitCodeOf(const CliOptions& o, const tray::RenderJob& job, const tray::Rend
     const int sig = tray::interruptSignal();
     std::fprintf(stderr, "tray-render: interrupted (%s): %zu of %zu pixels done, written to %s\n",
                  sig == SIGTERM ? "SIGTERM" : "SIGINT", r.stats.pixelsDone, r.pixels,
-                 job.outputs.paths.front().c_str());
+                 r.written.front().c_str());
     return 128 + (sig ? sig : SIGINT);
   }
   if (!o.quiet) printSummary(job, r);

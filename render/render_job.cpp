@@ -1,6 +1,7 @@
 #include "render/render_job.h"
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -18,6 +19,28 @@
 
 namespace tray {
 namespace {
+
+/// Where an interrupted render's outputs go: an EXR where asked (marked partial, resumable with
+/// --resume); a display-referred image (PNG, JPEG), which nothing marks partial, under
+/// NAME.partial.EXT, never over the file the complete render would have written.
+std::vector<std::string> interruptedOutputs(const std::vector<std::string>& paths,
+                                            const RenderJobEvents& events) {
+  std::vector<std::string> out;
+  for (const std::string& path : paths) {
+    std::filesystem::path p(path);
+    std::string ext = p.extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+    if (ext == ".exr") {
+      out.push_back(path);
+      continue;
+    }
+    p.replace_extension(".partial" + p.extension().string());
+    warn(events, path + ": not written, the render was interrupted; the partial image is " +
+                     p.string());
+    out.push_back(p.string());
+  }
+  return out;
+}
 
 using Clock = std::chrono::steady_clock;
 
@@ -173,8 +196,8 @@ RenderJobResult runRenderJob(const RenderJob& job, const RenderJobEvents& events
   if (events.finished) events.finished(complete);
 
   enterPhase(events, "writing images");
-  writer.write(film, state, previousSeconds + result.stats.seconds, job.outputs.paths, true,
-               events);
+  result.written = complete ? job.outputs.paths : interruptedOutputs(job.outputs.paths, events);
+  writer.write(film, state, previousSeconds + result.stats.seconds, result.written, true, events);
   if (!job.outputs.aaHeatmap.empty() && complete)
     writeImage(samplesHeatmap(film), job.outputs.aaHeatmap);
   result.outcome =

@@ -80,13 +80,17 @@ struct RenderJobEvents {
 struct RenderJobResult {
   enum class Outcome {
     kComplete,         ///< every pixel rendered and written
-    kInterrupted,      ///< stopped: the pixels done are written, with the state to resume
+    kInterrupted,      ///< stopped: the pixels done are written (EXRs with the state to
+                       ///< resume; PNG/JPEG under NAME.partial.EXT), see `written`
     kAlreadyFinished,  ///< --resume found the render finished: nothing done
   };
   Outcome outcome = Outcome::kComplete;
   RenderStats stats;
   int width = 0, height = 0;  ///< the whole image's
   size_t pixels = 0;          ///< the part's (region's)
+  /// The files written: the outputs asked for, or for an interrupted render the EXRs and the
+  /// display-referred images under NAME.partial.EXT.
+  std::vector<std::string> written;
 };
 
 /// Renders `job` and writes its outputs. `document`, when given (--frames), is the file parsed

@@ -395,10 +395,16 @@ bool waitForHandlers(pid_t child) {
 
 TEST(Farm, RealSignalsExit130And143WithThePartialImage) {
   for (int sig : {SIGINT, SIGTERM}) {
-    const fs::path image = testDir() / ("long-" + std::to_string(sig) + ".exr");
+    const fs::path dir = testDir();
+    const fs::path image = dir / ("long-" + std::to_string(sig) + ".exr");
+    // A good PNG from an earlier render: a display-referred output, which nothing could mark
+    // partial, is never replaced by an interrupted render (issue 40); it goes beside it.
+    const fs::path png = dir / "good.png", partialPng = dir / "good.partial.png";
+    std::ofstream(png, std::ios::binary) << "an earlier, complete image";
     // Far too long to finish (hours): it stops only because of the signal.
-    const pid_t child = spawnRender({kCornell, "--integrator", "path", "--resolution", "32x32",
-                                     "--spp", "1000000", "-q", "-o", image.string()});
+    const pid_t child =
+        spawnRender({kCornell, "--integrator", "path", "--resolution", "32x32", "--spp",
+                     "1000000", "-q", "-o", image.string(), "-o", png.string()});
     ASSERT_TRUE(waitForHandlers(child)) << "tray-render exited before installing its handlers";
     std::this_thread::sleep_for(std::chrono::milliseconds(200));  // let it start rendering
     kill(child, sig);
@@ -406,6 +412,9 @@ TEST(Farm, RealSignalsExit130And143WithThePartialImage) {
     const Exr partial = readExrFile(image);
     EXPECT_EQ(partial.spec.get_string_attribute("tray:status"), "partial");
     EXPECT_LT(partial.spec.get_float_attribute("tray:pixelsDone"), 32.0f * 32.0f);
+    std::ifstream kept(png, std::ios::binary);
+    EXPECT_EQ(std::string(std::istreambuf_iterator<char>(kept), {}), "an earlier, complete image");
+    EXPECT_TRUE(fs::exists(partialPng));
   }
 }
 
