@@ -175,7 +175,7 @@ class EmbreeAccelerator final : public Accelerator {
   bool occluded(const Ray& ray) const override {
     AlphaRayContext ctx(scene_, ray);
     RTCRay r;
-    toEmbree(ray, r);
+    toEmbreeShadow(ray, r);
     rtcOccluded1(top_, &ctx.base, &r);
     return r.tfar < 0;
   }

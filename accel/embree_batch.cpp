@@ -19,6 +19,20 @@ void toLane(const Ray& r, uint32_t i, RTCRay8& p, int l) {
   p.tfar[l] = r.tmax, p.mask[l] = 0xffffffffu, p.id[l] = i, p.flags[l] = 0;
 }
 
+/// The lanes of rays Embree would refuse (embreeAccepts) made empty intervals, as toEmbree and
+/// toEmbreeShadow do for one ray (`blocked`: a shadow query's, already occluded).
+void emptyRefusedLanes(const Ray* rays, int lanes, RTCRay8& p, bool blocked) {
+  for (int l = 0; l < lanes; ++l) {
+    if (embreeAccepts(rays[l])) [[likely]]
+      continue;
+    RTCRay one;
+    emptyRay(one, blocked);
+    p.org_x[l] = one.org_x, p.org_y[l] = one.org_y, p.org_z[l] = one.org_z;
+    p.dir_x[l] = one.dir_x, p.dir_y[l] = one.dir_y, p.dir_z[l] = one.dir_z;
+    p.tnear[l] = one.tnear, p.tfar[l] = one.tfar;
+  }
+}
+
 /// The valid mask of the packet starting at ray b: lanes past the batch's end are off.
 void laneMask(size_t b, size_t n, int valid[kLanes]) {
   for (int l = 0; l < kLanes; ++l) valid[l] = b + size_t(l) < n ? -1 : 0;
@@ -62,6 +76,7 @@ void intersectPackets(RTCScene top, RTCIntersectContext* ctx, std::span<const Ra
         p.hit.instID[0][l] = RTC_INVALID_GEOMETRY_ID;
       }
     }
+    emptyRefusedLanes(&rays[b], lanes, p.ray, false);
     rtcIntersect8(valid, top, ctx, &p);
     for (int l = 0; l < lanes; ++l) {
       const bool hit = p.hit.geomID[l] != RTC_INVALID_GEOMETRY_ID;
@@ -84,6 +99,7 @@ void occludedPackets(RTCScene top, RTCIntersectContext* ctx, std::span<const Ray
       packRays8(&rays[b], uint32_t(b), p);
     else
       for (int l = 0; l < lanes; ++l) toLane(rays[b + l], uint32_t(b + l), p, l);
+    emptyRefusedLanes(&rays[b], lanes, p, true);
     rtcOccluded8(valid, top, ctx, &p);
     for (int l = 0; l < lanes; ++l) blocked[b + l] = p.tfar[l] < 0;
   }
@@ -125,7 +141,7 @@ void embreeOccludedBatch(RTCScene top, const Scene& scene, EmbreeBatch mode,
   static thread_local std::vector<RTCRay> queue;
   queue.resize(rays.size());
   for (size_t i = 0; i < rays.size(); ++i) {
-    toEmbree(rays[i], queue[i]);
+    toEmbreeShadow(rays[i], queue[i]);
     queue[i].id = uint32_t(i);
   }
   rtcOccluded1M(top, &ctx.base, queue.data(), unsigned(queue.size()), sizeof(RTCRay));

@@ -3,6 +3,9 @@
 // batched queries.
 #include <embree3/rtcore.h>
 
+#include <cmath>
+#include <limits>
+
 #include "core/hit.h"
 #include "core/ray.h"
 #include "core/scene.h"
@@ -25,9 +28,38 @@ inline void toEmbree(const Ray& r, RTCRay& ray) {
   ray.id = 0;
   ray.flags = 0;
 }
+
+/// Embree asserts RayK::valid() and aborts the whole process on a ray it cannot trace: an
+/// origin or direction coordinate NaN or beyond FLT_LARGE (1.844e18), or a NaN t (issue 40).
+/// render/ray_range.h refuses the scene values that would make one; these checks keep any that
+/// is still made (a NaN from an extreme scene) from taking the process down.
+inline bool embreeAccepts(const Ray& r) {
+  constexpr float kLarge = 1.844e18f;  // Embree 3's FLT_LARGE
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  return std::fabs(r.o.x) <= kLarge && std::fabs(r.o.y) <= kLarge && std::fabs(r.o.z) <= kLarge &&
+         std::fabs(r.d.x) <= kLarge && std::fabs(r.d.y) <= kLarge && std::fabs(r.d.z) <= kLarge &&
+         std::fabs(r.tmin) <= kInf && std::fabs(r.tmax) <= kInf;
+}
+/// A ray Embree accepts in place of one it would not: an empty interval, which meets nothing;
+/// `blocked` (a shadow ray) gives it tfar = -inf, Embree's answer for an occluded ray, so that it
+/// adds nothing either.
+inline void emptyRay(RTCRay& ray, bool blocked) {
+  ray.org_x = ray.org_y = ray.org_z = 0.0f;
+  ray.dir_x = ray.dir_y = 0.0f, ray.dir_z = 1.0f;
+  ray.tnear = blocked ? 0.0f : 1.0f;
+  ray.tfar = blocked ? -std::numeric_limits<float>::infinity() : 0.0f;
+}
+/// toEmbree for a shadow query: a ray Embree would refuse comes back already occluded.
+inline void toEmbreeShadow(const Ray& r, RTCRay& ray) {
+  toEmbree(r, ray);
+  if (!embreeAccepts(r)) [[unlikely]]
+    emptyRay(ray, true);
+}
 inline RTCRayHit toEmbree(const Ray& r) {
   RTCRayHit rh;
   toEmbree(r, rh.ray);
+  if (!embreeAccepts(r)) [[unlikely]]
+    emptyRay(rh.ray, false);
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   return rh;

@@ -24,10 +24,11 @@ const std::vector<OptionSpec>& renderOptions() {
       flagOption("no-default-light",
                  "never add TRay's default headlight and 0.1 environment to an unlit scene"),
       // Depth of field: set values override the camera's TRAY_camera (applyLensOptions).
-      floatOption("lens-radius", 0.0f, 0.0f, 1e30f,
+      // At most 1e17: the bound of every coordinate a ray is made from (render/ray_range.h).
+      floatOption("lens-radius", 0.0f, 0.0f, 1e17f,
                   "thin-lens aperture radius in scene units (0: pinhole; unset: the camera's "
                   "TRAY_camera lensRadius)"),
-      floatOption("focus-distance", 0.0f, 0.0f, 1e30f,
+      floatOption("focus-distance", 0.0f, 0.0f, 1e17f,
                   "view depth of the plane in focus (unset: the camera's TRAY_camera "
                   "focusDistance)"),
       intOption("aperture-blades", 0, 0, 64,

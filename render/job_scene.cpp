@@ -6,6 +6,7 @@
 #include "accel/registry.h"
 #include "io/environment_map.h"
 #include "io/memory_estimate.h"
+#include "render/ray_range.h"
 
 namespace tray {
 namespace {
@@ -68,6 +69,7 @@ PreparedScene prepareJobScene(const RenderJob& job, const RenderJobEvents& event
   placedCamera = findCamera(*scene, job.camera);
   CameraDesc cameraDesc = chooseCamera(*scene, job.camera);
   applyLensOptions(cameraDesc, job.settings);
+  checkRayRange(job.scene.path, *scene, cameraDesc);  // before anything is built or traced
   const bool defaultLight = lightUnlitScene(job, *scene, cameraDesc, events);
   const ImageSize size = resolveImageSize(job.resolution, cameraDesc);
   auto camera = Camera::create(cameraDesc, size.width, size.height);
