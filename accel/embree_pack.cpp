@@ -54,7 +54,7 @@ void TransposeRays8(const float* base, float* const fields[8]) {
 }
 #endif
 
-void PackRays8(const Ray* rays, uint32_t firstId, RTCRay8& p) {
+bool PackRays8(const Ray* rays, uint32_t firstId, RTCRay8& p) {
   const hn::CappedTag<float, 8> df;
   const hn::RebindToUnsigned<decltype(df)> du;
   const float* base = &rays[0].o.x;
@@ -72,11 +72,22 @@ void PackRays8(const Ray* rays, uint32_t firstId, RTCRay8& p) {
     hn::StoreU(hn::GatherIndex(df, base + 9, row), df, p.time + l);
   }
 #endif
+  // embreeAccepts (accel/embree_rays.h) for the eight at once, from the packet's fields: every
+  // origin and direction coordinate within FLT_LARGE (false for NaN), t not NaN.
+  const auto large = hn::Set(df, 1.844e18f);
+  auto accepted = hn::Eq(hn::Zero(df), hn::Zero(df));
   for (size_t l = 0; l < 8; l += hn::Lanes(df)) {
     hn::StoreU(hn::Set(du, 0xffffffffu), du, p.mask + l);
     hn::StoreU(hn::Iota(du, firstId + uint32_t(l)), du, p.id + l);
     hn::StoreU(hn::Zero(du), du, p.flags + l);
+    for (int w = 0; w < 6; ++w)
+      accepted = hn::And(accepted, hn::Le(hn::Abs(hn::LoadU(df, fields[w] + l)), large));
+    for (int w = 6; w < 8; ++w) {
+      const auto t = hn::LoadU(df, fields[w] + l);
+      accepted = hn::And(accepted, hn::Eq(t, t));
+    }
   }
+  return hn::AllTrue(df, accepted);
 }
 
 }  // namespace HWY_NAMESPACE
@@ -87,8 +98,8 @@ HWY_AFTER_NAMESPACE();
 namespace tray {
 HWY_EXPORT(PackRays8);
 
-void packRays8(const Ray* rays, uint32_t firstId, RTCRay8& packet) {
-  HWY_DYNAMIC_DISPATCH(PackRays8)(rays, firstId, packet);
+bool packRays8(const Ray* rays, uint32_t firstId, RTCRay8& packet) {
+  return HWY_DYNAMIC_DISPATCH(PackRays8)(rays, firstId, packet);
 }
 
 }  // namespace tray

@@ -35,10 +35,13 @@ inline void toEmbree(const Ray& r, RTCRay& ray) {
 /// is still made (a NaN from an extreme scene) from taking the process down.
 inline bool embreeAccepts(const Ray& r) {
   constexpr float kLarge = 1.844e18f;  // Embree 3's FLT_LARGE
-  constexpr float kInf = std::numeric_limits<float>::infinity();
-  return std::fabs(r.o.x) <= kLarge && std::fabs(r.o.y) <= kLarge && std::fabs(r.o.z) <= kLarge &&
-         std::fabs(r.d.x) <= kLarge && std::fabs(r.d.y) <= kLarge && std::fabs(r.d.z) <= kLarge &&
-         std::fabs(r.tmin) <= kInf && std::fabs(r.tmax) <= kInf;
+  // Every comparison made, then one test (& rather than &&): no branch per coordinate
+  // (path_bench, Cornell box: the short-circuit form cost 1.3% of the wavefront's samples per
+  // second). A NaN fails its comparison; t may be infinite, not NaN.
+  return bool(int(std::fabs(r.o.x) <= kLarge) & int(std::fabs(r.o.y) <= kLarge) &
+              int(std::fabs(r.o.z) <= kLarge) & int(std::fabs(r.d.x) <= kLarge) &
+              int(std::fabs(r.d.y) <= kLarge) & int(std::fabs(r.d.z) <= kLarge) &
+              int(r.tmin == r.tmin) & int(r.tmax == r.tmax));
 }
 /// A ray Embree accepts in place of one it would not: an empty interval, which meets nothing;
 /// `blocked` (a shadow ray) gives it tfar = -inf, Embree's answer for an occluded ray, so that it
