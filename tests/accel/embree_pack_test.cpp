@@ -2,15 +2,14 @@
 // transpose in registers on AVX2 and AVX-512, by gathers on the 128-bit targets): every field of
 // every lane must be the ray's own bits, whatever the rays hold, on every SIMD target.
 #include "accel/embree_pack.h"
-#include "accel/embree_rays.h"
 
 #include <gtest/gtest.h>
 
-#include <limits>
-
 #include <cstring>
+#include <limits>
 #include <random>
 
+#include "accel/embree_rays.h"
 #include "tests/simd_targets.h"
 
 namespace tray {
