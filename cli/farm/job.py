@@ -18,14 +18,22 @@ class JobError(Exception):
     """Bad input for a job; the message is one line for the user."""
 
 
+# Frames one job may hold: each is a part set, a merge and their records (a job's plan is built
+# in memory, and a Slurm array is far smaller: MaxArraySize defaults to 1001).
+MAX_FRAMES = 100000
+
+
 def parse_frames(text):
-    """'A-B' or 'A' (0 <= A <= B) as [A, B]."""
+    """'A-B' or 'A' (0 <= A <= B, at most MAX_FRAMES frames) as [A, B]."""
     m = re.fullmatch(r"(\d+)(?:-(\d+))?", text or "")
     if not m:
         raise JobError("--frames %s: expected FIRST-LAST (e.g. 1-48) or one frame" % text)
     first, last = int(m.group(1)), int(m.group(2) or m.group(1))
     if first > last:
         raise JobError("--frames %s: the first frame is after the last" % text)
+    if last - first + 1 > MAX_FRAMES:
+        raise JobError("--frames %s: %d frames, more than %d in one job: submit the range in "
+                       "several jobs" % (text, last - first + 1, MAX_FRAMES))
     return [first, last]
 
 

@@ -188,6 +188,7 @@ class FarmOnSlurm(unittest.TestCase):
         cases = [
             (["--frames", "3-1"], None, "--frames"),
             (["--frames", "a-b"], None, "--frames"),
+            (["--frames", "0-100000000"], None, "more than 100000"),  # was unbounded memory
             (["--frames", "1-2", "--split", "tiles:4"], None, "--split"),
             (["--frames", "1-2", "--split", "regions:4", "--spp", "4"], None, "--resolution"),
             (["--frames", "1-2"] + JOB, env_no_slurm, "not found"),
