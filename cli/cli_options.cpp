@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <sstream>
 
 #include "accel/registry.h"
 #include "cli/option_cli.h"
@@ -34,6 +35,11 @@ CLI::Validator nonNegative(const std::string& expected) {
 /// A finite number in [lo, hi] (hi infinite: no upper bound). CLI11's Range and
 /// NonNegativeNumber let NaN through: every comparison with it is false.
 CLI::Validator finiteIn(double lo, double hi, const std::string& expected) {
+  std::ostringstream range;  // for --help and docs/options.md, as CLI::Range wrote it
+  if (std::isinf(hi))
+    range << "FINITE >= " << lo;
+  else
+    range << "FINITE in [" << lo << " - " << hi << "]";
   return CLI::Validator(
       [lo, hi, expected](std::string& value) -> std::string {
         double v = 0;
@@ -41,7 +47,7 @@ CLI::Validator finiteIn(double lo, double hi, const std::string& expected) {
           return "'" + value + "': expected " + expected;
         return {};
       },
-      "", "finite number");
+      range.str(), "finite number");
 }
 
 /// --resolution WxH: an explicitly empty value is a mistake (omit the option for the default).

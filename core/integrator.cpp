@@ -91,7 +91,7 @@ void Integrator::addSample(PixelSums& sums, IdCoverage* coverage, AovSums* aovSu
     paths = nullptr;
   }
   if (!isFinite(L)) {
-    ++stats.nanSamples;
+    stats.countNonFinite(L);
     L = Color(0.0f);
     paths = nullptr;  // a split of zeros adds nothing: its sums keep every bit
   }

@@ -1,5 +1,6 @@
 #pragma once
 #include <atomic>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -23,7 +24,14 @@ namespace tray {
 
 /// Counters gathered per tile and summed for the summary line.
 struct RayStats {
-  uint64_t cameraRays = 0, shadowRays = 0, secondaryRays = 0, nanSamples = 0;
+  uint64_t cameraRays = 0, shadowRays = 0, secondaryRays = 0;
+  /// Samples whose radiance was not finite, discarded (counted): NaN, and infinite (radiance
+  /// beyond float's range, e.g. an emitter near float max) among them. countNonFinite adds one.
+  uint64_t nanSamples = 0, infiniteSamples = 0;
+  void countNonFinite(const Color& L) {
+    ++nanSamples;
+    infiniteSamples += !std::isnan(L.x) && !std::isnan(L.y) && !std::isnan(L.z);
+  }
   /// Path vertices whose light and BSDF samples a SIMD stage made (the wavefront's matte and
   /// glossy stages, integrators/matte_batch.h, glossy_batch.h): benchmarks and tests read it.
   uint64_t simdVertices = 0;
@@ -36,6 +44,7 @@ struct RayStats {
     shadowRays += o.shadowRays;
     secondaryRays += o.secondaryRays;
     nanSamples += o.nanSamples;
+    infiniteSamples += o.infiniteSamples;
     simdVertices += o.simdVertices;
     shadedVertices += o.shadedVertices;
     return *this;

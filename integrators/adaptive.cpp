@@ -151,7 +151,7 @@ class Adaptive final : public Integrator {
     LatticeSample s;
     s.L = cameraLi(ray, sampler, stats, &s.primary);  // Li is the inner integrator's
     if (!isFinite(s.L)) {
-      ++stats.nanSamples;
+      stats.countNonFinite(s.L);
       s.L = Color(0.0f);
     }
     return s;

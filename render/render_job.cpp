@@ -193,6 +193,14 @@ RenderJobResult runRenderJob(const RenderJob& job, const RenderJobEvents& events
     addCheckpoints(options, job, writer, previousSeconds, started, events);
   result.stats = renderImage(*integrator, film, state, options);
   const bool complete = !result.stats.interrupted;
+  // Never a silent wrong image: samples dropped as not finite are said, even with -q.
+  if (const RayStats& rays = result.stats.rays; rays.nanSamples > 0)
+    warn(events, job.scene.path + ": " + std::to_string(rays.nanSamples) +
+                     " sample(s) not finite were discarded (" +
+                     std::to_string(rays.infiniteSamples) +
+                     " infinite: radiance beyond float's range, e.g. an emitter too bright; " +
+                     std::to_string(rays.nanSamples - rays.infiniteSamples) +
+                     " NaN); --debug-nan says where");
   if (events.finished) events.finished(complete);
 
   enterPhase(events, "writing images");

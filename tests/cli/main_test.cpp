@@ -74,6 +74,33 @@ TEST(CliOptions, NanHugeAndEmptyValuesAreRefused) {
   EXPECT_EQ(ok.exitCode, 0) << ok.err;
 }
 
+// Issue 40: an emitter near float's maximum made samples overflow, and they were dropped
+// without a word under -q (the summary line, which -q hides, lumped them with NaN). Now one
+// warning line says how many, and that they were infinite, whatever the verbosity.
+TEST(CliOptions, OverflowingSamplesAreSaidEvenWhenQuiet) {
+  const fs::path dir = testDir();
+  std::ifstream in(fs::path(TRAY_SHARED_DIR) / "reference" / "cornell-box.gltf");
+  std::string text((std::istreambuf_iterator<char>(in)), {});
+  const size_t at = text.find("18.387");  // the light's emissiveStrength
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 6, "3.4e38");
+  std::ofstream(dir / "hot.gltf") << text;
+  CliResult r = runCli(TRAY_RENDER_BIN,
+                       quoted(dir / "hot.gltf") + " --integrator path --spp 4 --resolution 32x32 "
+                                                  "-q -o " + quoted(dir / "hot.png"),
+                       dir);
+  EXPECT_EQ(r.exitCode, 0) << r.err;
+  EXPECT_NE(r.err.find("not finite were discarded"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("infinite: radiance beyond float's range"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find(" 0 infinite"), std::string::npos) << r.err;  // counted as infinite
+  // An ordinary scene says nothing of the kind.
+  CliResult calm = runCli(TRAY_RENDER_BIN, kScene + " --resolution 8x6 -q -o " +
+                                               quoted(dir / "calm.png"),
+                          dir);
+  EXPECT_EQ(calm.exitCode, 0);
+  EXPECT_EQ(calm.err.find("not finite"), std::string::npos) << calm.err;
+}
+
 // CLI11 2.1 parsed `--debug-nan=xyz` with std::stoll and the exception escaped: tray-render
 // died with "terminate called" (found by fuzz/options_fuzz). Every declared flag now refuses a
 // value it does not understand in one line, and still takes the spellings CLI11 documents.
