@@ -118,6 +118,11 @@ Deformer::Deformer(const GltfContext& ctx, const std::vector<NodePose>& poses,
     const auto& skin = model.skins[s];
     const std::string where = nameOf("skin", int(s), skin.name);
     if (skin.joints.empty()) ctx.fail(where + " has no joints");
+    // Not read (joints are placed by their own nodes), but a reference all the same (glTF 2.0
+    // §5.23: the id of a node): a skeleton node that does not exist is a broken file.
+    if (skin.skeleton != -1 && (skin.skeleton < 0 || size_t(skin.skeleton) >= model.nodes.size()))
+      ctx.fail(where + " names skeleton node " + std::to_string(skin.skeleton) +
+               ", which does not exist");
     std::vector<float> ibm;
     if (skin.inverseBindMatrices >= 0) {
       if (size_t(skin.inverseBindMatrices) >= model.accessors.size())

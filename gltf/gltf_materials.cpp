@@ -9,8 +9,9 @@ namespace tray {
 
 namespace {
 
+/// In [lo, hi] and finite in single precision, which TRay stores material factors in.
 bool finiteIn(double v, double lo, double hi) {
-  return std::isfinite(v) && v >= lo && v <= hi;
+  return std::isfinite(float(v)) && v >= lo && v <= hi;
 }
 
 template <typename Info>
@@ -57,8 +58,9 @@ void readAlpha(const GltfContext& ctx, const tinygltf::Material& g, const std::s
   } else {
     ctx.fail(where + " alphaMode '" + g.alphaMode + "' is not OPAQUE, MASK or BLEND");
   }
-  if (!(g.alphaCutoff >= 0) || !std::isfinite(g.alphaCutoff))
-    ctx.fail(where + " alphaCutoff is negative or not finite");
+  // Finite in single precision, which TRay stores it in: 1e40 is finite only as a double.
+  if (!(g.alphaCutoff >= 0) || !std::isfinite(float(g.alphaCutoff)))
+    ctx.fail(where + " alphaCutoff is negative or not finite in single precision");
   m.alphaCutoff = float(g.alphaCutoff);
   m.alpha = float(g.pbrMetallicRoughness.baseColorFactor[3]);
 }

@@ -312,6 +312,18 @@ TEST(GltfSkin, JointOutOfRangeIsAnError) {
             std::string::npos);
 }
 
+// Issue 40: a skin's `skeleton` naming a node that does not exist was accepted silently.
+TEST(GltfSkin, SkeletonNodeOutOfRangeIsAnError) {
+  std::string doc = skinDoc("[0,0,0,1]", 2);
+  const std::string joints = R"("joints":[1,2])";
+  doc.replace(doc.find(joints), joints.size(), joints + R"(,"skeleton":9)");
+  EXPECT_NE(errorOf([&] { skinnedTriangle().load(doc); })
+                .find("skin 0 names skeleton node 9, which does not exist"),
+            std::string::npos);
+  doc.replace(doc.find(R"("skeleton":9)"), 12, R"("skeleton":1)");  // a real node is fine
+  EXPECT_EQ(errorOf([&] { skinnedTriangle().load(doc); }), "(no error)");
+}
+
 // ---------------------------------------------------------------------------------------------
 // Khronos samples.
 

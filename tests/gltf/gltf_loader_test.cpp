@@ -672,6 +672,14 @@ TEST(GltfTiny, AlphaModesAndUnlit) {
   std::string e = errorOf([] { TinyDoc().load(R"("materials":[{"alphaMode":"CLIP"}])"); });
   EXPECT_NE(e.find("material 0 alphaMode 'CLIP' is not OPAQUE, MASK or BLEND"), std::string::npos)
       << e;
+  // Issue 40: 1e40 is finite as a double only; -1 was refused while 1e40 was taken.
+  for (const char* cutoff : {"1e40", "-1"}) {
+    e = errorOf([&] {
+      TinyDoc().load(std::string(R"("materials":[{"alphaMode":"MASK","alphaCutoff":)") + cutoff +
+                     "}]");
+    });
+    EXPECT_NE(e.find("alphaCutoff is negative or not finite"), std::string::npos) << e;
+  }
 }
 
 TEST(GltfFeatures, SampleAssetsKeepColoursAlphaAndUnlit) {

@@ -76,6 +76,18 @@ assert run(render_bin, "--integrator=path", "--spp", "1", scene, "--resolution",
            "-o", plain_exr).returncode == 0
 r = run(denoise, plain_exr, "-o", os.path.join(work, "x.exr"))
 assert r.returncode == 2 and r.stderr.count("\n") == 1 and "--aov albedo,normal" in r.stderr, r
+# Issue 40: the output over the input, and a write that fails (a read-only folder), are one
+# line and exit 2, with the input untouched and no temporary file left behind.
+before = open(noisy_exr, "rb").read()
+r = run(denoise, noisy_exr, "-o", noisy_exr)
+assert r.returncode == 2 and r.stderr.count("\n") == 1 and "is the input" in r.stderr, r
+assert open(noisy_exr, "rb").read() == before
+taken = os.path.join(work, "taken.exr")  # a folder of that name: the last rename fails
+os.mkdir(taken)
+r = run(denoise, noisy_exr, "-o", taken)
+assert r.returncode == 2 and r.stderr.count("\n") == 1 and "cannot write" in r.stderr, r
+assert os.path.isdir(taken)
+assert not [f for f in os.listdir(work) if f.endswith(".tmp.exr")], os.listdir(work)
 # No denoiser where it is looked for -> one line, exit 2 (when this python lacks pyoidn).
 if run("/usr/bin/python3", "-c", "import pyoidn").returncode != 0:
     env = dict(os.environ, TRAY_OIDN_PYTHON="/nonexistent/python3", XDG_DATA_HOME="/nonexistent")
