@@ -3,6 +3,7 @@
 // light objects (core/light.h, lights/) are built from these by LightSet.
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/math.h"
@@ -25,10 +26,34 @@ struct PunctualLightDesc {
 /// An equirectangular (latitude-longitude) radiance map in TRay's working space (linear
 /// Rec.709), loaded by io/environment_map.h or made by tests. Row 0 is the top (+Y, v = 0);
 /// the direction convention is Mitsuba 3's envmap (lights/image_environment_light.h).
+/// An allocator whose value-initialisation leaves its elements unset: a vector's resize()
+/// then reserves pages without touching them, so that memory becomes resident only as it is
+/// written (a map decoded row by row; a file that lies about its size fails after the rows it
+/// holds, not after a zero-fill of what it claims: issue 40).
+template <class T>
+struct UnsetOnResize : std::allocator<T> {
+  template <class U>
+  struct rebind {
+    using other = UnsetOnResize<U>;
+  };
+  UnsetOnResize() = default;
+  template <class U>
+  UnsetOnResize(const UnsetOnResize<U>&) noexcept {}
+  template <class U>
+  void construct(U* p) noexcept {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <class U, class... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+
 struct EnvironmentMap {
   std::string name;  ///< for messages: the file's path
   int width = 0, height = 0;
-  std::vector<float> rgb;  ///< width * height * 3, finite and >= 0
+  /// width * height * 3, finite and >= 0 (resize() leaves new values unset: write them all).
+  std::vector<float, UnsetOnResize<float>> rgb;
 };
 
 /// TRAY_environment: constant ambient term (Whitted) and background radiance (the

@@ -5,14 +5,14 @@
 namespace tray {
 
 void loadEnvironmentImage(const GltfContext& ctx, const ImageBytes& images, const UriPolicy& policy,
-                          Scene& scene) {
+                          Scene& scene, uint64_t maxMemoryBytes) {
   Environment& env = scene.environment;
   std::vector<std::string> warnings;
   if (!env.imagePath.empty()) {
     std::string problem;
     const std::string file = policy.resolve(env.imagePath, problem);
     if (file.empty()) ctx.fail("TRAY_environment image: " + problem);
-    env.map = loadEnvironmentMap(file, &warnings);
+    env.map = loadEnvironmentMap(file, &warnings, maxMemoryBytes);
   } else if (env.imageIndex >= 0) {
     const tinygltf::Image& im = ctx.model.images[size_t(env.imageIndex)];
     const unsigned char* data = nullptr;
@@ -27,7 +27,7 @@ void loadEnvironmentImage(const GltfContext& ctx, const ImageBytes& images, cons
     }
     const std::string where = ctx.path + ": " + nameOf("image", env.imageIndex, im.name);
     if (!data || size == 0) ctx.fail(nameOf("image", env.imageIndex, im.name) + ": no image data");
-    env.map = decodeEnvironmentMap(data, size, where, &warnings);
+    env.map = decodeEnvironmentMap(data, size, where, &warnings, maxMemoryBytes);
   }
   for (const std::string& w : warnings)
     if (ctx.report) ctx.report->warnings.push_back(w);

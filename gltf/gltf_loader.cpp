@@ -193,7 +193,7 @@ Scene convert(const tinygltf::Model& model, const std::string& path, const LoadO
   for (const auto& p : scene.primitives) defaultUsed = defaultUsed || p.material == defaultMaterial;
   if (defaultUsed) scene.materials.push_back(defaultGltfMaterial());
   bindTextures(ctx, images, scene, memory, options.maxMemoryBytes);
-  loadEnvironmentImage(ctx, images, policy, scene);
+  loadEnvironmentImage(ctx, images, policy, scene, options.maxMemoryBytes);
   scene.textureCacheMB = options.textureCacheMB;
   if (report) report->memory = memory;
   scene.finalize();

@@ -11,6 +11,7 @@
 #include "core/render_options.h"
 #include "core/scene.h"
 #include "io/color.h"
+#include "io/memory_estimate.h"
 
 namespace tray {
 
@@ -34,11 +35,18 @@ void checkSize(const std::string& name, const OIIO::ImageSpec& spec) {
                 std::to_string(kMaxEnvironmentPixels) + " pixels)");
 }
 
-/// Decodes the open image to working-space RGB and checks its values.
+/// Decodes the open image to working-space RGB and checks its values. The header's size is
+/// checked first (against the limits, and against maxBytes: --max-memory, 0 none); the map's
+/// floats are not zero-filled (EnvironmentMap::rgb), so a header that claims more rows than
+/// the file holds costs only the rows decoded before the read fails.
 std::shared_ptr<const EnvironmentMap> readPixels(OIIO::ImageInput& in, const std::string& name,
-                                                 std::vector<std::string>* warnings) {
+                                                 std::vector<std::string>* warnings,
+                                                 uint64_t maxBytes) {
   const OIIO::ImageSpec& spec = in.spec();
   checkSize(name, spec);
+  MemoryEstimate need;
+  need.environment = environmentMapBytes(spec.width, spec.height);
+  checkMemory(name, need, maxBytes);
   const int nc = spec.nchannels;
   const size_t pixels = size_t(spec.width) * size_t(spec.height);
   // RGB straight into the map (grey: one channel, spread below): no full-channel copy.
@@ -86,7 +94,8 @@ const char* formatOf(const unsigned char* b, size_t n) {
 }  // namespace
 
 std::shared_ptr<const EnvironmentMap> loadEnvironmentMap(const std::string& path,
-                                                         std::vector<std::string>* warnings) {
+                                                         std::vector<std::string>* warnings,
+                                                         uint64_t maxBytes) {
   if (!OIIO::Filesystem::exists(path)) throw Error(path + ": environment map not found");
   if (!OIIO::Filesystem::is_regular(path))
     throw Error(path + ": environment map is not a regular file");
@@ -94,12 +103,13 @@ std::shared_ptr<const EnvironmentMap> loadEnvironmentMap(const std::string& path
   config.attribute("oiio:try_all_readers", 0);
   auto in = OIIO::ImageInput::open(path, &config);
   if (!in) throw Error(path + ": cannot read the environment map: " + oneLine(OIIO::geterror()));
-  return readPixels(*in, path, warnings);
+  return readPixels(*in, path, warnings, maxBytes);
 }
 
 std::shared_ptr<const EnvironmentMap> decodeEnvironmentMap(const unsigned char* data,
                                                            size_t size, const std::string& name,
-                                                           std::vector<std::string>* warnings) {
+                                                           std::vector<std::string>* warnings,
+                                                           uint64_t maxBytes) {
   const char* format = formatOf(data, size);
   if (!*format) throw Error(name + ": environment map is not an OpenEXR or Radiance HDR image");
   OIIO::Filesystem::IOMemReader memory(data, size);
@@ -108,15 +118,19 @@ std::shared_ptr<const EnvironmentMap> decodeEnvironmentMap(const unsigned char* 
   if (!in || !in->set_ioproxy(&memory) || !in->open(name, spec, config))
     throw Error(name + ": cannot decode the environment map: " +
                 oneLine(in ? in->geterror() : OIIO::geterror()));
-  return readPixels(*in, name, warnings);
+  return readPixels(*in, name, warnings, maxBytes);
+}
+
+uint64_t environmentMapBytes(int width, int height) {
+  return uint64_t(width) * uint64_t(height) * 3 * sizeof(float);
 }
 
 void applyEnvironmentOptions(Scene& scene, const RenderSettings& settings,
-                             std::vector<std::string>* warnings) {
+                             std::vector<std::string>* warnings, uint64_t maxBytes) {
   Environment& env = scene.environment;
   const std::string path = settings.getString("env");
   if (!path.empty()) {
-    env.map = loadEnvironmentMap(path, warnings);
+    env.map = loadEnvironmentMap(path, warnings, maxBytes);
     env.rotation = 0, env.intensity = 1;  // the scene's values belonged to its own image
   }
   if (settings.isSet("env-rotate")) env.rotation = settings.getFloat("env-rotate");

@@ -13,7 +13,8 @@ struct MemoryEstimate {
   uint64_t buffers = 0;   ///< sum of the distinct buffers' byteLength
   uint64_t textures = 0;  ///< width x height x channels x bytes per code, per decoded image
   uint64_t geometry = 0;  ///< triangles x kGeometryBytesPerTriangle
-  uint64_t total() const { return buffers + textures + geometry; }
+  uint64_t environment = 0;  ///< an environment map's decoded floats (width x height x 12)
+  uint64_t total() const { return buffers + textures + geometry + environment; }
 };
 
 /// Mesh arrays plus the accelerator, per triangle, an estimate: an indexed mesh holds 12 bytes
@@ -22,7 +23,8 @@ struct MemoryEstimate {
 constexpr uint64_t kGeometryBytesPerTriangle = 160;
 
 /// Throws tray::Error (input) "SCENE: needs about N MB (buffers a MB, textures b MB, geometry
-/// c MB), more than --max-memory M MB" when e.total() > limitBytes; limitBytes 0: no limit.
+/// c MB[, environment d MB]), more than --max-memory M MB" when e.total() > limitBytes;
+/// limitBytes 0: no limit.
 void checkMemory(const std::string& scene, const MemoryEstimate& e, uint64_t limitBytes);
 
 }  // namespace tray

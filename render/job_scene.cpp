@@ -18,7 +18,11 @@ std::unique_ptr<Scene> loadScene(const RenderJob& job, const LoadOptions& loadOp
   auto scene = std::make_unique<Scene>(document ? document->scene(loadOptions, &report)
                                                 : loadGltf(job.scene.path, loadOptions, &report));
   scene->sourcePath = job.scene.path;
-  applyEnvironmentOptions(*scene, job.settings, &report.warnings);  // --env: read and checked
+  // --env: read and checked (its size against --max-memory before decoding).
+  applyEnvironmentOptions(*scene, job.settings, &report.warnings, loadOptions.maxMemoryBytes);
+  // The map (--env's or TRAY_environment's) counts in the one budget with the rest.
+  if (const auto& map = scene->environment.map)
+    report.memory.environment = environmentMapBytes(map->width, map->height);
   for (const auto& w : report.warnings) warn(events, w);
   return scene;
 }

@@ -6,6 +6,8 @@
 #include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 
+#include <sys/resource.h>
+
 #include <cmath>
 
 #include "core/error.h"
@@ -106,6 +108,38 @@ TEST(EnvironmentMap, BadFilesGiveOneLineNamingTheFile) {
             std::string::npos);
   for (const std::string& e : {loadError(missing), loadError(wide)})
     EXPECT_EQ(e.find('\n'), std::string::npos);
+}
+
+/// The process's peak resident memory so far, in MB.
+double peakMB() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return double(u.ru_maxrss) / 1024.0;  // kilobytes on Linux
+}
+
+// Issue 40: a 93-byte Radiance file whose header claims 16384 x 16384 pixels made TRay zero-fill
+// 3 GB for the map before the first row failed to read. The map's floats are now not filled
+// (EnvironmentMap::rgb), so only what is decoded becomes resident; and --max-memory refuses a
+// map from its header alone.
+TEST(EnvironmentMap, AHeaderThatLiesAboutItsSizeCostsNoMemory) {
+  const fs::path dir = testDir();
+  const std::string lie = (dir / "lie.hdr").string();
+  std::ofstream(lie, std::ios::binary) << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n"
+                                          "-Y 16384 +X 16384\n"
+                                       << std::string(40, '\x7f');
+  const double before = peakMB();
+  const std::string e = loadError(lie);
+  EXPECT_NE(e.find(lie + ": cannot read pixels"), std::string::npos) << e;
+  EXPECT_LT(peakMB() - before, 200.0) << "MB made resident for a map that was never there";
+  // --max-memory 100: refused from the header, naming the map's share.
+  try {
+    loadEnvironmentMap(lie, nullptr, uint64_t(100) << 20);
+    ADD_FAILURE() << "accepted";
+  } catch (const Error& error) {
+    const std::string said = error.what();
+    EXPECT_NE(said.find("environment 3072 MB), more than --max-memory 100 MB"), std::string::npos)
+        << said;
+  }
 }
 
 TEST(EnvironmentMap, NotTwoToOneWarnsAndIsUsed) {
