@@ -113,6 +113,15 @@ bool loadCheckpoint(const std::string& path, const std::string& job, const Pixel
   } catch (const Error& e) {
     throw Error(path + ": " + e.what() + ": not a checkpoint");
   }
+  // The done channel against the header written with it (issue 40: a channel edited to mark
+  // pixels done that were never rendered resumed, and the image was labelled complete). Both
+  // counts as the writer stored them: float(done).
+  const float header = metadataFloat(o, "tray:pixelsDone", -1);
+  if (float(state.pixelsDone()) != header)
+    throw Error(path + ": the checkpoint's tray.done channel marks " +
+                std::to_string(state.pixelsDone()) + " pixels done, its header " +
+                (header < 0 ? std::string("none") : std::to_string(int64_t(header))) +
+                ": edited or damaged; remove it to render from the start");
   previousSeconds = metadataFloat(o, "tray:renderSeconds", 0);
   // The film without the state layer: it is written again only if the render stays partial.
   film = Film(image.film.width(), image.film.height());

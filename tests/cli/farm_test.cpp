@@ -1,6 +1,7 @@
 // Farm rendering end to end through the real binaries: region and sample-range parts merged by
 // tray-merge against one full render, usage errors, interruption by a real SIGINT / SIGTERM,
 // checkpoints and --resume (docs/farm.md).
+#include <OpenImageIO/imagebuf.h>
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -146,15 +147,20 @@ TEST(Farm, FourSampleRangesMergeWithinFloatRounding) {
               values, worst);
 }
 
+/// The two sample-range parts 0,4.exr and 4,8.exr of `job` in `dir`; false if one failed.
+bool renderTwoParts(const std::string& job, const fs::path& dir) {
+  for (const char* range : {"0,4", "4,8"})
+    if (runCli(TRAY_RENDER_BIN,
+               job + " --sample-range " + range + " " + out(dir, std::string(range) + ".exr"), dir)
+            .exitCode != 0)
+      return false;
+  return true;
+}
+
 TEST(Farm, MergeRefusesIncompleteOrForeignParts) {
   const fs::path dir = testDir();
   const std::string job = kSmallJob + " --resolution 40x8";  // 3 tiles
-  for (const char* range : {"0,4", "4,8"})
-    ASSERT_EQ(
-        runCli(TRAY_RENDER_BIN,
-               job + " --sample-range " + range + " " + out(dir, std::string(range) + ".exr"), dir)
-            .exitCode,
-        0);
+  ASSERT_TRUE(renderTwoParts(job, dir));
   ASSERT_EQ(
       runCli(TRAY_RENDER_BIN, job + " --seed 8 --sample-range 4,8 " + out(dir, "seed8.exr"), dir)
           .exitCode,
@@ -225,13 +231,7 @@ TEST(Farm, MergeRefusesIncompleteOrForeignParts) {
 
 TEST(Farm, MergeNeverWritesOverAPart) {
   const fs::path dir = testDir();
-  const std::string job = kSmallJob + " --resolution 40x8";
-  for (const char* range : {"0,4", "4,8"})
-    ASSERT_EQ(
-        runCli(TRAY_RENDER_BIN,
-               job + " --sample-range " + range + " " + out(dir, std::string(range) + ".exr"), dir)
-            .exitCode,
-        0);
+  ASSERT_TRUE(renderTwoParts(kSmallJob + " --resolution 40x8", dir));
   const fs::path part = dir / "0,4.exr";
   const auto bytes = [](const fs::path& p) {
     std::ifstream f(p, std::ios::binary);
@@ -347,6 +347,28 @@ void interruptAndResume(const std::string& job) {
   // A checkpoint of another render is refused.
   r = runCli(TRAY_RENDER_BIN, job + " --seed 99 --resume " + out(dir, "part.exr"), dir);
   EXPECT_EQ(r.exitCode, 2);
+}
+
+// Issue 40: a checkpoint whose tray.done channel was edited (pixels marked done that were
+// never rendered) resumed, and the image was labelled complete. The channel is now checked
+// against the header written with it.
+TEST(Farm, ResumeRefusesACheckpointWhoseDoneChannelWasEdited) {
+  const fs::path dir = testDir();
+  CliResult r = interruptCli(kLongJob + " " + out(dir, "part.exr"));
+  ASSERT_EQ(r.exitCode, 130) << r.err;
+  const std::string path = (dir / "part.exr").string();
+  OIIO::ImageBuf edited(path);
+  ASSERT_TRUE(edited.read(0, 0, true));
+  const int done = edited.spec().channelindex("tray.done");
+  ASSERT_GE(done, 0);
+  for (OIIO::ImageBuf::Iterator<float> it(edited); !it.done(); ++it) it[done] = 1.0f;
+  ASSERT_TRUE(edited.write(path + ".tmp.exr"));
+  fs::rename(path + ".tmp.exr", path);
+  r = runCli(TRAY_RENDER_BIN, kLongJob + " --resume " + out(dir, "part.exr"), dir);
+  EXPECT_EQ(r.exitCode, 2) << r.err;
+  EXPECT_NE(r.err.find("tray.done channel marks"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_EQ(readExrFile(dir / "part.exr").spec.get_string_attribute("tray:status"), "partial");
 }
 
 TEST(Farm, InterruptedPathRenderResumesBitForBit) {

@@ -16,6 +16,7 @@
 #include "materials/bsdf.h"
 #include "tests/integrators/render_job.h"
 #include "tests/scene_builder.h"
+#include "tests/simd_targets.h"
 
 namespace tray::test {
 
@@ -101,6 +102,15 @@ inline int compareRandomScenes(uint64_t seed,
     ++compared;
   }
   return compared;
+}
+
+/// compareRandomScenes on every SIMD target, the stages shading at least a third as many
+/// vertices as there were secondary rays (most vertices that hit something).
+inline void randomScenesOnEveryTarget(uint64_t seed,
+                                      const std::function<Scene(std::mt19937_64&, int)>& make) {
+  onEverySimdTarget(5, [&] {
+    return compareRandomScenes(seed, make, [](int, uint64_t secondary) { return secondary / 3; });
+  });
 }
 
 }  // namespace tray::test
