@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "integrators/lattice_cache.h"
 #include "integrators/registry.h"
 
 namespace tray {
@@ -38,7 +39,7 @@ class Adaptive final : public Integrator {
         seed_(uint64_t(ctx.settings.getInt64("seed"))) {
     depth_ = std::clamp(ctx.settings.getInt("aa-depth"), 0, 12);
     scale_ = 1u << depth_;
-    latticeWidth_ = uint64_t(ctx.width) * scale_ + 1;
+    cache_ = std::make_unique<LatticeCache<LatticeSample>>(ctx.width, ctx.height, scale_);
     tilesX_ = (ctx.width + kTile - 1) / kTile;
     tilesY_ = (ctx.height + kTile - 1) / kTile;
   }
@@ -66,14 +67,14 @@ class Adaptive final : public Integrator {
         Color(float(acc.sum[0] / area), float(acc.sum[1] / area), float(acc.sum[2] / area));
     out.alpha = float(acc.alpha / area);
     out.primary = sample(uint32_t(x) * scale_, uint32_t(y) * scale_, stats).primary;
+    cache_->pixelDone(y);
     return out;
   }
 
-  size_t traced() const { return cache_.size(); }
+  size_t traced() const { return size_t(cache_->traced()); }
+  size_t peakKept() const { return size_t(cache_->peakKept()); }
 
  private:
-  using Cache = tbb::concurrent_hash_map<uint64_t, LatticeSample>;
-
   struct Accum {
     double sum[3] = {0, 0, 0}, alpha = 0;
     std::vector<uint64_t> keys;
@@ -115,19 +116,14 @@ class Adaptive final : public Integrator {
     }
   }
 
-  uint64_t key(uint32_t i, uint32_t j) const { return uint64_t(j) * latticeWidth_ + i; }
+  /// A leaf's corner as Accum counts it (distinct keys: the pixel's sample count).
+  uint64_t key(uint32_t i, uint32_t j) const {
+    return uint64_t(j) * (uint64_t(ctx_.width) * scale_ + 1) + i;
+  }
 
-  /// Lattice point (i, j), traced on first use. The write accessor locks the entry while it is
-  /// traced, so a second thread asking for it waits instead of tracing it again.
+  /// Lattice point (i, j), traced on first use (integrators/lattice_cache.h).
   LatticeSample sample(uint32_t i, uint32_t j, RayStats& stats) const {
-    const uint64_t k = key(i, j);
-    {
-      Cache::const_accessor found;
-      if (cache_.find(found, k)) return found->second;
-    }
-    Cache::accessor acc;
-    if (cache_.insert(acc, k)) acc->second = trace(i, j, stats);
-    return acc->second;
+    return cache_->get(i, j, [&] { return trace(i, j, stats); });
   }
 
   /// The ray through lattice point (i, j), seeded by its coordinate alone (determinism).
@@ -200,9 +196,8 @@ class Adaptive final : public Integrator {
   uint64_t seed_;
   int depth_;
   uint32_t scale_;
-  uint64_t latticeWidth_;
   int tilesX_, tilesY_;
-  mutable Cache cache_;
+  std::unique_ptr<LatticeCache<LatticeSample>> cache_;
   mutable TileCache tiles_;
 };
 
@@ -250,6 +245,11 @@ std::unique_ptr<Integrator> makeAdaptive(const RenderContext& ctx) {
 size_t adaptiveTracedPoints(const Integrator& integrator) {
   auto* a = dynamic_cast<const Adaptive*>(&integrator);
   return a ? a->traced() : 0;
+}
+
+size_t adaptivePeakKeptPoints(const Integrator& integrator) {
+  auto* a = dynamic_cast<const Adaptive*>(&integrator);
+  return a ? a->peakKept() : 0;
 }
 
 Film samplesHeatmap(const Film& film) {

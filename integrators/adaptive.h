@@ -27,8 +27,12 @@ std::unique_ptr<Integrator> makeAdaptiveAround(const RenderContext& ctx,
 /// far above 1 still subdivide), and sees chromatic edges of equal luminance.
 float adaptiveContrast(const Color* colors, int count);
 
-/// Distinct lattice points traced so far by an adaptive integrator (0 for others).
+/// Lattice points traced so far by an adaptive integrator (0 for others): each once, in a
+/// render of the whole image.
 size_t adaptiveTracedPoints(const Integrator& integrator);
+/// The most lattice points it kept at once (integrators/lattice_cache.h: bands of rows no pixel
+/// will read again are dropped).
+size_t adaptivePeakKeptPoints(const Integrator& integrator);
 
 /// The --aa-heatmap image: the film's "samples" layer through a colour ramp (dark blue = 1 ray,
 /// through green and yellow, to white = the image's maximum), on a log scale. Throws
