@@ -11,7 +11,9 @@
 
 namespace {
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
+/// The largest count of MB or seconds an option takes: 1e9 MB is a petabyte, 1e9 s 30 years;
+/// beyond, MB would overflow when made bytes.
+constexpr double kLargest = 1e9;
 
 std::string joined(const std::vector<std::string>& names) {
   std::string s;
@@ -95,8 +97,7 @@ void addCliOptions(CLI::App& app, CliOptions& o) {
       ->check(CLI::Range(0, 4096))
       ->capture_default_str();
   app.add_option("--resolution", o.resolution,
-                 "image size WxH (default 640 wide, height from the camera)")
-      ->check(nonEmpty("WxH, e.g. 1280x720 (omit --resolution for the default)"));
+                 "image size WxH (default 640 wide, height from the camera)");
   app.add_option("--camera", o.camera,
                  "the glTF camera to render: N for the file's cameras[N], or a node or camera "
                  "name (default: the placed camera of lowest index)")
@@ -128,18 +129,18 @@ void addCliOptions(CLI::App& app, CliOptions& o) {
                  "render samples a..b-1 of each pixel only: a part for tray-merge");
   app.add_option("--checkpoint", o.checkpointSeconds,
                  "every SECONDS, write the progress so far to the first .exr output")
-      ->check(finiteIn(0, kInf, "a finite number of seconds >= 0"));
+      ->check(finiteIn(0, kLargest, "a number of seconds in [0, 1e9]"));
   app.add_flag("--resume", o.resume, "continue the render saved in the first .exr output");
   app.add_option("--max-memory", o.maxMemoryMB,
                  "refuse a scene whose buffers, textures and geometry need more than MB "
                  "(default: 80% of physical memory; 0: no limit)")
-      ->check(finiteIn(0, kInf, "a finite number of MB >= 0 (0: no limit)"));
+      ->check(finiteIn(0, kLargest, "a number of MB in [0, 1e9] (0: no limit)"));
   app.add_option("--texture-memory", o.textureMemoryMB,
                  "texture tile budget in MB: TRay filters when its MIP tiles fit, else OIIO's "
                  "cache pages them within it (default: all the scene's texture levels as "
                  "float tiles, at least 128 and at most a quarter of physical memory; never "
                  "changes pixels)")
-      ->check(finiteIn(0, kInf, "a finite number of MB >= 0"));
+      ->check(finiteIn(0, kLargest, "a number of MB in [0, 1e9]"));
   app.add_flag("-q,--quiet", o.quiet, "no progress bar or summary (--progress none)");
   app.add_option("--progress", o.progress,
                  "bar (on a terminal), plain (one line 'progress P% elapsed S s eta S s' per "
@@ -152,11 +153,16 @@ void addCliOptions(CLI::App& app, CliOptions& o) {
       ->capture_default_str();
   app.add_option("--progress-seconds", o.progressSettings.intervalSeconds,
                  "--progress plain: a line at least every SECONDS (0: only by --progress-step)")
-      ->check(finiteIn(0, kInf, "a finite number of seconds >= 0"))
+      ->check(finiteIn(0, kLargest, "a number of seconds in [0, 1e9]"))
       ->capture_default_str();
   app.add_option("--frames", o.frames,
                  "render frames FIRST-LAST of the animation at --fps, each at time frame / fps, "
                  "to outputs named by a pattern: -o out.####.exr (or out.%04d.exr)");
+  // An option given an empty value (`--aov ''`, `--camera ''`) is a mistake, not its default:
+  // every option that takes a value refuses one (issue 40; the declared ones check it too).
+  for (CLI::Option* option : app.get_options())
+    if (option->get_type_size() != 0 && !option->get_positional())
+      option->check(nonEmpty("a value (omit " + option->get_name() + " for its default)"));
   groupOptions(app);
   tray::addHelpMarkdownFlag(app, "Running");
 }

@@ -16,6 +16,7 @@ namespace {
 /// entry: "path, path-wavefront: ...".
 struct CliOption {
   OptionSpec spec;
+  std::vector<OptionSpec> declarations;  ///< every integrator's (or the render-wide) spec
   std::vector<std::pair<std::string, std::string>> parts;  ///< (owners, description)
   std::string help() const {
     std::string h;
@@ -31,6 +32,7 @@ std::vector<CliOption> cliOptions() {
     const std::string text = describeOption(spec);
     for (CliOption& o : out)
       if (o.spec.name == spec.name) {
+        o.declarations.push_back(spec);
         for (auto& [owners, described] : o.parts)
           if (described == text && !owners.empty()) {
             owners += ", " + owner;
@@ -39,7 +41,7 @@ std::vector<CliOption> cliOptions() {
         o.parts.emplace_back(owner, text);
         return;
       }
-    out.push_back({spec, {{owner, text}}});
+    out.push_back({spec, {spec}, {{owner, text}}});
   };
   const DeclaredOptions declared = declaredOptions();
   for (const OptionSpec& spec : declared.renderWide) add(spec, "");
@@ -122,10 +124,22 @@ void addRenderOptions(CLI::App& app, RenderSettings& settings) {
           ->group(group);
       continue;
     }
+    // Checked as it is read, against its declarations (valid for one of them), whichever
+    // integrator runs: an option of another integrator is not ignored unchecked (issue 40:
+    // `--inner nan` with whitted was taken).
     app.add_option_function<std::string>(
            flag,
-           [&settings, spec](const std::string& text) {
-             settings.setValue(spec.name, parseOptionValue(spec, text));
+           [&settings, spec, declarations = o.declarations](const std::string& text) {
+             const OptionValue value = parseOptionValue(spec, text);
+             for (size_t d = 0; d < declarations.size(); ++d) {
+               try {
+                 validateOptionValue(declarations[d], value);
+                 break;
+               } catch (const Error&) {
+                 if (d + 1 == declarations.size()) throw;
+               }
+             }
+             settings.setValue(spec.name, value);
            },
            o.help())
         ->type_name(typeName(spec))
