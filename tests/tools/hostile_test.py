@@ -98,10 +98,11 @@ def run_case(name, args, folder, must_refuse):
     out = os.path.join(folder, "out.png")
     with open(out, "wb") as f:
         f.write(b"an earlier image")
-    limit = MEMORY_BOUND_MB << 20
-
     def bound():
-        resource.setrlimit(resource.RLIMIT_AS, (4 * limit, 4 * limit))  # a runaway stops here
+        # A runaway stops here (address space, not resident memory: the libraries' and
+        # threads' reservations are far larger than what is resident). The bound itself is
+        # checked on the children's peak resident memory below.
+        resource.setrlimit(resource.RLIMIT_AS, (8 << 30, 8 << 30))
 
     r = subprocess.run([RENDER] + args + ["--resolution", "8x6", "-q", "-o", out],
                        capture_output=True, text=True, preexec_fn=bound, timeout=120, cwd=folder)
