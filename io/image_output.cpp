@@ -181,6 +181,15 @@ bool checkPath(const std::string& path) {
 }  // namespace
 
 void checkOutputs(const std::vector<std::string>& paths, const ImageOutputOptions& options) {
+  // A colorspace named for EXR output is checked even when no output is an EXR: a mistyped
+  // name is a mistake whether or not this run happens to use it (issue 40).
+  if (!options.colorspace.empty()) {
+    try {
+      ColorPipeline::instance().check(options.colorspace);
+    } catch (const Error& e) {
+      throw Error(std::string("--output-colorspace: ") + e.what(), e.kind());
+    }
+  }
   for (const auto& path : paths) {
     const bool exr = checkPath(path);
     try {
