@@ -52,15 +52,6 @@ CLI::Validator finiteIn(double lo, double hi, const std::string& expected) {
       range.str(), "finite number");
 }
 
-/// --resolution WxH: an explicitly empty value is a mistake (omit the option for the default).
-CLI::Validator nonEmpty(const std::string& expected) {
-  return CLI::Validator(
-      [expected](std::string& value) -> std::string {
-        return value.empty() ? "an empty value: expected " + expected : std::string();
-      },
-      "", "non-empty");
-}
-
 /// The --help groups of the options declared here (those made from declarations are grouped
 /// by cli/option_cli.cpp). A name missing from `app` is a mistake in this table.
 void groupOptions(CLI::App& app) {
@@ -90,8 +81,11 @@ void addCliOptions(CLI::App& app, CliOptions& o) {
                  "output image(s): .exr (scene-linear) or .png/.jpg (display-referred); repeatable")
       ->capture_default_str();
   // --integrator, --spp, --seed, --sampler, --pixel-sampler, --filter and every registered
-  // integrator's own options (--max-depth, --aa-depth, ...), from their declarations.
+  // integrator's own options (--max-depth, --aa-depth, ...), from their declarations (which
+  // refuse an empty value themselves: the loop below skips them).
+  const size_t declaredFrom = app.get_options().size();
   tray::addRenderOptions(app, o.settings);
+  const size_t declaredTo = app.get_options().size();
   app.add_option("--aa-heatmap", o.aaHeatmap, "write an image of camera rays per pixel (PNG/EXR)");
   app.add_option("--threads", o.threads, "worker threads (0: all cores)")
       ->check(CLI::Range(0, 4096))
@@ -158,11 +152,13 @@ void addCliOptions(CLI::App& app, CliOptions& o) {
   app.add_option("--frames", o.frames,
                  "render frames FIRST-LAST of the animation at --fps, each at time frame / fps, "
                  "to outputs named by a pattern: -o out.####.exr (or out.%04d.exr)");
-  // An option given an empty value (`--aov ''`, `--camera ''`) is a mistake, not its default:
-  // every option that takes a value refuses one (issue 40; the declared ones check it too).
-  for (CLI::Option* option : app.get_options())
-    if (option->get_type_size() != 0 && !option->get_positional())
-      option->check(nonEmpty("a value (omit " + option->get_name() + " for its default)"));
+  // An option given an empty value (`--aov ''`, `--camera ''`) is a mistake, not its default
+  // (issue 40): the command line's own options refuse one as the declared ones do.
+  const std::vector<CLI::Option*> options = app.get_options();
+  for (size_t i = 0; i < options.size(); ++i)
+    if ((i < declaredFrom || i >= declaredTo) && options[i]->get_type_size() != 0 &&
+        !options[i]->get_positional())
+      options[i]->check(tray::nonEmptyValue());
   groupOptions(app);
   tray::addHelpMarkdownFlag(app, "Running");
 }

@@ -80,17 +80,15 @@ CLI::Validator flagValueCheck() {
       "", "flag value");
 }
 
-/// An option given with an empty value (`--env ''`) is a mistake, not the default: omit the
-/// option for that.
-CLI::Validator givenValue() {
+}  // namespace
+
+CLI::Validator nonEmptyValue() {
   return CLI::Validator(
       [](std::string& text) -> std::string {
         return text.empty() ? "an empty value (omit the option for its default)" : std::string();
       },
       "", "non-empty");
 }
-
-}  // namespace
 
 DeclaredOptions declaredOptions() {
   // Integrator names are known here, not in core or in a wrapper's own file: the help lists
@@ -143,7 +141,7 @@ void addRenderOptions(CLI::App& app, RenderSettings& settings) {
            },
            o.help())
         ->type_name(typeName(spec))
-        ->check(givenValue())
+        ->check(nonEmptyValue())
         ->group(group);
   }
 }

@@ -32,4 +32,9 @@ DeclaredOptions declaredOptions();
 /// outlive the app; ranges and choices are checked by validateOptions after parsing.
 void addRenderOptions(CLI::App& app, RenderSettings& settings);
 
+/// An option given an empty value (`--env ''`) is a mistake, not its default (omit the option
+/// for that): every option that takes a value carries this check, the declared ones from
+/// addRenderOptions, the command line's own from cli/cli_options.cpp.
+CLI::Validator nonEmptyValue();
+
 }  // namespace tray

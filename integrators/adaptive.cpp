@@ -117,9 +117,7 @@ class Adaptive final : public Integrator {
   }
 
   /// A leaf's corner as Accum counts it (distinct keys: the pixel's sample count).
-  uint64_t key(uint32_t i, uint32_t j) const {
-    return uint64_t(j) * (uint64_t(ctx_.width) * scale_ + 1) + i;
-  }
+  uint64_t key(uint32_t i, uint32_t j) const { return cache_->key(i, j); }
 
   /// Lattice point (i, j), traced on first use (integrators/lattice_cache.h).
   LatticeSample sample(uint32_t i, uint32_t j, RayStats& stats) const {

@@ -41,7 +41,7 @@ class LatticeCache {
   Sample get(uint32_t i, uint32_t j, Trace trace) {
     Band& band = bands_[size_t(bandOf(j))];
     std::shared_lock lock(band.mutex);
-    const uint64_t k = uint64_t(j) * latticeWidth_ + i;
+    const uint64_t k = key(i, j);
     {
       typename Map::const_accessor found;
       if (band.points.find(found, k)) return found->second;
@@ -57,6 +57,9 @@ class LatticeCache {
     }
     return acc->second;
   }
+
+  /// Point (i, j)'s number: distinct for every point of the lattice.
+  uint64_t key(uint32_t i, uint32_t j) const { return uint64_t(j) * latticeWidth_ + i; }
 
   /// Pixel row y's pixel is finished (once per pixel): bands no pixel will read again go.
   void pixelDone(int y) {

@@ -41,11 +41,8 @@ class MatteBatch {
   }
   /// Computes the outputs of lanes.count vertices (their inputs padded: padInputs).
   void compute(ShadingLanes& lanes) const;
-  /// The emitter table (kColumnCount floats per row; the glossy stage gathers from it too).
-  const float* table() const { return table_.data(); }
-  /// The punctual lights' table (kPunctualColumnCount floats per row), as the emitter table.
-  const float* punctualTable() const { return punctual_.data(); }
-  const Color& environmentLe() const { return environmentLe_; }
+  /// The emitter and punctual tables and the environment's radiance, as the stages' light
+  /// samples read them (the glossy stage gathers from them too).
   EmitterTables tables() const { return {table_.data(), punctual_.data(), environmentLe_}; }
 
   /// Floats per row: vertex 0, the two edges, the unit front normal, the area, the radiance

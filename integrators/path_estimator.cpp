@@ -372,37 +372,41 @@ bool PathEstimator::deferDelta(PathState& st, Sampler& sampler, const Vertex& v,
   return true;
 }
 
+bool PathEstimator::takeLaneSample(PathState& st, const ShadingLanes& m, size_t q, bool transmits,
+                                   bool belowMatters) const {
+  if (!(m.pdf[q] > 0)) return false;
+  st.beta = m.nextBeta[q];
+  if (!throughputLives(st)) return false;
+  st.prev.p = m.p[q], st.prev.n = m.n[q];
+  st.prev.transmits = transmits, st.prev.belowMatters = belowMatters;
+  st.ray.o = m.rayOrigin[q], st.ray.d = m.rayDir[q];
+  st.ray.tmin = 0.0f, st.ray.tmax = kInfinity;  // setSpawnRay's
+  st.ray.blend = BlendRays::kStochastic, st.ray.time = m.time[q];
+  return true;
+}
+
 PathStep PathEstimator::finishDelta(PathState& st, Sampler& sampler, const ShadingLanes& m,
                                     size_t q, RayStats& stats) const {
   // scatter() from the BSDF sample on: smooth glass transmits, so `here` sees both sides.
-  const float pdf = m.pdf[q];
-  if (!(pdf > 0)) return PathStep::kDone;
-  st.beta = m.nextBeta[q];
-  if (!throughputLives(st)) return PathStep::kDone;
-  st.prev.p = m.p[q], st.prev.n = m.n[q];
-  st.prev.transmits = true, st.prev.belowMatters = true;
+  if (!takeLaneSample(st, m, q, true, true)) return PathStep::kDone;
   if (m.transmitted[q] && m.refractive[q]) {
     const int id = m.material[q];
     st.media.cross(id, ctx_.scene.material(id), m.frontFace[q]);
     st.etaFactor /= m.etaScale[q];
   }
-  st.ray.o = m.rayOrigin[q], st.ray.d = m.rayDir[q];
-  st.ray.tmin = 0.0f, st.ray.tmax = kInfinity;  // setSpawnRay's
-  st.ray.blend = BlendRays::kStochastic, st.ray.time = m.time[q];
-  return nextSegment(st, sampler, stats, pdf, true);
+  return nextSegment(st, sampler, stats, m.pdf[q], true);
 }
 
 PathStep PathEstimator::finishDeferred(PathState& st, Sampler& sampler, const ShadingLanes& m,
                                        size_t q, ShadowQuery& shadow, bool& wantsShadow,
                                        RayStats& stats) const {
-  const float time = m.time[q];
   wantsShadow = m.lit[q];
   if (wantsShadow) {
     shadow.ray.o = m.shadowOrigin[q], shadow.ray.d = m.shadowDir[q];
     // setSpawnRay's toward the environment, setSpawnRayTo's toward a point.
     shadow.ray.tmin = 0.0f;
     shadow.ray.tmax = m.shadowUnbounded[q] ? kInfinity : 1.0f - 1e-4f;
-    shadow.ray.blend = BlendRays::kStochastic, shadow.ray.time = time;
+    shadow.ray.blend = BlendRays::kStochastic, shadow.ray.time = m.time[q];
     shadow.contribution = m.contribution[q];
     shadow.indirect = st.indirectNee;
     shadow.depth = st.depth;
@@ -411,16 +415,8 @@ PathStep PathEstimator::finishDeferred(PathState& st, Sampler& sampler, const Sh
   }
   // scatter() from the BSDF sample on (neither stage's BSDF transmits; the glossy stage's
   // sample may be a mirror's).
-  const float pdf = m.pdf[q];
-  if (!(pdf > 0)) return PathStep::kDone;
-  st.beta = m.nextBeta[q];
-  if (!throughputLives(st)) return PathStep::kDone;
-  st.prev.p = m.p[q], st.prev.n = m.n[q];
-  st.prev.transmits = false, st.prev.belowMatters = m.belowMatters[q];
-  st.ray.o = m.rayOrigin[q], st.ray.d = m.rayDir[q];
-  st.ray.tmin = 0.0f, st.ray.tmax = kInfinity;  // setSpawnRay's
-  st.ray.blend = BlendRays::kStochastic, st.ray.time = time;
-  return nextSegment(st, sampler, stats, pdf, m.deltaSample[q] != 0);
+  if (!takeLaneSample(st, m, q, false, m.belowMatters[q])) return PathStep::kDone;
+  return nextSegment(st, sampler, stats, m.pdf[q], m.deltaSample[q] != 0);
 }
 
 }  // namespace tray

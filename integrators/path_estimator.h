@@ -200,6 +200,11 @@ class PathEstimator {
   /// rest qualifies (its one draw made ahead, no light-path split); false: step goes on.
   bool deferDelta(PathState& st, Sampler& sampler, const Vertex& v, const ShadingMaterial& sm,
                   float eta, DrawsAhead ahead, const ShadingDeferral& stages, uint32_t path) const;
+  /// scatter()'s tail for the sample a SIMD stage made for entry q of `m`: the throughput after
+  /// it, `here` (the lanes' p and n, these receiver flags) as the path's prev, and the next ray.
+  /// False: the path ends (no sample, or a throughput that does not live on).
+  bool takeLaneSample(PathState& st, const ShadingLanes& m, size_t q, bool transmits,
+                      bool belowMatters) const;
   /// After a BSDF sample set st.beta (scatter, or a SIMD stage for finishDeferred): false, the
   /// path done, when the throughput is not finite (counted and discarded upstream) or black.
   [[gnu::always_inline]] bool throughputLives(PathState& st) const {

@@ -275,30 +275,24 @@ void PathWavefrontIntegrator::bounce(Wave& w, RayStats& stats, bool cameraRays) 
     if (wantsShadow) w.shadowPath[shadowCount++] = k;
     if (step == PathStep::kContinue) w.next.push_back(k);
   }
-  // The stages' results become shadow queries and next segments, path by path.
-  const auto finish = [&](ShadingLanes& lanes) {
+  // The stages' results become shadow queries and next segments, path by path (the delta
+  // stage's vertices sampled no light: no shadow query).
+  const auto finish = [&](ShadingLanes& lanes, bool delta) {
     stats.simdVertices += lanes.count;
     for (size_t q = 0; q < lanes.count; ++q) {
       const uint32_t k = lanes.path[q];
-      bool wantsShadow;
-      const PathStep step = estimator_.finishDeferred(w.paths[k], w.samplers[k], lanes, q,
-                                                      w.shadows[shadowCount], wantsShadow, stats);
+      bool wantsShadow = false;
+      const PathStep step =
+          delta ? estimator_.finishDelta(w.paths[k], w.samplers[k], lanes, q, stats)
+                : estimator_.finishDeferred(w.paths[k], w.samplers[k], lanes, q,
+                                            w.shadows[shadowCount], wantsShadow, stats);
       if (wantsShadow) w.shadowPath[shadowCount++] = k;
       if (step == PathStep::kContinue) w.next.push_back(k);
     }
   };
-  if (deferring && w.matte.count > 0) matte_.compute(w.matte), finish(w.matte);
-  if (deferring && w.glossy.count > 0) glossy_.compute(w.glossy), finish(w.glossy);
-  if (deferring && w.delta.count > 0) {
-    delta_.compute(w.delta);
-    stats.simdVertices += w.delta.count;
-    for (size_t q = 0; q < w.delta.count; ++q) {
-      const uint32_t k = w.delta.path[q];
-      if (estimator_.finishDelta(w.paths[k], w.samplers[k], w.delta, q, stats) ==
-          PathStep::kContinue)
-        w.next.push_back(k);
-    }
-  }
+  if (deferring && w.matte.count > 0) matte_.compute(w.matte), finish(w.matte, false);
+  if (deferring && w.glossy.count > 0) glossy_.compute(w.glossy), finish(w.glossy, false);
+  if (deferring && w.delta.count > 0) delta_.compute(w.delta), finish(w.delta, true);
 
   w.shadowRays.resize(shadowCount), w.blocked.resize(shadowCount);
   for (size_t q = 0; q < shadowCount; ++q) w.shadowRays[q] = w.shadows[q].ray;

@@ -73,47 +73,43 @@ struct ChosenLightSample {
   FloatVec pdf;
   MaskVec ok, unbounded, delta;
 };
+/// Row `row` of a table of `columns` floats per row, per lane: one gather per column.
+struct TableRows {
+  const float* table;
+  IntVec at;  ///< each lane's row start
+  TableRows(const float* t, IntVec row, int32_t columns) : table(t), at(row * IntVec(columns)) {}
+  FloatVec column(int c) const { return hn::GatherIndex(DF(), table + c, at.v); }
+  V3 vec3(int x, int y, int z) const { return {column(x), column(y), column(z)}; }
+};
 /// A triangle row per lane (row 0 where none was chosen: its values are not used). Not inlined:
 /// its 17 gathers inside the light sample made one straight block more than Valgrind's memcheck
 /// can instrument ("VEX temporary storage exhausted", the glossy stage on DamagedHelmet); the
 /// call ends a block, at a call's cost per vector (as integrators/surface_batch.cpp's Gather3).
 inline HWY_NOINLINE TriangleLightOf<V3> GatherTriangles(const float* table, IntVec row, V3& Le) {
   using T = MatteBatch;
-  const IntVec at = select(row > IntVec(-1), row, IntVec(0)) * IntVec(T::kColumnCount);
-  const auto column = [&](T::Column c) -> FloatVec {
-    return hn::GatherIndex(DF(), table + c, at.v);
-  };
-  const auto vec3 = [&](T::Column x, T::Column y, T::Column z) -> V3 {
-    return {column(x), column(y), column(z)};
-  };
-  Le = vec3(T::kLeR, T::kLeG, T::kLeB);
-  return {vec3(T::kP0x, T::kP0y, T::kP0z),
-          vec3(T::kE1x, T::kE1y, T::kE1z),
-          vec3(T::kE2x, T::kE2y, T::kE2z),
-          vec3(T::kNx, T::kNy, T::kNz),
-          column(T::kArea),
-          column(T::kDoubleSided) > 0.0f};
+  const TableRows r(table, select(row > IntVec(-1), row, IntVec(0)), T::kColumnCount);
+  Le = r.vec3(T::kLeR, T::kLeG, T::kLeB);
+  return {r.vec3(T::kP0x, T::kP0y, T::kP0z),
+          r.vec3(T::kE1x, T::kE1y, T::kE1z),
+          r.vec3(T::kE2x, T::kE2y, T::kE2z),
+          r.vec3(T::kNx, T::kNy, T::kNz),
+          r.column(T::kArea),
+          r.column(T::kDoubleSided) > 0.0f};
 }
 /// A punctual light's row per lane (row 0 where none was chosen: its values are not used), as
 /// GatherTriangles and for the same reason out of line.
 inline HWY_NOINLINE PunctualLightOf<V3> GatherPunctual(const float* table, IntVec code) {
   using T = MatteBatch;
   const MaskVec punctual = code < IntVec(kFirstPunctual + 1);
-  const IntVec at =
-      select(punctual, IntVec(kFirstPunctual) - code, IntVec(0)) * IntVec(T::kPunctualColumnCount);
-  const auto column = [&](T::PunctualColumn c) -> FloatVec {
-    return hn::GatherIndex(DF(), table + c, at.v);
-  };
-  const auto vec3 = [&](T::PunctualColumn x, T::PunctualColumn y, T::PunctualColumn z) -> V3 {
-    return {column(x), column(y), column(z)};
-  };
+  const TableRows r(table, select(punctual, IntVec(kFirstPunctual) - code, IntVec(0)),
+                    T::kPunctualColumnCount);
   PunctualLightOf<V3> l;
-  l.directional = column(T::kDirectional) > 0.0f;
-  l.spot = column(T::kSpot) > 0.0f;
-  l.position = vec3(T::kPx, T::kPy, T::kPz);
-  l.direction = vec3(T::kDx, T::kDy, T::kDz);
-  l.intensity = vec3(T::kIr, T::kIg, T::kIb);
-  l.cosOuter = column(T::kCosOuter), l.cosInner = column(T::kCosInner);
+  l.directional = r.column(T::kDirectional) > 0.0f;
+  l.spot = r.column(T::kSpot) > 0.0f;
+  l.position = r.vec3(T::kPx, T::kPy, T::kPz);
+  l.direction = r.vec3(T::kDx, T::kDy, T::kDz);
+  l.intensity = r.vec3(T::kIr, T::kIg, T::kIb);
+  l.cosOuter = r.column(T::kCosOuter), l.cosInner = r.column(T::kCosInner);
   return l;
 }
 /// The lanes whose choice is the constant environment.

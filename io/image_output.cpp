@@ -161,13 +161,17 @@ std::string halfClampWarning(const std::string& path, size_t clamped) {
          " value(s) beyond half float's range clamped to +-65504 (use --float to keep them)";
 }
 
+bool isExrPath(const std::string& path) {
+  return lowerExtension(path) == ".exr";
+}
+
 namespace {
 
 /// The path's format, checked: true for EXR, false for PNG/JPEG; throws for anything else, a
 /// missing folder or a path that is a folder.
 bool checkPath(const std::string& path) {
   const std::string ext = lowerExtension(path);
-  const bool exr = ext == ".exr", display = ext == ".png" || ext == ".jpg" || ext == ".jpeg";
+  const bool exr = isExrPath(path), display = ext == ".png" || ext == ".jpg" || ext == ".jpeg";
   if (!exr && !display)
     throw Error(path + ": unsupported output format '" + ext + "' (use .exr, .png, .jpg or .jpeg)");
   const fs::path folder = fs::path(path).parent_path();

@@ -41,6 +41,10 @@ size_t writeImage(const Film& film, const std::string& path,
 std::vector<size_t> writeImages(const Film& film, const std::vector<std::string>& paths,
                                 const ImageOutputOptions& options = {});
 
+/// Whether `path` names an OpenEXR output (its extension, any case): scene-linear, every layer,
+/// resumable; the others (.png, .jpg, .jpeg) are display-referred.
+bool isExrPath(const std::string& path);
+
 /// The one-line warning for `clamped` values clamped to half's range in `path`.
 std::string halfClampWarning(const std::string& path, size_t clamped);
 

@@ -56,11 +56,9 @@ bool Bsdf::isSmoothGlass(const ShadingMaterial& m) {
       BsdfLayers::anyApplies(m))
     return false;
   const GgxMixtureOf<Vec3> x = ggxMixture(m.metallic, m.transmission, m.roughness, m.baseColor);
-  // initLobes' classification: the glass lobe the only one active, with weight 1.
-  const Color& a = m.baseColor;
-  const bool coat = x.wPlastic > 0 && x.coat > 0,
-             diffuse = x.wPlastic > 0 && (a.x > 0 || a.y > 0 || a.z > 0);
-  return x.wGlass == 1 && !(x.wMetal > 0) && !coat && !diffuse && x.ggxDelta;
+  // initLobes' Only::kGlass: a glass weight (1 - wMetal) t of exactly 1 needs wMetal 0 and t 1,
+  // which leaves wPlastic = 0: no metal, coat or Lambert lobe beside it.
+  return x.wGlass == 1 && x.ggxDelta;
 }
 
 GgxMixtureOf<Vec3> Bsdf::mixture() const {

@@ -1,7 +1,6 @@
 #include "render/farm.h"
 
 #include <algorithm>
-#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
@@ -10,6 +9,7 @@
 #include "core/error.h"
 #include "integrators/registry.h"
 #include "io/image_input.h"
+#include "io/image_output.h"
 #include "render/job_diff.h"
 
 namespace tray {
@@ -53,11 +53,8 @@ std::string jobSignature(const RenderSettings& settings, const JobFrame& f) {
 }
 
 std::string firstExr(const std::vector<std::string>& outputs) {
-  for (const auto& p : outputs) {
-    std::string ext = std::filesystem::path(p).extension().string();
-    for (auto& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-    if (ext == ".exr") return p;
-  }
+  for (const auto& p : outputs)
+    if (isExrPath(p)) return p;
   return "";
 }
 

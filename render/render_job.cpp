@@ -1,7 +1,6 @@
 #include "render/render_job.h"
 
 #include <algorithm>
-#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -27,13 +26,11 @@ std::vector<std::string> interruptedOutputs(const std::vector<std::string>& path
                                             const RenderJobEvents& events) {
   std::vector<std::string> out;
   for (const std::string& path : paths) {
-    std::filesystem::path p(path);
-    std::string ext = p.extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-    if (ext == ".exr") {
+    if (isExrPath(path)) {
       out.push_back(path);
       continue;
     }
+    std::filesystem::path p(path);
     p.replace_extension(".partial" + p.extension().string());
     warn(events, path + ": not written, the render was interrupted; the partial image is " +
                      p.string());

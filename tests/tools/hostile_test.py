@@ -35,7 +35,7 @@ OPTION_VALUES = ["nan", "inf", "-inf", "-0", "1e40", "1e19", "4294967360", "-1",
 # Values no option may take: not finite, beyond float, or empty (one checked parse for all).
 MUST_REFUSE = {"nan", "inf", "-inf", "1e40", ""}
 SCENE_VALUES = ["1e40", "-1e40", "-1", "0", "4294967360", "1e-45"]
-# Options whose value is a path or a choice among names: a word or an empty value is what to try.
+# Options that print and exit rather than render.
 KEEP_OUT = {"--help-markdown", "--help", "-h", "--version"}
 
 
@@ -107,7 +107,6 @@ def run_case(name, args, folder, must_refuse):
     r = subprocess.run([RENDER] + args + ["--resolution", "8x6", "-q", "-o", out],
                        capture_output=True, text=True, preexec_fn=bound, timeout=120, cwd=folder)
     err = r.stderr
-    warnings = [l for l in err.splitlines() if l.startswith("warning:")]
     errors = [l for l in err.splitlines() if not l.startswith("warning:")]
     if r.returncode not in (0, 2):
         return f"{name}: exit {r.returncode}: {err.strip()[:200]}", r.returncode
@@ -119,7 +118,6 @@ def run_case(name, args, folder, must_refuse):
         with open(out, "rb") as f:
             if f.read() != b"an earlier image":
                 return f"{name}: refused, but the output was changed", 2
-    del warnings
     return None, r.returncode
 
 
