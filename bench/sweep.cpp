@@ -1,4 +1,5 @@
 #include "bench/sweep.h"
+
 #include "integrators/registry.h"
 
 namespace tray {
@@ -56,6 +57,13 @@ std::vector<SweepConfig> standardSweep(const std::vector<std::string>& accels,
     for (int spp = 1; spp <= maxSpp; spp *= 4) {
       p.set("spp", spp);
       add("path sobol", "spp=" + std::to_string(spp), p);
+    }
+    // Noise-driven adaptive sampling (docs/adaptive-sampling.md) of the same estimator, at most
+    // the largest spp: the threshold is the setting that varies.
+    p.set("spp", maxSpp);
+    for (const char* t : {"0.2", "0.1", "0.05", "0.02", "0.01", "0.005"}) {
+      p.set("noise-threshold", std::stof(t));
+      add("path sobol adaptive", std::string("threshold=") + t, p);
     }
   }
   // Every method on every accelerator and thread count: separate lines.

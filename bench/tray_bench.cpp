@@ -2,6 +2,7 @@
 // registered method and setting, measures wall time, rays and error against a converged
 // reference, and writes CSV for tools/plot_bench.py (charts + Pareto report).
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -52,6 +53,7 @@ struct Bench {
     RenderOptions opt;
     opt.threads = threads;
     opt.aovs = aovs;
+    opt.passes = samplingPassesOf(integrator->context().settings);
     RenderStats st = renderImage(*integrator, film, opt);
     return {std::move(film), st};
   }
@@ -82,8 +84,8 @@ std::vector<std::string> splitList(const std::string& s) {
 
 int sweep(const std::string& scenePath, const std::string& resolution, const std::string& outDir,
           const std::string& referencePath, int referenceSpp, int maxSpp,
-          const std::string& accelList, const std::string& threadList,
-          const std::string& denoiser) {
+          const std::string& accelList, const std::string& threadList, const std::string& denoiser,
+          const std::string& methodList) {
   Scene scene = loadGltf(scenePath);
   scene.sourcePath = scenePath;
   CameraDesc cd = chooseCamera(scene, -1);
@@ -127,11 +129,14 @@ int sweep(const std::string& scenePath, const std::string& resolution, const std
                 c.setting.c_str(), seconds, st.rays.total() * 1e-6, e.rmse, e.relMse, e.bias);
     std::fflush(stdout);
     csv << stem << ',' << method << ',' << c.setting << ',' << c.settings.getString("integrator")
-        << ',' << c.accel << ',' << c.threads << ',' << c.settings.getInt("spp") << ','
-        << seconds << ',' << st.rays.total() << ',' << e.rmse << ',' << e.relMse << ','
-        << e.bias << ',' << e.maxAbs << '\n';
+        << ',' << c.accel << ',' << c.threads << ',' << c.settings.getInt("spp") << ',' << seconds
+        << ',' << st.rays.total() << ',' << e.rmse << ',' << e.relMse << ',' << e.bias << ','
+        << e.maxAbs << '\n';
   };
+  const std::vector<std::string> methods = splitList(methodList);
   for (const SweepConfig& c : standardSweep(splitList(accelList), threads, maxSpp)) {
+    if (!methods.empty() && std::find(methods.begin(), methods.end(), c.method) == methods.end())
+      continue;
     const std::string integrator = c.settings.getString("integrator");
     const Film& ref =
         reference(integrator == "adaptive" ? c.settings.getString("inner") : integrator);
@@ -180,6 +185,10 @@ int main(int argc, char** argv) {
                "also denoise the Sobol' path renders (lines 'path sobol + OIDN', "
                "docs/denoising.md)");
   sw->add_option("--denoiser", denoiser, "the tray-denoise to run")->capture_default_str();
+  std::string methods;
+  sw->add_option("--methods", methods,
+                 "comma-separated methods to run (e.g. \"path sobol,path sobol adaptive\"; "
+                 "default: all)");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -187,7 +196,7 @@ int main(int argc, char** argv) {
   }
   try {
     return sweep(scene, resolution, out, reference, referenceSpp, maxSpp, accels, threads,
-                 withDenoiser ? denoiser : "");
+                 withDenoiser ? denoiser : "", methods);
   } catch (const Error& e) {
     std::fprintf(stderr, "tray-bench: error: %s\n", e.what());
     return e.kind() == Error::Kind::kInput ? 2 : 1;

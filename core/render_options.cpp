@@ -11,6 +11,17 @@ const std::vector<OptionSpec>& renderOptions() {
   static const std::vector<OptionSpec> specs = {
       choiceOption("integrator", "whitted", {}, "integrator"),
       intOption("spp", 1, 1, 1 << 20, "samples per pixel"),
+      // Renders in passes (render/pass_renderer.h, docs/adaptive-sampling.md) when either of
+      // the next two is set; --spp is then the most a pixel takes.
+      floatOption("noise-threshold", 0.0f, 0.0f, 1e6f,
+                  "adaptive sampling: a pixel stops once its estimated error is below this "
+                  "(the measure of Cycles' Noise Threshold, e.g. 0.01); 0: every pixel takes "
+                  "--spp"),
+      intOption("min-spp", 16, 1, 1 << 20,
+                "adaptive sampling: samples every pixel takes before it may stop (at most --spp)"),
+      floatOption("time-limit", 0.0f, 0.0f, 1e9f,
+                  "seconds after which the render ends, every pixel with whole steps of "
+                  "samples (not reproducible; the first pass always completes); 0: none"),
       intOption("seed", 0, 0, std::numeric_limits<int64_t>::max(), "random seed"),
       Sampler::option(),
       PixelSampler::option(),

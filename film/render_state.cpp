@@ -1,6 +1,7 @@
 #include "film/render_state.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 #include "core/error.h"
@@ -55,41 +56,90 @@ size_t RenderState::pixelsDone() const {
   return n;
 }
 
+namespace {
+
+/// The progress layer's channels: the half buffer's words, then count and pending.
+const std::vector<std::string>& progressChannels() {
+  static const std::vector<std::string> c = {"Rh", "Rl", "Gh", "Gl", "Bh",    "Bl",
+                                             "Ah", "Al", "Wh", "Wl", "count", "pending"};
+  return c;
+}
+
+void splitSums(const PixelSums& s, float* out) {
+  split(s.rgb[0], out), split(s.rgb[1], out + 2), split(s.rgb[2], out + 4);
+  split(s.alpha, out + 6), split(s.weight, out + 8);
+}
+
+/// Where each of `names` is among the channels of `film`'s layer `name` (OpenEXR may have
+/// sorted them by name); empty when the layer or a channel is missing.
+std::vector<size_t> channelsOf(const Film& film, const char* name,
+                               const std::vector<std::string>& names, int& layer) {
+  layer = film.findLayer(name);
+  std::vector<size_t> at;
+  if (layer < 0) return at;
+  const auto& have = film.layers()[layer].channels;
+  for (const auto& c : names) {
+    at.push_back(size_t(std::find(have.begin(), have.end(), c) - have.begin()));
+    if (at.back() == have.size()) return {};
+  }
+  return at;
+}
+
+/// Reads layer `layer`'s channels `at` of pixel p into `in`.
+void readPixel(const Film& film, int layer, const std::vector<size_t>& at, size_t p, float* in) {
+  const float* px = film.pixel(layer, int(p % film.width()), int(p / film.width()));
+  for (size_t c = 0; c < at.size(); ++c) in[c] = px[at[c]];
+}
+
+}  // namespace
+
 void storeState(const RenderState& state, Film& film) {
   const size_t n = size_t(film.width()) * film.height();
-  if (state.sums.size() != n || state.done.size() != n)
+  if (state.sums.size() != n || state.done.size() != n ||
+      (!state.progress.empty() && state.progress.size() != n))
     throw Error("render state does not match the film size", Error::Kind::kRender);
   const int layer = film.addLayer(kStateLayer, stateChannels());
   for (size_t p = 0; p < n; ++p) {
     float* out = film.pixel(layer, int(p % film.width()), int(p / film.width()));
-    const PixelSums& s = state.sums[p];
-    split(s.rgb[0], out), split(s.rgb[1], out + 2), split(s.rgb[2], out + 4);
-    split(s.alpha, out + 6), split(s.weight, out + 8);
+    splitSums(state.sums[p], out);
     out[10] = state.done[p] ? 1.0f : 0.0f;
+  }
+  if (state.progress.empty() || state.pixelsDone() == n) return;
+  const int progress = film.addLayer(kProgressLayer, progressChannels());
+  for (size_t p = 0; p < n; ++p) {
+    float* out = film.pixel(progress, int(p % film.width()), int(p / film.width()));
+    const PixelProgress& g = state.progress[p];
+    splitSums(g.half, out);
+    out[10] = float(g.count);  // at most 2^20 (--spp): exact
+    out[11] = g.pending ? 1.0f : 0.0f;
   }
 }
 
 RenderState loadState(const Film& film) {
-  // Channels may come back in another order (OpenEXR sorts them by name): look each one up.
-  const int layer = film.findLayer(kStateLayer);
-  std::vector<size_t> at;
-  if (layer >= 0)
-    for (const auto& name : stateChannels()) {
-      const auto& have = film.layers()[layer].channels;
-      at.push_back(size_t(std::find(have.begin(), have.end(), name) - have.begin()));
-      if (at.back() == have.size()) at.clear();
-      if (at.empty()) break;
-    }
-  if (at.size() != stateChannels().size())
-    throw Error("no render state (layer '" + std::string(kStateLayer) + "')");
+  int layer = -1;
+  const std::vector<size_t> at = channelsOf(film, kStateLayer, stateChannels(), layer);
+  if (at.empty()) throw Error("no render state (layer '" + std::string(kStateLayer) + "')");
   const size_t n = size_t(film.width()) * film.height();
   RenderState state = RenderState::empty(n);
+  float in[12];
   for (size_t p = 0; p < n; ++p) {
-    const float* px = film.pixel(layer, int(p % film.width()), int(p / film.width()));
-    float in[11];
-    for (size_t c = 0; c < 11; ++c) in[c] = px[at[c]];
+    readPixel(film, layer, at, p, in);
     state.sums[p] = joinSums(in);
     state.done[p] = in[10] != 0.0f;
+  }
+  int progress = -1;
+  const std::vector<size_t> g = channelsOf(film, kProgressLayer, progressChannels(), progress);
+  if (g.empty()) return state;
+  state.progress.resize(n);
+  for (size_t p = 0; p < n; ++p) {
+    readPixel(film, progress, g, p, in);
+    PixelProgress& out = state.progress[p];
+    out.half = joinSums(in);
+    if (!(in[10] >= 0 && in[10] <= float(1 << 20)) || in[10] != std::floor(in[10]))
+      throw Error("the progress layer holds a sample count that is not one (" +
+                  std::to_string(in[10]) + ")");
+    out.count = uint32_t(in[10]);
+    out.pending = in[11] != 0.0f;
   }
   return state;
 }

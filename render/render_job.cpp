@@ -32,8 +32,8 @@ std::vector<std::string> interruptedOutputs(const std::vector<std::string>& path
     }
     std::filesystem::path p(path);
     p.replace_extension(".partial" + p.extension().string());
-    warn(events, path + ": not written, the render was interrupted; the partial image is " +
-                     p.string());
+    warn(events,
+         path + ": not written, the render was interrupted; the partial image is " + p.string());
     out.push_back(p.string());
   }
   return out;
@@ -72,6 +72,7 @@ RenderOptions renderOptionsOf(const RenderJob& job, const JobPlan& plan,
   if (!job.outputs.aaHeatmap.empty()) r.aovs.push_back("samples");  // the heatmap's source
   r.x0 = plan.region.x0, r.y0 = plan.region.y0;
   if (!job.part.sampleRange.empty()) r.samples = plan.range;
+  r.passes = samplingPassesOf(job.settings);
   r.stop = events.stop;
   r.onProgress = events.progress;
   return r;

@@ -14,17 +14,12 @@
 #include "core/error.h"
 #include "film/aov.h"
 #include "film/cryptomatte.h"
+#include "render/pass_renderer.h"
 
 namespace tray {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-void writeBeauty(Film& film, int x, int y, const PixelSums& s) {
-  const Color c = s.radiance();
-  float* px = film.pixel(Film::kBeauty, x, y);
-  px[0] = c.x, px[1] = c.y, px[2] = c.z, px[3] = s.coverage();
-}
 
 /// A copy of the pixels published as done (acquire: their film and sums writes are visible);
 /// the others read as zero, so the copy never races with workers writing them.
@@ -77,6 +72,16 @@ void checkStateAndAovs(const Integrator& integrator, const Film& film, const Ren
     throw Error(
         "--aov: the light-path layers (lightpaths, diffuse_direct, ...) need "
         "--integrator path or path-wavefront");
+  if (!options.passes) return;
+  if (!integrator.samplesPerPixel())
+    throw Error(
+        "--noise-threshold and --time-limit need an integrator with samples per pixel "
+        "(path, path-wavefront, whitted): this one places its own");
+  if (AovSet::wantsLightPaths(options.aovs))
+    throw Error(
+        "--aov: the light-path layers must add up to the beauty over every sample, which a "
+        "render in passes (--noise-threshold, --time-limit) does not keep: render them with "
+        "a fixed --spp");
 }
 
 /// Motion vectors, only when the motion layer is asked for.
@@ -280,6 +285,12 @@ RenderStats renderImage(const Integrator& integrator, Film& film, RenderState& s
   const std::optional<SampleRange> samples = samplesOf(integrator, options);
   if (state.done.empty()) state = RenderState::empty(size_t(film.width()) * film.height());
   checkStateAndAovs(integrator, film, state, options);
+  if (options.passes) {
+    const std::optional<MotionVectors> vectors =
+        motionVectorsFor(integrator.context(), options.aovs);
+    return renderInPasses(integrator, film, state, options, *samples,
+                          vectors ? &*vectors : nullptr);
+  }
   TileRenderer tiles(integrator, film, state, options, samples);
   return tiles.run();
 }

@@ -11,6 +11,7 @@
 #include "film/film.h"
 #include "film/render_state.h"
 #include "render/image_part.h"
+#include "render/noise_estimate.h"
 
 namespace tray {
 
@@ -29,6 +30,10 @@ struct RenderOptions {
   /// Renders only these samples of each pixel (none: all of them). Needs an integrator with a
   /// number of samples per pixel (not adaptive, which places its own).
   std::optional<SampleRange> samples;
+  /// Set: the samples are given in passes (render/pass_renderer.h): noise-driven adaptive
+  /// sampling, a time limit, or both. Needs an integrator with a number of samples per pixel;
+  /// its maxSamples is taken from the sample range.
+  std::optional<SamplingPasses> passes;
   /// When it becomes true (a signal handler), workers stop after their current pixel (the
   /// wavefront: its current wave of paths); only whole pixels are written.
   const std::atomic<bool>* stop = nullptr;
@@ -43,6 +48,11 @@ struct RenderStats {
   RayStats rays;
   bool interrupted = false;  ///< stopped before every pixel was done
   size_t pixelsDone = 0;
+  /// Renders in passes: the passes finished, the samples every pixel has (the sum of their
+  /// counts) and whether the time limit ended the render.
+  int passes = 0;
+  uint64_t samples = 0;
+  bool timeLimitReached = false;
   double mraysPerSecond() const { return seconds > 0 ? rays.total() / seconds * 1e-6 : 0; }
 };
 

@@ -213,6 +213,21 @@ def helmets():
     return doc
 
 
+def sun_helmets():
+    """The helmets under a sun (a KHR_lights_punctual directional light) and a constant sky in
+    place of the rect light: the sun-and-sky scene of the sampling charts (issue 37)."""
+    doc = helmets()
+    doc["extensionsUsed"].append("KHR_lights_punctual")
+    doc["extensions"] = {"KHR_lights_punctual": {"lights": [
+        {"name": "sun", "type": "directional", "color": [1, 0.95, 0.88], "intensity": 3}]}}
+    nodes = doc["scenes"][0]["nodes"]
+    light = next(i for i in nodes if doc["nodes"][i]["name"] == "rect light")
+    doc["nodes"][light] = {"name": "sun", "rotation": look_at([-3, 6, 4], [0, 0, 0]),
+                           "extensions": {"KHR_lights_punctual": {"light": 0}}}
+    doc["scenes"][0]["extensions"]["TRAY_environment"] = {"background": [0.35, 0.45, 0.65]}
+    return doc
+
+
 def spheres():
     doc = {"asset": {"version": "2.0", "generator": "tools/make-heavy-scenes.py"},
            "extensionsUsed": ["TRAY_environment"]}
@@ -231,7 +246,8 @@ def spheres():
 
 def main():
     os.makedirs(SCENES, exist_ok=True)
-    for name, doc in (("heavy-helmets.gltf", helmets()), ("heavy-spheres.gltf", spheres())):
+    for name, doc in (("heavy-helmets.gltf", helmets()), ("heavy-spheres.gltf", spheres()),
+                      ("sun-helmets.gltf", sun_helmets())):
         with open(os.path.join(SCENES, name), "w") as f:
             json.dump(doc, f, separators=(",", ":"))
             f.write("\n")

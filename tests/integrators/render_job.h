@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -26,10 +28,19 @@ struct Job {
   int size = 24, spp = 8, threads = 1, tileSize = 16;
   uint64_t seed = 0;
   std::vector<std::string> aovs;
-  std::optional<SampleRange> samples;  ///< none: every sample
+  std::optional<SampleRange> samples;         ///< none: every sample
+  std::optional<SamplingPasses> passes;       ///< set: rendered in passes (adaptive, time limit)
+  int x0 = 0, y0 = 0, width = 0, height = 0;  ///< a region (width 0: the whole image)
+  /// Called with each checkpoint when set (checkpointSeconds > 0).
+  double checkpointSeconds = 0;
+  std::function<void(const Film&, const RenderState&)> onCheckpoint;
+  const std::atomic<bool>* stop = nullptr;
 };
 
-inline Render render(const Scene& scene, const Job& job, RenderState* state = nullptr) {
+/// `state` (when given) is resumed and receives the render's state; `film` (when given) is the
+/// film a resumed render goes on with (a checkpoint's).
+inline Render render(const Scene& scene, const Job& job, RenderState* state = nullptr,
+                     const Film* film = nullptr) {
   const PreparedScene prepared(scene, chooseCamera(scene, -1), {job.size, job.size}, job.accel);
   RenderSettings settings;
   settings.set("integrator", job.integrator);
@@ -39,8 +50,13 @@ inline Render render(const Scene& scene, const Job& job, RenderState* state = nu
   settings.set("seed", int64_t(job.seed));
   auto integrator = prepared.integrator(settings);
   Render r;
-  r.film = Film(job.size, job.size);
+  r.film = film ? *film : job.width > 0 ? Film(job.width, job.height) : Film(job.size, job.size);
   RenderOptions options;
+  options.x0 = job.x0, options.y0 = job.y0;
+  options.passes = job.passes;
+  options.checkpointSeconds = job.checkpointSeconds;
+  options.onCheckpoint = job.onCheckpoint;
+  options.stop = job.stop;
   options.threads = job.threads;
   options.tileSize = job.tileSize;
   options.aovs = job.aovs;

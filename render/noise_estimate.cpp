@@ -1,0 +1,64 @@
+#include "render/noise_estimate.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace tray {
+
+std::optional<SamplingPasses> samplingPassesOf(const RenderSettings& settings) {
+  SamplingPasses passes;
+  passes.threshold = settings.getFloat("noise-threshold");
+  passes.timeLimit = settings.getFloat("time-limit");
+  if (passes.threshold <= 0 && passes.timeLimit <= 0) return std::nullopt;
+  passes.minSamples = int(settings.getInt("min-spp"));
+  return passes;
+}
+
+float pixelError(const PixelSums& all, const PixelSums& half) {
+  // Mitchell's negative lobes can make a weight sum cross zero: no estimate then.
+  if (!(std::abs(all.weight) > 0) || !(std::abs(half.weight) > 0))
+    return std::numeric_limits<float>::infinity();
+  double difference = 0, sum = 0;
+  for (int c = 0; c < 3; ++c) {
+    const double mean = all.rgb[c] / all.weight, halfMean = half.rgb[c] / half.weight;
+    difference += std::abs(mean - halfMean);
+    sum += mean;
+  }
+  // Cycles' epsilon keeps black pixels finite: their error is the difference itself.
+  return float(difference / (1e-4 + std::sqrt(std::max(sum, 0.0))));
+}
+
+int nextStep(int count, const SamplingPasses& passes) {
+  const int left = passes.maxSamples - count;
+  if (left <= 0) return 0;
+  if (count == 0) return std::min(std::max(passes.minSamples, 1), left);
+  int step = 1;
+  while (step * 4 <= count) step *= 2;  // the largest power of two <= count / 2
+  return std::min(step, left);
+}
+
+void decideBlock(std::span<const float> error, std::span<const uint32_t> count, int w, int h,
+                 const SamplingPasses& passes, std::span<uint8_t> more) {
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const int p = y * w + x;
+      more[p] = 0;
+      if (nextStep(int(count[p]), passes) == 0) continue;
+      if (passes.threshold <= 0 || int(count[p]) < passes.minSamples) {
+        more[p] = 1;
+        continue;
+      }
+      float worst = 0;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int nx = x + dx, ny = y + dy;
+          if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
+          const float e = error[ny * w + nx];  // NaN: no estimate, as infinite
+          worst = std::max(worst, std::isnan(e) ? std::numeric_limits<float>::infinity() : e);
+        }
+      more[p] = worst >= passes.threshold;
+    }
+}
+
+}  // namespace tray
