@@ -12,6 +12,7 @@
 #include <memory>
 
 #include "accel/registry.h"
+#include "bench/cpu_time.h"
 #include "bench/image_error.h"
 #include "bench/sweep.h"
 #include "core/error.h"
@@ -43,6 +44,9 @@ struct Bench {
   CameraDesc camera;
   ImageSize size;
   std::map<std::string, PreparedScene> prepared;
+  /// CPU seconds of the last render (every thread's): per CPU-second figures stay comparable
+  /// when other work shares the machine.
+  double lastCpuSeconds = 0;
 
   std::pair<Film, RenderStats> render(const RenderSettings& s, const std::string& accelName,
                                       int threads, const std::vector<std::string>& aovs = {}) {
@@ -54,7 +58,9 @@ struct Bench {
     opt.threads = threads;
     opt.aovs = aovs;
     opt.passes = samplingPassesOf(integrator->context().settings);
+    const double cpu = cpuSeconds();
     RenderStats st = renderImage(*integrator, film, opt);
+    lastCpuSeconds = cpuSeconds() - cpu;
     return {std::move(film), st};
   }
 };
@@ -120,7 +126,7 @@ int sweep(const std::string& scenePath, const std::string& resolution, const std
   std::string csvPath = outDir + "/" + stem + ".csv";
   std::ofstream csv(csvPath);
   csv << "scene,method,setting,integrator,accel,threads,spp,seconds,rays,rmse,relmse,bias,max_"
-         "abs\n";
+         "abs,cpu_seconds\n";
   std::printf("%-34s %-16s %9s %10s %10s %10s %10s\n", "method", "setting", "seconds", "Mrays",
               "RMSE", "relMSE", "bias");
   auto record = [&](const SweepConfig& c, const std::string& method, const RenderStats& st,

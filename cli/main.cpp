@@ -62,6 +62,9 @@ void printSummary(const tray::RenderJob& job, const tray::RenderJobResult& r) {
               stats.rays.total() * 1e-6, stats.mraysPerSecond());
   if (stats.rays.nanSamples)
     std::printf(", %llu NaN/Inf samples discarded", (unsigned long long)stats.rays.nanSamples);
+  if (stats.passes > 0 || stats.timeLimitReached)  // a render in passes: where samples went
+    std::printf("; %.1f spp on average in %d passes%s", double(stats.samples) / double(r.pixels),
+                stats.passes, stats.timeLimitReached ? ", ended by --time-limit" : "");
   std::printf("\n");
 }
 

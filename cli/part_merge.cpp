@@ -25,8 +25,10 @@ struct Part {
 
 Layout layout(const ExrHeader& h) {
   Layout l = h.layers();
-  l.erase(std::remove_if(l.begin(), l.end(), [](auto& x) { return x.first == kStateLayer; }),
-          l.end());
+  l.erase(
+      std::remove_if(l.begin(), l.end(),
+                     [](auto& x) { return x.first == kStateLayer || x.first == kProgressLayer; }),
+      l.end());
   return l;
 }
 
@@ -57,7 +59,8 @@ Part loadHeader(const std::string& path) {
     throw Error(path + ": not a TRay part (no tray:samplesPerPixel)");
   const auto layers = p.header.layers();
   if (std::none_of(layers.begin(), layers.end(), [](auto& l) { return l.first == kStateLayer; }))
-    throw Error(path + ": no render state (layer 'tray'): not a part (render it with --region or "
+    throw Error(path +
+                ": no render state (layer 'tray'): not a part (render it with --region or "
                 "--sample-range)");
   const float done = metadataFloat(o, "tray:pixelsDone", -1);
   const float total = metadataFloat(o, "tray:pixelsTotal", -2);
@@ -138,9 +141,9 @@ void addPart(const Part& p, int samples, Film& out, std::vector<PixelSums>& tota
   std::vector<Copy> copies;
   for (size_t l = 1; l < out.layers().size(); ++l) {
     const FilmLayer& layer = out.layers()[l];
-    const How how = layer.name == "samples"                      ? How::kSum
+    const How how = layer.name == "samples"              ? How::kSum
                     : ranged && !means.weight[l].empty() ? How::kMean
-                                                                 : How::kCopy;
+                                                         : How::kCopy;
     if (how == How::kCopy && p.begin != 0) continue;
     for (size_t c = 0; c < layer.channels.size(); ++c)
       copies.push_back({channel(exrChannelName(layer, layer.channels[c])), int(l), int(c), how});
@@ -235,8 +238,9 @@ ExrImage mergeParts(const std::vector<std::string>& paths) {
       const double w = means.weight[l][at];
       float* dst = out.film.pixel(int(l), int(at % width), int(at / width));
       for (size_t c = 0; c < nc; ++c)
-        dst[c] = w != 0 ? float(means.sum[l][at * nc + c] / w)
-                 : out.film.layers()[l].name == "Z" ? kInfinity : 0.0f;
+        dst[c] = w != 0                             ? float(means.sum[l][at * nc + c] / w)
+                 : out.film.layers()[l].name == "Z" ? kInfinity
+                                                    : 0.0f;
     }
   }
 

@@ -124,7 +124,7 @@ bool loadCheckpoint(const std::string& path, const std::string& job, const Pixel
   film = Film(image.film.width(), image.film.height());
   for (size_t l = 1; l < image.film.layers().size(); ++l) {
     const FilmLayer& from = image.film.layers()[l];
-    if (from.name == kStateLayer) continue;
+    if (from.name == kStateLayer || from.name == kProgressLayer) continue;
     const int to = film.addLayer(from.name, from.channels);
     std::copy(from.data.begin(), from.data.end(), film.pixel(to, 0, 0));
   }

@@ -57,9 +57,14 @@ ImageOutputOptions JobWriter::metadataOf(const RenderState& now, double seconds)
                      {"tray:sampleEnd", float(range_.end)},
                      {"tray:samplesPerPixel", float(samplesPerPixel_.value_or(0))}};
   addOptionMetadata(job_.settings, w);  // tray:integrator, tray:spp, tray:maxDepth, ...
-  if (samplesPerPixel_)                 // adaptive: the samples AOV counts them per pixel
+  if (!now.progress.empty()) {          // a render in passes: each pixel's count
+    double samples = 0;
+    for (const PixelProgress& g : now.progress) samples += g.count;
+    w.floatMetadata.emplace_back("tray:samplesDone", float(samples));
+  } else if (samplesPerPixel_) {  // adaptive: the samples AOV counts them per pixel
     w.floatMetadata.emplace_back("tray:samplesDone",
                                  float(done) * float(range_.end - range_.begin));
+  }
   return w;
 }
 

@@ -55,6 +55,17 @@ def render_option(args, name):
     return None
 
 
+def band_edges(height, n):
+    """Row edges of n bands: at multiples of 8 where every band keeps a row, so that noise-driven
+    adaptive sampling (which decides per 8x8 block, docs/adaptive-sampling.md) renders each band
+    as the whole image would; else as even as can be."""
+    rows = [min(height, 8 * round(height * k / (8 * n))) for k in range(n + 1)]
+    rows[-1] = height
+    if all(a < b for a, b in zip(rows, rows[1:])):
+        return rows
+    return [height * k // n for k in range(n + 1)]
+
+
 def part_options(split, render_args):
     """tray-render's options for each part: bands of rows (whole rows keep each part's EXR
     scanlines contiguous for the merge) or consecutive sample ranges."""
@@ -68,7 +79,7 @@ def part_options(split, render_args):
         if n > height:
             raise JobError("--split %s: more regions than the %d rows of the image"
                            % (split, height))
-        rows = [height * k // n for k in range(n + 1)]
+        rows = band_edges(height, n)
         return [["--region", "0,%d,%d,%d" % (rows[k], width, rows[k + 1])] for k in range(n)]
     spp = render_option(render_args, "--spp")
     if spp is None or not spp.isdigit():

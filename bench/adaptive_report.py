@@ -1,0 +1,98 @@
+#!/usr/bin/env python3
+"""Uniform against noise-driven adaptive sampling at equal CPU time (issue 37), from the CSVs of
+`tray-bench sweep --threads 1 --methods "path sobol,path sobol adaptive"` (one per scene).
+
+For each adaptive run (one --noise-threshold), the uniform error at the same CPU time is read off
+the uniform runs' error-against-time line (piecewise linear in log-log, between the two uniform
+runs around that time; runs of fewer than 16 spp, before the error settles into its rate, are left
+out). The ratio uniform/adaptive > 1 means adaptive sampling has the lower error at equal time.
+Both errors are against the same converged reference, whose own noise adds the same floor to
+both and so pulls ratios towards 1 at the lowest errors.
+
+Usage: bench/adaptive_report.py CSV... [--chart out.png]   (python3-matplotlib for --chart)
+"""
+import argparse
+import csv
+import math
+import os
+
+
+def load(path):
+    with open(path) as f:
+        rows = list(csv.DictReader(f))
+    for r in rows:
+        for k in ("cpu_seconds", "rmse", "relmse", "spp", "rays"):
+            r[k] = float(r[k])
+    return rows
+
+
+def interpolate(points, t):
+    """log-log interpolation of (time, error) points at time t; None outside their range."""
+    points = sorted(points)
+    for (t0, e0), (t1, e1) in zip(points, points[1:]):
+        if t0 <= t <= t1:
+            a = (math.log(t) - math.log(t0)) / (math.log(t1) - math.log(t0))
+            return math.exp((1 - a) * math.log(e0) + a * math.log(e1))
+    return None
+
+
+def compare(rows, metric):
+    uniform = [(r["cpu_seconds"], r[metric]) for r in rows
+               if r["method"] == "path sobol" and r["spp"] >= 16]
+    out = []
+    for r in rows:
+        if r["method"] != "path sobol adaptive":
+            continue
+        u = interpolate(uniform, r["cpu_seconds"])
+        out.append((r["setting"], r["cpu_seconds"], r[metric], u, u / r[metric] if u else None))
+    return out
+
+
+def chart(tables, path):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, len(tables), figsize=(5 * len(tables), 4.2), squeeze=False)
+    for ax, (scene, rows) in zip(axes[0], tables):
+        for method, style in (("path sobol", "o-"), ("path sobol adaptive", "s-")):
+            rs = sorted((r for r in rows if r["method"] == method), key=lambda r: r["cpu_seconds"])
+            label = "uniform (spp 1..1024)" if method == "path sobol" else \
+                "adaptive (threshold 0.2..0.005, max 1024)"
+            ax.plot([r["cpu_seconds"] for r in rs], [r["relmse"] for r in rs], style, label=label)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_title(scene)
+        ax.set_xlabel("CPU seconds (1 thread)")
+        ax.set_ylabel("relMSE against the converged reference")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("csv", nargs="+")
+    ap.add_argument("--chart", help="write the relMSE-against-time chart here")
+    a = ap.parse_args()
+    tables = []
+    for path in a.csv:
+        rows = load(path)
+        scene = rows[0]["scene"] if rows else os.path.basename(path)
+        tables.append((scene, rows))
+        for metric in ("relmse", "rmse"):
+            print(f"\n{scene}, {metric}: adaptive against uniform at equal CPU time\n")
+            print(f"| threshold | CPU s | adaptive {metric} | uniform {metric} at that time "
+                  "| uniform / adaptive |")
+            print("|---|---|---|---|---|")
+            for setting, t, e, u, ratio in compare(rows, metric):
+                us = f"{u:.3e}" if u else "outside the uniform runs"
+                rs = f"{ratio:.2f}" if ratio else "-"
+                print(f"| {setting.split('=')[1]} | {t:.2f} | {e:.3e} | {us} | {rs} |")
+    if a.chart:
+        chart(tables, a.chart)
+        print(f"\nwrote {a.chart}")
+
+
+if __name__ == "__main__":
+    main()
