@@ -137,7 +137,7 @@ int sweep(const std::string& scenePath, const std::string& resolution, const std
     csv << stem << ',' << method << ',' << c.setting << ',' << c.settings.getString("integrator")
         << ',' << c.accel << ',' << c.threads << ',' << c.settings.getInt("spp") << ',' << seconds
         << ',' << st.rays.total() << ',' << e.rmse << ',' << e.relMse << ',' << e.bias << ','
-        << e.maxAbs << '\n';
+        << e.maxAbs << ',' << bench.lastCpuSeconds << '\n';
   };
   const std::vector<std::string> methods = splitList(methodList);
   for (const SweepConfig& c : standardSweep(splitList(accelList), threads, maxSpp)) {

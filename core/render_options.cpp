@@ -14,9 +14,13 @@ const std::vector<OptionSpec>& renderOptions() {
       // Renders in passes (render/pass_renderer.h, docs/adaptive-sampling.md) when either of
       // the next two is set; --spp is then the most a pixel takes.
       floatOption("noise-threshold", 0.0f, 0.0f, 1e6f,
-                  "adaptive sampling: a pixel stops once its estimated error is below this "
-                  "(the measure of Cycles' Noise Threshold, e.g. 0.01); 0: every pixel takes "
-                  "--spp"),
+                  "adaptive sampling: the relative error at which a pixel with --min-spp "
+                  "samples stops (e.g. 0.05; --noise-rule says how it grows with samples); 0: "
+                  "every pixel takes --spp"),
+      choiceOption("noise-rule", "mse", {"mse", "even"},
+                   "adaptive sampling: mse stops a pixel of n samples below threshold x "
+                   "sqrt(n / min-spp), the least image error for the samples spent; even stops "
+                   "every pixel below the threshold (equal error, as Cycles)"),
       intOption("min-spp", 16, 1, 1 << 20,
                 "adaptive sampling: samples every pixel takes before it may stop (at most --spp)"),
       floatOption("time-limit", 0.0f, 0.0f, 1e9f,

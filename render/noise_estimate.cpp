@@ -12,6 +12,7 @@ std::optional<SamplingPasses> samplingPassesOf(const RenderSettings& settings) {
   passes.timeLimit = settings.getFloat("time-limit");
   if (passes.threshold <= 0 && passes.timeLimit <= 0) return std::nullopt;
   passes.minSamples = int(settings.getInt("min-spp"));
+  passes.evenError = settings.getString("noise-rule") == "even";
   return passes;
 }
 
@@ -19,14 +20,12 @@ float pixelError(const PixelSums& all, const PixelSums& half) {
   // Mitchell's negative lobes can make a weight sum cross zero: no estimate then.
   if (!(std::abs(all.weight) > 0) || !(std::abs(half.weight) > 0))
     return std::numeric_limits<float>::infinity();
-  double difference = 0, sum = 0;
+  double squared = 0;
   for (int c = 0; c < 3; ++c) {
-    const double mean = all.rgb[c] / all.weight, halfMean = half.rgb[c] / half.weight;
-    difference += std::abs(mean - halfMean);
-    sum += mean;
+    const double mean = all.rgb[c] / all.weight, d = mean - half.rgb[c] / half.weight;
+    squared += d * d / (mean * mean + kRelativeFloor);
   }
-  // Cycles' epsilon keeps black pixels finite: their error is the difference itself.
-  return float(difference / (1e-4 + std::sqrt(std::max(sum, 0.0))));
+  return float(std::sqrt(squared / 3));
 }
 
 int nextStep(int count, const SamplingPasses& passes) {
@@ -36,6 +35,11 @@ int nextStep(int count, const SamplingPasses& passes) {
   int step = 1;
   while (step * 4 <= count) step *= 2;  // the largest power of two <= count / 2
   return std::min(step, left);
+}
+
+float stoppingError(int count, const SamplingPasses& passes) {
+  if (passes.evenError) return passes.threshold;
+  return passes.threshold * std::sqrt(float(count) / float(std::max(passes.minSamples, 1)));
 }
 
 void decideBlock(std::span<const float> error, std::span<const uint32_t> count, int w, int h,
@@ -57,7 +61,7 @@ void decideBlock(std::span<const float> error, std::span<const uint32_t> count, 
           const float e = error[ny * w + nx];  // NaN: no estimate, as infinite
           worst = std::max(worst, std::isnan(e) ? std::numeric_limits<float>::infinity() : e);
         }
-      more[p] = worst >= passes.threshold;
+      more[p] = worst >= stoppingError(int(count[p]), passes);
     }
 }
 

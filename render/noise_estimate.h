@@ -2,11 +2,11 @@
 // Noise-driven adaptive sampling (docs/adaptive-sampling.md): when a pixel has had enough
 // samples. A pixel's samples come in steps (nextStep); each step's first half also goes to a
 // half buffer, and the difference of the two means estimates the error of the whole mean
-// (Dammertz et al. 2010, "A hierarchical automatic stopping condition for Monte Carlo global
-// illumination", §2.1; Cycles' "adaptive sampling" computes the same number, so a threshold
-// means the same in both). Decisions are taken per 8x8 block of image pixels from that
-// block's pixels alone, so that a region whose edges are multiples of 8 renders the pixels of
-// the whole image's render, bit for bit.
+// (the two-buffer estimate of Dammertz et al. 2010, "A hierarchical automatic stopping
+// condition for Monte Carlo global illumination", §2.1, which Cycles and Arnold use), taken
+// relative to the pixel's value as relMSE measures error. Decisions are taken per 8x8 block
+// of image pixels from that block's pixels alone, so that a region whose edges are multiples
+// of 8 renders the pixels of the whole image's render, bit for bit.
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -25,16 +25,23 @@ struct SamplingPasses {
   int minSamples = 16;   ///< every pixel's first step (at most maxSamples)
   int maxSamples = 1;    ///< --spp, or the size of the sample range
   double timeLimit = 0;  ///< seconds after which the render ends between steps (0: none)
+  /// --noise-rule even: every pixel stops below `threshold`; else (mse) the rule that spends
+  /// samples where they lower the image's relMSE most (stoppingError).
+  bool evenError = false;
 };
+
+/// The floor of relMSE's denominator (value^2 + 0.01, bench/image_error.cpp): below a value
+/// of 0.1 an error counts as absolute, so that black pixels do not ask for endless samples.
+inline constexpr double kRelativeFloor = 1e-2;
 
 /// The passes the settings ask for: set when --noise-threshold or --time-limit is (maxSamples
 /// is left for the renderer to take from the sample range); none otherwise.
 std::optional<SamplingPasses> samplingPassesOf(const RenderSettings& settings);
 
-/// The estimated error of the mean `all` (Dammertz et al. §2.1): the L1 distance of the RGB
-/// means of `all` and `half` over the square root of the sum of `all`'s mean RGB (between
-/// absolute and relative error, as the eye sees noise after tone mapping). Infinite while
-/// either buffer has no weight.
+/// The estimated relative error of the mean `all`: the RMS over R, G, B of the difference of
+/// the means of `all` and `half` over sqrt(mean^2 + kRelativeFloor). For independent samples
+/// the difference has the standard deviation of the whole mean (the half is half of it).
+/// Infinite while either buffer has no weight.
 float pixelError(const PixelSums& all, const PixelSums& half);
 
 /// Samples of a pixel's next step after `count`: minSamples first, then the largest power of
@@ -42,10 +49,19 @@ float pixelError(const PixelSums& all, const PixelSums& half);
 /// each step an aligned run of Sobol' points), never past maxSamples; 0 when it has them all.
 int nextStep(int count, const SamplingPasses& passes);
 
+/// The error below which a pixel with `count` samples stops. --noise-rule even: the threshold
+/// itself (equal error everywhere, as Cycles' and Arnold's thresholds). mse (the default):
+/// threshold x sqrt(count / minSamples). One more sample lowers a pixel's squared error e^2 by
+/// about e^2 / count, so stopping every pixel where that gain falls below one common value
+/// (threshold^2 / minSamples) is the allocation that minimises the image's summed squared
+/// error for the samples spent (n proportional to the pixel's standard deviation, not to its
+/// variance as with equal error, which over-spends on the noisiest pixels).
+float stoppingError(int count, const SamplingPasses& passes);
+
 /// One block's decision: which of its pixels take another step. `error` and `count` hold the
 /// block's w x h pixels row by row. A pixel goes on while it has fewer than minSamples, or
-/// (threshold > 0) some pixel of its 3x3 neighbourhood inside the block is above the
-/// threshold (an isolated pixel whose two halves agree by chance does not stop while its
+/// (threshold > 0) the largest error of its 3x3 neighbourhood inside the block is at least its
+/// stoppingError (an isolated pixel whose two halves agree by chance does not stop while its
 /// neighbours are noisy), or (threshold 0) until maxSamples. `more` receives 1 for those.
 void decideBlock(std::span<const float> error, std::span<const uint32_t> count, int w, int h,
                  const SamplingPasses& passes, std::span<uint8_t> more);

@@ -15,15 +15,40 @@ PixelSums sums(double r, double g, double b, double weight) {
   return s;
 }
 
-// Dammertz et al. §2.1 as Cycles computes it: L1 difference of the means over sqrt(sum).
-TEST(NoiseEstimate, ErrorIsTheHalvesDifferenceOverTheRootOfTheMean) {
+// The two halves' difference relative to the value, as relMSE weighs error: RMS over R, G, B
+// of d / sqrt(mean^2 + 0.01).
+TEST(NoiseEstimate, ErrorIsTheHalvesDifferenceRelativeToTheValue) {
   EXPECT_EQ(pixelError(sums(1, 2, 3, 16), sums(1, 2, 3, 8)), 0.0f);
-  const float e = pixelError(sums(1, 1, 2, 16), sums(1.5, 0.5, 2, 8));
-  EXPECT_NEAR(e, 1.0 / (1e-4 + 2.0), 1e-6);
-  // Black pixels stay finite (the epsilon), empty buffers are never converged.
-  EXPECT_NEAR(pixelError(sums(0, 0, 0, 4), sums(0.001, 0, 0, 2)), 0.001 / 1e-4, 1e-3);
+  EXPECT_NEAR(pixelError(sums(1, 1, 2, 16), sums(1.5, 0.5, 2, 8)),
+              std::sqrt((0.25 / 1.01 + 0.25 / 1.01) / 3), 1e-6);
+  // The same difference on a value 10x brighter is 10x smaller (relative); on black it is
+  // absolute over 0.1 (the floor), finite; empty buffers are never converged.
+  EXPECT_NEAR(pixelError(sums(10, 10, 20, 16), sums(15, 5, 20, 8)),
+              std::sqrt((25 / 100.01 + 25 / 100.01) / 3), 1e-6);
+  EXPECT_NEAR(pixelError(sums(0, 0, 0, 4), sums(0.001, 0, 0, 2)), std::sqrt(1e-4 / 3), 1e-7);
   EXPECT_TRUE(std::isinf(pixelError(sums(1, 1, 1, 4), PixelSums{})));
   EXPECT_TRUE(std::isinf(pixelError(PixelSums{}, PixelSums{})));
+}
+
+// mse: the stopping error grows as sqrt(count / minSamples); even: the threshold everywhere.
+TEST(NoiseEstimate, StoppingErrorOfEachRule) {
+  SamplingPasses p;
+  p.threshold = 0.1f, p.minSamples = 16;
+  EXPECT_FLOAT_EQ(stoppingError(16, p), 0.1f);
+  EXPECT_FLOAT_EQ(stoppingError(64, p), 0.2f);
+  EXPECT_FLOAT_EQ(stoppingError(1024, p), 0.8f);
+  p.evenError = true;
+  EXPECT_FLOAT_EQ(stoppingError(64, p), 0.1f);
+  // A pixel of 64 samples at error 0.15 stops under mse, goes on under even.
+  const std::vector<float> error(4, 0.15f);
+  const std::vector<uint32_t> count(4, 64);
+  std::vector<uint8_t> more(4);
+  p.maxSamples = 1024;
+  decideBlock(error, count, 2, 2, p, more);
+  EXPECT_EQ(more, (std::vector<uint8_t>{1, 1, 1, 1}));
+  p.evenError = false;
+  decideBlock(error, count, 2, 2, p, more);
+  EXPECT_EQ(more, (std::vector<uint8_t>{0, 0, 0, 0}));
 }
 
 // Two looks per doubling, every step a power of two and aligned (a run of Sobol' points),
