@@ -153,6 +153,39 @@ TRAY_LANE Vec3Of<decltype(V2::x)> sampleUniformTriangle(const V2& u) {
   return {b0, b1, F(1.0f) - b0 - b1};
 }
 
+/// x in [0, 1) with density proportional to (1 - x) a + x b (a, b > 0): the inverse of its
+/// cdf (a x + (b - a) x^2 / 2) / ((a + b) / 2), rationalised so that a == b needs no
+/// special case (pbrt-v4 A.4.1; Heitz's remark there).
+template <class F>
+TRAY_LANE F sampleLinear(F u, F a, F b) {
+  const F x = u * (a + b) / (a + sqrtOf((F(1.0f) - u) * (a * a) + u * (b * b)));
+  return minOf(x, F(0x1.fffffep-1f));
+}
+
+/// Bilinear weights at the corners of [0,1]^2: w00 at (0, 0), w10 at (1, 0), w01 at (0, 1),
+/// w11 at (1, 1).
+template <class F>
+struct BilinearOf {
+  F w00, w10, w01, w11;
+};
+/// A point of [0,1)^2 with density bilinearPdf: y from its marginal, then x given y (pbrt-v4
+/// A.4.3).
+template <class V2>
+TRAY_LANE V2 sampleBilinear(const V2& u, const BilinearOf<decltype(V2::x)>& w) {
+  using F = decltype(V2::x);
+  const F y = sampleLinear(u.y, w.w00 + w.w10, w.w01 + w.w11);
+  const F x =
+      sampleLinear(u.x, (F(1.0f) - y) * w.w00 + y * w.w01, (F(1.0f) - y) * w.w10 + y * w.w11);
+  return {x, y};
+}
+template <class V2>
+TRAY_LANE decltype(V2::x) bilinearPdf(const V2& p, const BilinearOf<decltype(V2::x)>& w) {
+  using F = decltype(V2::x);
+  const F x1 = F(1.0f) - p.x, y1 = F(1.0f) - p.y;
+  return F(4.0f) * (x1 * y1 * w.w00 + p.x * y1 * w.w10 + x1 * p.y * w.w01 + p.x * p.y * w.w11) /
+         (w.w00 + w.w10 + w.w01 + w.w11);
+}
+
 /// Veach's power heuristic (beta = 2) for two strategies with one sample each: 1 where pf is
 /// infinite (a delta strategy), 0 where neither has density.
 template <class F>

@@ -85,5 +85,22 @@ TRAY_LANE V3 sampleSphericalTriangle(const SphericalTriangleOf<V3>& s, const V2&
   return (F(1.0f) - oneMinusZ) * b + sinZ * normalize(d - dot(d, b) * b);
 }
 
+/// The u for which sampleSphericalTriangle(s, u) gives the unit direction w inside s: c' is
+/// where the great circle through b and w meets the arc from a to c, u.x the area of a b c'
+/// over s.area, u.y = |w - b|^2 / |c' - b|^2 (the forward map's 1 - z over 1 - b.c').
+/// Clamped to [0,1]^2; near b, where c' is ill-defined, u.x is too and u.y ~ 0.
+template <class V3>
+TRAY_LANE Vec2Of<decltype(V3::x)> invertSphericalTriangleSample(const SphericalTriangleOf<V3>& s,
+                                                                const V3& w) {
+  using F = decltype(V3::x);
+  V3 cp = normalize(cross(cross(s.b, w), cross(s.a, s.c)));
+  cp = select(dot(cp, s.a + s.c) < F(0.0f), -cp, cp);
+  const F area = sphericalTriangleOf(s.a, s.b, cp).area;
+  const F ux = select(isFiniteOf(area), area / s.area, F(0.0f));
+  const V3 dw = w - s.b, dc = cp - s.b;
+  const F uy = dot(dw, dw) / dot(dc, dc);
+  return {clampOf(ux, F(0.0f), F(1.0f)), clampOf(uy, F(0.0f), F(1.0f))};
+}
+
 #include "core/lanes_end.h"
 #endif  // TRAY_LANES_BODY

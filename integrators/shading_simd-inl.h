@@ -128,7 +128,7 @@ HWY_INLINE ChosenLightSample SampleChosenLight(const Fields& f, const EmitterTab
   const FloatVec pmf = f.load(f.m.pmf);
   ChosenLightSample s;
   const TriangleLightSampleOf<V3> t = sampleTriangleLight(
-      GatherTriangles(tables.triangles, row, s.Le), p, u, tables.triangleSampling);
+      GatherTriangles(tables.triangles, row, s.Le), p, n, u, tables.triangleSampling);
   s.wi = t.wi, s.target = t.p, s.pdf = t.pdf * pmf;
   s.ok = row > IntVec(-1) && t.valid && s.pdf > 0.0f && !isBlack(s.Le);
   s.unbounded = MaskVec(false), s.delta = MaskVec(false);

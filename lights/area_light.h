@@ -38,14 +38,14 @@ class AreaLight final : public Light {
   /// no call at all (callgrind, Cornell box: AreaLight::sample's own ~15 instructions and the
   /// calls gone).
   LightSample sample(const LightSampleContext& ctx, Vec2 u) const override {
-    return shape_ ? sampleShape(ctx, u) : sampleTriangle(ctx.p, u);
+    return shape_ ? sampleShape(ctx, u) : sampleTriangle(ctx.p, ctx.n, u);
   }
   float pdf(const LightSampleContext& ctx, const Vec3& wi, const Vec3& p,
             const Vec3& n) const override {
     if (shape_) return shapePdf(ctx, wi, p, n);
-    Vec3 d = p - ctx.p;
-    float dist2 = lengthSquared(d);
-    return triangleLightPdf(triangleLight(), ctx.p, dist2, dot(n_, d) / std::sqrt(dist2),
+    const Vec3 d = p - ctx.p;
+    const float dist2 = lengthSquared(d), dist = std::sqrt(dist2);
+    return triangleLightPdf(triangleLight(), ctx.p, ctx.n, d / dist, dist2, dot(n_, d) / dist,
                             sampling_);
   }
   float area() const { return area_; }
@@ -64,8 +64,9 @@ class AreaLight final : public Light {
 
  private:
   AreaLight() = default;
-  LightSample sampleTriangle(const Vec3& ref, Vec2 u) const {
-    const TriangleLightSampleOf<Vec3> t = sampleTriangleLight(triangleLight(), ref, u, sampling_);
+  LightSample sampleTriangle(const Vec3& ref, const Vec3& n, Vec2 u) const {
+    const TriangleLightSampleOf<Vec3> t =
+        sampleTriangleLight(triangleLight(), ref, n, u, sampling_);
     LightSample s;
     if (!t.valid) return s;
     s.p = t.p, s.wi = t.wi, s.pdf = t.pdf;

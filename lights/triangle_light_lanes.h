@@ -62,6 +62,18 @@ TRAY_LANE SphericalTriangleOf<V3> sphericalTriangleFrom(const TriangleLightOf<V3
   return sphericalTriangleOf(a, a + t.e1, a + t.e2);
 }
 
+/// The receiver's cosine, folded into solid-angle sampling as pbrt-v4's Triangle::Sample does:
+/// the square of u is warped bilinearly by |cos| between the receiver's shading normal n and
+/// the directions to the vertices its corners map to (u.y = 0: b; (0, 1): a; (1, 1): c), at
+/// least 0.01 (a vertex below the horizon may still have visible points beside it). A zero n
+/// gives equal weights: no warp.
+template <class V3>
+TRAY_LANE BilinearOf<decltype(V3::x)> cosineWarpOf(const SphericalTriangleOf<V3>& s, const V3& n) {
+  using F = decltype(V3::x);
+  const F wb = maxOf(F(0.01f), absOf(dot(n, s.b)));
+  return {wb, wb, maxOf(F(0.01f), absOf(dot(n, s.a))), maxOf(F(0.01f), absOf(dot(n, s.c)))};
+}
+
 /// Barycentrics (b1, b2) of where the ray from o along w meets the triangle's plane
 /// (Moeller & Trumbore 1997), kept inside the triangle: a direction Arvo's construction put
 /// on an edge may round to just outside it. (1/3, 1/3) where the ray is parallel.
@@ -90,7 +102,8 @@ struct TriangleLightSampleOf {
 };
 template <class V3, class V2>
 TRAY_LANE TriangleLightSampleOf<V3> sampleTriangleLight(const TriangleLightOf<V3>& t, const V3& ref,
-                                                        const V2& u, TriangleSampling mode) {
+                                                        const V3& n, const V2& u,
+                                                        TriangleSampling mode) {
   using F = decltype(V3::x);
   TriangleLightSampleOf<V3> s;
   const V3 b = sampleUniformTriangle(u);
@@ -100,9 +113,11 @@ TRAY_LANE TriangleLightSampleOf<V3> sampleTriangleLight(const TriangleLightOf<V3
     const SphericalTriangleOf<V3> st = sphericalTriangleFrom(t, ref);
     spherical = bySolidAngle(mode, st.area);
     if (anyOf(spherical)) {
-      const Vec2Of<F> bw = barycentricsAlong(t, ref, sampleSphericalTriangle(st, u));
+      const BilinearOf<F> warp = cosineWarpOf(st, n);
+      const V2 uw = sampleBilinear(u, warp);
+      const Vec2Of<F> bw = barycentricsAlong(t, ref, sampleSphericalTriangle(st, uw));
       b1 = select(spherical, bw.x, b1), b2 = select(spherical, bw.y, b2);
-      solidAnglePdf = F(1.0f) / st.area;
+      solidAnglePdf = bilinearPdf(uw, warp) / st.area;
     }
   }
   s.p = t.p0 + b1 * t.e1 + b2 * t.e2;
@@ -117,17 +132,21 @@ TRAY_LANE TriangleLightSampleOf<V3> sampleTriangleLight(const TriangleLightOf<V3
   return s;
 }
 
-/// The solid-angle pdf with which sampleTriangleLight from ref returns the direction that
-/// meets the triangle at squared distance dist2 with cosine cosL to its normal.
+/// The solid-angle pdf with which sampleTriangleLight from ref (shading normal n) returns the
+/// unit direction wi, which meets the triangle at squared distance dist2 with cosine cosL to
+/// its normal.
 template <class V3>
-TRAY_LANE decltype(V3::x) triangleLightPdf(const TriangleLightOf<V3>& t, const V3& ref,
-                                           decltype(V3::x) dist2, decltype(V3::x) cosL,
-                                           TriangleSampling mode) {
+TRAY_LANE decltype(V3::x) triangleLightPdf(const TriangleLightOf<V3>& t, const V3& ref, const V3& n,
+                                           const V3& wi, decltype(V3::x) dist2,
+                                           decltype(V3::x) cosL, TriangleSampling mode) {
   using F = decltype(V3::x);
   const F byArea = triangleSolidAnglePdf(dist2, cosL, t.area);
   if (mode == TriangleSampling::kArea) return byArea;
-  const F solidAngle = sphericalTriangleFrom(t, ref).area;
-  return select(bySolidAngle(mode, solidAngle), F(1.0f) / solidAngle, byArea);
+  const SphericalTriangleOf<V3> st = sphericalTriangleFrom(t, ref);
+  const MaskOf<F> spherical = bySolidAngle(mode, st.area);
+  if (noneOf(spherical)) return byArea;
+  const F warped = bilinearPdf(invertSphericalTriangleSample(st, wi), cosineWarpOf(st, n));
+  return select(spherical, warped / st.area, byArea);
 }
 
 #include "core/lanes_end.h"

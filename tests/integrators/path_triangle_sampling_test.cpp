@@ -91,8 +91,8 @@ TEST(PathTriangleSampling, SolidAngleIsLessNoisyInDirectLightAwayFromTheLight) {
   const double solid = rmse(render(scene, size, 16, 2, "solid-angle", "independent"));
   std::printf("direct light, 16 spp: RMSE area %.5f, solid angle %.5f, ratio %.3f\n", area, solid,
               area / solid);
-  // Measured 1.18 (2026-12-06).
-  EXPECT_GT(area / solid, 1.08);
+  // Measured 1.28 (2026-12-06; 1.18 without the cosine warp).
+  EXPECT_GT(area / solid, 1.15);
 }
 
 }  // namespace
