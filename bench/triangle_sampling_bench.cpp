@@ -1,7 +1,8 @@
 // Emissive triangles sampled by area, by solid angle and by pbrt-v4's choice between them
 // (--triangle-sampling; lights/triangle_light_lanes.h), measured in one run on three scenes:
-// the shared Cornell box against Mitsuba 3's reference, a large panel light against a wall and
-// the many-lights ground (tests/light_scenes.h) against converged renders. For each mode: RMSE
+// the shared Cornell box against Mitsuba 3's reference (and its direct light alone), a large
+// panel light against a wall and the many-lights ground (tests/light_scenes.h) against
+// converged renders. For each mode: RMSE
 // at equal spp (the whole image, and away from the light's own pixels, where the pixel
 // filter's coverage noise dominates), Msamples per CPU-second, and RMSE at equal CPU time.
 // Usage: triangle_sampling_bench [--threads N] [--ref-spp N] [--spp N] [--integrator path]
@@ -20,7 +21,7 @@ using namespace tray;
 namespace {
 
 struct Setup {
-  int threads = 1, refSpp = 2048, spp = 64;
+  int threads = 1, refSpp = 2048, spp = 64, maxDepth = 8;
   std::string integrator = "path";
 };
 
@@ -35,6 +36,7 @@ Run render(const Scene& scene, int w, int h, const Setup& setup, int spp, const 
   settings.set("integrator", setup.integrator);
   settings.set("spp", spp);
   settings.set("seed", seed);
+  settings.set("max-depth", setup.maxDepth);
   settings.set("triangle-sampling", std::string(mode));
   Run r;
   const double t0 = cpuSeconds();
@@ -107,12 +109,16 @@ int main(int argc, char** argv) {
   app.add_option("--integrator", setup.integrator, "path or path-scalar");
   CLI11_PARSE(app, argc, argv);
   const std::string shared = std::string(TRAY_SOURCE_DIR) + "/../shared/reference/";
-  measure("Cornell box (../shared/reference/cornell-box.gltf, against Mitsuba 3)",
-          loadGltf(shared + "cornell-box.gltf"), 256, 256,
-          readReference(shared + "cornell-box.ref.exr"), setup);
+  const Scene cornell = loadGltf(shared + "cornell-box.gltf");
+  measure("Cornell box (../shared/reference/cornell-box.gltf, against Mitsuba 3)", cornell, 256,
+          256, readReference(shared + "cornell-box.ref.exr"), setup);
   const Scene panel = test::panelByAWallScene(), many = test::manyLightsScene();
-  Setup ref = setup;
+  Setup ref = setup, direct = setup;
   ref.threads = 2;
+  direct.maxDepth = ref.maxDepth = 2;
+  measure("Cornell box, direct light only (max depth 2, against a converged TRay render)", cornell,
+          128, 128, render(cornell, 128, 128, ref, setup.refSpp, "auto", 99).film, direct);
+  ref.maxDepth = 8;
   measure("panel by a wall (tests/light_scenes.h panelByAWallScene)", panel, 128, 96,
           render(panel, 128, 96, ref, setup.refSpp, "auto", 99).film, setup);
   measure("many lights (tests/light_scenes.h manyLightsScene)", many, 128, 96,

@@ -50,8 +50,9 @@ const std::vector<OptionSpec>& pathOptions() {
                    "contribution at the shading point) or power (in proportion to power)"),
       choiceOption("triangle-sampling", "auto", {"auto", "area", "solid-angle"},
                    "how an emissive triangle is sampled from a shading point: area (uniform "
-                   "points), solid-angle (uniform directions in the solid angle it subtends, "
-                   "Arvo 1995) or auto (solid angle unless it is below 3e-4 or above 6.22 sr)"),
+                   "points), solid-angle (directions in the solid angle it subtends, Arvo "
+                   "1995, weighted by the receiver's cosine) or auto (solid angle unless it "
+                   "is below 3e-4 or above 6.22 sr)"),
   };
   return specs;
 }
