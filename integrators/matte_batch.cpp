@@ -67,7 +67,8 @@ HWY_AFTER_NAMESPACE();
 namespace tray {
 HWY_EXPORT(MatteVertices);
 
-MatteBatch::MatteBatch(const LightSet& lights) : choices_(lights.size(), kOtherLight) {
+MatteBatch::MatteBatch(const LightSet& lights)
+    : choices_(lights.size(), kOtherLight), triangleSampling_(lights.triangleSampling()) {
   for (size_t i = 0; i < lights.size(); ++i) {
     const AreaLight* area = lights.areaLight(i);
     if (!area || !area->isTriangle()) continue;

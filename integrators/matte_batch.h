@@ -17,11 +17,13 @@
 namespace tray {
 
 /// What the stages' light samples read: the emissive triangles' and punctual lights' tables
-/// (MatteBatch::Column, PunctualColumn) and the constant environment's radiance.
+/// (MatteBatch::Column, PunctualColumn), how the triangles are sampled and the constant
+/// environment's radiance.
 struct EmitterTables {
   const float* triangles;
   const float* punctual;
   Color environmentLe;
+  TriangleSampling triangleSampling;
 };
 
 /// The SIMD stage: the scene's emissive triangles as a table the kernel gathers from, and the
@@ -43,7 +45,9 @@ class MatteBatch {
   void compute(ShadingLanes& lanes) const;
   /// The emitter and punctual tables and the environment's radiance, as the stages' light
   /// samples read them (the glossy stage gathers from them too).
-  EmitterTables tables() const { return {table_.data(), punctual_.data(), environmentLe_}; }
+  EmitterTables tables() const {
+    return {table_.data(), punctual_.data(), environmentLe_, triangleSampling_};
+  }
 
   /// Floats per row: vertex 0, the two edges, the unit front normal, the area, the radiance
   /// and whether both faces emit (1 or 0).
@@ -66,6 +70,7 @@ class MatteBatch {
   std::vector<float> punctual_;   ///< kPunctualColumnCount floats per row
   std::vector<int32_t> choices_;  ///< per light index
   Color environmentLe_{0.0f};
+  TriangleSampling triangleSampling_ = TriangleSampling::kAuto;
   bool useful_ = false;
 };
 

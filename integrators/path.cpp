@@ -48,6 +48,11 @@ const std::vector<OptionSpec>& pathOptions() {
       choiceOption("light-sampler", "bvh", {"bvh", "power"},
                    "how next-event estimation picks a light: bvh (by its estimated "
                    "contribution at the shading point) or power (in proportion to power)"),
+      choiceOption("triangle-sampling", "auto", {"auto", "area", "solid-angle"},
+                   "how an emissive triangle is sampled from a shading point: area (uniform "
+                   "points), solid-angle (directions in the solid angle it subtends, Arvo "
+                   "1995, weighted by the receiver's cosine) or auto (solid angle unless it "
+                   "is below 3e-4 or above 6.22 sr)"),
   };
   return specs;
 }

@@ -89,7 +89,8 @@ PathEstimator::PathEstimator(const RenderContext& ctx)
       absorbingMedia_(
           std::any_of(ctx.scene.materials.begin(), ctx.scene.materials.end(),
                       [](const Material& m) { return !isBlack(m.layers.absorption()); })),
-      lights_(ctx.scene, lightSamplerKind(ctx.settings.getString("light-sampler"))),
+      lights_(ctx.scene, lightSamplerKind(ctx.settings.getString("light-sampler")),
+              triangleSampling(ctx.settings.getString("triangle-sampling"))),
       materials_(ctx.scene, ctx.camera, ctx.settings.getInt("spp")) {
   plainStage_.reserve(ctx.scene.materials.size());
   for (const Material& m : ctx.scene.materials)

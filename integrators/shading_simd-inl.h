@@ -22,6 +22,7 @@
 #define TRAY_LANES_SIMD
 #include "core/ray_lanes.h"
 #include "core/sampling_lanes.h"
+#include "core/spherical_triangle_lanes.h"
 #include "integrators/path_vertex_lanes.h"
 #include "lights/punctual_light_lanes.h"
 #include "lights/triangle_light_lanes.h"
@@ -126,8 +127,8 @@ HWY_INLINE ChosenLightSample SampleChosenLight(const Fields& f, const EmitterTab
   const V2 u = f.load(f.m.lightDraw);
   const FloatVec pmf = f.load(f.m.pmf);
   ChosenLightSample s;
-  const TriangleLightSampleOf<V3> t =
-      sampleTriangleLight(GatherTriangles(tables.triangles, row, s.Le), p, u);
+  const TriangleLightSampleOf<V3> t = sampleTriangleLight(
+      GatherTriangles(tables.triangles, row, s.Le), p, n, u, tables.triangleSampling);
   s.wi = t.wi, s.target = t.p, s.pdf = t.pdf * pmf;
   s.ok = row > IntVec(-1) && t.valid && s.pdf > 0.0f && !isBlack(s.Le);
   s.unbounded = MaskVec(false), s.delta = MaskVec(false);

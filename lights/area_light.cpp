@@ -5,8 +5,9 @@
 namespace tray {
 
 AreaLight AreaLight::triangle(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& front,
-                              const Color& Le, bool doubleSided) {
+                              const Color& Le, bool doubleSided, TriangleSampling sampling) {
   AreaLight l;
+  l.sampling_ = sampling;
   l.p0_ = p0;
   l.e1_ = p1 - p0;
   l.e2_ = p2 - p0;
@@ -38,8 +39,8 @@ LightBounds AreaLight::bounds() const {
   if (!(area_ > 0) || !std::isfinite(area_)) return LightBounds::finite({}, n_, 0, 1, 0, false);
   const float L = luminance(Le_);
   if (shape_)
-    return LightBounds::finite(toWorld_->bounds(shape_->bounds()), Vec3(0, 0, 1),
-                               0.25f * L * area_, -1.0f, 0.0f, false);
+    return LightBounds::finite(toWorld_->bounds(shape_->bounds()), Vec3(0, 0, 1), 0.25f * L * area_,
+                               -1.0f, 0.0f, false);
   Bounds3 box;
   box.extend(p0_);
   box.extend(p0_ + e1_);

@@ -5,19 +5,22 @@
 #include "core/shape.h"
 // sampleTriangle, written once for scalar code and the SIMD stages.
 #include "lights/triangle_light_lanes.h"
+#include "lights/triangle_sampling.h"
 
 namespace tray {
 
 /// A diffuse area light (pbrt-v4 12.5.1's DiffuseAreaLight): constant radiance Le leaving the
 /// front face of an emitter (both faces when doubleSided; core/front_face.h owns the rule),
 /// over one emissive mesh triangle or any analytic shape that can be sampled
-/// (Shape::area > 0). Triangles are sampled uniformly by area (kept inline: meshes bring
-/// many); shapes through Shape::sample(ctx, u), e.g. a sphere's cone of directions.
+/// (Shape::area > 0). Triangles are sampled uniformly by area or by solid angle, per receiver
+/// as TriangleSampling says (kept inline: meshes bring many); shapes through
+/// Shape::sample(ctx, u), e.g. a sphere's cone of directions.
 class AreaLight final : public Light {
  public:
   /// One triangle in world space; `front` is its front-face normal (triangleFrontNormal).
   static AreaLight triangle(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& front,
-                            const Color& Le, bool doubleSided);
+                            const Color& Le, bool doubleSided,
+                            TriangleSampling sampling = TriangleSampling::kAuto);
   /// An analytic shape placed by toWorld. Both are referenced, not copied: they must outlive
   /// the light (they belong to the Scene).
   static AreaLight shape(const Shape& shape, const Transform& toWorld, const Color& Le,
@@ -35,14 +38,15 @@ class AreaLight final : public Light {
   /// no call at all (callgrind, Cornell box: AreaLight::sample's own ~15 instructions and the
   /// calls gone).
   LightSample sample(const LightSampleContext& ctx, Vec2 u) const override {
-    return shape_ ? sampleShape(ctx, u) : sampleTriangle(ctx.p, u);
+    return shape_ ? sampleShape(ctx, u) : sampleTriangle(ctx.p, ctx.n, u);
   }
   float pdf(const LightSampleContext& ctx, const Vec3& wi, const Vec3& p,
             const Vec3& n) const override {
     if (shape_) return shapePdf(ctx, wi, p, n);
-    Vec3 d = p - ctx.p;
-    float dist2 = lengthSquared(d);
-    return trianglePdf(dist2, dot(n_, d) / std::sqrt(dist2));
+    const Vec3 d = p - ctx.p;
+    const float dist2 = lengthSquared(d), dist = std::sqrt(dist2);
+    return triangleLightPdf(triangleLight(), ctx.p, ctx.n, d / dist, dist2, dot(n_, d) / dist,
+                            sampling_);
   }
   float area() const { return area_; }
   /// A triangle's world-space data, as sampleTriangle reads it (the SIMD matte stage,
@@ -55,12 +59,14 @@ class AreaLight final : public Light {
     bool doubleSided;
   };
   Triangle triangleData() const { return {p0_, e1_, e2_, n_, area_, Le_, doubleSided_}; }
+  /// How a triangle is sampled (the SIMD stages read it from their tables).
+  TriangleSampling triangleSampling() const { return sampling_; }
 
  private:
   AreaLight() = default;
-  LightSample sampleTriangle(const Vec3& ref, Vec2 u) const {
+  LightSample sampleTriangle(const Vec3& ref, const Vec3& n, Vec2 u) const {
     const TriangleLightSampleOf<Vec3> t =
-        sampleTriangleLight(TriangleLightOf<Vec3>{p0_, e1_, e2_, n_, area_, doubleSided_}, ref, u);
+        sampleTriangleLight(triangleLight(), ref, n, u, sampling_);
     LightSample s;
     if (!t.valid) return s;
     s.p = t.p, s.wi = t.wi, s.pdf = t.pdf;
@@ -69,9 +75,7 @@ class AreaLight final : public Light {
   }
   LightSample sampleShape(const LightSampleContext& ctx, Vec2 u) const;
   float shapePdf(const LightSampleContext& ctx, const Vec3& wi, const Vec3& p, const Vec3& n) const;
-  float trianglePdf(float dist2, float cosL) const {
-    return triangleSolidAnglePdf(dist2, cosL, area_);
-  }
+  TriangleLightOf<Vec3> triangleLight() const { return {p0_, e1_, e2_, n_, area_, doubleSided_}; }
 
   const Shape* shape_ = nullptr;  ///< null: a triangle
   const Transform* toWorld_ = nullptr;
@@ -80,6 +84,7 @@ class AreaLight final : public Light {
   float area_ = 0;     ///< world area
   Color Le_;
   bool doubleSided_ = false;
+  TriangleSampling sampling_ = TriangleSampling::kAuto;  ///< triangle: by area or solid angle
 };
 
 }  // namespace tray

@@ -30,8 +30,8 @@ void LightSet::addPrimitive(const Scene& scene, size_t i, std::vector<float>& po
       // Degenerate triangles stay in the index space (lightAt relies on it), with no power.
       area_.push_back(AreaLight::triangle(prim.toWorld.point(a), prim.toWorld.point(b),
                                           prim.toWorld.point(c),
-                                          triangleFrontNormal(prim.toWorld, a, b, c),
-                                          m.emissive, m.doubleSided));
+                                          triangleFrontNormal(prim.toWorld, a, b, c), m.emissive,
+                                          m.doubleSided, triangleSampling_));
       power.push_back(area_.back().power());
       ++triangleCount_;
     }
@@ -45,7 +45,8 @@ void LightSet::addPrimitive(const Scene& scene, size_t i, std::vector<float>& po
   }
 }
 
-LightSet::LightSet(const Scene& scene, LightSamplerKind kind) {
+LightSet::LightSet(const Scene& scene, LightSamplerKind kind, TriangleSampling sampling)
+    : triangleSampling_(sampling) {
   Bounds3 b = scene.bounds();
   float radius = b.empty() || !b.finite() ? 1.0f : std::max(0.5f * length(b.diagonal()), 1e-3f);
   std::vector<float> power;

@@ -17,12 +17,14 @@ namespace tray {
 /// Every light of a scene behind the Light interface, chosen by a LightSampler (by estimated
 /// contribution at the receiver through a light BVH, or in proportion to power; `kind`):
 /// emissive mesh triangles and samplable emissive analytic shapes (AreaLight, in primitive
-/// order), KHR_lights_punctual lights, and the environment (a constant or an image). Built
+/// order; triangles sampled as `sampling` says), KHR_lights_punctual lights, and the
+/// environment (a constant or an image). Built
 /// once per render; queries are const and allocation-free. Refers to the scene's shapes and
 /// transforms: the scene must outlive it, unchanged.
 class LightSet {
  public:
-  explicit LightSet(const Scene& scene, LightSamplerKind kind = LightSamplerKind::kBvh);
+  explicit LightSet(const Scene& scene, LightSamplerKind kind = LightSamplerKind::kBvh,
+                    TriangleSampling sampling = TriangleSampling::kAuto);
   LightSet(const LightSet&) = delete;  // lights_ points into the vectors below
   LightSet& operator=(const LightSet&) = delete;
 
@@ -104,6 +106,8 @@ class LightSet {
   int constantEnvironment() const { return constantEnvironment_; }
   /// Number of emissive triangles in the set.
   size_t triangleCount() const { return triangleCount_; }
+  /// How its emissive triangles are sampled (--triangle-sampling).
+  TriangleSampling triangleSampling() const { return triangleSampling_; }
 
  private:
   /// Light i's sample when it is not an area light (out of line: LightSet::sample stays
@@ -117,13 +121,14 @@ class LightSet {
   std::vector<PunctualLight> punctual_;
   std::vector<EnvironmentLight> environment_;
   std::vector<ImageEnvironmentLight> imageEnvironment_;  ///< TRAY_environment image, --env
-  std::vector<const Light*> lights_;  ///< in alias-table order
-  std::vector<int> firstLight_;       ///< per primitive: its first light index, or -1
-  std::vector<bool> isTriangles_;     ///< per primitive: lights are per triangle
+  std::vector<const Light*> lights_;                     ///< in alias-table order
+  std::vector<int> firstLight_;    ///< per primitive: its first light index, or -1
+  std::vector<bool> isTriangles_;  ///< per primitive: lights are per triangle
   std::vector<int> infinite_, delta_;
   int constantEnvironment_ = -1;  ///< environment_[0]'s index (sampled inline), or -1
   int escapeLight_ = -1;          ///< see escapeLight()
   size_t triangleCount_ = 0;
+  TriangleSampling triangleSampling_ = TriangleSampling::kAuto;
   bool anyPower_ = false;
   std::unique_ptr<LightSampler> chooser_;
   /// chooser_ when it is the BVH (the default): called through its final class, inline.

@@ -1,6 +1,6 @@
 #pragma once
-// Scenes where the choice of light matters, built in code, for the light-sampler tests and
-// bench/light_sampler_bench.cpp.
+// Scenes where the choice of light or of its sampling matters, built in code, for the
+// light-sampler tests, bench/light_sampler_bench.cpp and bench/triangle_sampling_bench.cpp.
 #include <cmath>
 
 #include "tests/scene_builder.h"
@@ -9,8 +9,8 @@ namespace tray::test {
 
 /// A ground, a box and three spheres lit by a low sun (irradiance 3) beside a constant sky of
 /// radiance 1 (the issue's "one directional light plus a background"): the sun gives as much
-/// light as the whole sky to surfaces facing it, yet by power it gets 20% of the light samples (the BVH:
-/// up to 51% in front of it, none behind).
+/// light as the whole sky to surfaces facing it, yet by power it gets 20% of the light samples (the
+/// BVH: up to 51% in front of it, none behind).
 inline Scene sunAndSkyScene() {
   Scene s;
   const int ground = addMaterial(s, diffuse(Color(0.5f)));
@@ -75,6 +75,31 @@ inline Scene manyLightsScene() {
   spot.outerConeAngle = 0.4f;
   s.lights.push_back(spot);
   s.cameras.push_back(lookAt({0, 5.5f, 6.5f}, {0, 0, 0.3f}, 0.8f));
+  s.finalize();
+  return s;
+}
+
+/// A large emissive panel (2 x 0.8, two triangles, facing down) against a wall, 1.2 above a
+/// floor, a sphere below it: the wall's top and the floor under the panel see it at short range
+/// and grazing angles, where sampling its area is noisy (issue 37).
+inline Scene panelByAWallScene() {
+  Scene s;
+  const int white = addMaterial(s, diffuse(Color(0.7f)));
+  addMeshInstance(s, addMesh(s, quadMesh(3, white)), Mat4::identity());
+  TriangleMesh wall;  // z = -1, facing +z
+  wall.positions = {{-3, 0, -1}, {3, 0, -1}, {3, 3, -1}, {-3, 3, -1}};
+  wall.indices = {0, 1, 2, 0, 2, 3};
+  wall.material = white;
+  addMeshInstance(s, addMesh(s, std::move(wall)), Mat4::identity());
+  Material glow = diffuse(Color(0.5f));
+  glow.emissive = Color(4.0f, 3.6f, 3.0f);
+  TriangleMesh panel;  // counter-clockwise seen from below
+  panel.positions = {{-1, 1.2f, -1}, {-1, 1.2f, -0.2f}, {1, 1.2f, -0.2f}, {1, 1.2f, -1}};
+  panel.indices = {0, 2, 1, 0, 3, 2};
+  panel.material = addMaterial(s, glow);
+  addMeshInstance(s, addMesh(s, std::move(panel)), Mat4::identity());
+  addSphere(s, {0.3f, 0.35f, -0.4f}, 0.35f, addMaterial(s, diffuse(Color(0.6f, 0.3f, 0.2f))));
+  s.cameras.push_back(lookAt({0.4f, 1.1f, 2.6f}, {0, 0.7f, -0.8f}, 0.9f));
   s.finalize();
   return s;
 }

@@ -1,6 +1,7 @@
 // The SIMD matte stage (integrators/matte_batch.h) on every SIMD target the CPU has:
 // - its kernel against the scalar pieces PathEstimator::step runs for a lone Lambert lobe and
-//   a triangle light or the constant environment (AreaLight::sample, EnvironmentLight::sample,
+//   a triangle light (sampled by area, by solid angle or either: every --triangle-sampling
+//   mode) or the constant environment (AreaLight::sample, EnvironmentLight::sample,
 //   Bsdf::eval and sample, powerHeuristic, spawnRayTo, spawnRay), bit for bit, on random vertices
 //   including the edge cases (no light chosen, lights facing away, receivers below the light's
 //   plane, the disk map's centre, black channels);
@@ -90,10 +91,14 @@ int compareVertex(const LightSet& lights, const ShadingLanes& m, size_t q, int& 
   return lit;
 }
 
-TEST(MatteBatch, KernelIsTheScalarStepBitForBit) {
+/// Every way of sampling the triangles (--triangle-sampling): the random receivers see them
+/// under solid angles on both sides of auto's bounds.
+class MatteBatchModes : public testing::TestWithParam<TriangleSampling> {};
+
+TEST_P(MatteBatchModes, KernelIsTheScalarStepBitForBit) {
   std::mt19937_64 rng(16);
   const Scene scene = emitters(rng, 6, true);
-  const LightSet lights(scene);
+  const LightSet lights(scene, LightSamplerKind::kBvh, GetParam());
   const MatteBatch batch(lights);
   ASSERT_EQ(lights.size(), 9u);  // the black triangle is not a light; the sky and 3 punctual are
   if (!hasSimdTarget()) GTEST_SKIP() << "no SIMD target: the wavefront keeps to scalar code";
@@ -117,6 +122,9 @@ TEST(MatteBatch, KernelIsTheScalarStepBitForBit) {
     return compared;
   });
 }
+INSTANTIATE_TEST_SUITE_P(TriangleSampling, MatteBatchModes,
+                         testing::Values(TriangleSampling::kAuto, TriangleSampling::kArea,
+                                         TriangleSampling::kSolidAngle));
 
 /// A random scene: matte triangles under emissive ones, a floor, and in some a metal (the glossy
 /// stage's), an emissive sphere (the scalar code's) or a point light.
