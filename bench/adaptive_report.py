@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Uniform against noise-driven adaptive sampling at equal CPU time (issue 37), from the CSVs of
-`tray-bench sweep --threads 1 --methods "path sobol,path sobol adaptive"` (one per scene).
+`tray-bench sweep --threads 1 --methods "path sobol,path sobol adaptive,path sobol adaptive
+even"` (one per scene): the default rule (mse) and equal error (even) against uniform.
 
 For each adaptive run (one --noise-threshold), the uniform error at the same CPU time is read off
 the uniform runs' error-against-time line (piecewise linear in log-log, between the two uniform
@@ -21,7 +22,7 @@ def load(path):
     with open(path) as f:
         rows = list(csv.DictReader(f))
     for r in rows:
-        for k in ("cpu_seconds", "rmse", "relmse", "spp", "rays"):
+        for k in ("cpu_seconds", "rmse", "relmse", "relmse_trimmed", "spp", "rays"):
             r[k] = float(r[k])
     return rows
 
@@ -36,12 +37,15 @@ def interpolate(points, t):
     return None
 
 
-def compare(rows, metric):
+ADAPTIVE = (("path sobol adaptive", "mse"), ("path sobol adaptive even", "even"))
+
+
+def compare(rows, metric, method):
     uniform = [(r["cpu_seconds"], r[metric]) for r in rows
                if r["method"] == "path sobol" and r["spp"] >= 16]
     out = []
     for r in rows:
-        if r["method"] != "path sobol adaptive":
+        if r["method"] != method:
             continue
         u = interpolate(uniform, r["cpu_seconds"])
         out.append((r["setting"], r["cpu_seconds"], r[metric], u, u / r[metric] if u else None))
@@ -54,16 +58,18 @@ def chart(tables, path):
     import matplotlib.pyplot as plt
     fig, axes = plt.subplots(1, len(tables), figsize=(5 * len(tables), 4.2), squeeze=False)
     for ax, (scene, rows) in zip(axes[0], tables):
-        for method, style in (("path sobol", "o-"), ("path sobol adaptive", "s-")):
+        for method, style, label in (
+                ("path sobol", "o-", "uniform (spp 1..1024)"),
+                ("path sobol adaptive", "s-", "adaptive, mse rule (threshold 0.1..0.01)"),
+                ("path sobol adaptive even", "^--", "adaptive, even rule (threshold 0.1..0.01)")):
             rs = sorted((r for r in rows if r["method"] == method), key=lambda r: r["cpu_seconds"])
-            label = "uniform (spp 1..1024)" if method == "path sobol" else \
-                "adaptive (threshold 0.2..0.005, max 1024)"
-            ax.plot([r["cpu_seconds"] for r in rs], [r["relmse"] for r in rs], style, label=label)
+            ax.plot([r["cpu_seconds"] for r in rs], [r["relmse_trimmed"] for r in rs], style,
+                    label=label)
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_title(scene)
         ax.set_xlabel("CPU seconds (1 thread)")
-        ax.set_ylabel("relMSE against the converged reference")
+        ax.set_ylabel("relMSE (0.1% worst pixels left out)")
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=8)
     fig.tight_layout()
@@ -80,15 +86,16 @@ def main():
         rows = load(path)
         scene = rows[0]["scene"] if rows else os.path.basename(path)
         tables.append((scene, rows))
-        for metric in ("relmse", "rmse"):
-            print(f"\n{scene}, {metric}: adaptive against uniform at equal CPU time\n")
-            print(f"| threshold | CPU s | adaptive {metric} | uniform {metric} at that time "
-                  "| uniform / adaptive |")
-            print("|---|---|---|---|---|")
-            for setting, t, e, u, ratio in compare(rows, metric):
-                us = f"{u:.3e}" if u else "outside the uniform runs"
-                rs = f"{ratio:.2f}" if ratio else "-"
-                print(f"| {setting.split('=')[1]} | {t:.2f} | {e:.3e} | {us} | {rs} |")
+        for metric in ("relmse_trimmed", "relmse", "rmse"):
+            for method, rule in ADAPTIVE:
+                print(f"\n{scene}, {metric}, rule {rule}: adaptive against uniform at equal CPU "
+                      "time\n")
+                print(f"| threshold | CPU s | adaptive | uniform at that time | uniform / adaptive |")
+                print("|---|---|---|---|---|")
+                for setting, t, e, u, ratio in compare(rows, metric, method):
+                    us = f"{u:.3e}" if u else "outside the uniform runs"
+                    rs = f"{ratio:.2f}" if ratio else "-"
+                    print(f"| {setting.split('=')[1]} | {t:.2f} | {e:.3e} | {us} | {rs} |")
     if a.chart:
         chart(tables, a.chart)
         print(f"\nwrote {a.chart}")

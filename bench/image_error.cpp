@@ -4,6 +4,7 @@
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -49,17 +50,26 @@ ImageError compareBeauty(const Film& a, const Film& b) {
   e.rmse = cmp.rms_error;
   e.maxAbs = cmp.maxerror;
   double sumA = 0, sumB = 0, rel = 0;
+  std::vector<double> pixelRel;  // each pixel's relative squared error, summed over RGB
   for (int y = 0; y < a.height(); ++y)
     for (int x = 0; x < a.width(); ++x) {
       const float *pa = a.pixel(Film::kBeauty, x, y), *pb = b.pixel(Film::kBeauty, x, y);
+      double pixel = 0;
       for (int c = 0; c < 3; ++c) {
         double d = double(pa[c]) - pb[c];
-        rel += d * d / (double(pb[c]) * pb[c] + 1e-2);
+        pixel += d * d / (double(pb[c]) * pb[c] + 1e-2);
         sumA += pa[c], sumB += pb[c];
       }
+      rel += pixel;
+      pixelRel.push_back(pixel);
     }
   const double n = 3.0 * a.width() * a.height();
   e.relMse = rel / n;
+  const size_t cut = std::max<size_t>(1, pixelRel.size() / 1000);
+  std::nth_element(pixelRel.begin(), pixelRel.end() - cut, pixelRel.end());
+  double kept = 0;
+  for (size_t i = 0; i + cut < pixelRel.size(); ++i) kept += pixelRel[i];
+  e.relMseTrimmed = pixelRel.size() > cut ? kept / (3.0 * double(pixelRel.size() - cut)) : 0;
   e.bias = (sumA - sumB) / n;
   return e;
 }

@@ -11,6 +11,9 @@ struct ImageError {
   double relMse = 0;  ///< mean of (x - r)^2 / (r^2 + 1e-2), robust to dark pixels (Rousselle 2011)
   double bias = 0;    ///< mean(x) - mean(r) over RGB: systematic error that more samples don't fix
   double maxAbs = 0;  ///< largest single-channel difference
+  /// relMse without the 0.1% pixels of largest error (at least one): a sun glint or caustic
+  /// firefly in a handful of pixels otherwise decides a whole image's figure (issue 37).
+  double relMseTrimmed = 0;
 };
 
 /// Reads the first three channels of an image file (a converged reference) into the beauty of

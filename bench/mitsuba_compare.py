@@ -31,8 +31,9 @@ except ImportError as e:
 
 import mitsuba_heavy
 from compare_report import LINES, check_image, fail, rmse, say
-from mitsuba_measure import (MITSUBA_STRATIFIED, equal_error_lines, mitsuba_render, mitsuba_speed,
-                             paired_per_sample, tray_speed)
+from mitsuba_measure import (MITSUBA_STRATIFIED, cpu_of, equal_error_lines, mitsuba_render,
+                             mitsuba_speed, paired_per_sample, tray_speed,
+                             whole_render_equal_error, whole_render_runs)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SHARED = os.path.normpath(os.path.join(HERE, "..", "..", "shared", "reference"))
@@ -70,6 +71,17 @@ def tray_render(a, tmp, res, spp, extra):
     if r.returncode != 0 or not os.path.exists(out):
         fail(f"{' '.join(cmd)} failed (exit {r.returncode}): {r.stderr.strip()}")
     return read_rgb(out)
+
+
+def cornell_whole(a, tmp, shape, extra):
+    """One tray-render of the Cornell box at the reference's size, TRay's threads: (image, CPU
+    seconds of the whole run)."""
+    out = os.path.join(tmp, "whole.exr")
+    cmd = [a.tray_render, "--integrator", "path", "--max-depth", str(a.max_depth), "--resolution",
+           f"{shape[1]}x{shape[0]}", "--float", "--threads", str(a.threads), *extra, a.gltf,
+           "-o", out]
+    cpu = cpu_of(cmd)
+    return read_rgb(out), cpu
 
 
 def report_error(name, img, ref):
@@ -194,6 +206,12 @@ def main():
                   **{s: err[s] for s in MITSUBA_STRATIFIED}}
         equal_error_lines(mi_speed, mi_err, (("default", tray_sobol, "tray"),
                                              ("jitter", tray, "tray_jitter")), err)
+        say("Whole renders, TRay uniform and adaptive (issue 37), against the reference:")
+        ref = read_rgb(a.reference)
+        with tempfile.TemporaryDirectory() as tmp:
+            runs = whole_render_runs(lambda extra: cornell_whole(a, tmp, ref.shape, extra),
+                                     lambda img: rmse(img, ref), a.error_spp)
+        whole_render_equal_error(mi_speed, mi_err, ref.shape[0] * ref.shape[1], a.error_spp, runs)
     accurate = a.no_heavy or mitsuba_heavy.run(a)
     if a.report:
         with open(a.report, "w") as f:

@@ -24,7 +24,8 @@ import numpy as np
 
 import gltf_to_mitsuba as g2m
 from compare_report import channel_means, check_image, fail, rmse, say
-from mitsuba_measure import (MITSUBA_STRATIFIED, equal_error_lines, mitsuba_render, mitsuba_speed,
+from mitsuba_measure import (MITSUBA_STRATIFIED, cpu_of, equal_error_lines, mitsuba_render,
+                             mitsuba_speed, whole_render_equal_error, whole_render_runs,
                              paired_per_sample, tray_speed)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -86,6 +87,15 @@ def tray_image(a, scene, size, spp, extra, tmp):
     if r.returncode != 0 or not os.path.exists(out):
         fail(f"{' '.join(cmd)} failed (exit {r.returncode}): {r.stderr.strip()}")
     return np.array(mi.Bitmap(out), dtype=np.float64)[:, :, :3]
+
+
+def whole(a, scene, size, extra, tmp):
+    """One tray-render of the path tracer: (image, CPU seconds of the whole run)."""
+    out = os.path.join(tmp, "whole.exr")
+    cpu = cpu_of([a.tray_render, "--integrator", "path", "--max-depth", str(a.max_depth),
+                  "--resolution", f"{size}x{size}", "--float", "--threads", str(a.threads),
+                  *extra, scene, "-o", out])
+    return np.array(mi.Bitmap(out), dtype=np.float64)[:, :, :3], cpu
 
 
 def mitsuba_image(gltf, run, size, spp, depth, seed):
@@ -200,8 +210,14 @@ def run(a):
             rows.append((mi_ref, tr_ref))
             err = equal_spp_errors(a, gltf, staged, mi_ref, tr_ref, tmp)
             mi_speed, tray, tray_sobol = speed(a, gltf, staged)
-        equal_error_lines(mi_speed, err, (("default", tray_sobol, "tray"),
-                                          ("independent, jitter", tray, "tray_jitter")), err)
+            equal_error_lines(mi_speed, err, (("default", tray_sobol, "tray"),
+                                              ("independent, jitter", tray, "tray_jitter")), err)
+            say("Whole renders, TRay uniform and adaptive (issue 37), against TRay's converged "
+                "render:")
+            size, spp = a.heavy_error_size, a.heavy_error_spp
+            runs = whole_render_runs(lambda extra: whole(a, staged, size, extra, tmp),
+                                     lambda img: rmse(img, tr_ref), spp)
+            whole_render_equal_error(mi_speed, err, size * size, spp, runs)
     if a.side_by_side:
         side_by_side(a.side_by_side, rows)
         say(f"\nConverged renders, TRay left, Mitsuba right: {a.side_by_side}")

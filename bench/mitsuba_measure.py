@@ -1,6 +1,7 @@
 """Speed measurements and the equal-error arithmetic of bench/mitsuba_compare.py, shared by its
 Cornell box and heavier-scene sections (bench/mitsuba_heavy.py)."""
 import re
+import resource
 import subprocess
 import time
 
@@ -119,3 +120,48 @@ def equal_error_lines(mi_speed, mi_err, tray_speeds, tray_err):
                 cells.append(f"{name} {speed[k]['cpu'] / m[1] / q:.2f}")
             say(f"  time to equal error, Mitsuba / TRay {integrator} ({label}), per CPU-second: "
                 + ", ".join(cells))
+
+
+# TRay's noise-driven adaptive sampling (docs/adaptive-sampling.md) at these thresholds, at most
+# 4x the error spp: whole renders, timed as such (issue 37).
+ADAPTIVE_THRESHOLDS = ("0.1", "0.05", "0.03")
+
+
+def cpu_of(cmd):
+    """Runs a command; returns its CPU seconds (every thread's, user + system)."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    if r.returncode != 0:
+        fail(f"{' '.join(cmd)} failed (exit {r.returncode}): {r.stderr.strip()}")
+    return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+
+
+def whole_render_runs(render, error_of, error_spp):
+    """TRay's uniform default and its adaptive sampling measured alike, as whole tray-render
+    runs: CPU seconds less a 1-spp run's (scene load and BVH, which Mitsuba's timed renders
+    exclude too) and RMSE. render(extra) -> (image, CPU seconds); error_of(image) -> RMSE.
+    Returns [(label, CPU seconds, RMSE)]."""
+    _, setup = render(["--spp", "1"])
+    runs = []
+    img, cpu = render(["--spp", str(error_spp)])
+    runs.append((f"uniform {error_spp} spp", max(cpu - setup, 1e-3), error_of(img)))
+    for t in ADAPTIVE_THRESHOLDS:
+        img, cpu = render(["--spp", str(4 * error_spp), "--noise-threshold", t])
+        runs.append((f"adaptive {t}", max(cpu - setup, 1e-3), error_of(img)))
+    for label, cpu, e in runs:
+        say(f"  TRay path {label:18s} RMSE {e:.5f}  {cpu:7.2f} CPU-s (whole run less setup)")
+    return runs
+
+
+def whole_render_equal_error(mi_speed, mi_err, pixels, error_spp, runs):
+    """Time to equal RMSE, Mitsuba's / TRay's, per CPU-second, for whole TRay renders: Mitsuba
+    reaches RMSE e in its CPU time for error_spp samples times (its RMSE / e)^2 (its variance
+    falls as 1/spp)."""
+    for label, cpu, e in runs:
+        cells = []
+        for name, m in mi_speed.items():
+            mitsuba_cpu = pixels * error_spp * 1e-6 / m[1] * (mi_err[name] / e) ** 2
+            cells.append(f"{name} {mitsuba_cpu / cpu:.2f}")
+        say(f"  time to equal error, Mitsuba / TRay path {label} (whole renders, per "
+            "CPU-second): " + ", ".join(cells))

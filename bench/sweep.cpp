@@ -60,10 +60,15 @@ std::vector<SweepConfig> standardSweep(const std::vector<std::string>& accels,
     }
     // Noise-driven adaptive sampling (docs/adaptive-sampling.md) of the same estimator, at most
     // the largest spp: the threshold is the setting that varies.
+    // "even" (equal error, the rule of Cycles' threshold) beside the default "mse".
     p.set("spp", maxSpp);
-    for (const char* t : {"0.2", "0.1", "0.05", "0.02", "0.01", "0.005"}) {
-      p.set("noise-threshold", std::stof(t));
-      add("path sobol adaptive", std::string("threshold=") + t, p);
+    for (const char* rule : {"mse", "even"}) {
+      p.set("noise-rule", std::string(rule));
+      for (const char* t : {"0.1", "0.05", "0.03", "0.02", "0.01"}) {
+        p.set("noise-threshold", std::stof(t));
+        add(std::string("path sobol adaptive") + (rule == std::string("mse") ? "" : " even"),
+            std::string("threshold=") + t, p);
+      }
     }
   }
   // Every method on every accelerator and thread count: separate lines.

@@ -126,7 +126,7 @@ int sweep(const std::string& scenePath, const std::string& resolution, const std
   std::string csvPath = outDir + "/" + stem + ".csv";
   std::ofstream csv(csvPath);
   csv << "scene,method,setting,integrator,accel,threads,spp,seconds,rays,rmse,relmse,bias,max_"
-         "abs,cpu_seconds\n";
+         "abs,cpu_seconds,relmse_trimmed\n";
   std::printf("%-34s %-16s %9s %10s %10s %10s %10s\n", "method", "setting", "seconds", "Mrays",
               "RMSE", "relMSE", "bias");
   auto record = [&](const SweepConfig& c, const std::string& method, const RenderStats& st,
@@ -137,7 +137,7 @@ int sweep(const std::string& scenePath, const std::string& resolution, const std
     csv << stem << ',' << method << ',' << c.setting << ',' << c.settings.getString("integrator")
         << ',' << c.accel << ',' << c.threads << ',' << c.settings.getInt("spp") << ',' << seconds
         << ',' << st.rays.total() << ',' << e.rmse << ',' << e.relMse << ',' << e.bias << ','
-        << e.maxAbs << ',' << bench.lastCpuSeconds << '\n';
+        << e.maxAbs << ',' << bench.lastCpuSeconds << ',' << e.relMseTrimmed << '\n';
   };
   const std::vector<std::string> methods = splitList(methodList);
   for (const SweepConfig& c : standardSweep(splitList(accelList), threads, maxSpp)) {

@@ -11,8 +11,9 @@
 
 namespace tray {
 
-/// What a pixel of a render in passes (render/pass_renderer.h) has beside its sums: the half
-/// buffer of its error estimate (render/noise_estimate.h), its samples so far (samples
+/// What a pixel of a render in passes (render/pass_renderer.h) has beside its sums: the sums
+/// of its earlier look, which its error estimate compares with (render/noise_estimate.h), its
+/// samples so far (samples
 /// [begin, begin + count) of its range) and whether a step of the pass under way is still owed
 /// to it (kept by checkpoints, so that a resumed render takes the same decisions).
 struct PixelProgress {
@@ -49,7 +50,7 @@ const std::vector<std::string>& stateChannels();
 /// The sums held by the ten words Rh..Wl (in stateChannels() order), bit for bit.
 PixelSums joinSums(const float* words);
 
-/// Name of the film layer holding RenderState::progress, in the same words: the half buffer's
+/// Name of the film layer holding RenderState::progress, in the same words: the earlier sums'
 /// Rh..Wl, then count and pending (numbers).
 inline constexpr const char* kProgressLayer = "tray_progress";
 

@@ -16,16 +16,25 @@ std::optional<SamplingPasses> samplingPassesOf(const RenderSettings& settings) {
   return passes;
 }
 
-float pixelError(const PixelSums& all, const PixelSums& half) {
+float pixelError(const PixelSums& all, const PixelSums& earlier, int n, int m) {
+  constexpr float kNone = std::numeric_limits<float>::infinity();
   // Mitchell's negative lobes can make a weight sum cross zero: no estimate then.
-  if (!(std::abs(all.weight) > 0) || !(std::abs(half.weight) > 0))
-    return std::numeric_limits<float>::infinity();
+  if (m <= 0 || n <= m || !(std::abs(all.weight) > 0) || !(std::abs(earlier.weight) > 0))
+    return kNone;
   double squared = 0;
   for (int c = 0; c < 3; ++c) {
-    const double mean = all.rgb[c] / all.weight, d = mean - half.rgb[c] / half.weight;
+    const double mean = all.rgb[c] / all.weight, d = mean - earlier.rgb[c] / earlier.weight;
     squared += d * d / (mean * mean + kRelativeFloor);
   }
-  return float(std::sqrt(squared / 3));
+  return float(std::sqrt(squared / 3 * double(m) / double(n - m)));
+}
+
+int earlierCount(int count, const SamplingPasses& passes) {
+  const int first = nextStep(0, passes);
+  if (count <= first) return count / 2;
+  int previous = first;
+  for (int next; (next = previous + nextStep(previous, passes)) < count;) previous = next;
+  return previous;
 }
 
 int nextStep(int count, const SamplingPasses& passes) {

@@ -1,12 +1,13 @@
 #pragma once
 // Noise-driven adaptive sampling (docs/adaptive-sampling.md): when a pixel has had enough
-// samples. A pixel's samples come in steps (nextStep); each step's first half also goes to a
-// half buffer, and the difference of the two means estimates the error of the whole mean
-// (the two-buffer estimate of Dammertz et al. 2010, "A hierarchical automatic stopping
-// condition for Monte Carlo global illumination", §2.1, which Cycles and Arnold use), taken
-// relative to the pixel's value as relMSE measures error. Decisions are taken per 8x8 block
-// of image pixels from that block's pixels alone, so that a region whose edges are multiples
-// of 8 renders the pixels of the whole image's render, bit for bit.
+// samples. A pixel's samples come in steps (nextStep) and the error of its mean is estimated
+// from the difference between the mean now and the mean at its previous look (its first step:
+// the mean of its first half), the two-buffer idea of Dammertz et al. 2010 ("A hierarchical
+// automatic stopping condition for Monte Carlo global illumination", §2.1, as Cycles and
+// Arnold use it) with the earlier samples as the second buffer, so that a step is traced in
+// one go; the error is relative to the pixel's value, as relMSE measures it. Decisions are
+// taken per 8x8 block of image pixels from that block's pixels alone, so that a region whose
+// edges are multiples of 8 renders the pixels of the whole image's render, bit for bit.
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -38,11 +39,16 @@ inline constexpr double kRelativeFloor = 1e-2;
 /// is left for the renderer to take from the sample range); none otherwise.
 std::optional<SamplingPasses> samplingPassesOf(const RenderSettings& settings);
 
-/// The estimated relative error of the mean `all`: the RMS over R, G, B of the difference of
-/// the means of `all` and `half` over sqrt(mean^2 + kRelativeFloor). For independent samples
-/// the difference has the standard deviation of the whole mean (the half is half of it).
-/// Infinite while either buffer has no weight.
-float pixelError(const PixelSums& all, const PixelSums& half);
+/// The estimated relative error of `all`, the mean of a pixel's n samples, from `earlier`, the
+/// mean of its first m (0 < m < n): for independent samples the difference of the two has
+/// standard deviation sqrt((n - m) / m) times that of `all`, so the difference is scaled by
+/// sqrt(m / (n - m)); each channel relative to sqrt(mean^2 + kRelativeFloor), and the RMS over
+/// R, G, B. Infinite without an estimate (m or n - m not positive, a weight of zero).
+float pixelError(const PixelSums& all, const PixelSums& earlier, int n, int m);
+
+/// How many of a pixel's `count` samples its earlier mean holds: half of the first step,
+/// afterwards the count of the look before (counts follow one fixed sequence).
+int earlierCount(int count, const SamplingPasses& passes);
 
 /// Samples of a pixel's next step after `count`: minSamples first, then the largest power of
 /// two at most half of what it has (16, 24, 32, 48, 64, 96, ...: about two looks per doubling,

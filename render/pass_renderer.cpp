@@ -139,7 +139,8 @@ class PassRenderer {
           for (int i = 0; i < w; ++i) {
             const size_t p = size_t(fy0 + j) * film_.width() + fx0 + i;
             const PixelProgress& g = state_.progress[p];
-            error[j * w + i] = pixelError(state_.sums[p], g.half);
+            const int n = int(g.count);
+            error[j * w + i] = pixelError(state_.sums[p], g.half, n, earlierCount(n, passes_));
             count[j * w + i] = g.count;
           }
         decideBlock(error, count, w, h, passes_, more);
@@ -184,9 +185,11 @@ class PassRenderer {
     if (checkpoint) writeCheckpoint();
   }
 
-  /// One step of `pixels` (all with `count` samples): both halves traced, then committed.
+  /// One step of `pixels` (all with `count` samples), traced in one go (the first step in two
+  /// halves, the first of which is its earlier mean), then committed.
   void renderStep(std::span<const size_t> pixels, int count, StepTasks& work, RayStats& rays) {
-    const int step = nextStep(count, passes_), half = step / 2;
+    const int step = nextStep(count, passes_);
+    const int half = count == 0 ? step / 2 : 0;  // samples of the first half-call, if any
     const bool firstStep = count == 0;
     work.first.assign(pixels.size(), PixelTask{});
     work.second.assign(pixels.size(), PixelTask{});
@@ -207,21 +210,26 @@ class PassRenderer {
     std::lock_guard<std::mutex> lock(mutex_);
     for (size_t k = 0; k < pixels.size(); ++k)
       if ((half == 0 || work.first[k].finished) && work.second[k].finished)
-        commit(pixels[k], step, work, k);
+        commit(pixels[k], step, half, work, k);
   }
 
   /// Adds a traced step to pixel p and writes it (under mutex_: checkpoints copy the film).
-  void commit(size_t p, int step, const StepTasks& work, size_t k) {
+  /// The earlier mean becomes the first half (first step) or the sums before the step.
+  void commit(size_t p, int step, int half, const StepTasks& work, size_t k) {
     PixelProgress& g = state_.progress[p];
     const PixelTask &a = work.first[k], &b = work.second[k];
-    const bool halves = step / 2 > 0;
-    if (halves) state_.sums[p] += a.sums, g.half += a.sums;
+    if (half > 0) {
+      g.half = a.sums;
+      state_.sums[p] += a.sums;
+    } else {
+      g.half = state_.sums[p];
+    }
     state_.sums[p] += b.sums;
     const int px = x(p), py = y(p);
     writeBeauty(film_, px, py, state_.sums[p]);
     if (g.count == 0) {  // the AOVs other than the beauty come from the first step
       PixelValue v;
-      v.primary = halves ? a.first : b.first;
+      v.primary = half > 0 ? a.first : b.first;
       aovs_.write(film_, px, py, v, work.aovSums.empty() ? nullptr : &work.aovSums[k]);
       if (crypto_.active()) crypto_.write(film_, px, py, work.coverage[k]);
     }

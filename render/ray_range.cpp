@@ -8,8 +8,12 @@
 namespace tray {
 namespace {
 
-bool inRange(float v) { return std::isfinite(v) && std::fabs(v) <= kMaxRayCoordinate; }
-bool inRange(const Vec3& v) { return inRange(v.x) && inRange(v.y) && inRange(v.z); }
+bool inRange(float v) {
+  return std::isfinite(v) && std::fabs(v) <= kMaxRayCoordinate;
+}
+bool inRange(const Vec3& v) {
+  return inRange(v.x) && inRange(v.y) && inRange(v.z);
+}
 
 std::string shown(const Vec3& v) {
   char text[96];
@@ -41,7 +45,8 @@ void checkRayRange(const std::string& sceneName, const Scene& scene, const Camer
                  {"orthographic ymag", camera.ymag},
                  {"znear", camera.znear}};
   for (const auto& l : lengths)
-    if (!inRange(l.value)) refuse(sceneName, cam + "'s " + l.name + " is " + std::to_string(l.value));
+    if (!inRange(l.value))
+      refuse(sceneName, cam + "'s " + l.name + " is " + std::to_string(l.value));
   for (size_t i = 0; i < scene.lights.size(); ++i) {
     const PunctualLightDesc& l = scene.lights[i];
     if (l.type != PunctualLightDesc::Type::kDirectional && !inRange(l.position))

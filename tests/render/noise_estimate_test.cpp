@@ -15,19 +15,39 @@ PixelSums sums(double r, double g, double b, double weight) {
   return s;
 }
 
-// The two halves' difference relative to the value, as relMSE weighs error: RMS over R, G, B
-// of d / sqrt(mean^2 + 0.01).
-TEST(NoiseEstimate, ErrorIsTheHalvesDifferenceRelativeToTheValue) {
-  EXPECT_EQ(pixelError(sums(1, 2, 3, 16), sums(1, 2, 3, 8)), 0.0f);
-  EXPECT_NEAR(pixelError(sums(1, 1, 2, 16), sums(1.5, 0.5, 2, 8)),
-              std::sqrt((0.25 / 1.01 + 0.25 / 1.01) / 3), 1e-6);
+// The difference of the mean and the earlier mean, relative to the value as relMSE weighs
+// error (d / sqrt(mean^2 + 0.01), RMS over R, G, B), scaled to the whole mean's error by
+// sqrt(m / (n - m)): 1 when the earlier mean holds half of the samples.
+TEST(NoiseEstimate, ErrorIsTheDifferenceWithTheEarlierMeanRelativeToTheValue) {
+  EXPECT_EQ(pixelError(sums(1, 2, 3, 16), sums(1, 2, 3, 8), 16, 8), 0.0f);
+  const double half = std::sqrt((0.25 / 1.01 + 0.25 / 1.01) / 3);
+  EXPECT_NEAR(pixelError(sums(1, 1, 2, 16), sums(1.5, 0.5, 2, 8), 16, 8), half, 1e-6);
+  // The earlier mean holds 16 of 24 samples: the difference is sqrt(2) times less noisy.
+  EXPECT_NEAR(pixelError(sums(1, 1, 2, 24), sums(1.5, 0.5, 2, 16), 24, 16), half * std::sqrt(2.0),
+              1e-6);
   // The same difference on a value 10x brighter is 10x smaller (relative); on black it is
-  // absolute over 0.1 (the floor), finite; empty buffers are never converged.
-  EXPECT_NEAR(pixelError(sums(10, 10, 20, 16), sums(15, 5, 20, 8)),
+  // absolute over 0.1 (the floor), finite.
+  EXPECT_NEAR(pixelError(sums(10, 10, 20, 16), sums(15, 5, 20, 8), 16, 8),
               std::sqrt((25 / 100.01 + 25 / 100.01) / 3), 1e-6);
-  EXPECT_NEAR(pixelError(sums(0, 0, 0, 4), sums(0.001, 0, 0, 2)), std::sqrt(1e-4 / 3), 1e-7);
-  EXPECT_TRUE(std::isinf(pixelError(sums(1, 1, 1, 4), PixelSums{})));
-  EXPECT_TRUE(std::isinf(pixelError(PixelSums{}, PixelSums{})));
+  EXPECT_NEAR(pixelError(sums(0, 0, 0, 4), sums(0.001, 0, 0, 2), 4, 2), std::sqrt(1e-4 / 3), 1e-7);
+  // No estimate: no earlier samples, no new ones, or no weight.
+  EXPECT_TRUE(std::isinf(pixelError(sums(1, 1, 1, 4), sums(1, 1, 1, 4), 1, 0)));
+  EXPECT_TRUE(std::isinf(pixelError(sums(1, 1, 1, 4), sums(1, 1, 1, 4), 4, 4)));
+  EXPECT_TRUE(std::isinf(pixelError(sums(1, 1, 1, 4), PixelSums{}, 4, 2)));
+}
+
+// The earlier look of each count in the sequence: half of the first step, then the look before.
+TEST(NoiseEstimate, EarlierCountIsTheLookBefore) {
+  SamplingPasses p;
+  p.minSamples = 16, p.maxSamples = 100;
+  EXPECT_EQ(earlierCount(16, p), 8);
+  EXPECT_EQ(earlierCount(24, p), 16);
+  EXPECT_EQ(earlierCount(32, p), 24);
+  EXPECT_EQ(earlierCount(96, p), 64);
+  EXPECT_EQ(earlierCount(100, p), 96);  // the step cut at the maximum
+  p.minSamples = 1;
+  EXPECT_EQ(earlierCount(1, p), 0);
+  EXPECT_EQ(earlierCount(2, p), 1);
 }
 
 // mse: the stopping error grows as sqrt(count / minSamples); even: the threshold everywhere.

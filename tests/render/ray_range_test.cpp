@@ -40,8 +40,7 @@ TEST(RayRange, RefusesCamerasAndLightsBeyondTheTracersRange) {
       {[](Scene&, CameraDesc& c) { c.focusDistance = std::numeric_limits<float>::infinity(); },
        "focus distance"},
       {[](Scene&, CameraDesc& c) { c.xmag = 1e30f; }, "orthographic xmag"},
-      {[](Scene&, CameraDesc& c) { c.znear = std::numeric_limits<float>::quiet_NaN(); },
-       "znear"},
+      {[](Scene&, CameraDesc& c) { c.znear = std::numeric_limits<float>::quiet_NaN(); }, "znear"},
       {[](Scene& s, CameraDesc&) { s.lights.push_back(test::pointLight({0, 2e18f, 0}, Color(1))); },
        "punctual light 0 is at"},
   };
