@@ -62,15 +62,19 @@ void decideBlock(std::span<const float> error, std::span<const uint32_t> count, 
         more[p] = 1;
         continue;
       }
-      float worst = 0;
+      // The neighbourhood's mean error (no estimate: infinite) and the pixel's own.
+      double sum = 0;
+      int n = 0;
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
           const int nx = x + dx, ny = y + dy;
           if (nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
-          const float e = error[ny * w + nx];  // NaN: no estimate, as infinite
-          worst = std::max(worst, std::isnan(e) ? std::numeric_limits<float>::infinity() : e);
+          const float e = error[ny * w + nx];
+          sum += std::isfinite(e) ? double(e) : std::numeric_limits<double>::infinity();
+          ++n;
         }
-      more[p] = worst >= stoppingError(int(count[p]), passes);
+      const float limit = stoppingError(int(count[p]), passes);
+      more[p] = !(error[p] < limit) || !(sum / n < limit);
     }
 }
 

@@ -66,9 +66,10 @@ float stoppingError(int count, const SamplingPasses& passes);
 
 /// One block's decision: which of its pixels take another step. `error` and `count` hold the
 /// block's w x h pixels row by row. A pixel goes on while it has fewer than minSamples, or
-/// (threshold > 0) the largest error of its 3x3 neighbourhood inside the block is at least its
-/// stoppingError (an isolated pixel whose two halves agree by chance does not stop while its
-/// neighbours are noisy), or (threshold 0) until maxSamples. `more` receives 1 for those.
+/// (threshold > 0) its own error or the mean error of its 3x3 neighbourhood inside the block
+/// is at least its stoppingError (an isolated pixel whose two means agree by chance does not
+/// stop while its neighbours are noisy; a single noisy pixel does not keep its quiet
+/// neighbours going), or (threshold 0) until maxSamples. `more` receives 1 for those.
 void decideBlock(std::span<const float> error, std::span<const uint32_t> count, int w, int h,
                  const SamplingPasses& passes, std::span<uint8_t> more);
 

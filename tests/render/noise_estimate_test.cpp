@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace tray {
@@ -91,9 +92,12 @@ TEST(NoiseEstimate, StepsDoubleInTwoLooksAndStopAtTheMaximum) {
   EXPECT_EQ(nextStep(8, p), 0);
 }
 
-// A 4x3 block, threshold 0.1: the pixel at (3, 2) is noisy, so its 3x3 neighbourhood goes
-// on; the others stop; a pixel below the minimum goes on whatever its error, one at the
-// maximum stops whatever its error; threshold 0 only the maximum stops.
+// A 4x3 block, threshold 0.1, 32 samples (mse: stopping error 0.1 sqrt(2)): the pixel at
+// (3, 2) is noisy and goes on, its quiet neighbours stop (their neighbourhood's mean error is
+// below the limit); a quiet pixel amid noisy ones goes on (the mean is not); a pixel below
+// the minimum goes on whatever its error, one at the maximum stops whatever its error; a pixel
+// without an estimate (NaN, infinite) goes on with its neighbours; threshold 0: only the
+// maximum stops.
 TEST(NoiseEstimate, ABlockDecidesOverEachPixelsNeighbourhood) {
   SamplingPasses p;
   p.threshold = 0.1f, p.minSamples = 16, p.maxSamples = 256;
@@ -103,20 +107,24 @@ TEST(NoiseEstimate, ABlockDecidesOverEachPixelsNeighbourhood) {
   std::vector<uint8_t> more(w * h);
   error[2 * w + 3] = 0.5f;
   decideBlock(error, count, w, h, p, more);
-  const std::vector<uint8_t> expected = {0, 0, 0, 0,  //
-                                         0, 0, 1, 1,  //
-                                         0, 0, 1, 1};
-  EXPECT_EQ(more, expected);
+  for (int i = 0; i < w * h; ++i) EXPECT_EQ(more[i], i == 2 * w + 3 ? 1 : 0) << i;
+  std::vector<float> noisy(w * h, 0.5f);
+  noisy[1 * w + 1] = 0.0f;  // halves that agree by chance
+  decideBlock(noisy, count, w, h, p, more);
+  EXPECT_EQ(more[1 * w + 1], 1);
   count[0] = 8;            // below the minimum
-  count[2 * w + 3] = 256;  // at the maximum: it stops, its neighbours do not
+  count[2 * w + 3] = 256;  // at the maximum: it stops
   error[0] = 0.0f;
   decideBlock(error, count, w, h, p, more);
   EXPECT_EQ(more[0], 1);
   EXPECT_EQ(more[2 * w + 3], 0);
-  EXPECT_EQ(more[2 * w + 2], 1);
-  error[5] = std::nanf("");  // no estimate: not converged
+  error[5] = std::nanf("");  // no estimate: it and its neighbours go on
   decideBlock(error, count, w, h, p, more);
   EXPECT_EQ(more[5], 1);
+  EXPECT_EQ(more[4], 1);
+  error[5] = std::numeric_limits<float>::infinity();
+  decideBlock(error, count, w, h, p, more);
+  EXPECT_EQ(more[6], 1);
   p.threshold = 0;
   decideBlock(error, count, w, h, p, more);
   for (int i = 0; i < w * h; ++i) EXPECT_EQ(more[i], i == 2 * w + 3 ? 0 : 1) << i;

@@ -106,6 +106,21 @@ TEST(PassRenderer, AdaptiveMeansMatchUniform) {
         << c;
 }
 
+// The white furnace (a sphere of albedo 0.8 in a constant environment of 1): stopping on an
+// estimate keeps the closed form, as uniform sampling does.
+TEST(PassRenderer, FurnaceMeansMatchUniform) {
+  static const Scene furnace =
+      loadGltf(std::string(TRAY_SHARED_DIR) + "/reference/furnace-sphere.gltf");
+  Job job = adaptiveJob(0.02f, 256);
+  job.threads = 0, job.size = 32;
+  const Render adaptive = render(furnace, job);
+  job.passes.reset();
+  const Render uniform = render(furnace, job);
+  for (int c = 0; c < 3; ++c)
+    EXPECT_NEAR(channelMean(adaptive.film, c), channelMean(uniform.film, c), 2e-3) << c;
+  EXPECT_LT(adaptive.stats.samples, uint64_t(256) * 32 * 32);
+}
+
 // A region whose edges are multiples of 8 decides as the whole image does: its pixels are the
 // whole render's, bit for bit.
 TEST(PassRenderer, AlignedRegionHasTheWholeImagesPixels) {

@@ -34,6 +34,9 @@ check() {  # check NAME SCENE ARGS...
 check cornell-path "$shared/reference/cornell-box.gltf" --integrator path --spp 2
 # Embree's 8-wide packets: inactive lanes were uninitialised (66 errors before they were zeroed).
 check cornell-wavefront "$shared/reference/cornell-box.gltf" --integrator path-wavefront --spp 2
+# Renders in passes (docs/adaptive-sampling.md): the pass renderer, its checkpoints and samples AOV.
+check cornell-adaptive "$shared/reference/cornell-box.gltf" --integrator path --spp 8 \
+  --min-spp 2 --noise-threshold 0.1 --aov samples --checkpoint 0.01
 check csg "$src/scenes/csg.gltf"
 check textured "$src/scenes/textured.gltf"
 # The wavefront's glossy SIMD stage (textured metal and plastic): its light sample, inlined whole,
