@@ -12,6 +12,7 @@
 
 #include "film/aov.h"
 #include "film/cryptomatte.h"
+#include "render/checkpoint_clock.h"
 #include "render/noise_estimate.h"
 
 namespace tray {
@@ -50,7 +51,8 @@ class PassRenderer {
   }
 
   RenderStats run() {
-    start_ = lastCheckpoint_ = Clock::now();
+    start_ = Clock::now();
+    checkpoints_.start(start_);
     std::thread watcher([this] { watch(); });
     tbb::task_arena arena(options_.threads > 0 ? options_.threads : tbb::task_arena::automatic);
     arena.execute([&] {
@@ -247,14 +249,7 @@ class PassRenderer {
     const double budget = double(state_.sums.size()) * passes_.maxSamples;
     fraction_ = std::max(fraction_, std::min(1.0, double(credited_) / budget));
     if (options_.onProgress) options_.onProgress(fraction_);
-    const auto now = Clock::now();
-    if (!options_.onCheckpoint || options_.checkpointSeconds <= 0 || checkpointing_ ||
-        std::chrono::duration<double>(now - lastCheckpoint_).count() < options_.checkpointSeconds ||
-        stopNow_.load())
-      return false;
-    checkpointing_ = true;
-    lastCheckpoint_ = now;
-    return true;
+    return checkpoints_.claim(stopNow_.load());
   }
 
   /// A copy of the film and state as committed so far (under mutex_), written outside it.
@@ -267,7 +262,7 @@ class PassRenderer {
     }
     options_.onCheckpoint(copy, copyState);
     std::lock_guard<std::mutex> lock(mutex_);
-    checkpointing_ = false;
+    checkpoints_.release();
   }
 
   /// The outcome: a signal leaves every pixel undone and the progress to resume; the end of
@@ -308,8 +303,8 @@ class PassRenderer {
   RenderStats result_;
   uint64_t credited_ = 0;  ///< samples the progress counts (settled pixels count in full)
   double fraction_ = 0;
-  bool checkpointing_ = false;
-  Clock::time_point start_, lastCheckpoint_;
+  CheckpointClock checkpoints_{options_};
+  Clock::time_point start_;
 };
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include "core/error.h"
 #include "film/aov.h"
 #include "film/cryptomatte.h"
+#include "render/checkpoint_clock.h"
 #include "render/pass_renderer.h"
 
 namespace tray {
@@ -120,7 +121,8 @@ class TileRenderer {
   }
 
   RenderStats run() {
-    start_ = lastCheckpoint_ = Clock::now();
+    start_ = Clock::now();
+    checkpoints_.start(start_);
     tbb::task_arena arena(options_.threads > 0 ? options_.threads : tbb::task_arena::automatic);
     arena.execute([&] {
       tbb::parallel_for(tbb::blocked_range<int>(0, tileCount_, 1),
@@ -233,14 +235,7 @@ class TileRenderer {
     result_.rays += rays;
     ++tilesDone_;
     if (options_.onProgress) options_.onProgress(double(tilesDone_) / tileCount_);
-    const auto now = Clock::now();
-    if (!options_.onCheckpoint || options_.checkpointSeconds <= 0 || checkpointing_ ||
-        std::chrono::duration<double>(now - lastCheckpoint_).count() < options_.checkpointSeconds ||
-        tilesDone_ >= tileCount_ || stopped())
-      return false;
-    checkpointing_ = true;
-    lastCheckpoint_ = now;
-    return true;
+    return checkpoints_.claim(tilesDone_ >= tileCount_ || stopped());
   }
 
   /// Outside the lock: other tiles go on while the file is written.
@@ -250,7 +245,7 @@ class TileRenderer {
     snapshot(film_, state_, done_.get(), copy, copyState);
     options_.onCheckpoint(copy, copyState);
     std::lock_guard<std::mutex> lock(mutex_);
-    checkpointing_ = false;
+    checkpoints_.release();
   }
 
   const Integrator& integrator_;
@@ -268,8 +263,8 @@ class TileRenderer {
   std::mutex mutex_;  ///< guards what follows
   RenderStats result_;
   int tilesDone_ = 0;
-  bool checkpointing_ = false;
-  Clock::time_point start_, lastCheckpoint_;
+  CheckpointClock checkpoints_{options_};
+  Clock::time_point start_;
 };
 
 }  // namespace

@@ -162,4 +162,32 @@ inline void expectSamePixels(const Exr& a, const Exr& b, const std::string& what
   EXPECT_EQ(differ, 0u) << what << ": " << differ << " of " << a.pixels.size() << " values differ";
 }
 
+/// Renders `job` whole (full.exr in `dir`) and as `regions` ("x0,y0,x1,y1" each), merges the
+/// parts with tray-merge and expects the merge to hold the whole render's pixels bit for bit.
+inline void expectRegionsMergeToWhole(const std::string& job,
+                                      const std::vector<std::string>& regions,
+                                      const fs::path& dir, const std::string& what) {
+  // Appended piecewise: GCC 12 warns falsely on "lit" + std::string&& (see quoted()).
+  auto output = [&](const std::string& name) {
+    std::string o = " -o ";
+    o += quoted(dir / name);
+    return o;
+  };
+  ASSERT_EQ(runCli(TRAY_RENDER_BIN, job + output("full.exr"), dir).exitCode, 0);
+  std::string parts;
+  for (const std::string& region : regions) {
+    std::string args = job;
+    args += " --region ";
+    args += region;
+    args += output(region + ".exr");
+    CliResult r = runCli(TRAY_RENDER_BIN, args, dir);
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    parts += ' ';
+    parts += quoted(dir / (region + ".exr"));
+  }
+  CliResult m = runMerge(parts + output("merged.exr"), dir);
+  ASSERT_EQ(m.exitCode, 0) << m.err;
+  expectSamePixels(readExrFile(dir / "full.exr"), readExrFile(dir / "merged.exr"), what);
+}
+
 }  // namespace tray::test

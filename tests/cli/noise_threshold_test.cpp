@@ -36,18 +36,8 @@ std::pair<float, float> countRange(const Exr& image) {
 TEST(NoiseThreshold, RegionsMergeBitForBit) {
   const fs::path dir = testDir();
   const std::string job = kJob + "--spp 64 --resolution 40x32";
-  ASSERT_EQ(runCli(TRAY_RENDER_BIN, job + " " + out(dir, "full.exr"), dir).exitCode, 0);
-  std::string parts;
-  for (const char* region : {"0,0,40,8", "0,8,40,32"}) {
-    const std::string name = std::string(region) + ".exr";
-    CliResult r = runCli(TRAY_RENDER_BIN, job + " --region " + region + " " + out(dir, name), dir);
-    ASSERT_EQ(r.exitCode, 0) << r.err;
-    parts += " '" + (dir / name).string() + "'";
-  }
-  CliResult m = runMerge(parts + " " + out(dir, "merged.exr"), dir);
-  ASSERT_EQ(m.exitCode, 0) << m.err;
+  expectRegionsMergeToWhole(job, {"0,0,40,8", "0,8,40,32"}, dir, "noise-threshold regions");
   const Exr full = readExrFile(dir / "full.exr");
-  expectSamePixels(full, readExrFile(dir / "merged.exr"), "noise-threshold regions");
   const auto [lo, hi] = countRange(full);
   EXPECT_EQ(lo, 16.0f);
   EXPECT_EQ(hi, 64.0f);
