@@ -43,10 +43,25 @@ import time
 
 import numpy as np
 
-np.bool = bool  # Debian's numpy 1.24 dropped np.bool; Blender 3.4's glTF importer still uses it
+if not hasattr(np, "bool"):  # numpy 1.24 dropped np.bool (2.x has it again); Blender 3.4 uses it
+    np.bool = bool
 import bpy  # noqa: E402  (inside Blender only)
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def lighting(op):
+    """The glTF operator's COMPAT lighting option under its name in this Blender (3.4:
+    convert_lighting_mode; 3.6 and later, 5.2 included: export_import_convert_lighting_mode)."""
+    names = op.get_rna_type().properties.keys()
+    key = "convert_lighting_mode" if "convert_lighting_mode" in names else \
+        "export_import_convert_lighting_mode"
+    return {key: "COMPAT"}
+
+
+# tray-render without $OCIO: `import bpy` points it at Blender's own config (OCIO 2.5 format),
+# which Debian 12's OpenColorIO 2.1 aborts on (../shared/notes/cycles5.md).
+TRAY_ENV = {k: v for k, v in os.environ.items() if k != "OCIO"}
 SHARED = os.path.normpath(os.path.join(HERE, "..", "..", "shared"))
 ASSETS = {
     "DamagedHelmet": os.path.join(SHARED, "gltf-samples", "DamagedHelmet.glb"),
@@ -102,7 +117,7 @@ def build_scene(asset, merged, sun):
     import mathutils
     reset()
     bpy.ops.import_scene.gltf(filepath=asset, import_shading="NORMALS",
-                              convert_lighting_mode="COMPAT")
+                              **lighting(bpy.ops.import_scene.gltf))
     lo, hi = world_bounds()
     centre, radius = (lo + hi) / 2, float(np.linalg.norm(hi - lo)) / 2
     bpy.ops.mesh.primitive_plane_add(size=radius * 12, location=(centre[0], centre[1], lo[2]))
@@ -131,7 +146,7 @@ def build_scene(asset, merged, sun):
     sun_ob.rotation_euler = (math.radians(50), 0, math.radians(-140))
     bpy.context.scene.render.resolution_x = bpy.context.scene.render.resolution_y = 100
     bpy.ops.export_scene.gltf(filepath=merged, export_format="GLB", export_cameras=True,
-                              export_lights=True, convert_lighting_mode="COMPAT")
+                              export_lights=True, **lighting(bpy.ops.export_scene.gltf))
 
 
 def diffuse_for_rough_dielectrics():
@@ -160,7 +175,7 @@ def diffuse_for_rough_dielectrics():
 def setup_cycles(merged, env, env_intensity, size, spp, depth, seed=0, clamp=0.0):
     reset()
     if merged:
-        bpy.ops.import_scene.gltf(filepath=merged, convert_lighting_mode="COMPAT")
+        bpy.ops.import_scene.gltf(filepath=merged, **lighting(bpy.ops.import_scene.gltf))
     scene = bpy.context.scene
     cams = [o for o in scene.objects if o.type == "CAMERA"]
     if cams:
@@ -230,7 +245,7 @@ def render_tray(args, merged, env, spp, path, threads=1, seed=0):
            "--env", env, "--env-intensity", str(args.env_intensity), "--resolution",
            f"{args.size}x{args.size}", "--float", "-o", path] + args.tray_args.split()
     start = time.perf_counter()
-    subprocess.run(cmd, check=True)
+    subprocess.run(cmd, check=True, env=TRAY_ENV)
     return time.perf_counter() - start
 
 
@@ -286,7 +301,7 @@ def compare(args, name, env):
                 f"{math.sqrt(mse):.5f}  (image mean {float(ref.mean()):.4f})")
         fits[renderer] = efficiency(points)
         subprocess.run(["oiiotool", ref_path, "--ch", "R,G,B", "--colorconvert", "linear", "sRGB",
-                        "-o", os.path.join(out, f"{renderer}-ref.png")], check=False)
+                        "-o", os.path.join(out, f"{renderer}-ref.png")], check=False, env=TRAY_ENV)
     (c_cyc, t_cyc), (c_tray, t_tray) = fits["cycles"], fits["tray"]
     target = c_cyc / args.target_spp  # Cycles' MSE at --target-spp (fitted)
     cycles_time = t_cyc * args.target_spp
@@ -330,12 +345,12 @@ def main():
     os.makedirs(args.out, exist_ok=True)
     maps = os.path.join(args.out, "maps")
     subprocess.run([os.path.join(args.build, "env_bench"), "--write-maps", maps], check=True,
-                   stdout=subprocess.DEVNULL)
+                   stdout=subprocess.DEVNULL, env=TRAY_ENV)
     # The sky without its sun disk (clamped to the sky's own brightness): the sun is the glTF
     # directional light, as in the truck scene of the lighting issue (sun + background).
     env = os.path.join(maps, "sky-soft.exr")
     subprocess.run(["oiiotool", os.path.join(maps, "sky.exr"), "--clamp:max=" + str(args.sky_max),
-                    "-o", env], check=True)
+                    "-o", env], check=True, env=TRAY_ENV)
     say(f"TRay vs Cycles ({bpy.app.version_string}), {args.size}x{args.size}, one thread each, "
         f"max depth {args.max_depth}, references {args.ref_spp} spp, sun {args.sun} + sky x "
         f"{args.env_intensity}")
