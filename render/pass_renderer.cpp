@@ -123,38 +123,51 @@ class PassRenderer {
     const int bx0 = options_.x0 / kNoiseBlock, by0 = options_.y0 / kNoiseBlock;
     const int bx1 = (options_.x0 + film_.width() - 1) / kNoiseBlock;
     const int by1 = (options_.y0 + film_.height() - 1) / kNoiseBlock;
+    // Rows of blocks in parallel (each block decides alone); their sums added in row order.
+    std::vector<uint64_t> credited(size_t(by1 - by0 + 1));
+    std::vector<uint8_t> any(credited.size());
+    tbb::parallel_for(by0, by1 + 1, [&](int by) {
+      BlockScratch scratch;
+      for (int bx = bx0; bx <= bx1; ++bx)
+        any[by - by0] |= decideBlockAt(bx, by, scratch, credited[by - by0]);
+    });
+    credited_ = 0;
+    for (uint64_t c : credited) credited_ += c;
+    return std::any_of(any.begin(), any.end(), [](uint8_t a) { return a != 0; });
+  }
+
+  struct BlockScratch {
     std::vector<float> error;
     std::vector<uint32_t> count;
     std::vector<uint8_t> more;
-    bool any = false;
-    uint64_t credited = 0;
-    for (int by = by0; by <= by1; ++by)
-      for (int bx = bx0; bx <= bx1; ++bx) {
-        // The block's pixels inside the film, in film coordinates.
-        const int fx0 = std::max(bx * kNoiseBlock - options_.x0, 0);
-        const int fy0 = std::max(by * kNoiseBlock - options_.y0, 0);
-        const int fx1 = std::min((bx + 1) * kNoiseBlock - options_.x0, film_.width());
-        const int fy1 = std::min((by + 1) * kNoiseBlock - options_.y0, film_.height());
-        const int w = fx1 - fx0, h = fy1 - fy0;
-        error.resize(size_t(w) * h), count.resize(error.size()), more.resize(error.size());
-        for (int j = 0; j < h; ++j)
-          for (int i = 0; i < w; ++i) {
-            const size_t p = size_t(fy0 + j) * film_.width() + fx0 + i;
-            const PixelProgress& g = state_.progress[p];
-            const int n = int(g.count);
-            error[j * w + i] = pixelError(state_.sums[p], g.half, n, earlierCount(n, passes_));
-            count[j * w + i] = g.count;
-          }
-        decideBlock(error, count, w, h, passes_, more);
-        for (int j = 0; j < h; ++j)
-          for (int i = 0; i < w; ++i) {
-            PixelProgress& g = state_.progress[size_t(fy0 + j) * film_.width() + fx0 + i];
-            g.pending = more[j * w + i];
-            any = any || g.pending;
-            credited += g.pending ? g.count : uint64_t(passes_.maxSamples);
-          }
+  };
+
+  /// Block (bx, by) of image pixels decides for its pixels inside the film (sets pending);
+  /// adds the samples the progress credits them to `credited`; true when one goes on.
+  bool decideBlockAt(int bx, int by, BlockScratch& b, uint64_t& credited) {
+    const int fx0 = std::max(bx * kNoiseBlock - options_.x0, 0);
+    const int fy0 = std::max(by * kNoiseBlock - options_.y0, 0);
+    const int fx1 = std::min((bx + 1) * kNoiseBlock - options_.x0, film_.width());
+    const int fy1 = std::min((by + 1) * kNoiseBlock - options_.y0, film_.height());
+    const int w = fx1 - fx0, h = fy1 - fy0;
+    b.error.resize(size_t(w) * h), b.count.resize(b.error.size()), b.more.resize(b.error.size());
+    for (int j = 0; j < h; ++j)
+      for (int i = 0; i < w; ++i) {
+        const size_t p = size_t(fy0 + j) * film_.width() + fx0 + i;
+        const PixelProgress& g = state_.progress[p];
+        const int n = int(g.count);
+        b.error[j * w + i] = pixelError(state_.sums[p], g.half, n, earlierCount(n, passes_));
+        b.count[j * w + i] = g.count;
       }
-    credited_ = credited;
+    decideBlock(b.error, b.count, w, h, passes_, b.more);
+    bool any = false;
+    for (int j = 0; j < h; ++j)
+      for (int i = 0; i < w; ++i) {
+        PixelProgress& g = state_.progress[size_t(fy0 + j) * film_.width() + fx0 + i];
+        g.pending = b.more[j * w + i];
+        any = any || g.pending;
+        credited += g.pending ? g.count : uint64_t(passes_.maxSamples);
+      }
     return any;
   }
 
