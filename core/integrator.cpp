@@ -17,8 +17,10 @@ namespace {
 PixelSampler pixelSamplerOf(const RenderSettings& s, Sampler::Sequence sequence, float radius) {
   const bool stratified = sequence == Sampler::Sequence::kSobol;
   const int spp = s.getInt("spp");
-  return PixelSampler(PixelSampler::parse(s.getString("pixel-sampler"), spp, stratified), spp,
-                      radius);
+  // Renders in passes (render/pass_renderer.h) may stop a pixel after any of its samples.
+  const bool anyPrefix = s.getFloat("noise-threshold") > 0 || s.getFloat("time-limit") > 0;
+  return PixelSampler(PixelSampler::parse(s.getString("pixel-sampler"), spp, stratified, anyPrefix),
+                      spp, radius);
 }
 
 }  // namespace

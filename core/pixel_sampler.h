@@ -21,12 +21,17 @@ class PixelSampler {
   };
   /// Names accepted by --pixel-sampler; "auto" is center at 1 spp, above it "sequence" when
   /// the sequence stratifies and spp is a power of two (its points are then a (0, m, 2)-net,
-  /// which is stratified on every grid of spp cells), jitter otherwise.
+  /// which is stratified on every grid of spp cells), jitter otherwise; "sequence" at any
+  /// count in a render in passes (see parse).
   static const std::vector<std::string>& names();
   /// --pixel-sampler: declared here, beside the patterns it names.
   static const OptionSpec& option();
   /// Resolves a name (throws tray::Error naming the choices for an unknown one).
-  static Pattern parse(const std::string& name, int spp, bool stratifiedSequence = false);
+  /// `anyPrefix`: a pixel may stop after any number of its samples (renders in passes:
+  /// --noise-threshold, --time-limit), so every prefix of its samples must cover it: "auto"
+  /// is then "sequence", and grid, jitter and corners (sample i in stratum i) are refused.
+  static Pattern parse(const std::string& name, int spp, bool stratifiedSequence = false,
+                       bool anyPrefix = false);
 
   PixelSampler(Pattern pattern, int spp, float radius);
   Pattern pattern() const { return pattern_; }

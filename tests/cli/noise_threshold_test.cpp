@@ -110,7 +110,8 @@ TEST(NoiseThreshold, MistakesAreOneLine) {
   for (const std::string bad :
        {"--noise-threshold -1", "--noise-threshold nan", "--min-spp 0", "--time-limit -2",
         "--time-limit inf", "--integrator adaptive --noise-threshold 0.1",
-        "--integrator path --noise-threshold 0.1 --aov lightpaths"}) {
+        "--integrator path --noise-threshold 0.1 --aov lightpaths",
+        "--integrator path --time-limit 5 --pixel-sampler jitter"}) {
     CliResult r = runCli(TRAY_RENDER_BIN, job + bad + " " + out(dir, "x.exr"), dir);
     EXPECT_EQ(r.exitCode, 2) << bad << ": " << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << bad << ": " << r.err;

@@ -25,6 +25,14 @@ TEST(PixelSampler, NamesResolve) {
   EXPECT_EQ(PixelSampler::parse("auto", 64, false), Pattern::kJitter);
   EXPECT_EQ(PixelSampler::parse("auto", 1, true), Pattern::kCenter);
   EXPECT_EQ(PixelSampler::parse("sequence", 4), Pattern::kSequence);
+  // A pixel that may stop after any sample (renders in passes) needs every prefix spread out:
+  // auto takes the sequence at any count, the stratum-ordered patterns are refused.
+  EXPECT_EQ(PixelSampler::parse("auto", 48, true, true), Pattern::kSequence);
+  EXPECT_EQ(PixelSampler::parse("auto", 100, false, true), Pattern::kSequence);
+  EXPECT_EQ(PixelSampler::parse("auto", 1, true, true), Pattern::kCenter);
+  EXPECT_EQ(PixelSampler::parse("center", 8, true, true), Pattern::kCenter);
+  for (const char* name : {"grid", "jitter", "corners"})
+    EXPECT_THROW(PixelSampler::parse(name, 16, true, true), Error) << name;
   const PixelSampler seq(Pattern::kSequence, 5, 1.5f);
   EXPECT_EQ(seq.count(), 5);
   const Vec2 o = seq.offset(3, {0.25f, 0.75f});
