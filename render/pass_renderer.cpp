@@ -20,8 +20,9 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-/// One pixel's step under way: its two halves (the first also goes to the half buffer) and,
-/// for its first step, the ids and averaged AOVs gathered over both.
+/// The steps of a batch of pixels under way: `second` holds each pixel's step (a first step:
+/// its second half; `first` then its first half, which becomes its earlier mean) and, for a
+/// first step, the ids and averaged AOVs gathered over both halves.
 struct StepTasks {
   std::vector<PixelTask> first, second;
   std::vector<IdCoverage> coverage;
