@@ -14,8 +14,9 @@ Usage: bench/adaptive_report.py CSV... [--chart out.png]   (python3-matplotlib f
 """
 import argparse
 import csv
-import math
 import os
+
+from compare_report import loglog_crossing
 
 
 def load(path):
@@ -25,16 +26,6 @@ def load(path):
         for k in ("cpu_seconds", "rmse", "relmse", "relmse_trimmed", "spp", "rays"):
             r[k] = float(r[k])
     return rows
-
-
-def interpolate(points, t):
-    """log-log interpolation of (time, error) points at time t; None outside their range."""
-    points = sorted(points)
-    for (t0, e0), (t1, e1) in zip(points, points[1:]):
-        if t0 <= t <= t1:
-            a = (math.log(t) - math.log(t0)) / (math.log(t1) - math.log(t0))
-            return math.exp((1 - a) * math.log(e0) + a * math.log(e1))
-    return None
 
 
 ADAPTIVE = (("path sobol adaptive", "mse"), ("path sobol adaptive even", "even"))
@@ -47,7 +38,7 @@ def compare(rows, metric, method):
     for r in rows:
         if r["method"] != method:
             continue
-        u = interpolate(uniform, r["cpu_seconds"])
+        u = loglog_crossing(uniform, r["cpu_seconds"])
         out.append((r["setting"], r["cpu_seconds"], r[metric], u, u / r[metric] if u else None))
     return out
 

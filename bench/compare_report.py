@@ -1,5 +1,7 @@
 """What bench/mitsuba_compare.py and bench/mitsuba_heavy.py share: the report they print and
-write, failing with one line, and image statistics."""
+write, failing with one line, and image statistics; and the log-log reading of error against
+time that bench/adaptive_report.py and bench/cycles_adaptive.py share."""
+import math
 import sys
 
 import numpy as np
@@ -30,3 +32,18 @@ def rmse(img, ref):
 
 def channel_means(img):
     return img.reshape(-1, img.shape[2])[:, :3].mean(axis=0)
+
+
+def loglog_crossing(points, value, axis=0):
+    """Along the (x, y) points in x order, the first segment whose coordinate `axis` (0: x,
+    1: y) brackets `value`: the other coordinate there, interpolated linearly in log-log. None
+    when no segment does. With (time, error) points: axis 0 reads the error at a time, axis 1
+    the time at which the line reaches an error."""
+    points = sorted(points)
+    for p0, p1 in zip(points, points[1:]):
+        v0, v1 = p0[axis], p1[axis]
+        if min(v0, v1) <= value <= max(v0, v1) and v0 != v1:
+            a = (math.log(value) - math.log(v0)) / (math.log(v1) - math.log(v0))
+            o0, o1 = p0[1 - axis], p1[1 - axis]
+            return math.exp((1 - a) * math.log(o0) + a * math.log(o1))
+    return None

@@ -26,6 +26,7 @@ import sys
 import numpy as np
 
 import cycles_compare as cc
+from compare_report import loglog_crossing
 import bpy  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -54,28 +55,14 @@ def relmse(a, ref):
     return float(np.mean((a - ref) ** 2 / (ref ** 2 + 1e-2)))
 
 
-def interpolate(points, e):
-    """Time at which the (time, error) line reaches error e (log-log); None outside it."""
-    points = sorted(points)
-    for (t0, e0), (t1, e1) in zip(points, points[1:]):
-        if min(e0, e1) <= e <= max(e0, e1) and e0 != e1:
-            a = (math.log(e) - math.log(e0)) / (math.log(e1) - math.log(e0))
-            return math.exp((1 - a) * math.log(t0) + a * math.log(t1))
-    return None
-
-
 def runs(args, name, merged, env, renderer):
     """The renderer's reference and its adaptive runs: [(label, seconds, RMSE, relMSE)]."""
     out = os.path.join(args.out, name)
 
     def render(path, spp, threads=1, seed=0, threshold=None):
         if renderer == "tray":
-            saved = args.tray_args
-            if threshold:
-                args.tray_args = f"{saved} --noise-threshold {threshold}"
-            seconds = cc.render_tray(args, merged, env, spp, path, threads, seed)
-            args.tray_args = saved
-            return seconds
+            extra = ["--noise-threshold", threshold] if threshold else []
+            return cc.render_tray(args, merged, env, spp, path, threads, seed, extra)
         cc.setup_cycles(merged, env, args.env_intensity, args.size, spp, args.max_depth, seed,
                         args.clamp_indirect)
         c = bpy.context.scene.cycles
@@ -111,11 +98,11 @@ def compare(args, name, env):
     tray = runs(args, name, merged, env, "tray")
     cycles = runs(args, name, merged, env, "cycles")
     for k, metric in ((2, "RMSE"), (3, "relMSE")):
-        line = [(seconds, r[k]) for r in tray for seconds in [r[1]]]
+        line = [(r[1], r[k]) for r in tray]  # TRay's (seconds, error)
         cells = []
-        for t, seconds, *errors in cycles:
-            tray_time = interpolate(line, errors[k - 2])
-            cells.append(f"{t}: {seconds / tray_time:.2f}x" if tray_time else f"{t}: outside")
+        for c in cycles:
+            tray_time = loglog_crossing(line, c[k], axis=1)
+            cells.append(f"{c[0]}: {c[1] / tray_time:.2f}x" if tray_time else f"{c[0]}: outside")
         cc.say(f"  {name}: Cycles' adaptive time / TRay's adaptive time to the same {metric}: "
                + ", ".join(cells))
 

@@ -238,12 +238,13 @@ def render_cycles(path):
     return time.perf_counter() - start
 
 
-def render_tray(args, merged, env, spp, path, threads=1, seed=0):
+def render_tray(args, merged, env, spp, path, threads=1, seed=0, extra=()):
+    """One tray-render run (args.tray_args and `extra` appended); its wall seconds."""
     cmd = [os.path.join(args.build, "tray-render"), merged, "-q", "--integrator", "path",
            "--spp", str(spp), "--seed", str(seed), "--clamp-indirect", str(args.clamp_indirect),
            "--max-depth", str(args.max_depth), "--threads", str(threads),
            "--env", env, "--env-intensity", str(args.env_intensity), "--resolution",
-           f"{args.size}x{args.size}", "--float", "-o", path] + args.tray_args.split()
+           f"{args.size}x{args.size}", "--float", "-o", path] + args.tray_args.split() + list(extra)
     start = time.perf_counter()
     subprocess.run(cmd, check=True, env=TRAY_ENV)
     return time.perf_counter() - start

@@ -17,10 +17,9 @@ namespace {
 PixelSampler pixelSamplerOf(const RenderSettings& s, Sampler::Sequence sequence, float radius) {
   const bool stratified = sequence == Sampler::Sequence::kSobol;
   const int spp = s.getInt("spp");
-  // Renders in passes (render/pass_renderer.h) may stop a pixel after any of its samples.
-  const bool anyPrefix = s.getFloat("noise-threshold") > 0 || s.getFloat("time-limit") > 0;
-  return PixelSampler(PixelSampler::parse(s.getString("pixel-sampler"), spp, stratified, anyPrefix),
-                      spp, radius);
+  return PixelSampler(
+      PixelSampler::parse(s.getString("pixel-sampler"), spp, stratified, rendersInPasses(s)), spp,
+      radius);
 }
 
 }  // namespace

@@ -61,4 +61,8 @@ const std::vector<OptionSpec>& renderOptions() {
   return all;
 }
 
+bool rendersInPasses(const RenderSettings& settings) {
+  return settings.getFloat("noise-threshold") > 0 || settings.getFloat("time-limit") > 0;
+}
+
 }  // namespace tray

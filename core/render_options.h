@@ -23,4 +23,8 @@ class RenderSettings : public OptionValues {
   RenderSettings() { declare(renderOptions()); }
 };
 
+/// Whether the render runs in passes (--noise-threshold or --time-limit set;
+/// render/pass_renderer.h): a pixel may then stop after any number of its samples.
+bool rendersInPasses(const RenderSettings& settings);
+
 }  // namespace tray

@@ -7,10 +7,10 @@
 namespace tray {
 
 std::optional<SamplingPasses> samplingPassesOf(const RenderSettings& settings) {
+  if (!rendersInPasses(settings)) return std::nullopt;
   SamplingPasses passes;
   passes.threshold = settings.getFloat("noise-threshold");
   passes.timeLimit = settings.getFloat("time-limit");
-  if (passes.threshold <= 0 && passes.timeLimit <= 0) return std::nullopt;
   passes.minSamples = int(settings.getInt("min-spp"));
   passes.evenError = settings.getString("noise-rule") == "even";
   return passes;

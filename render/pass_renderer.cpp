@@ -1,6 +1,5 @@
 #include "render/pass_renderer.h"
 
-#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -14,6 +13,7 @@
 #include "film/cryptomatte.h"
 #include "render/checkpoint_clock.h"
 #include "render/noise_estimate.h"
+#include "render/tile_grid.h"
 
 namespace tray {
 namespace {
@@ -42,9 +42,7 @@ class PassRenderer {
         aovs_(film, options.aovs, vectors),
         crypto_(film, integrator.context().scene, options.aovs, options.cryptomatteRanks),
         samplesLayer_(film.findLayer("samples")),
-        tileSize_(std::max(1, options.tileSize)),
-        tilesX_((film.width() + tileSize_ - 1) / tileSize_),
-        tileCount_(tilesX_ * ((film.height() + tileSize_ - 1) / tileSize_)) {
+        tiles_(film.width(), film.height(), options.tileSize) {
     const size_t n = state.sums.size();
     if (state.progress.size() != n) state.progress.assign(n, PixelProgress{});
     for (size_t p = 0; p < n; ++p)  // resumed pixels: their beauty again
@@ -63,10 +61,7 @@ class PassRenderer {
       while (!signalled() && (owed || decide())) {
         owed = false;
         firstPassDone_.store(everyPixelSampled());  // a resumed render may have done it
-        tbb::parallel_for(tbb::blocked_range<int>(0, tileCount_, 1),
-                          [&](const tbb::blocked_range<int>& r) {
-                            for (int t = r.begin(); t != r.end(); ++t) renderTile(t);
-                          });
+        tiles_.forEach([&](int t) { renderTile(t); });
         if (!stopNow_.load()) ++result_.passes;
       }
     });
@@ -175,12 +170,10 @@ class PassRenderer {
   /// The pending pixels of one tile, grouped by their sample count (a group shares its step's
   /// sample range) and traced in batches of the integrator's size.
   void renderTile(int tile) {
-    const int tx0 = (tile % tilesX_) * tileSize_, ty0 = (tile / tilesX_) * tileSize_;
-    const int tx1 = std::min(tx0 + tileSize_, film_.width());
-    const int ty1 = std::min(ty0 + tileSize_, film_.height());
+    const TileGrid::Tile at = tiles_.at(tile);
     std::vector<size_t> pending;
-    for (int yy = ty0; yy < ty1; ++yy)
-      for (int xx = tx0; xx < tx1; ++xx) {
+    for (int yy = at.y0; yy < at.y1; ++yy)
+      for (int xx = at.x0; xx < at.x1; ++xx) {
         const size_t p = size_t(yy) * film_.width() + xx;
         if (state_.progress[p].pending) pending.push_back(p);
       }
@@ -207,16 +200,18 @@ class PassRenderer {
     const int step = nextStep(count, passes_);
     const int half = count == 0 ? step / 2 : 0;  // samples of the first half-call, if any
     const bool firstStep = count == 0;
-    work.first.assign(pixels.size(), PixelTask{});
+    work.first.assign(half > 0 ? pixels.size() : 0, PixelTask{});
     work.second.assign(pixels.size(), PixelTask{});
     work.coverage.resize(pixels.size());
     work.aovSums.resize(firstStep && aovs_.averaged() ? pixels.size() : 0);
+    auto prepare = [&](PixelTask& t, size_t k) {
+      t.x = x(pixels[k]) + options_.x0, t.y = y(pixels[k]) + options_.y0;
+      if (firstStep && crypto_.active()) t.coverage = &work.coverage[k];
+      if (!work.aovSums.empty()) t.aovSums = &work.aovSums[k];
+    };
     for (size_t k = 0; k < pixels.size(); ++k) {
-      for (PixelTask* t : {&work.first[k], &work.second[k]}) {
-        t->x = x(pixels[k]) + options_.x0, t->y = y(pixels[k]) + options_.y0;
-        if (firstStep && crypto_.active()) t->coverage = &work.coverage[k];
-        if (!work.aovSums.empty()) t->aovSums = &work.aovSums[k];
-      }
+      if (half > 0) prepare(work.first[k], k);  // only a first step has two halves
+      prepare(work.second[k], k);
       work.coverage[k].clear();
       if (!work.aovSums.empty()) aovs_.configure(work.aovSums[k]), work.aovSums[k].clear();
     }
@@ -233,10 +228,11 @@ class PassRenderer {
   /// The earlier mean becomes the first half (first step) or the sums before the step.
   void commit(size_t p, int step, int half, const StepTasks& work, size_t k) {
     PixelProgress& g = state_.progress[p];
-    const PixelTask &a = work.first[k], &b = work.second[k];
-    if (half > 0) {
-      g.half = a.sums;
-      state_.sums[p] += a.sums;
+    const PixelTask* a = half > 0 ? &work.first[k] : nullptr;  // the first half, if any
+    const PixelTask& b = work.second[k];
+    if (a) {
+      g.half = a->sums;
+      state_.sums[p] += a->sums;
     } else {
       g.half = state_.sums[p];
     }
@@ -245,7 +241,7 @@ class PassRenderer {
     writeBeauty(film_, px, py, state_.sums[p]);
     if (g.count == 0) {  // the AOVs other than the beauty come from the first step
       PixelValue v;
-      v.primary = half > 0 ? a.first : b.first;
+      v.primary = a ? a->first : b.first;
       aovs_.write(film_, px, py, v, work.aovSums.empty() ? nullptr : &work.aovSums[k]);
       if (crypto_.active()) crypto_.write(film_, px, py, work.coverage[k]);
     }
@@ -304,7 +300,7 @@ class PassRenderer {
   const AovSet aovs_;
   const Cryptomatte crypto_;
   const int samplesLayer_;  ///< the samples AOV's layer, or -1
-  const int tileSize_, tilesX_, tileCount_;
+  const TileGrid tiles_;
 
   std::atomic<bool> stopNow_{false};  ///< a signal or the time limit: workers stop
   std::atomic<bool> firstPassDone_{false};

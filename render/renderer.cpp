@@ -1,7 +1,5 @@
 #include "render/renderer.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -16,6 +14,7 @@
 #include "film/cryptomatte.h"
 #include "render/checkpoint_clock.h"
 #include "render/pass_renderer.h"
+#include "render/tile_grid.h"
 
 namespace tray {
 namespace {
@@ -109,9 +108,7 @@ class TileRenderer {
         aovs_(film, options.aovs, vectors_ ? &*vectors_ : nullptr),
         crypto_(film, integrator.context().scene, options.aovs, options.cryptomatteRanks),
         batch_(size_t(std::max(1, integrator.pixelBatch()))),
-        tileSize_(std::max(1, options.tileSize)),
-        tilesX_((film.width() + tileSize_ - 1) / tileSize_),
-        tileCount_(tilesX_ * ((film.height() + tileSize_ - 1) / tileSize_)),
+        tiles_(film.width(), film.height(), options.tileSize),
         done_(new std::atomic<uint8_t>[state.done.size()]) {
     for (size_t p = 0; p < state.done.size(); ++p) {  // resumed pixels: their beauty again
       done_[p].store(state.done[p], std::memory_order_relaxed);
@@ -124,12 +121,7 @@ class TileRenderer {
     start_ = Clock::now();
     checkpoints_.start(start_);
     tbb::task_arena arena(options_.threads > 0 ? options_.threads : tbb::task_arena::automatic);
-    arena.execute([&] {
-      tbb::parallel_for(tbb::blocked_range<int>(0, tileCount_, 1),
-                        [&](const tbb::blocked_range<int>& r) {
-                          for (int t = r.begin(); t != r.end(); ++t) renderTile(t);
-                        });
-    });
+    arena.execute([&] { tiles_.forEach([&](int t) { renderTile(t); }); });
     const size_t pixels = state_.done.size();
     for (size_t p = 0; p < pixels; ++p) state_.done[p] = done_[p].load(std::memory_order_relaxed);
     result_.pixelsDone = state_.pixelsDone();
@@ -212,11 +204,9 @@ class TileRenderer {
     work.coverage.resize(samples_ ? batch_ : 1);
     work.aovSums.resize(samples_ && aovs_.averaged() ? batch_ : 0);
     for (AovSums& a : work.aovSums) aovs_.configure(a);
-    const int x0 = (tile % tilesX_) * tileSize_, y0 = (tile / tilesX_) * tileSize_;
-    const int x1 = std::min(x0 + tileSize_, film_.width());
-    const int y1 = std::min(y0 + tileSize_, film_.height());
-    for (int y = y0; y < y1; ++y)
-      for (int x = x0; x < x1; ++x) {
+    const TileGrid::Tile at = tiles_.at(tile);
+    for (int y = at.y0; y < at.y1; ++y)
+      for (int x = at.x0; x < at.x1; ++x) {
         if (stopped()) break;
         if (done_[size_t(y) * film_.width() + x].load(std::memory_order_relaxed)) continue;
         if (samples_)
@@ -234,8 +224,8 @@ class TileRenderer {
     std::lock_guard<std::mutex> lock(mutex_);
     result_.rays += rays;
     ++tilesDone_;
-    if (options_.onProgress) options_.onProgress(double(tilesDone_) / tileCount_);
-    return checkpoints_.claim(tilesDone_ >= tileCount_ || stopped());
+    if (options_.onProgress) options_.onProgress(double(tilesDone_) / tiles_.count());
+    return checkpoints_.claim(tilesDone_ >= tiles_.count() || stopped());
   }
 
   /// Outside the lock: other tiles go on while the file is written.
@@ -257,7 +247,7 @@ class TileRenderer {
   const AovSet aovs_;
   const Cryptomatte crypto_;
   const size_t batch_;  ///< pixels given to accumulatePixels at once (its pixelBatch())
-  const int tileSize_, tilesX_, tileCount_;
+  const TileGrid tiles_;
   std::unique_ptr<std::atomic<uint8_t>[]> done_;  ///< published pixels (acquire / release)
 
   std::mutex mutex_;  ///< guards what follows
