@@ -4,6 +4,7 @@
 #include <cstdint>
 
 #include "core/math.h"
+#include "core/ray.h"
 
 namespace tray {
 
@@ -19,6 +20,38 @@ struct LightSampleContext {
 };
 
 struct LightBounds;  // core/light_bounds.h
+
+/// The sphere that bounds the scene: infinite lights (the environment, a directional light)
+/// emit from a disk of its radius facing the scene (pbrt-v4 12.4 and 12.5, SampleLe).
+struct WorldSphere {
+  Vec3 center{0.0f};
+  float radius = 1.0f;
+};
+
+/// A ray leaving a light, for estimators that trace paths from the lights (photon mapping,
+/// bidirectional path tracing): pbrt-v4's LightLeSample. The ray's weight is
+/// L |cos| / (pdfPos pdfDir), the cosine taken at the light's surface (area lights only; 1
+/// for the others).
+struct LightLeSample {
+  Ray ray;  ///< leaving the light: the origin on it, a unit direction
+  /// Radiance along the ray (area lights, environment); radiant intensity (point, spot);
+  /// irradiance (directional).
+  Color L;
+  Vec3 n;  ///< the light's surface normal at ray.o, on the emitting side; zero for the others
+  /// Density of the origin: per area (area lights, per area of the disk of an infinite light);
+  /// 1 for a delta position (point, spot).
+  float pdfPos = 0;
+  /// Density of the direction per solid angle; 1 for a delta direction (directional).
+  float pdfDir = 0;
+  bool valid() const { return pdfPos > 0 && pdfDir > 0 && !isBlack(L); }
+};
+
+/// The densities with which sampleLe would emit a given ray (pbrt-v4's PDF_Le); 0 where it
+/// never does, and for a delta's part (a point light's position, a directional light's
+/// direction).
+struct LightLePdf {
+  float pos = 0, dir = 0;
+};
 
 /// A direction towards a light from a reference point, with what arrives along it.
 struct LightSample {
@@ -59,6 +92,14 @@ class Light {
   /// by tracing wi, so the light need not intersect again); 0 for delta lights.
   virtual float pdf(const LightSampleContext& ctx, const Vec3& wi, const Vec3& p,
                     const Vec3& n) const = 0;
+  /// A ray leaving the light, u1 placing its origin and u2 its direction (pbrt-v4 12's
+  /// SampleLe); `world` bounds the scene, for infinite lights. Invalid (pdfs 0) when the
+  /// light emits nothing.
+  virtual LightLeSample sampleLe(Vec2 u1, Vec2 u2, const WorldSphere& world) const = 0;
+  /// The densities of sampleLe for a ray leaving the light at p (surface normal n; area
+  /// lights) in unit direction w. Infinite lights read only w (travelling into the scene).
+  virtual LightLePdf pdfLe(const Vec3& p, const Vec3& n, const Vec3& w,
+                           const WorldSphere& world) const = 0;
   /// Radiance arriving along a ray that escaped the scene in direction dir (infinite lights).
   virtual Color Le(const Vec3& dir) const {
     (void)dir;

@@ -48,6 +48,12 @@ class AreaLight final : public Light {
     return triangleLightPdf(triangleLight(), ctx.p, ctx.n, d / dist, dist2, dot(n_, d) / dist,
                             sampling_);
   }
+  /// Uniform over the area (a shape's sampleArea is uniform too), cosine-weighted about the
+  /// emitting face's normal (either face, each with probability 1/2, for a two-sided triangle;
+  /// a shape emits outward only, as power() counts).
+  LightLeSample sampleLe(Vec2 u1, Vec2 u2, const WorldSphere& world) const override;
+  LightLePdf pdfLe(const Vec3& p, const Vec3& n, const Vec3& w,
+                   const WorldSphere& world) const override;
   float area() const { return area_; }
   /// A triangle's world-space data, as sampleTriangle reads it (the SIMD matte stage,
   /// integrators/matte_batch.h, copies it into its table). Only when isTriangle().

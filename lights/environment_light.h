@@ -38,6 +38,10 @@ class EnvironmentLight final : public Light {
     s.infinite = true;
     return s;
   }
+  /// Uniform directions; origins uniform on the world's disk facing each direction.
+  LightLeSample sampleLe(Vec2 u1, Vec2 u2, const WorldSphere& world) const override;
+  LightLePdf pdfLe(const Vec3& p, const Vec3& n, const Vec3& w,
+                   const WorldSphere& world) const override;
   float pdf(const LightSampleContext& ctx, const Vec3& wi, const Vec3&,
             const Vec3&) const override {
     if (!ctx.transmits) return cosineHemispherePdf(dot(ctx.n, wi));

@@ -37,6 +37,11 @@ class ImageEnvironmentLight final : public Light {
   float pdf(const LightSampleContext& ctx, const Vec3& wi, const Vec3& p,
             const Vec3& n) const override;
   Color Le(const Vec3& dir) const override;
+  /// Directions from the map's distribution (as sample()); origins on the world's disk.
+  LightLeSample sampleLe(Vec2 u1, Vec2 u2, const WorldSphere& world) const override;
+  LightLePdf pdfLe(const Vec3& p, const Vec3& n, const Vec3& w,
+                   const WorldSphere& world) const override;
+
 
   /// The map's (u, v) of a world direction, and back (unit directions; the convention above).
   Vec2 directionToUv(const Vec3& worldDir) const;

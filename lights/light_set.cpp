@@ -49,6 +49,8 @@ LightSet::LightSet(const Scene& scene, LightSamplerKind kind, TriangleSampling s
     : triangleSampling_(sampling) {
   Bounds3 b = scene.bounds();
   float radius = b.empty() || !b.finite() ? 1.0f : std::max(0.5f * length(b.diagonal()), 1e-3f);
+  world_.radius = radius;
+  if (!b.empty() && b.finite()) world_.center = 0.5f * (b.lo + b.hi);
   std::vector<float> power;
   firstLight_.assign(scene.primitives.size(), -1);
   isTriangles_.assign(scene.primitives.size(), false);

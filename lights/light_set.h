@@ -104,6 +104,9 @@ class LightSet {
   const std::vector<int>& delta() const { return delta_; }
   /// Index of the constant environment (TRAY_environment's background), or -1.
   int constantEnvironment() const { return constantEnvironment_; }
+  /// The sphere bounding the scene's finite primitives (radius 1 when there are none):
+  /// infinite lights emit from its disk (Light::sampleLe).
+  const WorldSphere& world() const { return world_; }
   /// Number of emissive triangles in the set.
   size_t triangleCount() const { return triangleCount_; }
   /// How its emissive triangles are sampled (--triangle-sampling).
@@ -127,6 +130,7 @@ class LightSet {
   std::vector<int> infinite_, delta_;
   int constantEnvironment_ = -1;  ///< environment_[0]'s index (sampled inline), or -1
   int escapeLight_ = -1;          ///< see escapeLight()
+  WorldSphere world_;
   size_t triangleCount_ = 0;
   TriangleSampling triangleSampling_ = TriangleSampling::kAuto;
   bool anyPower_ = false;

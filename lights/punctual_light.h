@@ -63,6 +63,11 @@ class PunctualLight final : public Light {
     s.pdf = 1;
     return s;
   }
+  /// Point: uniform over the sphere; spot: uniform in the outer cone; directional: parallel
+  /// rays from a disk of the world's radius facing the scene.
+  LightLeSample sampleLe(Vec2 u1, Vec2 u2, const WorldSphere& world) const override;
+  LightLePdf pdfLe(const Vec3& p, const Vec3& n, const Vec3& w,
+                   const WorldSphere& world) const override;
   /// The light as samplePunctualLight (and the SIMD stages' punctual table) reads it.
   const PunctualLightOf<Vec3>& lanes() const { return lanes_; }
   float pdf(const LightSampleContext&, const Vec3&, const Vec3&, const Vec3&) const override {

@@ -69,6 +69,23 @@ class Bsdf {
   BsdfSample sample(const Vec3& wo, float uc, Vec2 u) const {
     return lambertOnly_ ? lambertSample(wo, u) : layersSample(wo, uc, u);
   }
+  /// The adjoint BSDF, for importance carried from the lights (photons, bidirectional light
+  /// subpaths): f*(wo, wi) = f(wi, wo) (Veach 1997, 5.2; pbrt-v4's TransportMode::Importance).
+  /// Only transmission differs: radiance is scaled by 1/eta^2 crossing a refractive boundary,
+  /// importance is not. Every lobe that reaches wi's side below n is the dielectric's, whose
+  /// eta relative to wo (n faces wo) is the constructor's. Shading normals' asymmetry (Veach
+  /// 5.3) is the caller's: it knows the geometric normal.
+  Color evalImportance(const Vec3& wo, const Vec3& wi, float& pdf) const {
+    Color f = eval(wo, wi, pdf);
+    if (wGlass_ > 0 && dot(wi, frame_.n) < 0) f *= coatEta_ * coatEta_;
+    return f;
+  }
+  /// sample() for importance: a sampled transmission's f without the 1/eta^2 (etaScale).
+  BsdfSample sampleImportance(const Vec3& wo, float uc, Vec2 u) const {
+    BsdfSample s = sample(wo, uc, u);
+    if (s.transmission && s.etaScale > 0) s.f = s.f * (1.0f / s.etaScale);
+    return s;
+  }
   /// False when every lobe is a delta: light sampling cannot help and MIS is off.
   bool hasNonDelta() const {
     return hasNonDelta_ || layers_.anyNonDelta();
