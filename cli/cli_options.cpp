@@ -112,7 +112,7 @@ void addCliOptions(CLI::App& app, CliOptions& o) {
   app.add_option("--aov", o.aovs,
                  "extra EXR layers: comma-separated from " + joined(tray::AovSet::known()) +
                      ", cryptomatte (= crypto_object,crypto_material), lightpaths (the path "
-                     "tracer's 7 light-path layers), or all (all but the light paths)");
+                     "tracer's 7 light-path layers), or all (every layer the integrator makes)");
   app.add_option("--cryptomatte-ranks", o.cryptomatteRanks,
                  "Cryptomatte: ids kept per pixel and type (2 per EXR layer)")
       ->check(CLI::Range(1, 32))

@@ -53,7 +53,9 @@ JobPlan planOf(const RenderJob& job, const PreparedScene& scene, const Integrato
   plan.region = parseRegion(job.part.region, scene.width(), scene.height());
   plan.range = parseSampleRange(job.part.sampleRange, integrator.samplesPerPixel(),
                                 job.settings.getString("integrator"));
-  plan.aovs = AovSet::parse(job.outputs.aovs);
+  // "all": with the light paths when this render can split them (not in passes).
+  plan.aovs = AovSet::parse(job.outputs.aovs, integrator.splitsLightPaths() &&
+                                                  !samplingPassesOf(job.settings));
   if (!job.part.sampleRange.empty() && Cryptomatte::requested(plan.aovs))
     throw Error(
         "--sample-range with Cryptomatte AOVs: each part would keep only its own "
