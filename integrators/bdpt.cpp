@@ -179,7 +179,7 @@ const std::vector<OptionSpec>& bdptOptions() {
                    "which strategies bdpt takes: all (MIS-weighted), or one family alone, "
                    "unweighted (a debugging check: each converges to the same image where it "
                    "can sample the light): s0 (camera paths that hit emitters), s1 (next-event "
-                   "estimation), t1 (light tracing)"),
+                   "estimation), t1 (light tracing); emitters seen directly are in each"),
   };
   return specs;
 }

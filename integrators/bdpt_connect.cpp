@@ -70,6 +70,8 @@ float BdptTracer::misWeight(std::vector<BdptVertex>& light, std::vector<BdptVert
 
 float BdptTracer::weight(std::vector<BdptVertex>& light, std::vector<BdptVertex>& camera, int s,
                          int t) const {
+  // Emitters seen directly have one strategy, (0, 2), in every family.
+  if (s == 0 && t == 2) return 1.0f;
   switch (strategies_) {
     case BdptStrategies::kS0:
       return s == 0 ? 1.0f : 0.0f;
@@ -240,10 +242,10 @@ Color BdptTracer::cameraEstimate(const Ray& ray, Sampler& sampler, RayStats& sta
     const BdptVertex& z = p.camera[size_t(t - 1)];
     // KHR_materials_unlit: only the camera finds it (path's rule: no MIS).
     if (z.unlit) {
-      if (all || strategies_ == BdptStrategies::kS0) L += z.beta * z.sm.baseColor;
+      if (all || strategies_ == BdptStrategies::kS0 || t == 2) L += z.beta * z.sm.baseColor;
       continue;
     }
-    if (all || strategies_ == BdptStrategies::kS0) L += connectS0(p.camera, t);
+    if (all || strategies_ == BdptStrategies::kS0 || t == 2) L += connectS0(p.camera, t);
     if (!z.onSurface() || !z.connectible()) continue;
     // Segments s + t - 1 at most maxDepth (path's depth).
     if (t <= maxDepth_ && (all || strategies_ == BdptStrategies::kS1))

@@ -18,7 +18,8 @@ namespace tray {
 
 /// Which strategies an estimate takes (--bdpt-strategy): all of them MIS-weighted, or one
 /// family unweighted (a debugging check: each family alone converges to the same image on
-/// scenes it can sample, Veach 1997 §10.3.5).
+/// scenes it can sample, Veach 1997 §10.3.5). Emitters seen directly (s = 0, t = 2, the one
+/// strategy for one-segment paths) are in every family.
 enum class BdptStrategies : uint8_t {
   kAll,
   kS0,  ///< s = 0: the camera subpath finds an emitter (no next-event estimation)
