@@ -31,7 +31,7 @@ void BdptTracer::setConnectionPdfs(std::vector<BdptVertex>& light, std::vector<B
   // The light side's last vertex as the camera side would have made it, and the one before.
   if (y) {
     if (t == 1)
-      y->pdfRev = toArea(camera_.pdfDir(camera_.cosTheta(directionTo(*z, *y))), *z, *y);
+      y->pdfRev = camera_.pdfFirst(y->p, y->ng);
     else
       y->pdfRev = toArea(pdfDirAt(*z, z->wo, directionTo(*z, *y)), *z, *y);
   }
@@ -199,13 +199,12 @@ bool BdptTracer::connectToCamera(std::vector<BdptVertex>& light, std::vector<Bdp
   float pdf;
   const Color f = y.bsdf().evalImportance(y.wo, c->wi, pdf) * shadingCorrection(y, y.wo, c->wi);
   if (isBlack(f)) return false;
-  // We cos θ / d^2: the pinhole's importance toward y, per unit area at y's end (pbrt-v4 5.4).
-  Color L = y.beta * f *
-            (std::fabs(dot(y.n, c->wi)) * c->importance * c->cosTheta / (c->distance * c->distance));
+  Color L = y.beta * f * (std::fabs(dot(y.n, c->wi)) * c->weight);
   const Color sigma = y.absorptionToward(c->wi);
   if (!isBlack(sigma)) L *= transmittance(sigma, c->distance);
   if (isBlack(L)) return false;
   ++stats.shadowRays;
+  camera[0].p = c->target;
   if (!visible(y, camera[0])) return false;
   const float w = weight(light, camera, s, 1);
   if (!(w > 0)) return false;
@@ -265,7 +264,7 @@ void BdptTracer::lightEstimate(Sampler& sampler, RayStats& stats, std::vector<Sp
   BdptVertex& z0 = p.camera[0];
   z0 = BdptVertex();
   z0.kind = BdptVertex::Kind::kCamera;
-  z0.p = camera_.position();
+  // z0.p: where each connection ends on the camera (connectToCamera sets it).
   z0.pdfFwd = 1;
   for (int s = 2; s <= std::min(int(p.light.size()), maxDepth_); ++s) {
     Splat splat;

@@ -10,12 +10,12 @@
 namespace tray {
 namespace {
 
-CameraImportance importanceOf(const Camera& camera) {
-  std::optional<CameraImportance> c = CameraImportance::of(camera);
+CameraImportance importanceOf(const RenderContext& ctx) {
+  std::optional<CameraImportance> c = CameraImportance::of(ctx.camera, ctx.width, ctx.height);
   if (!c)
     throw Error(
-        "bdpt: only a pinhole perspective camera can be connected to (thin lens, orthographic "
-        "and scaled camera transforms are not supported)");
+        "bdpt: the camera must be a pinhole perspective or an orthographic one with a rigid "
+        "transform (a thin lens, --lens-radius > 0, and scaled cameras are not supported)");
   return *c;
 }
 
@@ -24,7 +24,7 @@ CameraImportance importanceOf(const Camera& camera) {
 BdptTracer::BdptTracer(const RenderContext& ctx)
     : ctx_(ctx),
       maxDepth_(ctx.settings.getInt("max-depth")),
-      camera_(importanceOf(ctx.camera)),
+      camera_(importanceOf(ctx)),
       lights_(ctx.scene, lightSamplerKind(ctx.settings.getString("light-sampler")),
               triangleSampling(ctx.settings.getString("triangle-sampling"))),
       emission_(lights_),
@@ -107,8 +107,9 @@ void BdptTracer::walk(Ray ray, Color beta, float pdfDir, Sampler& sampler, RaySt
     }
     const BdptVertex& prev = path.back();
     v.beta = beta;
-    v.pdfFwd = prev.infinite ? pdfDir * std::fabs(dot(v.ng, ray.d) / length(ray.d))
-                             : toArea(pdfDir, prev, v);
+    v.pdfFwd = prev.kind == BdptVertex::Kind::kCamera ? camera_.pdfFirst(v.p, v.ng)
+               : prev.infinite ? pdfDir * std::fabs(dot(v.ng, ray.d) / length(ray.d))
+                               : toArea(pdfDir, prev, v);
     if (primary && !primary->hit) {
       primary->hit = true;
       primary->depth = length(v.p - path.front().p);
@@ -157,8 +158,7 @@ void BdptTracer::cameraSubpath(const Ray& ray, Sampler& sampler, RayStats& stats
   z0.beta = Color(1.0f);
   z0.pdfFwd = 1;
   out.push_back(z0);
-  const float pdfDir = camera_.pdfDir(camera_.cosTheta(normalize(ray.d)));
-  walk(ray, Color(1.0f), pdfDir, sampler, stats, Mode::kRadiance, size_t(maxDepth_) + 1, {},
+  walk(ray, Color(1.0f), 0.0f, sampler, stats, Mode::kRadiance, size_t(maxDepth_) + 1, {},
        primary, out);
 }
 

@@ -35,7 +35,7 @@ struct Splat {
 
 class BdptTracer {
  public:
-  /// Throws tray::Error for what it cannot render (a camera that is not a pinhole).
+  /// Throws tray::Error for what it cannot render (a thin lens, motion blur).
   explicit BdptTracer(const RenderContext& ctx);
   int maxDepth() const { return maxDepth_; }
   /// Strategies with t >= 2 for one camera ray: the camera subpath from `ray`, a light
@@ -65,7 +65,7 @@ class BdptTracer {
  private:
   enum class Mode : uint8_t { kRadiance, kImportance };
   /// Extends `path` from its last vertex along `ray` (solid-angle density pdfDir of its
-  /// direction) until maxVertices, absorption or a failed sample; beta the throughput.
+  /// direction; after the camera, CameraImportance::pdfFirst) until maxVertices, absorption or a failed sample; beta the throughput.
   void walk(Ray ray, Color beta, float pdfDir, Sampler& sampler, RayStats& stats, Mode mode,
             size_t maxVertices, MediumStack media, PrimaryHit* primary,
             std::vector<BdptVertex>& path) const;
