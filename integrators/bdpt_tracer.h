@@ -59,7 +59,19 @@ class BdptTracer {
   void cameraSubpath(const Ray& ray, Sampler& sampler, RayStats& stats, PrimaryHit* primary,
                      std::vector<BdptVertex>& out) const;
   void lightSubpath(Sampler& sampler, RayStats& stats, std::vector<BdptVertex>& out) const;
+  /// Solid-angle density of sampling direction `to` at surface v given the other direction
+  /// `from` (both leaving v).
+  float pdfDirAt(const BdptVertex& v, const Vec3& from, const Vec3& to) const;
+  /// The emission densities of light vertex (or emitter hit) v toward `to`: of v's origin as
+  /// a light subpath starts (choice x position; direction for lights at infinity) and of
+  /// `to` as the area density the emitted ray reaches it with.
+  float pdfLightOrigin(const BdptVertex& v, const Vec3& towardTo) const;
+  float pdfLightTo(const BdptVertex& v, const BdptVertex& to) const;
+  /// Weight for strategy (s, t) under the chosen strategies (1 or 0 for a lone family); the
+  /// subpaths' densities are as the walks left them, the connection's are set here.
+  float weight(std::vector<BdptVertex>& light, std::vector<BdptVertex>& camera, int s, int t) const;
   const CameraImportance& camera() const { return camera_; }
+  const LightSet& lightSet() const { return lights_; }
   void setStrategies(BdptStrategies s) { strategies_ = s; }
 
  private:
@@ -71,14 +83,6 @@ class BdptTracer {
             std::vector<BdptVertex>& path) const;
   /// A surface vertex at the hit of `ray`; false: a null interface (the walk goes through).
   bool surfaceVertex(const Ray& ray, const Hit& hit, MediumStack& media, BdptVertex& v) const;
-  /// Solid-angle density of sampling direction `to` at surface v given the other direction
-  /// `from` (both leaving v).
-  float pdfDirAt(const BdptVertex& v, const Vec3& from, const Vec3& to) const;
-  /// The emission densities of light vertex (or emitter hit) v toward `to`: of v's origin as
-  /// a light subpath starts (choice x position; direction for lights at infinity) and of
-  /// `to` as the area density the emitted ray reaches it with.
-  float pdfLightOrigin(const BdptVertex& v, const Vec3& towardTo) const;
-  float pdfLightTo(const BdptVertex& v, const BdptVertex& to) const;
   /// The contributions (unweighted) of the strategies.
   Color connectS0(std::vector<BdptVertex>& camera, int t) const;
   Color connectS1(std::vector<BdptVertex>& light, std::vector<BdptVertex>& camera, int t,
@@ -87,8 +91,6 @@ class BdptTracer {
                      int t, RayStats& stats) const;
   bool connectToCamera(std::vector<BdptVertex>& light, std::vector<BdptVertex>& camera, int s,
                        RayStats& stats, Splat& out) const;
-  /// Weight for strategy (s, t) under the chosen strategies (1 or 0 for a lone family).
-  float weight(std::vector<BdptVertex>& light, std::vector<BdptVertex>& camera, int s, int t) const;
   /// Whether the segment between two points is unoccluded (alpha as the accelerator says).
   bool visible(const BdptVertex& a, const BdptVertex& b) const;
 
