@@ -53,5 +53,14 @@ TEST(PointCaustic, PathTracingRendersTheFloorBlack) {
   EXPECT_LT(power, 1e-3 * kReferencePower);
 }
 
+TEST(PointCaustic, BdptFindsTheCaustic) {
+  // Light tracing (t = 1) connects the light subpaths that left the ball (L S S D) to the
+  // camera; MIS with the other strategies keeps it unbiased. 4 spp: 160,000 light paths.
+  const double power = floorPower(render("bdpt", 4));
+  std::printf("bdpt, 4 spp: %.6f W of %.6f W (%+.2f%%)\n", power, kReferencePower,
+              100 * (power / kReferencePower - 1));
+  EXPECT_NEAR(power / kReferencePower, 1.0, 0.01);
+}
+
 }  // namespace
 }  // namespace tray
