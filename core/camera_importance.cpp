@@ -4,8 +4,7 @@
 
 namespace tray {
 
-std::optional<CameraImportance> CameraImportance::of(const Camera& camera, int width,
-                                                     int height) {
+std::optional<CameraImportance> CameraImportance::of(const Camera& camera, int width, int height) {
   const CameraDesc& d = camera.desc();
   if (camera.hasLens()) return std::nullopt;
   // A rigid frame: the three axes unit length and orthogonal.

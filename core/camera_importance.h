@@ -11,10 +11,10 @@ namespace tray {
 
 /// A point seen from the camera: where it lands on the image and what reaches the pixel.
 struct CameraConnection {
-  Vec2 raster;    ///< image position (x right, y down, in pixels)
-  Vec3 wi;        ///< unit direction from the point toward the camera
-  Vec3 target;    ///< the camera point the connection ends at (the pinhole; the film point)
-  float distance; ///< from the point to `target`
+  Vec2 raster;     ///< image position (x right, y down, in pixels)
+  Vec3 wi;         ///< unit direction from the point toward the camera
+  Vec3 target;     ///< the camera point the connection ends at (the pinhole; the film point)
+  float distance;  ///< from the point to `target`
   /// A light vertex's radiance toward wi becomes the pixel's value times this and the cosine
   /// at the point: We cos θ / d^2 for the pinhole, sx sy for the orthographic film (below).
   float weight;

@@ -128,6 +128,7 @@ bool BdptIntegrator::lightPass(const FrameTask& task, std::span<FramePixel> pixe
       stats += chunkStats[b];
       chunkStats[b] = RayStats();
     }
+    if (task.onProgress) task.onProgress(0.5 + 0.5 * double(first + n) / double(chunks));
   }
   // Each light path estimates the whole image: the pixel's value is the mean over all of
   // them. Added to the pixel's weighted sums as radiance (sums.rgb / sums.weight).
@@ -155,8 +156,9 @@ FrameResult BdptIntegrator::renderFrame(const FrameTask& task, std::span<FramePi
       r.stopped = true;
       return r;
     }
+  } else if (task.onProgress) {
+    task.onProgress(1.0);
   }
-  if (task.onProgress) task.onProgress(1.0);
   r.iterations = 1;
   return r;
 }

@@ -167,8 +167,7 @@ Color BdptTracer::connectInner(std::vector<BdptVertex>& light, std::vector<BdptV
                                int s, int t, RayStats& stats) const {
   BdptVertex& y = light[size_t(s - 1)];
   BdptVertex& z = camera[size_t(t - 1)];
-  if (!y.connectible() || !z.connectible() || !y.onSurface() || !z.onSurface())
-    return Color(0.0f);
+  if (!y.connectible() || !z.connectible() || !y.onSurface() || !z.onSurface()) return Color(0.0f);
   const Vec3 d = y.p - z.p;
   const float dist2 = dot(d, d);
   if (!(dist2 > 0)) return Color(0.0f);

@@ -158,8 +158,8 @@ void BdptTracer::cameraSubpath(const Ray& ray, Sampler& sampler, RayStats& stats
   z0.beta = Color(1.0f);
   z0.pdfFwd = 1;
   out.push_back(z0);
-  walk(ray, Color(1.0f), 0.0f, sampler, stats, Mode::kRadiance, size_t(maxDepth_) + 1, {},
-       primary, out);
+  walk(ray, Color(1.0f), 0.0f, sampler, stats, Mode::kRadiance, size_t(maxDepth_) + 1, {}, primary,
+       out);
 }
 
 void BdptTracer::lightSubpath(Sampler& sampler, RayStats& stats,
@@ -201,7 +201,8 @@ float BdptTracer::pdfLightOrigin(const BdptVertex& v, const Vec3& towardTo) cons
   if (v.infinite) {
     // Every light at infinity could have emitted along v.dir (pbrt-v3's InfiniteLightDensity).
     float pdf = 0;
-    for (int i : lights_.infinite()) pdf += emission_.pmf(i) * emission_.pdfLe(i, {}, {}, v.dir).dir;
+    for (int i : lights_.infinite())
+      pdf += emission_.pmf(i) * emission_.pdfLe(i, {}, {}, v.dir).dir;
     return pdf;
   }
   if (v.light < 0) return 0.0f;

@@ -77,7 +77,8 @@ class BdptTracer {
  private:
   enum class Mode : uint8_t { kRadiance, kImportance };
   /// Extends `path` from its last vertex along `ray` (solid-angle density pdfDir of its
-  /// direction; after the camera, CameraImportance::pdfFirst) until maxVertices, absorption or a failed sample; beta the throughput.
+  /// direction; after the camera, CameraImportance::pdfFirst) until maxVertices, absorption or a
+  /// failed sample; beta the throughput.
   void walk(Ray ray, Color beta, float pdfDir, Sampler& sampler, RayStats& stats, Mode mode,
             size_t maxVertices, MediumStack media, PrimaryHit* primary,
             std::vector<BdptVertex>& path) const;
@@ -87,8 +88,8 @@ class BdptTracer {
   Color connectS0(std::vector<BdptVertex>& camera, int t) const;
   Color connectS1(std::vector<BdptVertex>& light, std::vector<BdptVertex>& camera, int t,
                   Sampler& sampler, RayStats& stats) const;
-  Color connectInner(std::vector<BdptVertex>& light, std::vector<BdptVertex>& camera, int s,
-                     int t, RayStats& stats) const;
+  Color connectInner(std::vector<BdptVertex>& light, std::vector<BdptVertex>& camera, int s, int t,
+                     RayStats& stats) const;
   bool connectToCamera(std::vector<BdptVertex>& light, std::vector<BdptVertex>& camera, int s,
                        RayStats& stats, Splat& out) const;
   /// Whether the segment between two points is unoccluded (alpha as the accelerator says).

@@ -20,39 +20,37 @@ struct BdptVertex {
     kEnvironment,  ///< a camera subpath that escaped: the infinite lights in direction `dir`
   };
   Kind kind = Kind::kSurface;
-  Vec3 p;     ///< position (unused at infinity)
-  Vec3 ng;    ///< geometric normal (surfaces, area lights); zero: no cosine (points, camera)
-  Vec3 n;     ///< surface: shading normal on the side the subpath arrived from
-  Vec3 wo;    ///< surface: unit direction toward the previous vertex of its subpath
-  Vec3 dir;   ///< at infinity: the unit direction light travels (into the scene)
-  Color beta; ///< the subpath's throughput up to and including this vertex
+  Vec3 p;      ///< position (unused at infinity)
+  Vec3 ng;     ///< geometric normal (surfaces, area lights); zero: no cosine (points, camera)
+  Vec3 n;      ///< surface: shading normal on the side the subpath arrived from
+  Vec3 wo;     ///< surface: unit direction toward the previous vertex of its subpath
+  Vec3 dir;    ///< at infinity: the unit direction light travels (into the scene)
+  Color beta;  ///< the subpath's throughput up to and including this vertex
   /// Density of this vertex as its own subpath generated it, and as the other subpath would
   /// (from the vertex after it in this subpath's order); 0 for delta choices (remapped to 1).
   float pdfFwd = 0, pdfRev = 0;
   bool delta = false;       ///< sampled by a delta lobe (surfaces)
   bool deltaLight = false;  ///< a light vertex of a point, spot or directional light
-  bool infinite = false;  ///< at infinity (environment, directional light): `dir` only
-  int light = -1;         ///< light vertex: its LightSet index; surface: the light it is, or -1
+  bool infinite = false;    ///< at infinity (environment, directional light): `dir` only
+  int light = -1;           ///< light vertex: its LightSet index; surface: the light it is, or -1
   // Surface vertices only:
   SurfacePoint s;
   ShadingMaterial sm;
   const Material* m = nullptr;
-  float eta = 1;           ///< n_t / n_i across the surface for light arriving from n's side
-  bool refractive = false; ///< a transmissive surface whose crossing changes the medium
-  bool unlit = false;      ///< KHR_materials_unlit: emits baseColor, scatters nothing
-  bool nonDelta = false;   ///< the BSDF has a lobe that is not a delta (Bsdf::hasNonDelta)
-  Color sigmaA{0.0f};      ///< absorption of the medium on n's side
-  Color sigmaFar{0.0f};    ///< absorption beyond the surface (refractive ones)
-  Color Le{0.0f};          ///< surface: radiance it emits toward wo
+  float eta = 1;            ///< n_t / n_i across the surface for light arriving from n's side
+  bool refractive = false;  ///< a transmissive surface whose crossing changes the medium
+  bool unlit = false;       ///< KHR_materials_unlit: emits baseColor, scatters nothing
+  bool nonDelta = false;    ///< the BSDF has a lobe that is not a delta (Bsdf::hasNonDelta)
+  Color sigmaA{0.0f};       ///< absorption of the medium on n's side
+  Color sigmaFar{0.0f};     ///< absorption beyond the surface (refractive ones)
+  Color Le{0.0f};           ///< surface: radiance it emits toward wo
 
   bool onSurface() const { return kind == Kind::kSurface; }
   /// The normal of the emitting face: an emitter hit's front face, a light vertex's normal.
   Vec3 emitNormal() const { return onSurface() ? s.front : ng; }
   /// A connection can end here: a point with a BSDF that is not all deltas, or a light, or the
   /// camera.
-  bool connectible() const {
-    return kind != Kind::kSurface || (!unlit && nonDelta);
-  }
+  bool connectible() const { return kind != Kind::kSurface || (!unlit && nonDelta); }
   /// The BSDF here with its normal toward wo's side (the side the subpath arrived from).
   Bsdf bsdf() const { return Bsdf(sm, n, eta); }
   /// The same BSDF with its normal toward w's side: evaluated or sampled with w as the

@@ -40,7 +40,8 @@ double floorPower(const Film& f) {
 }
 
 Film render(const std::string& integrator, int spp, RenderSettings s = {}) {
-  const Scene scene = loadGltf(std::string(TRAY_SOURCE_DIR) + "/scenes/transport/caustic-spot.gltf");
+  const Scene scene =
+      loadGltf(std::string(TRAY_SOURCE_DIR) + "/scenes/transport/caustic-spot.gltf");
   s.set("integrator", integrator);
   s.set("spp", spp);
   s.set("max-depth", 5);
