@@ -99,8 +99,9 @@ CsgChild parseOperand(const GltfContext& ctx, int index, const std::string& pare
     } else {
       TrayShape s = parseTrayShape(ctx, *ext, where);
       if (!s.shape->isSolid())
-        ctx.fail(where + " is a CSG operand but its TRAY_shape is an open surface, not a solid"
-                         " (a disk, or a quadric without \"capped\": true)");
+        ctx.fail(where +
+                 " is a CSG operand but its TRAY_shape is an open surface, not a solid"
+                 " (a disk, or a quadric without \"capped\": true)");
       c.shape = s.shape;
       c.material = s.material;
     }

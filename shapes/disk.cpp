@@ -10,7 +10,9 @@ Disk::Disk(float radius, float innerRadius) : radius_(radius), inner_(innerRadiu
     throw Error("disk: needs radius > innerRadius >= 0");
 }
 
-Bounds3 Disk::bounds() const { return {Vec3(-radius_, 0, -radius_), Vec3(radius_, 0, radius_)}; }
+Bounds3 Disk::bounds() const {
+  return {Vec3(-radius_, 0, -radius_), Vec3(radius_, 0, radius_)};
+}
 
 Vec2 Disk::uvAt(const Vec3& p) const {
   float phi = std::atan2(p.x, p.z);

@@ -28,7 +28,8 @@ double refineRoot(const double* c, int n, double a, double b, bool posA) {
     else
       b = x;
     const double width = b - a;
-    if (!(width > 4.0 * std::numeric_limits<double>::epsilon() * std::fmax(std::fabs(a), std::fabs(b))))
+    if (!(width >
+          4.0 * std::numeric_limits<double>::epsilon() * std::fmax(std::fabs(a), std::fabs(b))))
       return 0.5 * (a + b);
     const double newton = dp != 0.0 ? x - p / dp : a - 1.0;
     if (newton > a && newton < b && std::fabs(newton - x) < 0.5 * lastWidth) {
@@ -76,7 +77,9 @@ int polyRootsIsolated(const double* c, int n, double lo, double hi, double* root
 
 namespace {
 constexpr double kEqnEps = 1e-9;
-bool isZero(double x) { return x > -kEqnEps && x < kEqnEps; }
+bool isZero(double x) {
+  return x > -kEqnEps && x < kEqnEps;
+}
 }  // namespace
 
 int solveQuadraticClosedForm(const double c[3], double s[2]) {

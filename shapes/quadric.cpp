@@ -31,7 +31,9 @@ Quadric::Quadric(Kind kind, float radius, float height, bool capped, float waist
   }
 }
 
-Bounds3 Quadric::bounds() const { return {Vec3(-radius_, 0, -radius_), Vec3(radius_, height_, radius_)}; }
+Bounds3 Quadric::bounds() const {
+  return {Vec3(-radius_, 0, -radius_), Vec3(radius_, height_, radius_)};
+}
 
 float Quadric::capRadius(int cap) const {
   return float(std::sqrt(std::max(0.0, rho2(cap ? double(height_) : 0.0))));

@@ -8,8 +8,8 @@
 #include "gltf/gltf_loader.h"
 #include "shapes/box.h"
 #include "shapes/quadric.h"
-#include "shapes/torus.h"
 #include "shapes/sphere.h"
+#include "shapes/torus.h"
 #include "tests/base64.h"
 #include "tests/temp_dir.h"
 
@@ -201,21 +201,26 @@ TEST(TrayShapeTypes, TorusAndQuadricsLoadWithTheirParameters) {
 }
 
 TEST(TrayShapeTypes, BadParametersAndOpenOperandsAreErrorsNamingTheNode) {
-  EXPECT_NE(loadError(writeGltf("badtorus.gltf",
-                                R"({"name":"fat","extensions":{"TRAY_shape":{"type":"torus","majorRadius":0.2,"minorRadius":0.5}}})",
-                                "0"))
-                .find("'majorRadius' > 'minorRadius'"),
-            std::string::npos);
-  EXPECT_NE(loadError(writeGltf("badwaist.gltf",
-                                R"({"name":"hy","extensions":{"TRAY_shape":{"type":"hyperboloid","waist":2}}})",
-                                "0"))
-                .find("'waist'"),
-            std::string::npos);
+  EXPECT_NE(
+      loadError(
+          writeGltf(
+              "badtorus.gltf",
+              R"({"name":"fat","extensions":{"TRAY_shape":{"type":"torus","majorRadius":0.2,"minorRadius":0.5}}})",
+              "0"))
+          .find("'majorRadius' > 'minorRadius'"),
+      std::string::npos);
+  EXPECT_NE(
+      loadError(
+          writeGltf("badwaist.gltf",
+                    R"({"name":"hy","extensions":{"TRAY_shape":{"type":"hyperboloid","waist":2}}})",
+                    "0"))
+          .find("'waist'"),
+      std::string::npos);
   const std::string err = loadError(writeGltf("openop.gltf", R"(
  {"name":"cut","extensions":{"TRAY_shape":{"type":"csg","op":"difference","children":[1,2]}}},
  {"name":"ring","extensions":{"TRAY_shape":{"type":"torus"}}},
  {"name":"tube","extensions":{"TRAY_shape":{"type":"cylinder"}}})",
-                                               "0"));
+                                              "0"));
   EXPECT_NE(err.find("'tube'"), std::string::npos) << err;
   EXPECT_NE(err.find("open surface"), std::string::npos) << err;
 }

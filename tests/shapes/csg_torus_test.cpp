@@ -31,17 +31,29 @@ constexpr double kEps = 1e-5, kMinStep = 1e-6;
 struct P3 {
   double x, y, z;
 };
-P3 operator+(P3 a, P3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-P3 operator-(P3 a, P3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-P3 operator*(double s, P3 a) { return {s * a.x, s * a.y, s * a.z}; }
-double dot(P3 a, P3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-double len(P3 a) { return std::sqrt(dot(a, a)); }
+P3 operator+(P3 a, P3 b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+P3 operator-(P3 a, P3 b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+P3 operator*(double s, P3 a) {
+  return {s * a.x, s * a.y, s * a.z};
+}
+double dot(P3 a, P3 b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+double len(P3 a) {
+  return std::sqrt(dot(a, a));
+}
 
 // Exact signed distances (object space; placements below are translations only).
 double torusSd(P3 p, double R, double r) {
   return std::hypot(std::hypot(p.x, p.z) - R, p.y) - r;
 }
-double sphereSd(P3 p, double r) { return len(p) - r; }
+double sphereSd(P3 p, double r) {
+  return len(p) - r;
+}
 double boxSd(P3 p, P3 lo, P3 hi) {
   P3 c = 0.5 * (lo + hi), h = 0.5 * (hi - lo);
   P3 q{std::fabs(p.x - c.x) - h.x, std::fabs(p.y - c.y) - h.y, std::fabs(p.z - c.z) - h.z};
@@ -68,22 +80,22 @@ std::vector<Solid> solids(QuarticSolver solver) {
   auto torus = [solver](float R, float r) { return std::make_shared<Torus>(R, r, solver); };
   return {
       {"torus minus box",
-       std::make_shared<Csg>(CsgOp::kDifference,
-                             std::vector<CsgChild>{child(torus(1, 0.3f)),
-                                                   child(std::make_shared<Box>(Vec3(0, -1, -2),
-                                                                               Vec3(2, 1, 2)))}),
+       std::make_shared<Csg>(
+           CsgOp::kDifference,
+           std::vector<CsgChild>{child(torus(1, 0.3f)),
+                                 child(std::make_shared<Box>(Vec3(0, -1, -2), Vec3(2, 1, 2)))}),
        [](P3 p) { return std::max(torusSd(p, 1, 0.3), -boxSd(p, {0, -1, -2}, {2, 1, 2})); }, 1,
        0.3},
       {"torus and sphere",
        std::make_shared<Csg>(
            CsgOp::kIntersection,
-           std::vector<CsgChild>{child(torus(1, 0.4f)),
-                                 child(std::make_shared<Sphere>(1.0f), Mat4::translate({1, 0.2f, 0}))}),
-       [](P3 p) { return std::max(torusSd(p, 1, 0.4), sphereSd(p - P3{1, 0.2, 0}, 1)); }, 1,
-       0.4},
+           std::vector<CsgChild>{child(torus(1, 0.4f)), child(std::make_shared<Sphere>(1.0f),
+                                                              Mat4::translate({1, 0.2f, 0}))}),
+       [](P3 p) { return std::max(torusSd(p, 1, 0.4), sphereSd(p - P3{1, 0.2, 0}, 1)); }, 1, 0.4},
       {"thin torus union sphere",
-       std::make_shared<Csg>(CsgOp::kUnion, std::vector<CsgChild>{child(torus(1, 0.01f)),
-                                                                  child(std::make_shared<Sphere>(0.5f))}),
+       std::make_shared<Csg>(
+           CsgOp::kUnion,
+           std::vector<CsgChild>{child(torus(1, 0.01f)), child(std::make_shared<Sphere>(0.5f))}),
        [](P3 p) { return std::min(torusSd(p, 1, 0.01), sphereSd(p, 0.5)); }, 1, 0.01},
       {"capped cylinder minus torus",
        std::make_shared<Csg>(
@@ -92,8 +104,8 @@ std::vector<Solid> solids(QuarticSolver solver) {
                child(std::make_shared<Quadric>(Quadric::Kind::kCylinder, 1.0f, 1.0f, true),
                      Mat4::translate({0, -0.5f, 0})),
                child(torus(1, 0.25f))}),
-       [](P3 p) { return std::max(cylinderSd(p - P3{0, -0.5, 0}, 1, 1), -torusSd(p, 1, 0.25)); },
-       1, 0.25},
+       [](P3 p) { return std::max(cylinderSd(p - P3{0, -0.5, 0}, 1, 1), -torusSd(p, 1, 0.25)); }, 1,
+       0.25},
   };
 }
 
@@ -145,8 +157,10 @@ Tally checkSolids(QuarticSolver solver, bool expectClean) {
       P3 eye = 4.0 * P3{sn * std::cos(phi), z, sn * std::sin(phi)};
       P3 target{2.6 * u() - 1.3, 1.2 * u() - 0.6, 2.6 * u() - 1.3};
       P3 d = target - eye;
-      checkRay(s, accels, Ray{{float(eye.x), float(eye.y), float(eye.z)}, {float(d.x), float(d.y), float(d.z)}},
-               random);
+      checkRay(
+          s, accels,
+          Ray{{float(eye.x), float(eye.y), float(eye.z)}, {float(d.x), float(d.y), float(d.z)}},
+          random);
     }
     for (int i = 0; i < 4000; ++i) {  // tangent to the torus' tube, offset along its normal
       double phi = 2 * M_PI * u(), th = 2 * M_PI * u();
@@ -156,8 +170,10 @@ Tally checkSolids(QuarticSolver solver, bool expectClean) {
       tan = (1 / len(tan)) * tan;
       double off = s.r * std::pow(10.0, -3 - 3 * u()) * (u() < 0.5 ? -1 : 1);
       P3 o = p + off * n - 3.0 * tan;
-      checkRay(s, accels, Ray{{float(o.x), float(o.y), float(o.z)}, {float(tan.x), float(tan.y), float(tan.z)}},
-               grazing);
+      checkRay(
+          s, accels,
+          Ray{{float(o.x), float(o.y), float(o.z)}, {float(tan.x), float(tan.y), float(tan.z)}},
+          grazing);
     }
     for (const auto& [what, t] : {std::pair{"random", random}, std::pair{"grazing", grazing}}) {
       std::printf("%-28s %-8s %6ld rays (%6ld must hit): %ld leaks, %ld phantom hits\n", s.name,
@@ -172,7 +188,9 @@ Tally checkSolids(QuarticSolver solver, bool expectClean) {
   return all;
 }
 
-TEST(CsgTorus, NoLeaksNoPhantomsOnEitherAccelerator) { checkSolids(QuarticSolver::kIsolated, true); }
+TEST(CsgTorus, NoLeaksNoPhantomsOnEitherAccelerator) {
+  checkSolids(QuarticSolver::kIsolated, true);
+}
 
 TEST(CsgTorus, WithTheClosedFormSolverTheSameChecksFail) {
   // The same rays and checks catch the closed form's lost and invented roots.
@@ -184,8 +202,8 @@ TEST(CsgTorus, OpenSurfacesAreRefusedAsOperands) {
   try {
     Csg c(CsgOp::kDifference,
           {child(std::make_shared<Torus>()),
-           {std::make_shared<Quadric>(Quadric::Kind::kCylinder, 1.0f, 1.0f, false), Transform(),
-            -1, "tube"}},
+           {std::make_shared<Quadric>(Quadric::Kind::kCylinder, 1.0f, 1.0f, false), Transform(), -1,
+            "tube"}},
           "cut");
     FAIL() << "an open cylinder was accepted";
   } catch (const Error& e) {
@@ -193,8 +211,8 @@ TEST(CsgTorus, OpenSurfacesAreRefusedAsOperands) {
         << e.what();
   }
   EXPECT_THROW(Csg(CsgOp::kUnion, {child(std::make_shared<Disk>())}), Error);
-  EXPECT_NO_THROW(
-      Csg(CsgOp::kUnion, {child(std::make_shared<Quadric>(Quadric::Kind::kCone, 1.0f, 1.0f, true))}));
+  EXPECT_NO_THROW(Csg(CsgOp::kUnion,
+                      {child(std::make_shared<Quadric>(Quadric::Kind::kCone, 1.0f, 1.0f, true))}));
 }
 
 }  // namespace

@@ -18,7 +18,9 @@ namespace {
 using namespace tray::test;
 using Kind = Quadric::Kind;
 
-Ray ray(Vec3 o, Vec3 d) { return Ray{o, d, 0.0f, kInfinity}; }
+Ray ray(Vec3 o, Vec3 d) {
+  return Ray{o, d, 0.0f, kInfinity};
+}
 
 /// The surface of revolution x^2 + z^2 = rho^2(y) as a mesh: nu segments around, nv rows
 /// along y, plus the caps (fans) when capped. Vertices lie on the analytic surface.
@@ -63,9 +65,10 @@ std::vector<Twin> twins() {
   std::vector<Twin> out;
   const int nu = 2048, nv = 128;
   for (bool capped : {false, true}) {
-    for (auto [kind, name] : {std::pair{Kind::kCylinder, "cylinder"}, std::pair{Kind::kCone, "cone"},
-                              std::pair{Kind::kParaboloid, "paraboloid"},
-                              std::pair{Kind::kHyperboloid, "hyperboloid"}}) {
+    for (auto [kind, name] :
+         {std::pair{Kind::kCylinder, "cylinder"}, std::pair{Kind::kCone, "cone"},
+          std::pair{Kind::kParaboloid, "paraboloid"},
+          std::pair{Kind::kHyperboloid, "hyperboloid"}}) {
       auto q = std::make_shared<Quadric>(kind, 1.0f, 1.5f, capped, 0.5f);
       out.push_back({name, q, tessellate(*q, nu, kind == Kind::kCylinder ? 1 : nv)});
       if (capped) out.back().name = std::string("capped ") + name;
@@ -80,7 +83,8 @@ std::vector<Twin> twins() {
       disk.positions.push_back({float(rho * std::sin(phi)), 0, float(rho * std::cos(phi))});
     }
   for (int i = 0; i < nu; ++i) {
-    uint32_t a = uint32_t(i), b = uint32_t((i + 1) % nu), c = b + uint32_t(nu), d = a + uint32_t(nu);
+    uint32_t a = uint32_t(i), b = uint32_t((i + 1) % nu), c = b + uint32_t(nu),
+             d = a + uint32_t(nu);
     disk.indices.insert(disk.indices.end(), {a, b, c, a, c, d});
   }
   out.push_back({"disk", std::make_shared<Disk>(1.0f, 0.3f), std::move(disk)});
@@ -95,7 +99,8 @@ TEST(Quadric, HitForHitAgainstTessellatedTwinsOnBothAccelerators) {
   auto u = [&] { return float(g() >> 8) / 16777216.0f; };
   for (const Twin& tw : twins()) {
     Scene a, m;
-    addShape(a, tw.shape, Mat4::translate({0.1f, -0.2f, 0.3f}), addMaterial(a, diffuse(Color(0.5f))));
+    addShape(a, tw.shape, Mat4::translate({0.1f, -0.2f, 0.3f}),
+             addMaterial(a, diffuse(Color(0.5f))));
     addMaterial(m, diffuse(Color(0.5f)));
     addMeshInstance(m, addMesh(m, tw.mesh), Mat4::translate({0.1f, -0.2f, 0.3f}));
     a.finalize(), m.finalize();
@@ -108,7 +113,8 @@ TEST(Quadric, HitForHitAgainstTessellatedTwinsOnBothAccelerators) {
       Vec3 target{2.4f * u() - 1.1f, 1.9f * u() - 0.4f, 2.4f * u() - 0.9f};
       Ray r = ray(o, normalize(target - o));
       Hit ha, hb, hm;
-      const bool fa = embree->intersect(r, ha), fb = bvh->intersect(r, hb), fm = mesh->intersect(r, hm);
+      const bool fa = embree->intersect(r, ha), fb = bvh->intersect(r, hb),
+                 fm = mesh->intersect(r, hm);
       accelDiff += fa != fb || (fa && ha.t != hb.t);
       if (fa != fm) {
         ++disagree;
@@ -118,9 +124,10 @@ TEST(Quadric, HitForHitAgainstTessellatedTwinsOnBothAccelerators) {
       ++hits;
       far += std::fabs(ha.t - hm.t) > 1e-3f;
     }
-    std::printf("%-20s %d rays, %d hits: %d disagree with the mesh, %d hits farther than 1e-3, "
-                "%d embree/bvh differences\n",
-                tw.name.c_str(), n, hits, disagree, far, accelDiff);
+    std::printf(
+        "%-20s %d rays, %d hits: %d disagree with the mesh, %d hits farther than 1e-3, "
+        "%d embree/bvh differences\n",
+        tw.name.c_str(), n, hits, disagree, far, accelDiff);
     EXPECT_GT(hits, n / 10) << tw.name;
     EXPECT_LT(disagree, n / 2000) << tw.name;  // rays within ~1e-5 of a rim or silhouette
     EXPECT_LT(far, n / 2000) << tw.name;       // grazing hits, where t is ill-conditioned
@@ -218,7 +225,8 @@ TEST(Quadric, AreaSamplingIsUniformOverSideAndCaps) {
   // The cone's side holds 1/4 of its area above half height (rho halves there).
   Quadric cone(Kind::kCone, kR, kH, false);
   int upper = 0;
-  for (int i = 0; i < 100000; ++i) upper += toWorld.inversePoint(cone.sampleArea(toWorld, {u(), u()})->p).y > 0.5f * kH;
+  for (int i = 0; i < 100000; ++i)
+    upper += toWorld.inversePoint(cone.sampleArea(toWorld, {u(), u()})->p).y > 0.5f * kH;
   EXPECT_NEAR(upper / 1e5, 0.25, 0.01);
   // Paraboloid and hyperboloid are not sampled.
   EXPECT_EQ(Quadric(Kind::kParaboloid, 1, 1, true).area(toWorld), 0.0f);

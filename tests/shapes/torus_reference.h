@@ -60,8 +60,10 @@ inline TorusReference torusReference(double R, double r, const Ray& ray) {
           c = mid;
       }
       out.roots.push_back(0.5L * (a + c));
-      if (!insideA) deepest = 0;
-      else out.depth.push_back(deepest);
+      if (!insideA)
+        deepest = 0;
+      else
+        out.depth.push_back(deepest);
     }
     if (gn < 0) deepest = std::max(deepest, -gn);
     t = tn, gt = gn;

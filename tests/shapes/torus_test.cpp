@@ -12,7 +12,9 @@
 namespace tray {
 namespace {
 
-Ray ray(Vec3 o, Vec3 d) { return Ray{o, d, 0.0f, kInfinity}; }
+Ray ray(Vec3 o, Vec3 d) {
+  return Ray{o, d, 0.0f, kInfinity};
+}
 
 TEST(Torus, ThroughTheEquatorialPlaneCrossesFourTimes) {
   Torus t(2.0f, 0.5f);
@@ -63,10 +65,10 @@ TEST(Torus, UnnormalisedAndFarAwayRaysKeepTheirParameter) {
 TEST(Torus, UvAtKnownPoints) {
   Torus t(2.0f, 0.5f);
   EXPECT_NEAR(t.uvAt({0, 0, 2.5f}).x, 0.0f, 1e-6f);
-  EXPECT_NEAR(t.uvAt({0, 0, 2.5f}).y, 0.0f, 1e-6f);   // outer equator
+  EXPECT_NEAR(t.uvAt({0, 0, 2.5f}).y, 0.0f, 1e-6f);  // outer equator
   EXPECT_NEAR(t.uvAt({2.5f, 0, 0}).x, 0.25f, 1e-6f);
-  EXPECT_NEAR(t.uvAt({0, 0, 1.5f}).y, 0.5f, 1e-6f);   // inner equator
-  EXPECT_NEAR(t.uvAt({0, -0.5f, 2}).y, 0.75f, 1e-6f); // bottom
+  EXPECT_NEAR(t.uvAt({0, 0, 1.5f}).y, 0.5f, 1e-6f);    // inner equator
+  EXPECT_NEAR(t.uvAt({0, -0.5f, 2}).y, 0.75f, 1e-6f);  // bottom
 }
 
 TEST(Torus, UvDerivativesMatchFiniteDifferences) {
@@ -136,8 +138,9 @@ TEST(Torus, SolidAngleSamplingEstimatesTheSubtendedSolidAngle) {
     Hit h;
     Ray toward{ref, s->p - ref, 0.0f, 1.0f - 1e-4f};
     if (t.intersect(toward, h)) continue;  // hidden behind the near side
-    if (s->pdf < 100)  // away from grazing, where float rounding of cos dominates
+    if (s->pdf < 100) {  // away from grazing, where float rounding of cos dominates
       EXPECT_NEAR(t.pdf({toWorld, ref}, s->p, s->n), s->pdf, 1e-3f * s->pdf);
+    }
     estimate += 1.0 / s->pdf;
   }
   estimate /= n;
@@ -158,8 +161,8 @@ TEST(Torus, BothAcceleratorsReportTheSameHits) {
   addShape(s, std::make_shared<Torus>(1.0f, 0.3f), Mat4::translate({0, 0, 0}), m);
   addShape(s, std::make_shared<Torus>(1.0f, 0.01f),
            Mat4::translate({0.5f, 0.2f, 0}) * Mat4::rotate(0.5f, 0, 0, 0.866f), m);
-  addShape(s, std::make_shared<Torus>(0.5f, 0.2f), Mat4::translate({0, 1.5f, 0.5f}) *
-                                                       Mat4::scale(Vec3(1.5f)), m);
+  addShape(s, std::make_shared<Torus>(0.5f, 0.2f),
+           Mat4::translate({0, 1.5f, 0.5f}) * Mat4::scale(Vec3(1.5f)), m);
   s.finalize();
   auto embree = makeAccelerator("embree", s), bvh = makeAccelerator("bvh", s);
   std::mt19937 g(3);

@@ -32,13 +32,27 @@ struct Rng {
 struct V {
   double x, y, z;
 };
-V operator+(V a, V b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-V operator-(V a, V b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-V operator*(double s, V a) { return {s * a.x, s * a.y, s * a.z}; }
-double dot(V a, V b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-V cross(V a, V b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-V unit(V a) { return (1.0 / std::sqrt(dot(a, a))) * a; }
-Vec3 f3(V a) { return {float(a.x), float(a.y), float(a.z)}; }
+V operator+(V a, V b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+V operator-(V a, V b) {
+  return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+V operator*(double s, V a) {
+  return {s * a.x, s * a.y, s * a.z};
+}
+double dot(V a, V b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+V cross(V a, V b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+V unit(V a) {
+  return (1.0 / std::sqrt(dot(a, a))) * a;
+}
+Vec3 f3(V a) {
+  return {float(a.x), float(a.y), float(a.z)};
+}
 
 V randomDir(Rng& rng) {
   double z = rng.range(-1, 1), phi = rng.range(0, 2 * M_PI), s = std::sqrt(1 - z * z);
@@ -81,8 +95,7 @@ Ray makeRay(Kind kind, double R, double r, Rng& rng) {
     default: {
       V p, n;
       surfacePoint(p, n);
-      return Ray{f3(p - rng.range(0.01, 0.99) * r * n), f3(randomDir(rng)), -kInfinity,
-                 kInfinity};
+      return Ray{f3(p - rng.range(0.01, 0.99) * r * n), f3(randomDir(rng)), -kInfinity, kInfinity};
     }
   }
 }
@@ -142,7 +155,8 @@ void check(const Torus& torus, const Ray& ray, const test::TorusReference& ref, 
       for (int j = 0; j < n; ++j) found |= std::fabs(double(ref.roots[k]) - t[j]) * L < kMatch;
       tally.lost += !found;
       if (!found && std::getenv("TRAY_TORUS_DEBUG") && tally.lost < 4) {
-        std::printf("lost: o=(%.9g %.9g %.9g) d=(%.9g %.9g %.9g) ref:", ray.o.x, ray.o.y, ray.o.z, ray.d.x, ray.d.y, ray.d.z);
+        std::printf("lost: o=(%.9g %.9g %.9g) d=(%.9g %.9g %.9g) ref:", ray.o.x, ray.o.y, ray.o.z,
+                    ray.d.x, ray.d.y, ray.d.z);
         for (size_t q = 0; q < ref.roots.size(); ++q) std::printf(" %.12Lg", ref.roots[q]);
         for (size_t q = 0; q < ref.depth.size(); ++q) std::printf(" [depth %.3Lg]", ref.depth[q]);
         std::printf(" solver:");
@@ -167,23 +181,25 @@ Tally run(QuarticSolver solver, const char* name) {
     for (int k = 0; k < kKinds; ++k) {
       Tally tk;
       for (size_t i = 0; i < c.rays[k].size(); ++i) check(torus, c.rays[k][i], c.refs[k][i], tk);
-      std::printf("%-22s r/R=%-5g %-12s %7ld rays, %7ld crossings required: %6ld lost, "
-                  "%6ld phantom\n",
-                  name, c.r, kKindNames[k], tk.rays, tk.required, tk.lost, tk.phantom);
+      std::printf(
+          "%-22s r/R=%-5g %-12s %7ld rays, %7ld crossings required: %6ld lost, "
+          "%6ld phantom\n",
+          name, c.r, kKindNames[k], tk.rays, tk.required, tk.lost, tk.phantom);
       total.rays += tk.rays, total.required += tk.required;
       total.lost += tk.lost, total.phantom += tk.phantom, total.refSteps += tk.refSteps;
     }
   }
-  std::printf("%-22s total: %ld rays, %ld crossings required, %ld lost, %ld phantom "
-              "(reference: %.0f march steps per ray)\n",
-              name, total.rays, total.required, total.lost, total.phantom,
-              double(total.refSteps) / double(total.rays));
+  std::printf(
+      "%-22s total: %ld rays, %ld crossings required, %ld lost, %ld phantom "
+      "(reference: %.0f march steps per ray)\n",
+      name, total.rays, total.required, total.lost, total.phantom,
+      double(total.refSteps) / double(total.rays));
   return total;
 }
 
 TEST(TorusSolver, TheClosedFormLosesAndInventsCrossings) {
   const Tally t = run(QuarticSolver::kClosedForm, "closed form");
-  EXPECT_GT(t.required, t.rays);             // the rays do cross the tori
+  EXPECT_GT(t.required, t.rays);                 // the rays do cross the tori
   EXPECT_GT(t.lost + t.phantom, t.rays / 1000);  // failures are not rare
 }
 
