@@ -11,6 +11,7 @@
 
 #include "accel/registry.h"
 #include "tests/scene_builder.h"
+#include "tests/shapes/solid_meshes.h"
 
 namespace tray {
 namespace {
@@ -20,39 +21,6 @@ using Kind = Quadric::Kind;
 
 Ray ray(Vec3 o, Vec3 d) {
   return Ray{o, d, 0.0f, kInfinity};
-}
-
-/// The surface of revolution x^2 + z^2 = rho^2(y) as a mesh: nu segments around, nv rows
-/// along y, plus the caps (fans) when capped. Vertices lie on the analytic surface.
-TriangleMesh tessellate(const Quadric& q, int nu, int nv) {
-  TriangleMesh m;
-  m.material = 0;
-  auto ring = [&](double y, double rho) {
-    for (int i = 0; i < nu; ++i) {
-      double phi = 2 * M_PI * i / nu;
-      m.positions.push_back({float(rho * std::sin(phi)), float(y), float(rho * std::cos(phi))});
-    }
-  };
-  for (int j = 0; j <= nv; ++j) {
-    // Rows uniform in y; the paraboloid's uniform in rho (its profile is vertical at the apex).
-    double w = double(j) / nv, y = q.height() * (q.kind() == Kind::kParaboloid ? w * w : w);
-    ring(y, std::sqrt(std::max(0.0, q.rho2(y))));
-  }
-  for (int j = 0; j < nv; ++j)
-    for (int i = 0; i < nu; ++i) {
-      uint32_t a = uint32_t(j * nu + i), b = uint32_t(j * nu + (i + 1) % nu);
-      uint32_t c = uint32_t(b + nu), d = uint32_t(a + nu);
-      m.indices.insert(m.indices.end(), {a, b, c, a, c, d});
-    }
-  if (q.capped())
-    for (int end = 0; end < 2; ++end) {
-      const uint32_t centre = uint32_t(m.positions.size()), base = uint32_t(end * nv * nu);
-      m.positions.push_back({0, end ? q.height() : 0.0f, 0});
-      for (int i = 0; i < nu; ++i)
-        m.indices.insert(m.indices.end(),
-                         {centre, base + uint32_t(i), base + uint32_t((i + 1) % nu)});
-    }
-  return m;
 }
 
 struct Twin {
@@ -70,7 +38,7 @@ std::vector<Twin> twins() {
           std::pair{Kind::kParaboloid, "paraboloid"},
           std::pair{Kind::kHyperboloid, "hyperboloid"}}) {
       auto q = std::make_shared<Quadric>(kind, 1.0f, 1.5f, capped, 0.5f);
-      out.push_back({name, q, tessellate(*q, nu, kind == Kind::kCylinder ? 1 : nv)});
+      out.push_back({name, q, revolvedMesh(*q, nu, kind == Kind::kCylinder ? 1 : nv)});
       if (capped) out.back().name = std::string("capped ") + name;
     }
   }
