@@ -123,7 +123,9 @@ Vec2 Quadric::uvAt(const Vec3& p, int cap) const {
 Crossing Quadric::crossingAt(const Ray& ray, double t, int cap) const {
   Crossing c;
   c.t = float(t);
-  Vec3 p = ray.o + c.t * ray.d;
+  // In double: a ray from far away keeps the digits of the point it hits.
+  Vec3 p(float(double(ray.o.x) + t * double(ray.d.x)), float(double(ray.o.y) + t * double(ray.d.y)),
+         float(double(ray.o.z) + t * double(ray.d.z)));
   if (cap >= 0) {
     p.y = cap ? height_ : 0.0f;
     c.normal = Vec3(0, cap ? 1.0f : -1.0f, 0);

@@ -118,6 +118,18 @@ void Torus::uvDerivatives(const Vec3& p, const Vec3&, Vec3& dpdu, Vec3& dpdv) co
   dpdv = 2.0f * kPi * r_ * Vec3(-st * std::sin(phi), ct, -st * std::cos(phi));
 }
 
+namespace {
+
+/// o + t d in double: a ray from far away keeps the digits of the point it hits, which a thin
+/// tube's normal needs (float o + t d is off by |o| 6e-8).
+Vec3 pointAt(const Ray& ray, double t) {
+  return {float(double(ray.o.x) + t * double(ray.d.x)),
+          float(double(ray.o.y) + t * double(ray.d.y)),
+          float(double(ray.o.z) + t * double(ray.d.z))};
+}
+
+}  // namespace
+
 bool Torus::intersect(const Ray& ray, Hit& hit) const {
   double t[4];
   const int n = lineRoots(ray, t);
@@ -125,7 +137,7 @@ bool Torus::intersect(const Ray& ray, Hit& hit) const {
     const float tf = float(t[i]);
     if (!(tf > ray.tmin)) continue;
     if (!(tf < ray.tmax)) return false;
-    const Vec3 p = ray.o + tf * ray.d;
+    const Vec3 p = pointAt(ray, t[i]);
     hit.t = tf;
     hit.normal = normalAt(p);
     hit.uv = uvAt(p);
@@ -143,9 +155,8 @@ void Torus::intervals(const Ray& ray, std::vector<Interval>& out) const {
     Interval iv;
     Crossing* ends[2] = {&iv.enter, &iv.exit};
     for (int k = 0; k < 2; ++k) {
-      const float tf = float(t[i + k]);
-      const Vec3 p = ray.o + tf * ray.d;
-      ends[k]->t = tf;
+      const Vec3 p = pointAt(ray, t[i + k]);
+      ends[k]->t = float(t[i + k]);
       ends[k]->normal = normalAt(p);
       ends[k]->uv = uvAt(p);
     }

@@ -60,6 +60,19 @@ TEST(Torus, UnnormalisedAndFarAwayRaysKeepTheirParameter) {
   // The line x = 1 touches the centre circle at z = 0: it enters the tube where
   // sqrt(1 + z^2) = 1.01, z = -0.141774.
   EXPECT_NEAR(h.t * 4.0f, 1e4f - 0.141774f, 2e-3f);
+  // The normal, computed from the hit point in double: float o + t d at 1e4 is off by ~1e-4,
+  // which tilts a 0.01 tube's normal by up to 3e-4 rad. At height y = 0.005 the line x = 1 meets
+  // the tube where rho = 1 + sqrt(0.01^2 - 0.005^2); the normal is (p - p_xz / rho) / 0.01.
+  const double y = double(0.005f), rho = 1 + std::sqrt(1e-4 - y * y);
+  const double z = -std::sqrt(rho * rho - 1), k = 1 - 1 / rho;
+  const double nx = k / 0.01, ny = y / 0.01, nz = z * k / 0.01;
+  double worst = 1;
+  for (int i = 0; i < 50; ++i) {  // origins at different roundings
+    ASSERT_TRUE(t.intersect(ray({1, 0.005f, -1e4f - 0.37f * float(i)}, {0, 0, 4}), h));
+    const Vec3 n = normalize(h.normal);
+    worst = std::min(worst, double(n.x) * nx + double(n.y) * ny + double(n.z) * nz);
+  }
+  EXPECT_GT(worst, 1.0 - 1e-10);  // float o + t d: 1 - 4.3e-8 (3e-4 rad)
 }
 
 TEST(Torus, UvAtKnownPoints) {
