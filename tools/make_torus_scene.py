@@ -47,7 +47,7 @@ nodes = [
     shape("cut torus", {"type": "csg", "op": "difference", "children": [3, 4], "material": 2},
           t=[0.3, 0.9, -0.3], r=rot_x(70)),
     shape("ring", {"type": "torus", "majorRadius": 0.7, "minorRadius": 0.3}),
-    shape("bite", {"type": "box", "min": [0, -1, 0], "max": [2, 1, 2], "material": 3}),
+    shape("bite", {"type": "box", "min": [0, 0, -2], "max": [2, 1, 2], "material": 3}),
     shape("cylinder", {"type": "cylinder", "radius": 0.45, "height": 1.2, "capped": True,
                        "material": 4}, t=[2.1, 0, 0.2]),
     shape("cone", {"type": "cone", "radius": 0.4, "height": 0.9, "material": 3}, t=[1.4, 0, 1.3]),
