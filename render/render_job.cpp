@@ -165,10 +165,10 @@ uint64_t defaultMaxMemoryBytes() {
 }
 
 RenderJobResult runRenderJob(const RenderJob& job, const RenderJobEvents& events,
-                             const GltfDocument* document) {
+                             const GltfDocument* document, KeptScene* kept) {
   checkJobOutputs(job);
   int placedCamera = -1;
-  const PreparedScene scene = prepareJobScene(job, events, document, placedCamera);
+  const PreparedScene scene = prepareJobScene(job, events, document, placedCamera, kept);
   enterPhase(events, "rendering");
   const auto integrator = scene.integrator(job.settings);
   const JobPlan plan = planOf(job, scene, *integrator);
@@ -204,10 +204,13 @@ RenderJobResult runRenderJob(const RenderJob& job, const RenderJobEvents& events
   if (events.finished) events.finished(complete);
 
   enterPhase(events, "writing images");
+  const double seconds = previousSeconds + result.stats.seconds;
   result.written = complete ? job.outputs.paths : interruptedOutputs(job.outputs.paths, events);
-  writer.write(film, state, previousSeconds + result.stats.seconds, result.written, true, events);
+  if (!result.written.empty()) writer.write(film, state, seconds, result.written, true, events);
   if (!job.outputs.aaHeatmap.empty() && complete)
     writeImage(samplesHeatmap(film), job.outputs.aaHeatmap);
+  if (job.outputs.keepImage)
+    result.image = RenderJobResult::Image{std::move(film), writer.formatOf(state, seconds)};
   result.outcome =
       complete ? RenderJobResult::Outcome::kComplete : RenderJobResult::Outcome::kInterrupted;
   return result;
