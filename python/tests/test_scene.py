@@ -102,3 +102,26 @@ def test_material_sweep_example(tray, scenes, tmp_path):
     row = oiio.ImageInput.open(str(png)).read_image(oiio.UINT8)
     assert row.shape == (16, 48, 3)
     assert not np.array_equal(row[:, :16], row[:, 32:])  # roughness 0 and 1 differ
+
+
+def test_cmake_install_puts_it_where_python_finds_it(tray, tmp_path):
+    """cmake --install --component python into a prefix: the package imports from there (from
+    another folder, without $OCIO: it finds its own OCIO config) and renders."""
+    import os
+    import shutil
+    build = pathlib.Path(tray.__file__).parents[2]
+    if not (build / "CMakeCache.txt").exists() or not shutil.which("cmake"):
+        pytest.skip("not a CMake build tree")
+    r = subprocess.run(["cmake", "--install", str(build), "--prefix", str(tmp_path),
+                        "--component", "python"], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    site = tmp_path / "lib" / f"python{sys.version_info[0]}.{sys.version_info[1]}" / "dist-packages"
+    env = {k: v for k, v in os.environ.items() if k not in ("OCIO", "PYTHONPATH")}
+    env["PYTHONPATH"] = str(site)
+    scene = pathlib.Path(__file__).parents[2] / "scenes" / "whitted.gltf"
+    code = ("import tray; i = tray.render(%r, spp=1, resolution=(8, 6), allow_any_path=True);"
+            "i.write('x.png'); print(tray.__file__)" % str(scene))
+    r = subprocess.run([sys.executable, "-W", "ignore", "-c", code], capture_output=True,
+                       text=True, env=env, cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.strip().startswith(str(site)) and (tmp_path / "x.png").exists()
