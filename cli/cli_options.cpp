@@ -66,7 +66,7 @@ void groupOptions(CLI::App& app) {
        {"--frames", "--region", "--sample-range", "--checkpoint", "--resume"}},
       {"Running",
        {"--threads", "--accel", "--quiet", "--progress", "--progress-step", "--progress-seconds",
-        "--help", "--version"}},
+        "--preview", "--help", "--version"}},
   };
   for (const auto& [group, names] : groups)
     for (const char* name : names) app.get_option(name)->group(group);
@@ -149,6 +149,12 @@ void addCliOptions(CLI::App& app, CliOptions& o) {
                  "--progress plain: a line at least every SECONDS (0: only by --progress-step)")
       ->check(finiteIn(0, kLargest, "a number of seconds in [0, 1e9]"))
       ->capture_default_str();
+  // A flag with an optional value: --preview (port 8642) or --preview=PORT (0: any free one).
+  app.add_flag("--preview{8642}", o.preview,
+               "serve a live preview of the render at http://127.0.0.1:PORT/ (--preview=PORT; "
+               "default 8642, 0: any free port): the image so far, its samples and time left, "
+               "a choice of layer (docs/preview.md)")
+      ->check(CLI::Range(0, 65535));
   app.add_option("--frames", o.frames,
                  "render frames FIRST-LAST of the animation at --fps, each at time frame / fps, "
                  "to outputs named by a pattern: -o out.####.exr (or out.%04d.exr)");

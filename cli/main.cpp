@@ -15,6 +15,7 @@
 #include "cli/cli_options.h"
 #include "cli/frames.h"
 #include "cli/interrupt.h"
+#include "cli/preview_server.h"
 #include "cli/progress.h"
 #include "core/animation_time.h"
 #include "core/error.h"
@@ -82,7 +83,21 @@ int run(const CliOptions& o, const tray::RenderJob& job,
   };
   events.finished = [&](bool complete) { progress->finish(complete); };
   events.stop = &stop;
-  return exitCodeOf(o, job, tray::runRenderJob(job, events, document));
+  if (o.preview < 0) return exitCodeOf(o, job, tray::runRenderJob(job, events, document));
+  // --preview: the server lives as long as the render; the job keeps its film for the last
+  // snapshot.
+  tray::PreviewServer preview(o.preview, job.scene.path);
+  if (!o.quiet) std::printf("preview: http://127.0.0.1:%d/\n", preview.port());
+  std::fflush(stdout);
+  preview.attach(events, job);
+  tray::RenderJob kept = job;
+  kept.outputs.keepImage = true;
+  const tray::RenderJobResult result = tray::runRenderJob(kept, events, document);
+  if (result.image)
+    preview.publishFinal(result.image->film,
+                         result.stats.passes > 0 ? double(result.stats.samples) / result.pixels
+                                                 : job.settings.getInt("spp"));
+  return exitCodeOf(o, job, result);
 }
 
 /// --frames: each frame rendered in turn from the file parsed once (tray::GltfDocument; the

@@ -33,7 +33,8 @@ constexpr auto kPoll = std::chrono::milliseconds(50);
 }  // namespace
 
 RenderJobResult runJob(const RenderJob& job, const py::object& progress,
-                       const GltfDocument* document, KeptScene* kept, double* setupSeconds) {
+                       const GltfDocument* document, KeptScene* kept, double* setupSeconds,
+                       PreviewServer* preview) {
   Exchange x;
   RenderJobEvents events;
   const auto start = std::chrono::steady_clock::now();
@@ -52,6 +53,7 @@ RenderJobResult runJob(const RenderJob& job, const py::object& progress,
     x.changed.notify_one();
   };
   events.stop = &x.stop;
+  if (preview) preview->attach(events, job);
 
   std::optional<py::error_already_set> pythonError;  // the first: it stopped the render
   auto stopWith = [&](py::error_already_set&& e) {
@@ -105,6 +107,12 @@ RenderJobResult runJob(const RenderJob& job, const py::object& progress,
   if (setupSeconds) *setupSeconds = setup;
   if (pythonError) throw std::move(*pythonError);
   if (x.error) std::rethrow_exception(x.error);
+  if (preview && x.result->image) {
+    const RenderJobResult& r = *x.result;
+    preview->publishFinal(r.image->film, r.stats.passes > 0
+                                             ? double(r.stats.samples) / double(r.pixels)
+                                             : double(job.settings.getInt("spp")));
+  }
   return std::move(*x.result);
 }
 

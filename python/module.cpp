@@ -24,10 +24,19 @@ namespace py = pybind11;
 namespace tray::python {
 namespace {
 
-Image renderOne(const RenderJob& job, const py::object& progress,
+/// One image; with --preview (`previewPort` >= 0) shown live on localhost as tray-render
+/// shows it.
+Image renderOne(const RenderJob& job, const py::object& progress, int previewPort,
                 const GltfDocument* document = nullptr) {
+  std::optional<PreviewServer> preview;
+  if (previewPort >= 0) {
+    preview.emplace(previewPort, job.scene.path);
+    const std::string line = "preview: http://127.0.0.1:" + std::to_string(preview->port()) + "/";
+    py::print(line, py::arg("flush") = true);
+  }
   double setup = 0;
-  RenderJobResult result = runJob(job, progress, document, nullptr, &setup);
+  RenderJobResult result =
+      runJob(job, progress, document, nullptr, &setup, preview ? &*preview : nullptr);
   return imageOf(std::move(result), setup);
 }
 
@@ -37,7 +46,7 @@ py::object render(const std::vector<std::string>& args, const py::object& progre
   CliOptions o = parseOptions(args);
   RenderJob job = jobOf(o);
   job.outputs.keepImage = true;
-  if (o.frames.empty()) return py::cast(renderOne(job, progress));
+  if (o.frames.empty()) return py::cast(renderOne(job, progress, o.preview));
   const FrameRange range = parseFrameRange(o.frames);
   std::unique_ptr<GltfDocument> document;
   {
@@ -52,7 +61,7 @@ py::object render(const std::vector<std::string>& args, const py::object& progre
     if (!frame.outputs.aaHeatmap.empty())
       frame.outputs.aaHeatmap = framePath(frame.outputs.aaHeatmap, f);
     frame.settings.set("time", frameTime(f, o.settings.getFloat("fps")));
-    frames.append(py::cast(renderOne(frame, progress, document.get())));
+    frames.append(py::cast(renderOne(frame, progress, o.preview, document.get())));
   }
   return frames;
 }

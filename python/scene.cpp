@@ -63,11 +63,15 @@ class SceneHandle {
   }
 
   Image render(const std::vector<std::string>& args, const py::object& progress) {
-    RenderJob job = jobOf(parseOptions(args));
+    const CliOptions o = parseOptions(args);
+    RenderJob job = jobOf(o);
     job.outputs.keepImage = true;
     job.scene.contentHash = contentHash_;
+    std::optional<PreviewServer> preview;
+    if (o.preview >= 0) preview.emplace(o.preview, job.scene.path);
     double setup = 0;
-    RenderJobResult result = runJob(job, progress, nullptr, &kept_, &setup);
+    RenderJobResult result =
+        runJob(job, progress, nullptr, &kept_, &setup, preview ? &*preview : nullptr);
     return imageOf(std::move(result), setup);
   }
 

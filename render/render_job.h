@@ -84,6 +84,11 @@ struct RenderJobEvents {
   /// When it becomes true (a signal handler), the render stops after the pixels under way and
   /// writes what it has.
   const std::atomic<bool>* stop = nullptr;
+  /// Every snapshotSeconds (> 0), a copy of the film and state with the pixels done so far
+  /// (a worker thread, one call at a time): the checkpoints' film copy (RenderOptions::
+  /// onCheckpoint), for a live preview (cli/preview_server.h).
+  std::function<void(const Film&, const RenderState&)> snapshot;
+  double snapshotSeconds = 0;
 };
 
 struct RenderJobResult {
