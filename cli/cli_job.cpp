@@ -25,6 +25,11 @@ void checkCliOptions(CliOptions& o) {
       o.quiet ? ProgressMode::kNone : parseProgressMode(o.progress);
 }
 
+int previewPortOf(const CliOptions& o) {
+  if (o.previewPort.empty()) return -1;
+  return o.previewPort == "any" ? 0 : std::stoi(o.previewPort);  // checked by the parser
+}
+
 RenderJob jobOf(const CliOptions& o) {
   RenderJob job;
   job.scene.path = o.scenePath;

@@ -11,6 +11,9 @@ namespace tray {
 /// output patterns and --progress. Throws tray::Error.
 void checkCliOptions(CliOptions& o);
 
+/// --preview's port: -1 none, 0 any free port.
+int previewPortOf(const CliOptions& o);
+
 /// The render job the options describe (one image; --frames makes one per frame).
 RenderJob jobOf(const CliOptions& o);
 

@@ -36,7 +36,7 @@ struct CliOptions {
   std::string frames;  ///< --frames A-B; empty: one image
   std::optional<double> maxMemoryMB;  ///< --max-memory; none: 80% of physical memory; 0: no limit
   double textureMemoryMB = 0;  ///< 0: TextureSampler::budgetFor(the scene's images)
-  int preview = -1;  ///< --preview[=PORT]: serve a live preview on localhost (-1: none; 0: any)
+  std::string previewPort;  ///< --preview[=PORT|any]; empty: no preview
   tray::RenderSettings settings;
 };
 

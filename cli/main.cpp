@@ -83,10 +83,10 @@ int run(const CliOptions& o, const tray::RenderJob& job,
   };
   events.finished = [&](bool complete) { progress->finish(complete); };
   events.stop = &stop;
-  if (o.preview < 0) return exitCodeOf(o, job, tray::runRenderJob(job, events, document));
+  if (tray::previewPortOf(o) < 0) return exitCodeOf(o, job, tray::runRenderJob(job, events, document));
   // --preview: the server lives as long as the render; the job keeps its film for the last
   // snapshot.
-  tray::PreviewServer preview(o.preview, job.scene.path);
+  tray::PreviewServer preview(tray::previewPortOf(o), job.scene.path);
   if (!o.quiet) std::printf("preview: http://127.0.0.1:%d/\n", preview.port());
   std::fflush(stdout);
   preview.attach(events, job);

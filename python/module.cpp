@@ -46,7 +46,7 @@ py::object render(const std::vector<std::string>& args, const py::object& progre
   CliOptions o = parseOptions(args);
   RenderJob job = jobOf(o);
   job.outputs.keepImage = true;
-  if (o.frames.empty()) return py::cast(renderOne(job, progress, o.preview));
+  if (o.frames.empty()) return py::cast(renderOne(job, progress, previewPortOf(o)));
   const FrameRange range = parseFrameRange(o.frames);
   std::unique_ptr<GltfDocument> document;
   {
@@ -61,7 +61,7 @@ py::object render(const std::vector<std::string>& args, const py::object& progre
     if (!frame.outputs.aaHeatmap.empty())
       frame.outputs.aaHeatmap = framePath(frame.outputs.aaHeatmap, f);
     frame.settings.set("time", frameTime(f, o.settings.getFloat("fps")));
-    frames.append(py::cast(renderOne(frame, progress, o.preview, document.get())));
+    frames.append(py::cast(renderOne(frame, progress, previewPortOf(o), document.get())));
   }
   return frames;
 }

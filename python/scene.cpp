@@ -68,7 +68,7 @@ class SceneHandle {
     job.outputs.keepImage = true;
     job.scene.contentHash = contentHash_;
     std::optional<PreviewServer> preview;
-    if (o.preview >= 0) preview.emplace(o.preview, job.scene.path);
+    if (previewPortOf(o) >= 0) preview.emplace(previewPortOf(o), job.scene.path);
     double setup = 0;
     RenderJobResult result =
         runJob(job, progress, nullptr, &kept_, &setup, preview ? &*preview : nullptr);
