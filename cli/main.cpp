@@ -87,7 +87,7 @@ int run(const CliOptions& o, const tray::RenderJob& job,
   // --preview: the server lives as long as the render; the job keeps its film for the last
   // snapshot.
   tray::PreviewServer preview(tray::previewPortOf(o), job.scene.path);
-  if (!o.quiet) std::printf("preview: http://127.0.0.1:%d/\n", preview.port());
+  std::printf("preview: http://127.0.0.1:%d/\n", preview.port());  // even with -q: it is asked for
   std::fflush(stdout);
   preview.attach(events, job);
   tray::RenderJob kept = job;
