@@ -15,11 +15,6 @@
 namespace tray {
 namespace {
 
-/// Beer-Lambert transmittance exp(-sigma_a d) per channel (KHR_materials_volume).
-Color transmittance(const Color& sigmaA, float d) {
-  return {std::exp(-sigmaA.x * d), std::exp(-sigmaA.y * d), std::exp(-sigmaA.z * d)};
-}
-
 /// Absorption of the medium beyond a refractive surface: the one in effect once crossed.
 Color farSideAbsorption(const MediumStack& media, int id, const Material& m, bool entering) {
   MediumStack far = media;

@@ -6,6 +6,7 @@
 #include "integrators/adaptive.h"
 #include "integrators/path.h"
 #include "integrators/path_wavefront.h"
+#include "integrators/sppm.h"
 #include "integrators/whitted.h"
 
 namespace tray {
@@ -29,6 +30,10 @@ std::vector<IntegratorEntry>& table() {
        makePath, pathOptions(), ""},
       {"path-wavefront", "another name for path (its wavefront driver)", makePathWavefront,
        pathOptions(), ""},
+      {"sppm",
+       "stochastic progressive photon mapping: caustics and light through glass; consistent, "
+       "iterations = --spp, --photons per iteration (docs/sppm.md)",
+       makeSppm, sppmOptions(), ""},
   };
   return entries;
 }
