@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <new>
 #include <optional>
+#include <set>
 #include <string>
 
 #include "cli/cli_options.h"
@@ -95,7 +96,12 @@ int run(const CliOptions& o, const tray::RenderJob& job,
   const std::atomic<bool>& stop = tray::installInterruptHandlers();
   std::optional<tray::Progress> progress;  // its clock starts with the first tile
   tray::RenderJobEvents events;
-  events.warning = [](const std::string& w) { std::fprintf(stderr, "warning: %s\n", w.c_str()); };
+  // Each warning once per process: --frames renders one job per frame, and a frame repeats
+  // what the one before it said (the scene is unlit, an extension is ignored).
+  events.warning = [](const std::string& w) {
+    static std::set<std::string> said;
+    if (said.insert(w).second) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  };
   events.phase = [](const char* phase) { gPhase = phase; };
   events.started = [&] { progress.emplace(o.progressSettings); };
   events.progress = [&](double f) {
