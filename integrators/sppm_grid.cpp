@@ -41,9 +41,8 @@ Extent extentOf(std::span<const Vec3> p, std::span<const float> r) {
 
 bool VisiblePointGrid::cellOf(const Vec3& q, int c[3]) const {
   for (int a = 0; a < 3; ++a) {
-    const float t = (q[a] - bounds_.lo[a]) / cellSize_;
-    if (!(t >= 0) || t >= float(res_[a])) return false;  // outside every sphere (or NaN)
-    c[a] = std::min(int(t), res_[a] - 1);
+    if (!(q[a] >= bounds_.lo[a] && q[a] <= bounds_.hi[a])) return false;  // outside all (or NaN)
+    c[a] = cellIndex(q[a], a);
   }
   return true;
 }
@@ -55,19 +54,18 @@ VisiblePointGrid::VisiblePointGrid(std::span<const Vec3> p, std::span<const floa
   bounds_ = extent.bounds;
   // Cells twice the largest radius across (pbrt-v3 takes about the radius): a sphere then
   // overlaps at most 2 x 2 x 2 cells. At most ~2^30 cells, whatever the spread of the points.
-  const Vec3 diag = bounds_.diagonal();
+  // Cells twice the largest radius across (pbrt-v3 takes about the radius): a sphere then
+  // overlaps at most 2 x 2 x 2 cells. The cells are hashed, not stored: points spread over a
+  // large extent (a floor reaching the horizon) cost nothing.
   cellSize_ = 2 * extent.maxRadius;
-  const float maxDiag = std::max({diag.x, diag.y, diag.z});
-  cellSize_ = std::max(cellSize_, maxDiag / 1024.0f);
-  for (int a = 0; a < 3; ++a) res_[a] = std::max(1, int(std::ceil(diag[a] / cellSize_)));
   buckets_ = uint32_t(std::max<size_t>(1, p.size()));
 
   // Each point's cells: count, offsets, then the (bucket, point) pairs, sorted.
   std::vector<uint32_t> count(p.size() + 1, 0);
   auto cellRange = [&](size_t i, int lo[3], int hi[3]) {
     for (int a = 0; a < 3; ++a) {
-      lo[a] = std::clamp(int((p[i][a] - r[i] - bounds_.lo[a]) / cellSize_), 0, res_[a] - 1);
-      hi[a] = std::clamp(int((p[i][a] + r[i] - bounds_.lo[a]) / cellSize_), 0, res_[a] - 1);
+      lo[a] = cellIndex(p[i][a] - r[i], a);
+      hi[a] = cellIndex(p[i][a] + r[i], a);
     }
   };
   tbb::parallel_for(size_t(0), p.size(), [&](size_t i) {

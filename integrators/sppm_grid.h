@@ -3,6 +3,7 @@
 // of pbrt-v3 16.2.4): each point is entered in every cell its sphere of radius r overlaps, so a
 // photon looks up one cell. Built in parallel and deterministically: the (cell hash, point)
 // pairs are sorted, so each cell lists its points in increasing index whatever the threads.
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -36,6 +37,11 @@ class VisiblePointGrid {
 
  private:
   bool cellOf(const Vec3& q, int c[3]) const;
+  /// The cell of coordinate x along axis a, from the bounds' corner (clamped: no overflow).
+  int cellIndex(float x, int a) const {
+    const float t = (x - bounds_.lo[a]) / cellSize_;
+    return int(std::clamp(t, 0.0f, float(1 << 30)));
+  }
   uint32_t hashOf(const int c[3]) const {
     const uint64_t h = uint64_t(uint32_t(c[0])) * 73856093u ^ uint64_t(uint32_t(c[1])) * 19349663u ^
                        uint64_t(uint32_t(c[2])) * 83492791u;
@@ -45,7 +51,6 @@ class VisiblePointGrid {
   std::span<const float> radii_;
   Bounds3 bounds_;
   float cellSize_ = 1;
-  int res_[3] = {1, 1, 1};
   uint32_t buckets_ = 1;
   /// Sorted (bucket << 32 | point); start_[b] .. start_[b + 1] are bucket b's.
   std::vector<uint64_t> entries_;
