@@ -6,6 +6,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/front_face.h"
+#include "integrators/absorption.h"
 #include "integrators/path_vertex_lanes.h"
 #include "integrators/sppm_integrator.h"
 
@@ -124,9 +125,9 @@ Color SppmIntegrator::directLight(const SurfaceVertex& v, const Bsdf& bsdf,
   ++rays.shadowRays;
   if (ctx_.accel.occluded(shadow)) return Color(0.0f);
   // The shadow ray crosses the medium on its side of the surface (KHR_materials_volume).
-  MediumStack side = media;
-  if (dot(ls.wi, v.n) < 0) SurfaceVertices::transmit(v, side);
-  const Color sigma = side.currentAbsorption();
+  const Color sigma = v.refractive && dot(ls.wi, v.n) < 0
+                          ? farSideAbsorption(media, s.material, *v.m, s.frontFace)
+                          : media.currentAbsorption();
   if (!isBlack(sigma)) f *= ls.infinite ? Color(0.0f) : transmittance(sigma, length(ls.p - s.p));
   return neeContribution(Color(1.0f), f, ls.L, 1.0f, ls.pdf);
 }

@@ -15,6 +15,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "integrators/absorption.h"
 #include "integrators/sppm_integrator.h"
 
 namespace tray {

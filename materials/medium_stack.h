@@ -1,15 +1,7 @@
 #pragma once
-#include <cmath>
-
 #include "core/material.h"
 
 namespace tray {
-
-/// Beer-Lambert transmittance exp(-sigma_a d) per channel (KHR_materials_volume), for a segment
-/// of length d inside a medium of absorption sigmaA.
-inline Color transmittance(const Color& sigmaA, float d) {
-  return {std::exp(-sigmaA.x * d), std::exp(-sigmaA.y * d), std::exp(-sigmaA.z * d)};
-}
 
 /// The refractive media a path is inside, for nested dielectrics (glass filled with water, a
 /// bubble in glass). Schmidt & Budge 2002, "Simple Nested Dielectrics in Ray Traced Images":
