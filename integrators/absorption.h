@@ -13,8 +13,7 @@ inline Color transmittance(const Color& sigmaA, float d) {
 }
 
 /// Absorption of the medium beyond a refractive surface: the one in effect once crossed.
-inline Color farSideAbsorption(const MediumStack& media, int id, const Material& m,
-                               bool entering) {
+inline Color farSideAbsorption(const MediumStack& media, int id, const Material& m, bool entering) {
   MediumStack far = media;
   far.cross(id, m, entering);
   return far.currentAbsorption();
