@@ -208,6 +208,9 @@ class Integrator {
     ray.time = sampler.reserved1D(Sampler::kShutterDimension);
     if (!cameraMotion_.empty()) moveWithCamera(ray);
   }
+  /// --transparent: camera rays that escape give 0 (cameraLi's rule), for integrators that
+  /// make their own pixel values (frame-level ones).
+  bool transparentBackground() const { return transparent_; }
   /// Samples in the pixel sampler's pattern (accumulate's upper bound for `end`).
   int sampleCount() const { return pixelSampler_.count(); }
   /// What sampler() and cameraRay() draw from, for batch kernels that repeat them

@@ -7,6 +7,7 @@
 #include "integrators/bdpt.h"
 #include "integrators/path.h"
 #include "integrators/path_wavefront.h"
+#include "integrators/sppm.h"
 #include "integrators/whitted.h"
 
 namespace tray {
@@ -34,6 +35,10 @@ std::vector<IntegratorEntry>& table() {
        "bidirectional path tracing: camera and light subpaths, every connection MIS-weighted; "
        "light tracing splats (caustics from point and spot lights)",
        makeBdpt, bdptOptions(), ""},
+      {"sppm",
+       "stochastic progressive photon mapping: caustics and light through glass; consistent, "
+       "iterations = --spp, --photons per iteration (docs/sppm.md)",
+       makeSppm, sppmOptions(), ""},
   };
   return entries;
 }

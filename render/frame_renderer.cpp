@@ -88,7 +88,7 @@ RenderStats renderFrames(const Integrator& integrator, Film& film, RenderState& 
   RenderStats stats;
   stats.rays = done.rays;
   stats.passes = done.iterations;
-  stats.samples = uint64_t(done.iterations);
+  for (const FramePixel& px : pixels) stats.samples += px.samples;  // the summary's average
   stats.timeLimitReached = done.timeLimitReached;
   stats.pixelsDone = valid ? pixels.size() : 0;
   stats.interrupted = done.stopped;

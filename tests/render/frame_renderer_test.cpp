@@ -104,6 +104,7 @@ TEST(FrameRenderer, FillsTheRegionWithImageCoordinates) {
       EXPECT_EQ(r.film.pixel(r.film.findLayer("Z"), x, y)[0], 3.0f);
     }
   EXPECT_EQ(r.stats.passes, 3);
+  EXPECT_EQ(r.stats.samples, 3u * 24u);
   EXPECT_EQ(r.stats.pixelsDone, 24u);
   EXPECT_FALSE(r.stats.interrupted);
 }

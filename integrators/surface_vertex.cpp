@@ -1,0 +1,36 @@
+#include "integrators/surface_vertex.h"
+
+namespace tray {
+
+SurfaceVertices::SurfaceVertices(const RenderContext& ctx, int samplesPerPixel)
+    : scene_(ctx.scene), materials_(ctx.scene, ctx.camera, samplesPerPixel) {}
+
+VertexKind SurfaceVertices::at(Ray& ray, const Hit& hit, MediumStack& media, int& nullCrossings,
+                               SurfaceVertex& v) const {
+  v.s = scene_.surface(ray, hit);
+  const SurfacePoint& s = v.s;
+  v.m = &scene_.material(s.material);
+  const Material& m = *v.m;
+  v.wo = -normalize(ray.d);
+  // Nested dielectrics (Schmidt & Budge 2002): a surface of a medium not in effect is passed.
+  // A metallicRoughnessTexture may lower metallic below 1: such a surface may transmit too.
+  v.refractive = m.transmission > 0 && (m.metallic < 1 || m.metallicRoughnessTexture.valid());
+  v.eta = m.ior / media.currentIor();
+  if (v.refractive) {
+    const MediumStack::Interface iface = media.interface(s.material, m, s.frontFace);
+    if (!iface.real) {
+      media.cross(s.material, m, s.frontFace);
+      if (++nullCrossings > kMaxNullCrossings) return VertexKind::kGaveUp;
+      setSpawnRay(ray, s.p, s.ng, ray.d, s.time);
+      return VertexKind::kPassed;
+    }
+    v.eta = iface.etaT / iface.etaI;
+  }
+  v.sm = materials_.evaluate(hit, s);
+  // The clearcoat and sheen are on the outside of a transmissive solid: not seen from within.
+  if (v.refractive && !s.frontFace) v.sm.clearcoat = 0, v.sm.sheenColor = Color(0.0f);
+  v.n = s.frontFace ? v.sm.n : -v.sm.n;
+  return VertexKind::kSurface;
+}
+
+}  // namespace tray
