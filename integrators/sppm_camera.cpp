@@ -5,6 +5,8 @@
 #include <tbb/combinable.h>
 #include <tbb/parallel_for.h>
 
+#include <cmath>
+
 #include "core/front_face.h"
 #include "integrators/absorption.h"
 #include "integrators/path_vertex_lanes.h"
