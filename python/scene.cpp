@@ -30,12 +30,14 @@ Color colorOf(const std::vector<float>& v, const char* what) {
   return Color(v[0], v[1], v[2]);
 }
 
-std::vector<float> listOf(const Color& c) { return {c.x, c.y, c.z}; }
+std::vector<float> listOf(const Color& c) {
+  return {c.x, c.y, c.z};
+}
 
 float checked(float v, float lo, float hi, const char* what) {
   if (!std::isfinite(v) || v < lo || v > hi)
-    throw Error(std::string(what) + ": expected a finite number in [" + std::to_string(lo) +
-                ", " + std::to_string(hi) + "]");
+    throw Error(std::string(what) + ": expected a finite number in [" + std::to_string(lo) + ", " +
+                std::to_string(hi) + "]");
   return v;
 }
 
@@ -166,7 +168,8 @@ void bindScene(py::module_& m) {
       .def_property_readonly("lights",
                              [](SceneHandle& s) {
                                py::list l;
-                               for (const auto& light : s.scene().lights) l.append(lightDict(light));
+                               for (const auto& light : s.scene().lights)
+                                 l.append(lightDict(light));
                                return l;
                              })
       .def("set_light_intensity",
@@ -186,8 +189,7 @@ void bindScene(py::module_& m) {
              std::optional<float> metallic, std::optional<float> roughness,
              std::optional<std::vector<float>> emissive, std::optional<float> transmission,
              std::optional<float> ior) {
-            setMaterial(s.material(i), baseColor, metallic, roughness, emissive, transmission,
-                        ior);
+            setMaterial(s.material(i), baseColor, metallic, roughness, emissive, transmission, ior);
           },
           py::arg("index"), py::arg("base_color") = py::none(), py::arg("metallic") = py::none(),
           py::arg("roughness") = py::none(), py::arg("emissive") = py::none(),
@@ -198,8 +200,7 @@ void bindScene(py::module_& m) {
             s.scene().environment.rotation = checked(v, -1e6f, 1e6f, "environment_rotation");
           })
       .def_property(
-          "environment_intensity",
-          [](SceneHandle& s) { return s.scene().environment.intensity; },
+          "environment_intensity", [](SceneHandle& s) { return s.scene().environment.intensity; },
           [](SceneHandle& s, float v) {
             s.scene().environment.intensity = checked(v, 0, 1e9f, "environment_intensity");
           })
