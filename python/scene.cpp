@@ -70,7 +70,11 @@ class SceneHandle {
     job.outputs.keepImage = true;
     job.scene.contentHash = contentHash_;
     std::optional<PreviewServer> preview;
-    if (previewPortOf(o) >= 0) preview.emplace(previewPortOf(o), job.scene.path);
+    if (previewPortOf(o) >= 0) {
+      preview.emplace(previewPortOf(o), job.scene.path);
+      py::print("preview: http://127.0.0.1:" + std::to_string(preview->port()) + "/",
+                py::arg("flush") = true);
+    }
     double setup = 0;
     RenderJobResult result =
         runJob(job, progress, nullptr, &kept_, &setup, preview ? &*preview : nullptr);
