@@ -153,4 +153,8 @@ PixelValue Integrator::renderPixel(int x, int y, RayStats& stats, IdCoverage* co
   return out;
 }
 
+FrameResult Integrator::renderFrame(const FrameTask&, std::span<FramePixel>) const {
+  throw Error("this integrator renders pixels, not whole frames", Error::Kind::kRender);
+}
+
 }  // namespace tray

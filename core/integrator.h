@@ -2,6 +2,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -86,6 +87,42 @@ struct PixelTask {
   bool finished = false;
 };
 
+/// The frame-level hook (docs/frame-integrators.md): what the renderer asks of an integrator
+/// that renders whole frames (Integrator::rendersFrames) instead of pixel by pixel. Stochastic
+/// progressive photon mapping (integrators/sppm.h) needs it: its iteration k depends on every
+/// pixel of iteration k - 1 (one pass's photons land on the visible points of all pixels).
+/// The pixels of image rectangle [x0, x0 + width) x [y0, y0 + height): a region render's, or
+/// the whole image.
+struct FrameTask {
+  int x0 = 0, y0 = 0, width = 0, height = 0;
+  /// Seconds after which the integrator stops at the end of the iteration (pass) under way,
+  /// once at least one is done (--time-limit); 0: none.
+  double timeLimit = 0;
+  /// When it becomes true (a signal), the integrator stops as soon as it can.
+  const std::atomic<bool>* stop = nullptr;
+  /// Called from the calling thread with the fraction done, e.g. after each iteration.
+  std::function<void(double)> onProgress;
+  /// Cryptomatte asked for: fill FramePixel::coverage.
+  bool wantsIds = false;
+};
+
+/// One pixel of a FrameTask, row-major over its rectangle: filled by renderFrame.
+struct FramePixel {
+  PixelSums sums;        ///< radiance = rgb / weight, coverage = alpha / weight
+  PrimaryHit first;      ///< what the pixel's first camera ray hit (the AOVs)
+  IdCoverage coverage;   ///< only with FrameTask::wantsIds: the ids of its camera rays
+  uint32_t samples = 0;  ///< camera rays traced for the pixel
+};
+
+/// What renderFrame did.
+struct FrameResult {
+  RayStats rays;
+  int iterations = 0;             ///< iterations (passes) done
+  bool timeLimitReached = false;  ///< FrameTask::timeLimit ended the render
+  bool stopped = false;           ///< FrameTask::stop ended it (the pixels are valid iff
+                                  ///< iterations > 0)
+};
+
 /// What every integrator sees: the scene, its accelerator, the camera and the settings.
 struct RenderContext {
   const Scene& scene;
@@ -145,6 +182,15 @@ class Integrator {
   /// samples within milliseconds.
   virtual void accumulatePixels(std::span<PixelTask> tasks, int begin, int end, RayStats& stats,
                                 const std::atomic<bool>* stop = nullptr) const;
+  /// True for an integrator that renders whole frames (renderFrame) rather than pixels: the
+  /// renderer then calls renderFrame once, instead of accumulate / renderPixel per pixel.
+  virtual bool rendersFrames() const { return false; }
+  /// Fills `pixels` (task.width x task.height, row-major, zeroed on entry) for the task's
+  /// rectangle. Called once per render, inside the renderer's task arena (--threads): it may
+  /// use TBB freely. It must give the same pixels, bit for bit, for any thread count, and a
+  /// rectangle's pixels must equal the same pixels of the whole image's render. The default
+  /// throws (integrators that render pixels).
+  virtual FrameResult renderFrame(const FrameTask& task, std::span<FramePixel> pixels) const;
   const RenderContext& context() const { return ctx_; }
 
  protected:

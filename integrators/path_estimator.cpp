@@ -8,26 +8,12 @@
 
 #include "core/front_face.h"
 #include "core/unbuilt.h"
+#include "integrators/absorption.h"
 #include "integrators/path_vertex_lanes.h"
 #include "materials/bsdf.h"
 #include "textures/shading.h"
 
 namespace tray {
-namespace {
-
-/// Beer-Lambert transmittance exp(-sigma_a d) per channel (KHR_materials_volume).
-Color transmittance(const Color& sigmaA, float d) {
-  return {std::exp(-sigmaA.x * d), std::exp(-sigmaA.y * d), std::exp(-sigmaA.z * d)};
-}
-
-/// Absorption of the medium beyond a refractive surface: the one in effect once crossed.
-Color farSideAbsorption(const MediumStack& media, int id, const Material& m, bool entering) {
-  MediumStack far = media;
-  far.cross(id, m, entering);
-  return far.currentAbsorption();
-}
-
-}  // namespace
 
 /// The first surface a camera ray met, for the AOVs and Cryptomatte.
 void PathEstimator::recordPrimary(PrimaryHit& primary, const PathState& st, const SurfacePoint& s,

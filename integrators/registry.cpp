@@ -4,6 +4,7 @@
 
 #include "core/error.h"
 #include "integrators/adaptive.h"
+#include "integrators/bdpt.h"
 #include "integrators/path.h"
 #include "integrators/path_wavefront.h"
 #include "integrators/whitted.h"
@@ -29,6 +30,10 @@ std::vector<IntegratorEntry>& table() {
        makePath, pathOptions(), ""},
       {"path-wavefront", "another name for path (its wavefront driver)", makePathWavefront,
        pathOptions(), ""},
+      {"bdpt",
+       "bidirectional path tracing: camera and light subpaths, every connection MIS-weighted; "
+       "light tracing splats (caustics from point and spot lights)",
+       makeBdpt, bdptOptions(), ""},
   };
   return entries;
 }

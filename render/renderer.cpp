@@ -13,6 +13,7 @@
 #include "film/aov.h"
 #include "film/cryptomatte.h"
 #include "render/checkpoint_clock.h"
+#include "render/frame_renderer.h"
 #include "render/pass_renderer.h"
 #include "render/tile_grid.h"
 
@@ -267,6 +268,12 @@ RenderStats renderImage(const Integrator& integrator, Film& film, const RenderOp
 RenderStats renderImage(const Integrator& integrator, Film& film, RenderState& state,
                         const RenderOptions& options) {
   checkRegion(integrator, film, options);
+  if (integrator.rendersFrames()) {  // docs/frame-integrators.md
+    if (state.done.empty()) state = RenderState::empty(size_t(film.width()) * film.height());
+    const std::optional<MotionVectors> vectors =
+        motionVectorsFor(integrator.context(), options.aovs);
+    return renderFrames(integrator, film, state, options, vectors ? &*vectors : nullptr);
+  }
   const std::optional<SampleRange> samples = samplesOf(integrator, options);
   if (state.done.empty()) state = RenderState::empty(size_t(film.width()) * film.height());
   checkStateAndAovs(integrator, film, state, options);
