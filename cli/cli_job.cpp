@@ -21,8 +21,7 @@ void checkCliOptions(CliOptions& o) {
         "--shutter needs an animation time to open around: add --time SECONDS "
         "or --frames (the static pose does not move)");
   checkFramePatterns(o.outputs, !o.frames.empty());
-  o.progressSettings.mode =
-      o.quiet ? ProgressMode::kNone : parseProgressMode(o.progress);
+  o.progressSettings.mode = o.quiet ? ProgressMode::kNone : parseProgressMode(o.progress);
 }
 
 int previewPortOf(const CliOptions& o) {

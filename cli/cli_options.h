@@ -14,7 +14,7 @@ struct CliOptions {
   std::string scenePath;
   std::vector<std::string> outputs{"out.exr"};
   std::string resolution;
-  std::string camera;  ///< --camera: a glTF camera index or a node/camera name; "" default
+  std::string camera;        ///< --camera: a glTF camera index or a node/camera name; "" default
   std::optional<int> scene;  ///< --scene; none: the file's default scene
   int threads = 0;
   std::string accel = "embree";
@@ -33,10 +33,10 @@ struct CliOptions {
   std::string region, sampleRange;
   double checkpointSeconds = 0;
   bool resume = false;
-  std::string frames;  ///< --frames A-B; empty: one image
+  std::string frames;                 ///< --frames A-B; empty: one image
   std::optional<double> maxMemoryMB;  ///< --max-memory; none: 80% of physical memory; 0: no limit
-  double textureMemoryMB = 0;  ///< 0: TextureSampler::budgetFor(the scene's images)
-  std::string previewPort;  ///< --preview[=PORT|any]; empty: no preview
+  double textureMemoryMB = 0;         ///< 0: TextureSampler::budgetFor(the scene's images)
+  std::string previewPort;            ///< --preview[=PORT|any]; empty: no preview
   tray::RenderSettings settings;
 };
 

@@ -83,7 +83,8 @@ int run(const CliOptions& o, const tray::RenderJob& job,
   };
   events.finished = [&](bool complete) { progress->finish(complete); };
   events.stop = &stop;
-  if (tray::previewPortOf(o) < 0) return exitCodeOf(o, job, tray::runRenderJob(job, events, document));
+  if (tray::previewPortOf(o) < 0)
+    return exitCodeOf(o, job, tray::runRenderJob(job, events, document));
   // --preview: the server lives as long as the render; the job keeps its film for the last
   // snapshot.
   tray::PreviewServer preview(tray::previewPortOf(o), job.scene.path);
@@ -94,8 +95,8 @@ int run(const CliOptions& o, const tray::RenderJob& job,
   kept.outputs.keepImage = true;
   const tray::RenderJobResult result = tray::runRenderJob(kept, events, document);
   if (result.image)
-    preview.publishFinal(result.image->film,
-                         result.stats.passes > 0 ? double(result.stats.samples) / result.pixels
+    preview.publishFinal(result.image->film, result.stats.passes > 0
+                                                 ? double(result.stats.samples) / result.pixels
                                                  : job.settings.getInt("spp"));
   return exitCodeOf(o, job, result);
 }

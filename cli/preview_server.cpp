@@ -39,8 +39,7 @@ std::string jsonString(const std::string& s) {
 
 std::string statusJson(PreviewServer::State& st) {
   std::lock_guard lock(st.mutex);
-  const double eta =
-      st.fraction > 0 && !st.done ? st.elapsed * (1 - st.fraction) / st.fraction : 0;
+  const double eta = st.fraction > 0 && !st.done ? st.elapsed * (1 - st.fraction) / st.fraction : 0;
   std::string layers;
   if (st.film)
     for (const FilmLayer& l : st.film->layers()) {  // appended piecewise: GCC 12's -Wrestrict
@@ -153,7 +152,9 @@ PreviewServer::~PreviewServer() {
   if (state_->thread.joinable()) state_->thread.join();
 }
 
-int PreviewServer::port() const { return state_->port; }
+int PreviewServer::port() const {
+  return state_->port;
+}
 
 void PreviewServer::attach(RenderJobEvents& events, const RenderJob& job, double seconds) {
   state_->display = job.outputs.display, state_->view = job.outputs.view;
@@ -185,7 +186,8 @@ void PreviewServer::publishFinal(const Film& film, double samples) {
 
 std::string previewPage(const std::string& title) {
   std::string escaped;
-  for (char c : title) escaped += c == '<' ? std::string("&lt;") : c == '&' ? "&amp;" : std::string(1, c);
+  for (char c : title)
+    escaped += c == '<' ? std::string("&lt;") : c == '&' ? "&amp;" : std::string(1, c);
   // The page polls /status twice a second and loads a new image when the render published
   // one (its version changed) or the layer changed.
   return R"(<!DOCTYPE html>

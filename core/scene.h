@@ -1,5 +1,6 @@
 #pragma once
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,29 @@ struct Primitive {
   std::string name;
 };
 
+/// What a layer above core makes once for a scene and keeps with it, type-erased (core does
+/// not know the type): the texture sampler with its MIP pyramids (textures/shading.cpp), made
+/// by the first render and reused by the next ones of the same scene (tray.Scene renders one
+/// scene many times). A copy or move of the scene starts empty: what is kept refers to this
+/// scene's own data (its textures), not the copy's.
+class SceneCacheSlot {
+ public:
+  SceneCacheSlot() = default;
+  SceneCacheSlot(const SceneCacheSlot&) {}
+  SceneCacheSlot& operator=(const SceneCacheSlot&) { return *this; }
+  /// The value kept, made by `make` under a lock the first time.
+  template <class Make>
+  std::shared_ptr<const void> get(Make&& make) const {
+    std::lock_guard lock(mutex_);
+    if (!value_) value_ = make();
+    return value_;
+  }
+
+ private:
+  mutable std::mutex mutex_;
+  mutable std::shared_ptr<const void> value_;
+};
+
 /// Everything a render needs, as plain data. Filled by io/ (glTF) or by tests in code; the
 /// accelerator is built from it separately (core/accelerator.h).
 struct Scene {
@@ -47,6 +71,9 @@ struct Scene {
   /// Per primitive: its toWorld one frame before (time - 1/fps), for motion vectors (core/
   /// motion_vectors.h); empty when no previous frame was posed (then toWorld stands for it).
   std::vector<Mat4> previousToWorld;
+  /// The texture sampler over `textures` (textures/shading.cpp): made once, shared by every
+  /// MaterialEvaluator of this scene. Nothing may change `textures` after it is made.
+  SceneCacheSlot textureSampler;
 
   /// Adds the default material if none, checks indices; call after filling.
   void finalize();

@@ -14,7 +14,7 @@ struct ImageOutputOptions {
   /// EXR output colorspace (an OCIO name, alias or role); empty: the config's linear Rec.709
   /// space, else its scene_linear role (ColorPipeline::defaultOutputSpace).
   std::string colorspace;
-  std::string display, view;              ///< PNG/JPEG display/view; empty = config defaults
+  std::string display, view;  ///< PNG/JPEG display/view; empty = config defaults
   std::vector<std::pair<std::string, std::string>> stringMetadata;
   std::vector<std::pair<std::string, float>> floatMetadata;
   /// EXR m44f attributes (e.g. worldToCamera), row-major in Imath's row-vector convention.

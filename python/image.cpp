@@ -17,12 +17,14 @@ namespace {
 py::array layerArray(py::object self, const FilmLayer& layer, int width, int height) {
   const auto c = py::ssize_t(layer.channels.size());
   const auto f = py::ssize_t(sizeof(float));
-  return py::array_t<float>({py::ssize_t(height), py::ssize_t(width), c},
-                            {f * c * width, f * c, f}, layer.data.data(), self);
+  return py::array_t<float>({py::ssize_t(height), py::ssize_t(width), c}, {f * c * width, f * c, f},
+                            layer.data.data(), self);
 }
 
 /// The name Python uses for a layer: the beauty's is empty in the film.
-std::string layerName(const FilmLayer& layer) { return layer.name.empty() ? "beauty" : layer.name; }
+std::string layerName(const FilmLayer& layer) {
+  return layer.name.empty() ? "beauty" : layer.name;
+}
 
 py::dict metadataOf(const Image& image) {
   py::dict d;
@@ -39,8 +41,7 @@ py::dict metadataOf(const Image& image) {
 
 /// write(path, float=None): as tray-render writes an output (all layers to EXR, the beauty
 /// through the display view to PNG/JPEG); `float` overrides the render's --float.
-void write(const Image& image, const std::filesystem::path& file,
-           std::optional<bool> floatOutput) {
+void write(const Image& image, const std::filesystem::path& file, std::optional<bool> floatOutput) {
   const std::string path = file.string();
   ImageOutputOptions format = image.format;
   if (floatOutput) format.halfFloat = !*floatOutput;
@@ -117,17 +118,18 @@ void bindImage(py::module_& m) {
       .def_property_readonly(
           "setup_seconds", [](const Image& i) { return i.setupSeconds; },
           "seconds from the call to the first tile: reading the scene, building the accelerator")
-      .def_property_readonly("complete", [](const Image& i) { return i.complete; },
-                             "False: the render was stopped (tray:status partial)")
+      .def_property_readonly(
+          "complete", [](const Image& i) { return i.complete; },
+          "False: the render was stopped (tray:status partial)")
       .def(
           "to_display",
           [](const Image& i, const std::string& layer, const std::string& display,
              const std::string& view) {
             const int index = i.film.findLayer(layer == "beauty" ? "" : layer);
             if (index < 0) throw Error(layer + ": no such layer in this image");
-            const std::vector<unsigned char> bytes = displayBytes(
-                i.film, index, display.empty() ? i.format.display : display,
-                view.empty() ? i.format.view : view);
+            const std::vector<unsigned char> bytes =
+                displayBytes(i.film, index, display.empty() ? i.format.display : display,
+                             view.empty() ? i.format.view : view);
             py::array_t<uint8_t> a({i.film.height(), i.film.width(), 3});
             std::copy(bytes.begin(), bytes.end(), a.mutable_data());
             return a;

@@ -77,8 +77,9 @@ PYBIND11_MODULE(_tray, m) {
   bindScene(m);
   m.def("render", &render, py::arg("args"), py::arg("progress") = py::none(),
         "Renders tray-render's command line `args` (without the program name)");
-  m.def("check", [](const std::vector<std::string>& args) { parseOptions(args); },
-        py::arg("args"), "Checks tray-render's command line `args` as render() would");
+  m.def(
+      "check", [](const std::vector<std::string>& args) { parseOptions(args); }, py::arg("args"),
+      "Checks tray-render's command line `args` as render() would");
   m.def("option_names", &optionNames, "tray-render's long option names, '_' for '-'");
   m.attr("__version__") = TRAY_VERSION;
 }

@@ -30,12 +30,14 @@ Color colorOf(const std::vector<float>& v, const char* what) {
   return Color(v[0], v[1], v[2]);
 }
 
-std::vector<float> listOf(const Color& c) { return {c.x, c.y, c.z}; }
+std::vector<float> listOf(const Color& c) {
+  return {c.x, c.y, c.z};
+}
 
 float checked(float v, float lo, float hi, const char* what) {
   if (!std::isfinite(v) || v < lo || v > hi)
-    throw Error(std::string(what) + ": expected a finite number in [" + std::to_string(lo) +
-                ", " + std::to_string(hi) + "]");
+    throw Error(std::string(what) + ": expected a finite number in [" + std::to_string(lo) + ", " +
+                std::to_string(hi) + "]");
   return v;
 }
 
@@ -68,7 +70,11 @@ class SceneHandle {
     job.outputs.keepImage = true;
     job.scene.contentHash = contentHash_;
     std::optional<PreviewServer> preview;
-    if (previewPortOf(o) >= 0) preview.emplace(previewPortOf(o), job.scene.path);
+    if (previewPortOf(o) >= 0) {
+      preview.emplace(previewPortOf(o), job.scene.path);
+      py::print("preview: http://127.0.0.1:" + std::to_string(preview->port()) + "/",
+                py::arg("flush") = true);
+    }
     double setup = 0;
     RenderJobResult result =
         runJob(job, progress, nullptr, &kept_, &setup, preview ? &*preview : nullptr);
@@ -166,7 +172,8 @@ void bindScene(py::module_& m) {
       .def_property_readonly("lights",
                              [](SceneHandle& s) {
                                py::list l;
-                               for (const auto& light : s.scene().lights) l.append(lightDict(light));
+                               for (const auto& light : s.scene().lights)
+                                 l.append(lightDict(light));
                                return l;
                              })
       .def("set_light_intensity",
@@ -186,8 +193,7 @@ void bindScene(py::module_& m) {
              std::optional<float> metallic, std::optional<float> roughness,
              std::optional<std::vector<float>> emissive, std::optional<float> transmission,
              std::optional<float> ior) {
-            setMaterial(s.material(i), baseColor, metallic, roughness, emissive, transmission,
-                        ior);
+            setMaterial(s.material(i), baseColor, metallic, roughness, emissive, transmission, ior);
           },
           py::arg("index"), py::arg("base_color") = py::none(), py::arg("metallic") = py::none(),
           py::arg("roughness") = py::none(), py::arg("emissive") = py::none(),
@@ -198,8 +204,7 @@ void bindScene(py::module_& m) {
             s.scene().environment.rotation = checked(v, -1e6f, 1e6f, "environment_rotation");
           })
       .def_property(
-          "environment_intensity",
-          [](SceneHandle& s) { return s.scene().environment.intensity; },
+          "environment_intensity", [](SceneHandle& s) { return s.scene().environment.intensity; },
           [](SceneHandle& s, float v) {
             s.scene().environment.intensity = checked(v, 0, 1e9f, "environment_intensity");
           })

@@ -64,8 +64,7 @@ void enterPhase(const RenderJobEvents& events, const char* phase) {
 }
 
 PreparedScene prepareJobScene(const RenderJob& job, const RenderJobEvents& events,
-                              const GltfDocument* document, int& placedCamera,
-                              KeptScene* kept) {
+                              const GltfDocument* document, int& placedCamera, KeptScene* kept) {
   if (kept && kept->scene) {  // loaded, lit and built by an earlier render: its camera now
     placedCamera = kept->placedCamera;
     CameraDesc cameraDesc = kept->camera;

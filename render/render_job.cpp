@@ -55,8 +55,8 @@ JobPlan planOf(const RenderJob& job, const PreparedScene& scene, const Integrato
   plan.range = parseSampleRange(job.part.sampleRange, integrator.samplesPerPixel(),
                                 job.settings.getString("integrator"));
   // "all": with the light paths when this render can split them (not in passes).
-  plan.aovs = AovSet::parse(job.outputs.aovs, integrator.splitsLightPaths() &&
-                                                  !samplingPassesOf(job.settings));
+  plan.aovs = AovSet::parse(job.outputs.aovs,
+                            integrator.splitsLightPaths() && !samplingPassesOf(job.settings));
   if (!job.part.sampleRange.empty() && Cryptomatte::requested(plan.aovs))
     throw Error(
         "--sample-range with Cryptomatte AOVs: each part would keep only its own "
@@ -104,8 +104,8 @@ void addCheckpoints(RenderOptions& options, const RenderJob& job, const JobWrite
                     const RenderJobEvents& events) {
   const double exrSeconds = job.part.checkpointSeconds;
   const bool snapshots = events.snapshot && events.snapshotSeconds > 0;
-  options.checkpointSeconds =
-      exrSeconds > 0 && snapshots ? std::min(exrSeconds, events.snapshotSeconds)
+  options.checkpointSeconds = exrSeconds > 0 && snapshots
+                                  ? std::min(exrSeconds, events.snapshotSeconds)
                                   : (exrSeconds > 0 ? exrSeconds : events.snapshotSeconds);
   auto lastExr = std::make_shared<Clock::time_point>(started);
   options.onCheckpoint = [&job, &writer, &events, previousSeconds, started, exrSeconds, snapshots,

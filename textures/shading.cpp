@@ -39,8 +39,12 @@ MaterialEvaluator::MaterialEvaluator(const Scene& scene, const Camera& camera, i
     : scene_(scene),
       camera_(camera),
       footprintScale_(std::max(0.125f, 1.0f / std::sqrt(float(std::max(spp, 1))))) {
+  // One sampler per scene, whatever the number of evaluators and renders: its MIP pyramids
+  // are made once (a lookup's value does not depend on which sampler made it).
   if (!scene.textures.empty())
-    sampler_ = std::make_unique<TextureSampler>(scene.textures, scene.textureCacheMB);
+    sampler_ = std::static_pointer_cast<const TextureSampler>(scene.textureSampler.get([&scene] {
+      return std::make_shared<const TextureSampler>(scene.textures, scene.textureCacheMB);
+    }));
   prebuilt_.reserve(scene.materials.size());
   for (const Material& m : scene.materials) {
     const bool textured = sampler_ && m.hasTextures();

@@ -62,7 +62,7 @@ class MaterialEvaluator {
   const Scene& scene_;
   const Camera& camera_;
   float footprintScale_;
-  std::unique_ptr<TextureSampler> sampler_;
+  std::shared_ptr<const TextureSampler> sampler_;  ///< the scene's (Scene::textureSampler)
   /// Per material: ShadingMaterial::of it (normal unset); whether textures are sampled; whether
   /// the factors are the result wherever there is no vertex colour (no texture, no blending).
   /// Copying the prebuilt factors and testing two flags rather than ShadingMaterial::of's field

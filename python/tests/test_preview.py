@@ -128,3 +128,21 @@ def test_page_in_chromium(tray_render, scenes, tmp_path):
         chrome.wait()
         proc.wait(60)
     assert proc.returncode == 0
+
+
+def test_preview_from_python(tray, scenes, capsys):
+    """tray.render(preview="any"): the same server, its address printed; the status it serves
+    during the render follows the progress the callback sees."""
+    seen = []
+
+    def progress(fraction):
+        out = capsys.readouterr().out
+        if out:
+            seen.append(re.search(r"preview: (http://\S+/)", out).group(1))
+        if seen and fraction < 1:
+            seen.append(json.loads(get(seen[0] + "status")[1]))
+
+    image = tray.render(scenes / "textured.gltf", spp=64, resolution=(120, 90), preview="any",
+                        progress=progress)
+    assert image.complete and seen and len(seen) >= 2
+    assert all(s["layers"][0] == "beauty" for s in seen[1:] if s["version"] > 0)
