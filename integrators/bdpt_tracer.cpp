@@ -6,6 +6,7 @@
 #include "core/front_face.h"
 #include "integrators/absorption.h"
 #include "integrators/path_vertex_lanes.h"
+#include "integrators/surface_rules.h"
 
 namespace tray {
 namespace {
@@ -41,7 +42,7 @@ bool BdptTracer::surfaceVertex(const Ray& ray, const Hit& hit, MediumStack& medi
   const SurfacePoint& s = v.s;
   v.m = &ctx_.scene.material(s.material);
   const Material& m = *v.m;
-  v.refractive = m.transmission > 0 && (m.metallic < 1 || m.metallicRoughnessTexture.valid());
+  v.refractive = isRefractive(m);
   v.eta = m.ior / media.currentIor();
   v.sigmaA = media.currentAbsorption();
   v.sigmaFar = v.sigmaA;
@@ -56,8 +57,7 @@ bool BdptTracer::surfaceVertex(const Ray& ray, const Hit& hit, MediumStack& medi
   }
   v.kind = BdptVertex::Kind::kSurface;
   v.sm = materials_.evaluate(hit, s);
-  // The clearcoat and sheen are on the outside of a transmissive solid: not seen from within.
-  if (v.refractive && !s.frontFace) v.sm.clearcoat = 0, v.sm.sheenColor = Color(0.0f);
+  hideOuterLayersInside(v.sm, v.refractive, s.frontFace);
   v.p = s.p;
   v.ng = s.ng;
   v.n = s.frontFace ? v.sm.n : -v.sm.n;

@@ -10,6 +10,7 @@
 #include "core/unbuilt.h"
 #include "integrators/absorption.h"
 #include "integrators/path_vertex_lanes.h"
+#include "integrators/surface_rules.h"
 #include "materials/bsdf.h"
 #include "textures/shading.h"
 
@@ -149,9 +150,7 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, const Hit* found, 
   v.wo = -normalize(st.ray.d);
 
   // Nested dielectrics: a surface of a medium that is not in effect is passed straight by.
-  // A metallicRoughnessTexture can lower metallic below a factor of 1 (glTF's default factor,
-  // which the Khronos transmission samples keep): such a surface may transmit too.
-  v.refractive = m.transmission > 0 && (m.metallic < 1 || m.metallicRoughnessTexture.valid());
+  v.refractive = isRefractive(m);
   float eta = m.ior / st.media.currentIor();
   if (v.refractive) {
     MediumStack::Interface iface = st.media.interface(s.material, m, s.frontFace);
@@ -177,8 +176,7 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, const Hit* found, 
       MaterialEvaluator::placeAt(*new (&evaluated) ShadingMaterial(*plain), s);
     else
       new (&evaluated) ShadingMaterial(materials_.evaluate(hit, s));
-    // The clearcoat and sheen are on the outside of a transmissive solid: not seen from within.
-    if (v.refractive && !s.frontFace) evaluated.clearcoat = 0, evaluated.sheenColor = Color(0.0f);
+    hideOuterLayersInside(evaluated, v.refractive, s.frontFace);
   };
   if (!plain) evaluate();
   const ShadingMaterial& sm = plain ? *plain : evaluated;
@@ -228,7 +226,7 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, const Hit* found, 
   v.here.p = s.p;
   v.here.n = v.n;
   v.here.transmits = bsdf.transmits();
-  v.here.belowMatters = bsdf.transmits() || !(dot(v.wo, v.n) > 0) || sm.clearcoat > 0;
+  v.here.belowMatters = belowMatters(bsdf.transmits(), v.wo, v.n, sm);
   VertexDraws draws{sampler, {ahead.first, ahead.second}};
   wantsShadow = nextEvent(st, v, bsdf, draws, shadow);
   if (wantsShadow) ++stats.shadowRays;
