@@ -110,16 +110,8 @@ void BdptTracer::walk(Ray ray, Color beta, float pdfDir, Sampler& sampler, RaySt
     v.pdfFwd = prev.kind == BdptVertex::Kind::kCamera ? camera_.pdfFirst(v.p, v.ng)
                : prev.infinite ? pdfDir * std::fabs(dot(v.ng, ray.d) / length(ray.d))
                                : toArea(pdfDir, prev, v);
-    if (primary && !primary->hit) {
-      primary->hit = true;
-      primary->depth = length(v.p - path.front().p);
-      primary->position = v.p;
-      primary->primitive = v.s.primitive, primary->time = v.s.time;
-      primary->normal = v.sm.n;
-      primary->albedo = v.sm.baseColor;
-      primary->objectId = ctx_.scene.primitives[v.s.primitive].objectId;
-      primary->materialId = v.s.material;
-    }
+    if (primary && !primary->hit)
+      recordPrimaryHit(*primary, ctx_.scene, v.s, path.front().p, v.sm.n, v.sm.baseColor);
     path.push_back(v);
     BdptVertex& cur = path.back();
     if (cur.unlit || path.size() >= maxVertices) return;

@@ -19,14 +19,7 @@ namespace tray {
 /// The first surface a camera ray met, for the AOVs and Cryptomatte.
 void PathEstimator::recordPrimary(PrimaryHit& primary, const PathState& st, const SurfacePoint& s,
                                   const Vec3& shadingN, const Color& albedo) const {
-  primary.hit = true;
-  primary.depth = length(s.p - st.cameraOrigin);
-  primary.position = s.p;
-  primary.primitive = s.primitive, primary.time = s.time;
-  primary.normal = shadingN;
-  primary.albedo = albedo;
-  primary.objectId = ctx_.scene.primitives[s.primitive].objectId;
-  primary.materialId = s.material;
+  recordPrimaryHit(primary, ctx_.scene, s, st.cameraOrigin, shadingN, albedo);
 }
 
 /// The scattering vertex being shaded: what NEE and BSDF sampling both read.
