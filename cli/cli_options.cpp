@@ -66,7 +66,7 @@ void groupOptions(CLI::App& app) {
        {"--frames", "--region", "--sample-range", "--checkpoint", "--resume"}},
       {"Running",
        {"--threads", "--accel", "--quiet", "--progress", "--progress-step", "--progress-seconds",
-        "--help", "--version"}},
+        "--preview", "--help", "--version"}},
   };
   for (const auto& [group, names] : groups)
     for (const char* name : names) app.get_option(name)->group(group);
@@ -112,7 +112,7 @@ void addCliOptions(CLI::App& app, CliOptions& o) {
   app.add_option("--aov", o.aovs,
                  "extra EXR layers: comma-separated from " + joined(tray::AovSet::known()) +
                      ", cryptomatte (= crypto_object,crypto_material), lightpaths (the path "
-                     "tracer's 7 light-path layers), or all (all but the light paths)");
+                     "tracer's 7 light-path layers), or all (every layer the integrator makes)");
   app.add_option("--cryptomatte-ranks", o.cryptomatteRanks,
                  "Cryptomatte: ids kept per pixel and type (2 per EXR layer)")
       ->check(CLI::Range(1, 32))
@@ -149,6 +149,21 @@ void addCliOptions(CLI::App& app, CliOptions& o) {
                  "--progress plain: a line at least every SECONDS (0: only by --progress-step)")
       ->check(finiteIn(0, kLargest, "a number of seconds in [0, 1e9]"))
       ->capture_default_str();
+  // A flag with an optional value: --preview (port 8642) or --preview=PORT (--preview=any: a
+  // free port). CLI11 reads a flag's "=0" as "not given", hence "any" rather than 0.
+  app.add_flag("--preview{8642}", o.previewPort,
+               "serve a live preview of the render at http://127.0.0.1:PORT/ (--preview=PORT; "
+               "default 8642; any: a free port): the image so far, its samples and time left, "
+               "a choice of layer (docs/preview.md)")
+      ->check(CLI::Validator(
+          [](std::string& value) -> std::string {
+            int port = 0;
+            if (value == "any" ||
+                (CLI::detail::lexical_cast(value, port) && port >= 1 && port <= 65535))
+              return {};
+            return "'" + value + "': expected a port in [1, 65535] or any";
+          },
+          "PORT", "port"));
   app.add_option("--frames", o.frames,
                  "render frames FIRST-LAST of the animation at --fps, each at time frame / fps, "
                  "to outputs named by a pattern: -o out.####.exr (or out.%04d.exr)");

@@ -36,6 +36,7 @@ struct CliOptions {
   std::string frames;  ///< --frames A-B; empty: one image
   std::optional<double> maxMemoryMB;  ///< --max-memory; none: 80% of physical memory; 0: no limit
   double textureMemoryMB = 0;  ///< 0: TextureSampler::budgetFor(the scene's images)
+  std::string previewPort;  ///< --preview[=PORT|any]; empty: no preview
   tray::RenderSettings settings;
 };
 

@@ -8,11 +8,14 @@
 #include <cstdio>
 #include <new>
 #include <optional>
+#include <set>
 #include <string>
 
+#include "cli/cli_job.h"
 #include "cli/cli_options.h"
 #include "cli/frames.h"
 #include "cli/interrupt.h"
+#include "cli/preview_server.h"
 #include "cli/progress.h"
 #include "core/animation_time.h"
 #include "core/error.h"
@@ -24,34 +27,6 @@ namespace {
 
 /// What the job is doing, for the out-of-memory message (std::bad_alloc says nothing itself).
 const char* gPhase = "starting";
-
-/// The render job the options describe.
-tray::RenderJob jobOf(const CliOptions& o) {
-  tray::RenderJob job;
-  job.scene.path = o.scenePath;
-  job.scene.index = o.scene;
-  job.scene.allowAnyPath = o.allowAnyPath;
-  job.scene.ignoreRequiredExtensions = o.ignoreRequiredExtensions;
-  job.scene.maxMemoryBytes =
-      o.maxMemoryMB ? uint64_t(*o.maxMemoryMB * 1048576.0) : tray::defaultMaxMemoryBytes();
-  job.scene.textureMemoryMB = o.textureMemoryMB;
-  job.camera = o.camera;
-  job.resolution = o.resolution;
-  job.accelerator = o.accel;
-  job.threads = o.threads;
-  job.settings = o.settings;
-  job.outputs.paths = o.outputs;
-  job.outputs.floatOutput = o.floatOutput;
-  job.outputs.colorspace = o.outputColorspace;
-  job.outputs.display = o.display, job.outputs.view = o.view;
-  job.outputs.aovs = o.aovs;
-  job.outputs.cryptomatteRanks = o.cryptomatteRanks;
-  job.outputs.aaHeatmap = o.aaHeatmap;
-  job.part.region = o.region, job.part.sampleRange = o.sampleRange;
-  job.part.checkpointSeconds = o.checkpointSeconds;
-  job.part.resume = o.resume;
-  return job;
-}
 
 /// The one line a finished render prints (unless --quiet).
 void printSummary(const tray::RenderJob& job, const tray::RenderJobResult& r) {
@@ -95,7 +70,12 @@ int run(const CliOptions& o, const tray::RenderJob& job,
   const std::atomic<bool>& stop = tray::installInterruptHandlers();
   std::optional<tray::Progress> progress;  // its clock starts with the first tile
   tray::RenderJobEvents events;
-  events.warning = [](const std::string& w) { std::fprintf(stderr, "warning: %s\n", w.c_str()); };
+  // Each warning once per process: --frames renders one job per frame, and a frame repeats
+  // what the one before it said (the scene is unlit, an extension is ignored).
+  events.warning = [](const std::string& w) {
+    static std::set<std::string> said;
+    if (said.insert(w).second) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  };
   events.phase = [](const char* phase) { gPhase = phase; };
   events.started = [&] { progress.emplace(o.progressSettings); };
   events.progress = [&](double f) {
@@ -103,7 +83,21 @@ int run(const CliOptions& o, const tray::RenderJob& job,
   };
   events.finished = [&](bool complete) { progress->finish(complete); };
   events.stop = &stop;
-  return exitCodeOf(o, job, tray::runRenderJob(job, events, document));
+  if (tray::previewPortOf(o) < 0) return exitCodeOf(o, job, tray::runRenderJob(job, events, document));
+  // --preview: the server lives as long as the render; the job keeps its film for the last
+  // snapshot.
+  tray::PreviewServer preview(tray::previewPortOf(o), job.scene.path);
+  std::printf("preview: http://127.0.0.1:%d/\n", preview.port());  // even with -q: it is asked for
+  std::fflush(stdout);
+  preview.attach(events, job);
+  tray::RenderJob kept = job;
+  kept.outputs.keepImage = true;
+  const tray::RenderJobResult result = tray::runRenderJob(kept, events, document);
+  if (result.image)
+    preview.publishFinal(result.image->film,
+                         result.stats.passes > 0 ? double(result.stats.samples) / result.pixels
+                                                 : job.settings.getInt("spp"));
+  return exitCodeOf(o, job, result);
 }
 
 /// --frames: each frame rendered in turn from the file parsed once (tray::GltfDocument; the
@@ -137,25 +131,6 @@ int runFrames(const CliOptions& o, tray::RenderJob job) {
   return 0;
 }
 
-/// Checks what parsing alone cannot: option ranges, --time, --frames and --shutter together,
-/// output patterns and --progress. Throws tray::Error.
-void checkOptions(CliOptions& o) {
-  tray::validateOptions(o.settings);  // ranges and choices, before any loading
-  tray::animationTime(o.settings);    // --time: "static" or seconds
-  if (!o.frames.empty()) {
-    tray::parseFrameRange(o.frames);
-    if (o.settings.isSet("time"))
-      throw tray::Error("--frames sets the time of each frame (frame / fps): drop --time");
-  }
-  if (tray::shutterOf(o.settings) && o.frames.empty() && !tray::animationTime(o.settings))
-    throw tray::Error(
-        "--shutter needs an animation time to open around: add --time SECONDS "
-        "or --frames (the static pose does not move)");
-  tray::checkFramePatterns(o.outputs, !o.frames.empty());
-  o.progressSettings.mode =
-      o.quiet ? tray::ProgressMode::kNone : tray::parseProgressMode(o.progress);
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -170,7 +145,7 @@ int main(int argc, char** argv) {
   });
   try {
     app.parse(argc, argv);
-    checkOptions(o);
+    tray::checkCliOptions(o);
   } catch (const CLI::ParseError& e) {
     int code = app.exit(e);
     return code == 0 ? 0 : 2;
@@ -179,7 +154,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    return o.frames.empty() ? run(o, jobOf(o)) : runFrames(o, jobOf(o));
+    return o.frames.empty() ? run(o, tray::jobOf(o)) : runFrames(o, tray::jobOf(o));
   } catch (const tray::Error& e) {
     std::fprintf(stderr, "tray-render: error: %s\n", e.what());
     return e.kind() == tray::Error::Kind::kInput ? 2 : 1;

@@ -14,8 +14,9 @@ const std::vector<OptionSpec>& animationOptions() {
       choiceOption("time", "static", {},
                    "animation time in seconds; 'static': the nodes' own pose, no animation"),
       floatOption("fps", 24, 1e-3f, 1e6f, "frames per second: --frames N renders time N / fps"),
-      choiceOption("animation", "all", {},
-                   "glTF animation played at --time: all (together), an index or a name"),
+      choiceOption("animation", "first", {},
+                   "glTF animation played at --time: first (as glTF viewers play it), all "
+                   "(together), an index or a name"),
       // Frames, not seconds: what a shutter angle means whatever the frame rate (180 degrees =
       // half a frame), as Arnold and Cycles count it. Text: "off" and a pair.
       choiceOption("shutter", "off", {},

@@ -54,6 +54,10 @@ class Shape {
   /// Every interval of the whole line o + t d (t from -inf to inf) inside the solid, sorted by t.
   /// Used by CSG; a plane is the half-space y <= 0.
   virtual void intervals(const Ray& ray, std::vector<Interval>& out) const = 0;
+  /// Whether the shape bounds a solid, so that intervals() is meaningful and it may be a CSG
+  /// operand. Open surfaces (a disk, an uncapped cylinder) are not: their intervals() is empty
+  /// and Csg refuses them by name.
+  virtual bool isSolid() const { return true; }
   /// Projects a computed hit point back onto the surface, to tighten the ray-offset error.
   virtual Vec3 refine(const Vec3& p) const { return p; }
   /// Object-space derivatives of the surface point with respect to its uv at surface point p

@@ -64,6 +64,19 @@ bool AovSet::wantsLightPaths(const std::vector<std::string>& names) {
   return false;
 }
 
+std::vector<std::string> AovSet::parse(const std::string& list, bool lightPaths) {
+  std::vector<std::string> out = parse(list);
+  if (!lightPaths || wantsLightPaths(out)) return out;
+  std::stringstream ss(list);
+  std::string item;
+  while (std::getline(ss, item, ','))
+    if (item == "all") {
+      for (const auto& p : lightPathNames()) out.push_back(p);
+      break;
+    }
+  return out;
+}
+
 std::vector<std::string> AovSet::parse(const std::string& list) {
   if (list == "all") return allButLightPaths();
   std::vector<std::string> out;

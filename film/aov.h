@@ -25,6 +25,9 @@ class AovSet {
   /// tracer fills); "cryptomatte" stands for crypto_object,crypto_material, "lightpaths" for
   /// the seven light-path layers. Throws tray::Error naming an unknown AOV.
   static std::vector<std::string> parse(const std::string& list);
+  /// parse() for a render whose integrator can (`lightPaths`) or cannot fill the light-path
+  /// layers: "all" then means every layer the render makes, the light paths included.
+  static std::vector<std::string> parse(const std::string& list, bool lightPaths);
   static const std::vector<std::string>& known();
   /// Adds the layers for `names` to the film. `vectors` fills the motion layer (null: zeros).
   AovSet(Film& film, const std::vector<std::string>& names, const MotionVectors* vectors = nullptr);

@@ -208,15 +208,22 @@ std::vector<Animation> readAnimations(const GltfContext& ctx) {
 
 int chooseAnimation(const GltfContext& ctx, const std::vector<Animation>& animations,
                     const std::string& which) {
-  if (which.empty() || which == "all") return -1;
+  if (which == "all") return -1;
+  if (which.empty() || which == "first") return 0;  // poseAt skips none when there is none
   for (size_t i = 0; i < animations.size(); ++i)
     if (animations[i].name == which) return int(i);
   if (which.find_first_not_of("0123456789") == std::string::npos && which.size() < 9) {
     const size_t i = std::stoul(which);
     if (i < animations.size()) return int(i);
   }
+  std::string names;
+  for (size_t i = 0; i < animations.size(); ++i) {
+    names += i ? ", " : ": ";
+    names += std::to_string(i);
+    if (!animations[i].name.empty()) names += " '" + animations[i].name + "'";
+  }
   ctx.fail("--animation " + which + ": no such animation (the file has " +
-           std::to_string(animations.size()) + ")");
+           std::to_string(animations.size()) + names + "; or first, all)");
 }
 
 std::vector<NodePose> poseAt(const GltfContext& ctx, const std::vector<Animation>& animations,

@@ -18,8 +18,9 @@ struct LoadOptions {
   /// Animation time in seconds (glTF 2.0 §3.11): animated values replace the nodes' own. Absent:
   /// the static pose (node TRS, default morph weights, skins at rest), as files render unanimated.
   std::optional<float> time;
-  /// Which animation plays at `time`: "all" (together), an index or a name.
-  std::string animation = "all";
+  /// Which animation plays at `time`: "first" (the file's first, as glTF viewers play it),
+  /// "all" (together), an index or a name.
+  std::string animation = "first";
   /// Motion blur (docs/scene-format.md, "Motion blur"), with a `time` only: the shutter in
   /// seconds and the number of times (>= 2, evenly spaced over it) the animation is posed at.
   /// Moving objects get Primitive::motion, deforming meshes positionSteps; 0 steps: none.

@@ -98,6 +98,10 @@ CsgChild parseOperand(const GltfContext& ctx, int index, const std::string& pare
       nested.finish();
     } else {
       TrayShape s = parseTrayShape(ctx, *ext, where);
+      if (!s.shape->isSolid())
+        ctx.fail(where +
+                 " is a CSG operand but its TRAY_shape is an open surface, not a solid"
+                 " (a disk, or a quadric without \"capped\": true)");
       c.shape = s.shape;
       c.material = s.material;
     }

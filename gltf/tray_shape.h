@@ -13,8 +13,9 @@ struct TrayShape {
   int material = -1;  ///< glTF material index; -1: the default material
 };
 
-/// Parses a TRAY_shape object (docs/scene-format.md): {"type": "sphere" | "plane" | "box", ...,
-/// "material": index}. Every number must be finite, radius > 0, box min < max; unknown keys
+/// Parses a TRAY_shape object (docs/scene-format.md): {"type": "sphere" | "plane" | "box" |
+/// "torus" | "cylinder" | "cone" | "paraboloid" | "hyperboloid" | "disk" | "csg", ...,
+/// "material": index}. Every number must be finite, sizes positive, box min < max; unknown keys
 /// and unknown types are errors. `where` names the node in messages.
 TrayShape parseTrayShape(const GltfContext& ctx, const tinygltf::Value& value,
                          const std::string& where);

@@ -1,5 +1,6 @@
 #include "integrators/whitted.h"
 
+#include "lights/environment_irradiance.h"
 #include "lights/light_set.h"
 #include "materials/fresnel.h"
 #include "textures/alpha.h"
@@ -30,6 +31,10 @@ class WhittedIntegrator final : public Integrator {
         lights_(ctx.scene, LightSamplerKind::kPower),  // only its lists: nothing is chosen
         materials_(ctx.scene, ctx.camera, ctx.settings.getInt("spp")) {
     for (const Material& m : ctx.scene.materials) hasBlend_ |= m.alphaMode == AlphaMode::kBlend;
+    // An environment map lights diffuse surfaces by its irradiance; a constant background is
+    // only what escaping rays see (TRAY_environment's `ambient` is Whitted's light there).
+    for (int i : lights_.infinite())
+      if (i != lights_.constantEnvironment()) environment_.emplace_back(lights_.light(size_t(i)));
   }
 
   Color Li(const Ray& ray, Sampler&, RayStats& stats, PrimaryHit* primary) const override {
@@ -102,6 +107,10 @@ class WhittedIntegrator final : public Integrator {
     if (sm.unlit) return sm.baseColor;  // KHR_materials_unlit: no lighting, no bounces
 
     Color L = ph.ambient * scene.environment.ambient + sm.emissive;
+    // The map's unshadowed irradiance through the Lambert part of the Phong lobe: Whitted
+    // samples no area of a light, so this is all the map gives (docs/scene-format.md).
+    for (const EnvironmentIrradiance& env : environment_)
+      L += ph.diffuse * env.irradiance(n) * (1.0f / kPi);
     // Whitted's direct light: the delta lights only (area lights are seen by reflection).
     for (int i : lights_.delta())
       L += directLight(lights_.light(size_t(i)), s.p, ng, s.time, n, wo, ph, stats);
@@ -149,6 +158,7 @@ class WhittedIntegrator final : public Integrator {
   static constexpr int kMaxBlendCrossings = 32;
   int maxDepth_;
   LightSet lights_;
+  std::vector<EnvironmentIrradiance> environment_;  ///< per environment map
   MaterialEvaluator materials_;
   bool hasBlend_ = false;  ///< some material is alphaMode BLEND
 };

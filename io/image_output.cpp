@@ -130,18 +130,7 @@ void writeDisplay(const Film& film, const std::string& path, const std::string& 
                   const ImageOutputOptions& o) {
   // Beauty RGB only, opaque: EXR alpha is coverage with the background's light still in RGB,
   // which straight-alpha PNG cannot express, so a PNG shows what the EXR shows.
-  const size_t n = size_t(film.width()) * film.height();
-  const FilmLayer& beauty = film.layers()[Film::kBeauty];
-  const size_t bc = beauty.channels.size();
-  std::vector<float> rgb(n * 3);
-  for (size_t p = 0; p < n; ++p)
-    for (size_t c = 0; c < 3; ++c) rgb[p * 3 + c] = beauty.data[p * bc + c];
-  ColorPipeline::instance().toDisplay(rgb.data(), n, 3, o.display, o.view);
-  std::vector<unsigned char> bytes(n * 3);
-  for (size_t i = 0; i < rgb.size(); ++i) {
-    const float v = std::isfinite(rgb[i]) ? std::clamp(rgb[i], 0.0f, 1.0f) : 0.0f;
-    bytes[i] = static_cast<unsigned char>(std::lround(v * 255.0f));
-  }
+  const std::vector<unsigned char> bytes = displayBytes(film, Film::kBeauty, o.display, o.view);
   OIIO::ImageSpec spec(film.width(), film.height(), 3, OIIO::TypeDesc::UINT8);
   spec.attribute("compression", "jpeg:95");  // ignored by PNG
   for (const auto& [k, v] : o.stringMetadata) spec.attribute(k, v);
@@ -149,6 +138,23 @@ void writeDisplay(const Film& film, const std::string& path, const std::string& 
 }
 
 }  // namespace
+
+std::vector<unsigned char> displayBytes(const Film& film, int layer, const std::string& display,
+                                        const std::string& view) {
+  const size_t n = size_t(film.width()) * film.height();
+  const FilmLayer& l = film.layers()[size_t(layer)];
+  const size_t lc = l.channels.size();
+  std::vector<float> rgb(n * 3);
+  for (size_t p = 0; p < n; ++p)
+    for (size_t c = 0; c < 3; ++c) rgb[p * 3 + c] = l.data[p * lc + (lc >= 3 ? c : 0)];
+  ColorPipeline::instance().toDisplay(rgb.data(), n, 3, display, view);
+  std::vector<unsigned char> bytes(n * 3);
+  for (size_t i = 0; i < rgb.size(); ++i) {
+    const float v = std::isfinite(rgb[i]) ? std::clamp(rgb[i], 0.0f, 1.0f) : 0.0f;
+    bytes[i] = static_cast<unsigned char>(std::lround(v * 255.0f));
+  }
+  return bytes;
+}
 
 std::string exrChannelName(const FilmLayer& layer, const std::string& channel) {
   if (layer.name.empty()) return channel;

@@ -53,6 +53,13 @@ std::string halfClampWarning(const std::string& path, size_t clamped);
 /// view; the OCIO config itself) can be made. Throws tray::Error "PATH: problem".
 void checkOutputs(const std::vector<std::string>& paths, const ImageOutputOptions& options);
 
+/// A layer's pixels as PNG/JPEG output shows them: 8-bit RGB, row-major, top row first, through
+/// the display/view (empty: the config's defaults), rounded from [0, 1] (not finite: 0). The
+/// first three channels; a layer of fewer shows its first one as grey. The Python module's
+/// Image.to_display() and the PNG writer share it.
+std::vector<unsigned char> displayBytes(const Film& film, int layer, const std::string& display,
+                                        const std::string& view);
+
 /// EXR channel name of a layer's channel: bare for the beauty layer ("R") and for a layer with
 /// one channel of its own name ("Z"); otherwise "layer.channel" ("N.X").
 std::string exrChannelName(const FilmLayer& layer, const std::string& channel);

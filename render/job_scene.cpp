@@ -64,7 +64,16 @@ void enterPhase(const RenderJobEvents& events, const char* phase) {
 }
 
 PreparedScene prepareJobScene(const RenderJob& job, const RenderJobEvents& events,
-                              const GltfDocument* document, int& placedCamera) {
+                              const GltfDocument* document, int& placedCamera,
+                              KeptScene* kept) {
+  if (kept && kept->scene) {  // loaded, lit and built by an earlier render: its camera now
+    placedCamera = kept->placedCamera;
+    CameraDesc cameraDesc = kept->camera;
+    applyLensOptions(cameraDesc, job.settings);
+    checkRayRange(job.scene.path, *kept->scene, cameraDesc);
+    return PreparedScene(*kept->scene, cameraDesc, resolveImageSize(job.resolution, cameraDesc),
+                         *kept->accelerator);
+  }
   enterPhase(events, "loading the scene");
   const LoadOptions loadOptions = loadOptionsOf(job);
   LoadReport report;
@@ -85,6 +94,14 @@ PreparedScene prepareJobScene(const RenderJob& job, const RenderJobEvents& event
     warn(events, job.scene.path +
                      ": the camera is enclosed (a sky box?) and the default key light cannot get "
                      "in: a headlight at the camera replaces it");
+  if (kept) {
+    kept->camera = chooseCamera(*scene, job.camera);
+    kept->placedCamera = placedCamera;
+    kept->headlight = defaultLight;
+    kept->scene = std::move(scene);
+    kept->accelerator = std::move(accel);
+    return PreparedScene(*kept->scene, cameraDesc, size, *kept->accelerator);
+  }
   return PreparedScene(std::move(scene), cameraDesc, size, std::move(camera), std::move(accel));
 }
 

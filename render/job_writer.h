@@ -32,6 +32,11 @@ class JobWriter {
 
   const std::string& signature() const { return signature_; }
 
+  /// The format and metadata a write of `now` after `seconds` of rendering carries.
+  ImageOutputOptions formatOf(const RenderState& now, double seconds) const {
+    return metadataOf(now, seconds);
+  }
+
   /// Writes `film` (all outputs or none) with the metadata of `now`, `seconds` of rendering in
   /// all; the state goes with the pixels of a part or an unfinished render. `final`: the
   /// render's outputs, not a checkpoint (a half-float clamp is warned about then only).

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 
 #include "core/animation_time.h"
 #include "core/error.h"
@@ -53,7 +54,9 @@ JobPlan planOf(const RenderJob& job, const PreparedScene& scene, const Integrato
   plan.region = parseRegion(job.part.region, scene.width(), scene.height());
   plan.range = parseSampleRange(job.part.sampleRange, integrator.samplesPerPixel(),
                                 job.settings.getString("integrator"));
-  plan.aovs = AovSet::parse(job.outputs.aovs);
+  // "all": with the light paths when this render can split them (not in passes).
+  plan.aovs = AovSet::parse(job.outputs.aovs, integrator.splitsLightPaths() &&
+                                                  !samplingPassesOf(job.settings));
   if (!job.part.sampleRange.empty() && Cryptomatte::requested(plan.aovs))
     throw Error(
         "--sample-range with Cryptomatte AOVs: each part would keep only its own "
@@ -94,12 +97,26 @@ bool resume(const RenderJob& job, const JobWriter& writer, const PreparedScene& 
 
 /// Every --checkpoint seconds, a copy of the pixels done so far goes to the first .exr output;
 /// `previousSeconds` (resumed renders) and the time since `started` make its render time.
+/// Every events.snapshotSeconds, the copy goes to events.snapshot: the renderer's one
+/// checkpoint clock runs at the shorter period, and the EXR is written when its own is due.
 void addCheckpoints(RenderOptions& options, const RenderJob& job, const JobWriter& writer,
                     double previousSeconds, Clock::time_point started,
                     const RenderJobEvents& events) {
-  options.checkpointSeconds = job.part.checkpointSeconds;
-  options.onCheckpoint = [&job, &writer, &events, previousSeconds, started](const Film& f,
-                                                                            const RenderState& s) {
+  const double exrSeconds = job.part.checkpointSeconds;
+  const bool snapshots = events.snapshot && events.snapshotSeconds > 0;
+  options.checkpointSeconds =
+      exrSeconds > 0 && snapshots ? std::min(exrSeconds, events.snapshotSeconds)
+                                  : (exrSeconds > 0 ? exrSeconds : events.snapshotSeconds);
+  auto lastExr = std::make_shared<Clock::time_point>(started);
+  options.onCheckpoint = [&job, &writer, &events, previousSeconds, started, exrSeconds, snapshots,
+                          lastExr](const Film& f, const RenderState& s) {
+    if (snapshots) {  // alone, every call writes the EXR, as before snapshots existed
+      events.snapshot(f, s);
+      if (exrSeconds <= 0 ||
+          std::chrono::duration<double>(Clock::now() - *lastExr).count() < exrSeconds * 0.999)
+        return;
+    }
+    *lastExr = Clock::now();
     Film copy = f;
     const double elapsed = std::chrono::duration<double>(Clock::now() - started).count();
     try {  // a failed checkpoint (full disk) costs the safety net, not the render
@@ -163,10 +180,10 @@ uint64_t defaultMaxMemoryBytes() {
 }
 
 RenderJobResult runRenderJob(const RenderJob& job, const RenderJobEvents& events,
-                             const GltfDocument* document) {
+                             const GltfDocument* document, KeptScene* kept) {
   checkJobOutputs(job);
   int placedCamera = -1;
-  const PreparedScene scene = prepareJobScene(job, events, document, placedCamera);
+  const PreparedScene scene = prepareJobScene(job, events, document, placedCamera, kept);
   enterPhase(events, "rendering");
   const auto integrator = scene.integrator(job.settings);
   const JobPlan plan = planOf(job, scene, *integrator);
@@ -187,7 +204,7 @@ RenderJobResult runRenderJob(const RenderJob& job, const RenderJobEvents& events
   if (events.started) events.started();
   RenderOptions options = renderOptionsOf(job, plan, events);
   const auto started = Clock::now();
-  if (job.part.checkpointSeconds > 0)
+  if (job.part.checkpointSeconds > 0 || (events.snapshot && events.snapshotSeconds > 0))
     addCheckpoints(options, job, writer, previousSeconds, started, events);
   result.stats = renderImage(*integrator, film, state, options);
   const bool complete = !result.stats.interrupted;
@@ -202,10 +219,13 @@ RenderJobResult runRenderJob(const RenderJob& job, const RenderJobEvents& events
   if (events.finished) events.finished(complete);
 
   enterPhase(events, "writing images");
+  const double seconds = previousSeconds + result.stats.seconds;
   result.written = complete ? job.outputs.paths : interruptedOutputs(job.outputs.paths, events);
-  writer.write(film, state, previousSeconds + result.stats.seconds, result.written, true, events);
+  if (!result.written.empty()) writer.write(film, state, seconds, result.written, true, events);
   if (!job.outputs.aaHeatmap.empty() && complete)
     writeImage(samplesHeatmap(film), job.outputs.aaHeatmap);
+  if (job.outputs.keepImage)
+    result.image = RenderJobResult::Image{std::move(film), writer.formatOf(state, seconds)};
   result.outcome =
       complete ? RenderJobResult::Outcome::kComplete : RenderJobResult::Outcome::kInterrupted;
   return result;

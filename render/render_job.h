@@ -6,12 +6,17 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "core/accelerator.h"
+#include "core/camera.h"
 #include "core/render_options.h"
+#include "core/scene.h"
 #include "gltf/gltf_loader.h"
+#include "io/image_output.h"
 #include "render/renderer.h"
 
 namespace tray {
@@ -37,6 +42,10 @@ struct JobOutputs {
   std::string aovs;  ///< --aov's list, comma separated
   int cryptomatteRanks = 6;
   std::string aaHeatmap;  ///< an image of the samples per pixel; empty: none
+  /// Keep the rendered film and its output format in the result (RenderJobResult::image):
+  /// the Python module returns the pixels instead of (or besides) writing files. `paths` may
+  /// then be empty: nothing is written.
+  bool keepImage = false;
 };
 
 /// Farm parts and checkpoints (docs/farm.md), in the command line's spelling.
@@ -75,6 +84,11 @@ struct RenderJobEvents {
   /// When it becomes true (a signal handler), the render stops after the pixels under way and
   /// writes what it has.
   const std::atomic<bool>* stop = nullptr;
+  /// Every snapshotSeconds (> 0), a copy of the film and state with the pixels done so far
+  /// (a worker thread, one call at a time): the checkpoints' film copy (RenderOptions::
+  /// onCheckpoint), for a live preview (cli/preview_server.h).
+  std::function<void(const Film&, const RenderState&)> snapshot;
+  double snapshotSeconds = 0;
 };
 
 struct RenderJobResult {
@@ -91,14 +105,35 @@ struct RenderJobResult {
   /// The files written: the outputs asked for, or for an interrupted render the EXRs and the
   /// display-referred images under NAME.partial.EXT.
   std::vector<std::string> written;
+  /// JobOutputs::keepImage: the film as rendered (scene-linear, every layer) and the format
+  /// and metadata its EXR outputs are written with (writeImages writes it as the job would).
+  struct Image {
+    Film film;
+    ImageOutputOptions format;
+  };
+  std::optional<Image> image;
+};
+
+/// A job's scene kept between renders (the Python module's tray.Scene): read, lit and its
+/// accelerator built by the first render, reused by the next ones, which may have changed
+/// what the accelerator does not depend on in between: the camera, lights, material factors,
+/// the environment. The scene options of later jobs (path, --scene, --env, --accel, --time,
+/// memory limits) are not read again: the first job's hold.
+struct KeptScene {
+  std::unique_ptr<Scene> scene;  ///< null until the first render
+  std::unique_ptr<Accelerator> accelerator;
+  CameraDesc camera;  ///< the job's camera (--camera), before the lens options
+  int placedCamera = -1;
+  bool headlight = false;  ///< the default lighting was added (it follows the first camera)
 };
 
 /// Renders `job` and writes its outputs. `document`, when given (--frames), is the file parsed
 /// once: the scene is converted from it at the job's time instead of reading the file again.
 /// Throws tray::Error with a message for the user; output mistakes are found before the scene
 /// is read, and a render stopped or failed after its first pixel keeps what it wrote.
+/// `kept`, when given, holds the scene from one render to the next (see KeptScene).
 RenderJobResult runRenderJob(const RenderJob& job, const RenderJobEvents& events = {},
-                             const GltfDocument* document = nullptr);
+                             const GltfDocument* document = nullptr, KeptScene* kept = nullptr);
 
 /// Throws tray::Error for output mistakes (format, folder, colorspace, display/view, $OCIO,
 /// checkpoints without an EXR): runRenderJob checks them before any work, --frames before it

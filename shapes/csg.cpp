@@ -25,6 +25,9 @@ Csg::Csg(CsgOp op, std::vector<CsgChild> children, std::string name, float tieTo
   for (const CsgChild& c : children_)
     if (!c.shape)
       throw Error("CSG node '" + name_ + "' has a child '" + c.name + "' without a shape");
+    else if (!c.shape->isSolid())
+      throw Error("CSG node '" + name_ + "' has a child '" + c.name +
+                  "' that is an open surface, not a solid (cap it: \"capped\": true)");
   computeBounds();
 }
 

@@ -7,7 +7,9 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 PACKAGES=(libembree-dev libopenimageio-dev openimageio-tools libopenexr-dev libopencolorio-dev
   opencolorio-tools libtinygltf-dev nlohmann-json3-dev libstb-dev libtbb-dev libgtest-dev
   libbenchmark-dev libcli11-dev libxxhash-dev libhwy-dev cmake ninja-build g++ pkg-config python3 valgrind
-  python3-openimageio python3-numpy python3-venv)
+  python3-openimageio python3-numpy python3-venv
+  pybind11-dev python3-pybind11 python3-dev python3-pytest libcpp-httplib-dev
+  chromium python3-websocket)
 PACKAGES+=(${TRAY_EXTRA_PACKAGES:-})
 
 missing=()

@@ -41,6 +41,8 @@ std::string out(const fs::path& dir, const std::string& name) {
 TEST(Farm, FourRegionsMergeBitForBit) {
   const fs::path dir = testDir();
   ASSERT_EQ(runCli(TRAY_RENDER_BIN, kJobAllAovs + " " + out(dir, "full.exr"), dir).exitCode, 0);
+  // "all" is all: with the path tracer the light-path layers are there too.
+  EXPECT_NE(readExrFile(dir / "full.exr").spec.channelindex("diffuse_direct.R"), -1);
   // Uneven quadrants that cut through 16-pixel tiles.
   const char* regions[] = {"0,0,13,11", "13,0,37,11", "0,11,13,29", "13,11,37,29"};
   std::string parts;

@@ -20,6 +20,12 @@ TEST(Aov, ParsesListsAndRejectsUnknownNames) {
   // "all": every layer but the seven light-path ones, which only the path tracer fills.
   EXPECT_EQ(AovSet::parse("all").size(), AovSet::known().size() - kLightPathCount);
   EXPECT_EQ(AovSet::parse("albedo,lightpaths").size(), size_t(1 + kLightPathCount));
+  // A render whose integrator splits light paths: "all" means all, the light paths included
+  // (once, also when named beside it); lists without "all" are as they were.
+  EXPECT_EQ(AovSet::parse("all", true).size(), AovSet::known().size());
+  EXPECT_EQ(AovSet::parse("all,lightpaths", true).size(), AovSet::known().size());
+  EXPECT_EQ(AovSet::parse("depth", true), (std::vector<std::string>{"depth"}));
+  EXPECT_EQ(AovSet::parse("all", false).size(), AovSet::known().size() - kLightPathCount);
   EXPECT_EQ(AovSet::parse("specular_indirect"), (std::vector<std::string>{"specular_indirect"}));
   EXPECT_THROW(AovSet::parse("depth,colour"), Error);
 }

@@ -201,6 +201,8 @@ TEST(GltfAnimation, AnimationIsChosenByIndexOrName) {
                       "samplers":[{"input":1,"output":3}]}])";
   LoadOptions o = at(1);
   auto corner = [&] { return d.load(two, o).primitives.at(0).toWorld.point({1, 0, 0}); };
+  EXPECT_FLOAT_EQ(corner().x, 3.0f);  // by default the first only: translated by 2, unscaled
+  o.animation = "all";
   const Vec3 all = corner();  // both: translated to (2, 0, 0) and scaled by 3
   EXPECT_FLOAT_EQ(all.x, 5.0f);
   EXPECT_FLOAT_EQ(all.z, 0.0f);
@@ -211,7 +213,9 @@ TEST(GltfAnimation, AnimationIsChosenByIndexOrName) {
   o.animation = "0";
   EXPECT_FLOAT_EQ(corner().x, 3.0f);  // translated by 2, unscaled
   o.animation = "walk";
-  EXPECT_NE(errorOf([&] { d.load(two, o); }).find("--animation walk: no such animation"),
+  EXPECT_NE(errorOf([&] { d.load(two, o); })
+                .find("--animation walk: no such animation (the file has 2: 0, 1 'grow'; or "
+                      "first, all)"),
             std::string::npos);
 }
 

@@ -315,7 +315,7 @@ TEST(GltfTiny, TrayShapeErrors) {
   EXPECT_NE(shapeError(R"({"type":"sphere","radius":0})").find("radius"), std::string::npos);
   EXPECT_NE(shapeError(R"({"type":"box","min":[0,0,0],"max":[1,0,1]})").find("'min'"),
             std::string::npos);
-  EXPECT_NE(shapeError(R"({"type":"cone"})").find("unknown TRAY_shape type 'cone'"),
+  EXPECT_NE(shapeError(R"({"type":"teapot"})").find("unknown TRAY_shape type 'teapot'"),
             std::string::npos);
   EXPECT_NE(shapeError(R"({"type":"sphere","material":3})").find("missing material 3"),
             std::string::npos);

@@ -7,7 +7,9 @@
 #include "core/error.h"
 #include "gltf/gltf_loader.h"
 #include "shapes/box.h"
+#include "shapes/quadric.h"
 #include "shapes/sphere.h"
+#include "shapes/torus.h"
 #include "tests/base64.h"
 #include "tests/temp_dir.h"
 
@@ -171,6 +173,69 @@ TEST(TrayCsg, BadCsgIsReportedWithTheNode) {
                           "0", true, true))
           .find("not closed"),
       std::string::npos);
+}
+
+TEST(TrayShapeTypes, TorusAndQuadricsLoadWithTheirParameters) {
+  Scene s = loadGltf(writeGltf("quadrics.gltf", R"(
+ {"name":"t","extensions":{"TRAY_shape":{"type":"torus","majorRadius":2,"minorRadius":0.5}}},
+ {"name":"c","extensions":{"TRAY_shape":{"type":"cylinder","radius":0.5,"height":2,"capped":true}}},
+ {"name":"k","extensions":{"TRAY_shape":{"type":"cone","radius":0.5,"height":2}}},
+ {"name":"p","extensions":{"TRAY_shape":{"type":"paraboloid"}}},
+ {"name":"h","extensions":{"TRAY_shape":{"type":"hyperboloid","waist":0.2}}},
+ {"name":"d","extensions":{"TRAY_shape":{"type":"disk","radius":2,"innerRadius":1}}})",
+                               "0,1,2,3,4,5"));
+  ASSERT_EQ(s.primitives.size(), 6u);
+  auto* t = dynamic_cast<const Torus*>(s.primitives[0].shape.get());
+  ASSERT_TRUE(t);
+  EXPECT_EQ(t->majorRadius(), 2.0f);
+  EXPECT_EQ(t->minorRadius(), 0.5f);
+  auto* c = dynamic_cast<const Quadric*>(s.primitives[1].shape.get());
+  ASSERT_TRUE(c);
+  EXPECT_EQ(c->kind(), Quadric::Kind::kCylinder);
+  EXPECT_TRUE(c->capped());
+  EXPECT_EQ(c->height(), 2.0f);
+  auto* k = dynamic_cast<const Quadric*>(s.primitives[2].shape.get());
+  ASSERT_TRUE(k);
+  EXPECT_FALSE(k->capped());  // open by default, as pbrt's
+  EXPECT_TRUE(dynamic_cast<const Disk*>(s.primitives[5].shape.get()));
+}
+
+TEST(TrayShapeTypes, BadParametersAndOpenOperandsAreErrorsNamingTheNode) {
+  EXPECT_NE(
+      loadError(
+          writeGltf(
+              "badtorus.gltf",
+              R"({"name":"fat","extensions":{"TRAY_shape":{"type":"torus","majorRadius":0.2,"minorRadius":0.5}}})",
+              "0"))
+          .find("'majorRadius' > 'minorRadius'"),
+      std::string::npos);
+  EXPECT_NE(
+      loadError(
+          writeGltf("badwaist.gltf",
+                    R"({"name":"hy","extensions":{"TRAY_shape":{"type":"hyperboloid","waist":2}}})",
+                    "0"))
+          .find("'waist'"),
+      std::string::npos);
+  const std::string err = loadError(writeGltf("openop.gltf", R"(
+ {"name":"cut","extensions":{"TRAY_shape":{"type":"csg","op":"difference","children":[1,2]}}},
+ {"name":"ring","extensions":{"TRAY_shape":{"type":"torus"}}},
+ {"name":"tube","extensions":{"TRAY_shape":{"type":"cylinder"}}})",
+                                              "0"));
+  EXPECT_NE(err.find("'tube'"), std::string::npos) << err;
+  EXPECT_NE(err.find("open surface"), std::string::npos) << err;
+}
+
+TEST(TrayShapeTypes, TorusSceneLoads) {
+  Scene s = loadGltf(std::string(TRAY_SOURCE_DIR) + "/scenes/torus.gltf");
+  int tori = 0, quadrics = 0, csg = 0;
+  for (const Primitive& p : s.primitives) {
+    tori += dynamic_cast<const Torus*>(p.shape.get()) != nullptr;
+    quadrics += dynamic_cast<const Quadric*>(p.shape.get()) != nullptr;
+    csg += dynamic_cast<const Csg*>(p.shape.get()) != nullptr;
+  }
+  EXPECT_EQ(tori, 2);  // the gold torus and the lamp ring; the cut torus is a CSG operand
+  EXPECT_EQ(quadrics, 3);
+  EXPECT_EQ(csg, 1);
 }
 
 }  // namespace

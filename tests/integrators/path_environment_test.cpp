@@ -56,6 +56,24 @@ TEST(PathEnvironment, WhittedBackgroundIsTheMap) {
     }
 }
 
+TEST(PathEnvironment, WhittedLightsDiffuseSurfacesByTheMapsIrradiance) {
+  // A diffuse sphere (albedo 0.5) under radiance L1 above and L2 below, seen from above and
+  // from below: Whitted shows albedo x E(n) / pi = albedo x L1 at the top and albedo x L2 at
+  // the bottom (E(n) = pi [(L1 + L2) / 2 + (L1 - L2) / 2 n_y], linear in n: bands 0 and 1 of
+  // the spherical harmonics hold it exactly). Without the map's light the sphere was black.
+  const float L1 = 2.0f, L2 = 0.5f;
+  Scene s;
+  addSphere(s, {0, 0, 0}, 1, addMaterial(s, diffuse(Color(0.5f))));
+  s.environment.map = maps::hemispheres(256, 128, Color(L1), Color(L2));
+  s.finalize();
+  RenderSettings settings;
+  settings.set("integrator", "whitted");
+  const Film top = renderFilm(s, lookAt({0, 5, 0.001f}, {0, 0, 0}, 0.02f), 3, 3, settings);
+  const Film bottom = renderFilm(s, lookAt({0, -5, 0.001f}, {0, 0, 0}, 0.02f), 3, 3, settings);
+  EXPECT_NEAR(beauty(top, 1, 1).x, 0.5f * L1, 0.01f * L1);
+  EXPECT_NEAR(beauty(bottom, 1, 1).x, 0.5f * L2, 0.01f * L1);
+}
+
 TEST(PathEnvironment, WhiteSphereUnderTwoHemispheresMatchesLambert) {
   // Irradiance of a Lambertian with normal n under radiance L1 above and L2 below:
   // E(n) = pi [(L1 + L2) / 2 + (L1 - L2) / 2 n_y]; albedo 1 reflects L = E / pi. A convex

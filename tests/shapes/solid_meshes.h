@@ -1,8 +1,12 @@
 #pragma once
-// Closed triangle meshes built in code for CSG tests: boxes, extruded polygons, a torus.
+// Closed triangle meshes built in code for CSG tests: boxes, extruded polygons, a torus; and the
+// tessellated twins of the quadrics (quadric_test.cpp, bench/shape_bench.cpp).
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "core/triangle_mesh.h"
+#include "shapes/quadric.h"
 
 namespace tray::test {
 
@@ -56,6 +60,39 @@ inline TriangleMesh torusMesh(float R, float r, int nu, int nv, int material = 0
     for (int j = 0; j < nv; ++j) {
       uint32_t a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
       m.indices.insert(m.indices.end(), {a, c, b, a, d, c});
+    }
+  return m;
+}
+
+/// The quadric's surface of revolution x^2 + z^2 = rho^2(y) as a mesh: nu segments around, nv
+/// rows along y (uniform in y; the paraboloid's uniform in rho, its profile being vertical at
+/// the apex), plus the caps (fans) when capped. Vertices lie on the analytic surface.
+inline TriangleMesh revolvedMesh(const Quadric& q, int nu, int nv) {
+  TriangleMesh m;
+  m.name = "revolved";
+  m.material = 0;
+  for (int j = 0; j <= nv; ++j) {
+    double w = double(j) / nv;
+    double y = q.height() * (q.kind() == Quadric::Kind::kParaboloid ? w * w : w);
+    double rho = std::sqrt(std::max(0.0, q.rho2(y)));
+    for (int i = 0; i < nu; ++i) {
+      double phi = 2 * M_PI * i / nu;
+      m.positions.push_back({float(rho * std::sin(phi)), float(y), float(rho * std::cos(phi))});
+    }
+  }
+  for (int j = 0; j < nv; ++j)
+    for (int i = 0; i < nu; ++i) {
+      uint32_t a = uint32_t(j * nu + i), b = uint32_t(j * nu + (i + 1) % nu);
+      uint32_t c = uint32_t(b + nu), d = uint32_t(a + nu);
+      m.indices.insert(m.indices.end(), {a, b, c, a, c, d});
+    }
+  if (q.capped())
+    for (int end = 0; end < 2; ++end) {
+      const uint32_t centre = uint32_t(m.positions.size()), base = uint32_t(end * nv * nu);
+      m.positions.push_back({0, end ? q.height() : 0.0f, 0});
+      for (int i = 0; i < nu; ++i)
+        m.indices.insert(m.indices.end(),
+                         {centre, base + uint32_t(i), base + uint32_t((i + 1) % nu)});
     }
   return m;
 }
