@@ -4,6 +4,7 @@
 
 #include "integrators/absorption.h"
 #include "integrators/bdpt_tracer.h"
+#include "integrators/surface_rules.h"
 
 namespace tray {
 
@@ -117,7 +118,7 @@ Color BdptTracer::connectS1(std::vector<BdptVertex>& light, std::vector<BdptVert
   const Bsdf bsdf = z.bsdf();
   LightSampleContext here;
   here.p = z.p, here.n = z.n, here.transmits = bsdf.transmits();
-  here.belowMatters = bsdf.transmits() || !(dot(z.wo, z.n) > 0) || z.sm.clearcoat > 0;
+  here.belowMatters = belowMatters(bsdf.transmits(), z.wo, z.n, z.sm);
   float pmf;
   const int i = lights_.choose(here, u.x, pmf);
   if (i < 0 || !(pmf > 0)) return Color(0.0f);

@@ -6,6 +6,7 @@
 #include "core/front_face.h"
 #include "integrators/absorption.h"
 #include "integrators/path_vertex_lanes.h"
+#include "integrators/surface_rules.h"
 
 namespace tray {
 namespace {
@@ -41,7 +42,7 @@ bool BdptTracer::surfaceVertex(const Ray& ray, const Hit& hit, MediumStack& medi
   const SurfacePoint& s = v.s;
   v.m = &ctx_.scene.material(s.material);
   const Material& m = *v.m;
-  v.refractive = m.transmission > 0 && (m.metallic < 1 || m.metallicRoughnessTexture.valid());
+  v.refractive = isRefractive(m);
   v.eta = m.ior / media.currentIor();
   v.sigmaA = media.currentAbsorption();
   v.sigmaFar = v.sigmaA;
@@ -56,8 +57,7 @@ bool BdptTracer::surfaceVertex(const Ray& ray, const Hit& hit, MediumStack& medi
   }
   v.kind = BdptVertex::Kind::kSurface;
   v.sm = materials_.evaluate(hit, s);
-  // The clearcoat and sheen are on the outside of a transmissive solid: not seen from within.
-  if (v.refractive && !s.frontFace) v.sm.clearcoat = 0, v.sm.sheenColor = Color(0.0f);
+  hideOuterLayersInside(v.sm, v.refractive, s.frontFace);
   v.p = s.p;
   v.ng = s.ng;
   v.n = s.frontFace ? v.sm.n : -v.sm.n;
@@ -110,16 +110,8 @@ void BdptTracer::walk(Ray ray, Color beta, float pdfDir, Sampler& sampler, RaySt
     v.pdfFwd = prev.kind == BdptVertex::Kind::kCamera ? camera_.pdfFirst(v.p, v.ng)
                : prev.infinite ? pdfDir * std::fabs(dot(v.ng, ray.d) / length(ray.d))
                                : toArea(pdfDir, prev, v);
-    if (primary && !primary->hit) {
-      primary->hit = true;
-      primary->depth = length(v.p - path.front().p);
-      primary->position = v.p;
-      primary->primitive = v.s.primitive, primary->time = v.s.time;
-      primary->normal = v.sm.n;
-      primary->albedo = v.sm.baseColor;
-      primary->objectId = ctx_.scene.primitives[v.s.primitive].objectId;
-      primary->materialId = v.s.material;
-    }
+    if (primary && !primary->hit)
+      recordPrimaryHit(*primary, ctx_.scene, v.s, path.front().p, v.sm.n, v.sm.baseColor);
     path.push_back(v);
     BdptVertex& cur = path.back();
     if (cur.unlit || path.size() >= maxVertices) return;

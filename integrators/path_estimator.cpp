@@ -10,6 +10,7 @@
 #include "core/unbuilt.h"
 #include "integrators/absorption.h"
 #include "integrators/path_vertex_lanes.h"
+#include "integrators/surface_rules.h"
 #include "materials/bsdf.h"
 #include "textures/shading.h"
 
@@ -18,14 +19,7 @@ namespace tray {
 /// The first surface a camera ray met, for the AOVs and Cryptomatte.
 void PathEstimator::recordPrimary(PrimaryHit& primary, const PathState& st, const SurfacePoint& s,
                                   const Vec3& shadingN, const Color& albedo) const {
-  primary.hit = true;
-  primary.depth = length(s.p - st.cameraOrigin);
-  primary.position = s.p;
-  primary.primitive = s.primitive, primary.time = s.time;
-  primary.normal = shadingN;
-  primary.albedo = albedo;
-  primary.objectId = ctx_.scene.primitives[s.primitive].objectId;
-  primary.materialId = s.material;
+  recordPrimaryHit(primary, ctx_.scene, s, st.cameraOrigin, shadingN, albedo);
 }
 
 /// The scattering vertex being shaded: what NEE and BSDF sampling both read.
@@ -149,9 +143,7 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, const Hit* found, 
   v.wo = -normalize(st.ray.d);
 
   // Nested dielectrics: a surface of a medium that is not in effect is passed straight by.
-  // A metallicRoughnessTexture can lower metallic below a factor of 1 (glTF's default factor,
-  // which the Khronos transmission samples keep): such a surface may transmit too.
-  v.refractive = m.transmission > 0 && (m.metallic < 1 || m.metallicRoughnessTexture.valid());
+  v.refractive = isRefractive(m);
   float eta = m.ior / st.media.currentIor();
   if (v.refractive) {
     MediumStack::Interface iface = st.media.interface(s.material, m, s.frontFace);
@@ -177,8 +169,7 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, const Hit* found, 
       MaterialEvaluator::placeAt(*new (&evaluated) ShadingMaterial(*plain), s);
     else
       new (&evaluated) ShadingMaterial(materials_.evaluate(hit, s));
-    // The clearcoat and sheen are on the outside of a transmissive solid: not seen from within.
-    if (v.refractive && !s.frontFace) evaluated.clearcoat = 0, evaluated.sheenColor = Color(0.0f);
+    hideOuterLayersInside(evaluated, v.refractive, s.frontFace);
   };
   if (!plain) evaluate();
   const ShadingMaterial& sm = plain ? *plain : evaluated;
@@ -228,7 +219,7 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, const Hit* found, 
   v.here.p = s.p;
   v.here.n = v.n;
   v.here.transmits = bsdf.transmits();
-  v.here.belowMatters = bsdf.transmits() || !(dot(v.wo, v.n) > 0) || sm.clearcoat > 0;
+  v.here.belowMatters = belowMatters(bsdf.transmits(), v.wo, v.n, sm);
   VertexDraws draws{sampler, {ahead.first, ahead.second}};
   wantsShadow = nextEvent(st, v, bsdf, draws, shadow);
   if (wantsShadow) ++stats.shadowRays;

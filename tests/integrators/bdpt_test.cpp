@@ -15,6 +15,7 @@
 #include "bench/sky_maps.h"
 #include "core/error.h"
 #include "integrators/bdpt_tracer.h"
+#include "tests/error_of.h"
 #include "tests/integrators/render_job.h"
 #include "tests/render_film.h"
 #include "tests/scene_builder.h"
@@ -352,6 +353,23 @@ TEST(Bdpt, RefusesWhatItCannotDoInOneLine) {
   job.integrator = "bdpt", job.spp = 4, job.size = 8;
   job.samples = SampleRange{0, 2};
   EXPECT_THROW(render(s, job), Error);  // the frame renderer's --sample-range refusal
+  // Adaptive sampling and time limits: every pixel takes --spp samples.
+  RenderSettings adaptive = settings("bdpt", 16, 4);
+  adaptive.set("noise-threshold", 0.05f);
+  EXPECT_NE(errorOf([&] { renderOf(s, adaptive, 8); }).find("--noise-threshold"),
+            std::string::npos);
+  // The light-path AOVs (the frame renderer's refusal).
+  try {
+    renderFilm(s, s.cameras.at(0), 8, 8, settings("bdpt", 1, 4), nullptr, {"diffuse_direct"});
+    ADD_FAILURE() << "--aov lightpaths was not refused";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("light-path"), std::string::npos) << e.what();
+  }
+  // As adaptive's inner integrator: it cannot trace single camera rays.
+  RenderSettings wrapped = settings("adaptive", 1, 4);
+  wrapped.set("inner", "bdpt");
+  EXPECT_NE(errorOf([&] { renderOf(s, wrapped, 8); }).find("single camera rays"),
+            std::string::npos);
   Scene lens = room(LightKind::kArea);
   lens.cameras[0].lensRadius = 0.1f, lens.cameras[0].focusDistance = 4;
   try {

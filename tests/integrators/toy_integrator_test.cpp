@@ -75,7 +75,7 @@ TEST(ToyIntegrator, OptionsAppearInTheHelpWithDefaultAndRange) {
   EXPECT_NE(help.find("toy: gain of the toy (default 1; 0..100)"), std::string::npos) << help;
   EXPECT_NE(help.find("--toy-verbose"), std::string::npos) << help;
   // The registry's names are the choices of --integrator.
-  EXPECT_NE(help.find("whitted, adaptive, path, path-scalar, path-wavefront, sppm, toy"),
+  EXPECT_NE(help.find("whitted, adaptive, path, path-scalar, path-wavefront, bdpt, sppm, toy"),
             std::string::npos)
       << help;
 }
