@@ -37,15 +37,16 @@ METHODS = {
 # Each scene: file, options, the method whose longest render is the reference, and how much
 # longer than the ladder's top that reference runs.
 SCENES = {
-    "caustic-spot": ("scenes/transport/caustic-spot.gltf", ["--max-depth", "5"], "bdpt", 8),
+    "caustic-spot": ("scenes/transport/caustic-spot.gltf",
+                     ["--max-depth", "5", "--resolution", "200x200"], "bdpt", 2),
     "caustic-glass": ("scenes/transport/caustic-glass.gltf",
-                      ["--max-depth", "8", "--resolution", "240x160"], "sppm", 8),
+                      ["--max-depth", "8", "--resolution", "96x64"], "sppm", 4),
     "small-opening": ("scenes/transport/small-opening.gltf",
-                      ["--max-depth", "8", "--resolution", "240x160"], "bdpt", 8),
+                      ["--max-depth", "8", "--resolution", "96x64"], "bdpt", 4),
     "glossy-pair": ("scenes/transport/glossy-pair.gltf",
-                    ["--max-depth", "8", "--resolution", "240x160"], "bdpt", 8),
+                    ["--max-depth", "8", "--resolution", "96x64"], "bdpt", 4),
     "helmets": ("scenes/bench/heavy-helmets.gltf",
-                ["--max-depth", "8", "--resolution", "240x160", "--allow-any-path"], "path", 8),
+                ["--max-depth", "8", "--resolution", "96x64", "--allow-any-path"], "path", 4),
 }
 
 
@@ -86,7 +87,8 @@ def errors(img, ref):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    ap.add_argument("--build", default=os.path.join(ROOT, "build"))
+    ap.add_argument("--build", default=os.path.join(ROOT, "build"),
+                    help="folder of tray-render (with its ocio/ beside it)")
     ap.add_argument("--out", default="/tmp/transport")
     ap.add_argument("--scenes", default=",".join(SCENES))
     ap.add_argument("--methods", default=",".join(METHODS))
