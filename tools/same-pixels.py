@@ -39,9 +39,14 @@ def sample_scenes():
     return sorted(p for p in set(found) if "/invalid/" not in p)
 
 
+# Every layer but the light paths, spelled out: what `--aov all` meant before it took in the
+# light paths (with path), so that builds from before and after compare.
+AOVS = "depth,normal,position,albedo,objectid,materialid,samples,motion,cryptomatte"
+
+
 def render(binary, integrator, scene, out, args):
     cmd = [binary, "--integrator", integrator, scene, "-o", out, "--float", "-q",
-           "--resolution", args.resolution, "--spp", str(args.spp), "--aov", "all",
+           "--resolution", args.resolution, "--spp", str(args.spp), "--aov", args.aov,
            "--threads", str(args.threads)] + args.extra
     r = subprocess.run(cmd, capture_output=True, text=True)
     return r.returncode, r.stderr.strip().splitlines()[-1:] if r.returncode else []
@@ -80,6 +85,7 @@ def main():
     p.add_argument("--spp", type=int, default=4)
     p.add_argument("--threads", type=int, default=0)
     p.add_argument("--scene", action="append", help="only these scenes (default: all)")
+    p.add_argument("--aov", default=AOVS, help="the layers compared (default: all but the light paths)")
     p.add_argument("extra", nargs="*", help="more tray-render options, after --")
     args = p.parse_args()
     args.b = args.b or args.a
