@@ -19,4 +19,14 @@ inline Film renderFilm(const Scene& scene, const CameraDesc& cam, int w, int h,
   return PreparedScene(scene, cam, {w, h}, accelerator).render(settings, options, stats);
 }
 
+/// The mean beauty of a film, every pixel alike.
+inline Color meanBeauty(const Film& f) {
+  double sum[3] = {0, 0, 0};
+  for (int y = 0; y < f.height(); ++y)
+    for (int x = 0; x < f.width(); ++x)
+      for (int c = 0; c < 3; ++c) sum[c] += f.pixel(Film::kBeauty, x, y)[c];
+  const double n = double(f.width()) * f.height();
+  return Color(float(sum[0] / n), float(sum[1] / n), float(sum[2] / n));
+}
+
 }  // namespace tray::test

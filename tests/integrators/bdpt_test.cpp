@@ -97,14 +97,7 @@ Film renderOf(const Scene& scene, const RenderSettings& s, int size = 32, int th
   return renderFilm(scene, scene.cameras.at(0), size, size, s, nullptr, {}, "embree", threads);
 }
 
-Color meanOf(const Film& f) {
-  double sum[3] = {0, 0, 0};
-  for (int y = 0; y < f.height(); ++y)
-    for (int x = 0; x < f.width(); ++x)
-      for (int c = 0; c < 3; ++c) sum[c] += f.pixel(Film::kBeauty, x, y)[c];
-  const double n = double(f.width()) * f.height();
-  return Color(float(sum[0] / n), float(sum[1] / n), float(sum[2] / n));
-}
+Color meanOf(const Film& f) { return meanBeauty(f); }
 
 void expectMeansClose(const Color& a, const Color& b, float tolerance, const std::string& what) {
   std::printf("%-32s bdpt/path %.4f %.4f %.4f\n", what.c_str(), a.x / b.x, a.y / b.y, a.z / b.z);

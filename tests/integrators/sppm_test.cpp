@@ -18,6 +18,7 @@
 #include "render/prepared_scene.h"
 #include "tests/error_of.h"
 #include "tests/light_scenes.h"
+#include "tests/render_film.h"
 #include "tests/scene_builder.h"
 
 namespace tray {
@@ -53,14 +54,7 @@ RenderSettings sppm(int iterations, int photons, int maxDepth = 8) {
   return s;
 }
 
-Color mean(const Film& f) {
-  double sum[3] = {0, 0, 0};
-  for (int y = 0; y < f.height(); ++y)
-    for (int x = 0; x < f.width(); ++x)
-      for (int c = 0; c < 3; ++c) sum[c] += f.pixel(Film::kBeauty, x, y)[c];
-  const double n = double(f.width()) * f.height();
-  return Color(float(sum[0] / n), float(sum[1] / n), float(sum[2] / n));
-}
+Color mean(const Film& f) { return meanBeauty(f); }
 
 /// The inside of a closed box [-1, 1]^3 whose faces all emit Le (both sides) and reflect
 /// albedo a (Lambert), the camera at its centre.
