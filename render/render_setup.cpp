@@ -199,6 +199,11 @@ ImageSize resolveImageSize(const std::string& text, const CameraDesc& camera) {
   ImageSize s;
   if (text.empty()) {
     float aspect = camera.aspectRatio > 0 ? camera.aspectRatio : 4.0f / 3.0f;
+    // An orthographic camera's extents are its aspect (glTF 2.0 §3.10.3: xmag / ymag): a
+    // square view renders square, not at 4:3 with the sides widened.
+    if (camera.type == CameraDesc::Type::kOrthographic && !(camera.aspectRatio > 0) &&
+        camera.xmag > 0 && camera.ymag > 0 && std::isfinite(camera.xmag / camera.ymag))
+      aspect = std::clamp(camera.xmag / camera.ymag, 1.0f / 16384, 16384.0f);
     s.height = std::max(1, int(std::lround(s.width / aspect)));
     return s;
   }

@@ -179,3 +179,21 @@ TEST(DefaultLighting, TheKeyLightStaysWhereItCanReachTheScene) {
 
 }  // namespace
 }  // namespace tray
+
+namespace tray {
+namespace {
+
+TEST(ImageSize, AnOrthographicCameraGivesItsExtentsAspect) {
+  CameraDesc c;
+  c.type = CameraDesc::Type::kOrthographic;
+  c.xmag = 2.5f, c.ymag = 2.5f;
+  EXPECT_EQ(resolveImageSize("", c).height, 640);  // square extents: a square image
+  c.xmag = 4.0f, c.ymag = 1.0f;
+  EXPECT_EQ(resolveImageSize("", c).height, 160);
+  c.type = CameraDesc::Type::kPerspective;  // without aspectRatio: 4:3, as before
+  EXPECT_EQ(resolveImageSize("", c).height, 480);
+  EXPECT_EQ(resolveImageSize("30x20", c).height, 20);
+}
+
+}  // namespace
+}  // namespace tray
