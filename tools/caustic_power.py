@@ -138,7 +138,7 @@ def read_red(path):
     inp.close()
     if px.shape[0] != S.IMAGE_SIZE or px.shape[1] != S.IMAGE_SIZE:
         sys.exit(f"{path}: {px.shape[1]}x{px.shape[0]}, expected "
-                 f"{S.IMAGE_SIZE}x{S.IMAGE_SIZE} (render without --resolution)")
+                 f"{S.IMAGE_SIZE}x{S.IMAGE_SIZE} (render with --resolution {S.IMAGE_SIZE}x{S.IMAGE_SIZE})")
     return px[:, :, 0].astype(np.float64)
 
 
