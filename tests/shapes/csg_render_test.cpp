@@ -8,6 +8,7 @@
 #include "render/renderer.h"
 #include "shapes/csg.h"
 #include "shapes/mesh_solid.h"
+#include "tests/double_vec3.h"
 #include "tests/scene_builder.h"
 #include "tests/shapes/solid_meshes.h"
 
@@ -38,24 +39,7 @@ Color pixel(const Film& f, int x, int y) {
 // --- A biconvex lens: intersection of two spheres ------------------------------------------
 
 /// Double-precision vector for the independent reference.
-struct D3 {
-  double x, y, z;
-};
-D3 operator+(D3 a, D3 b) {
-  return {a.x + b.x, a.y + b.y, a.z + b.z};
-}
-D3 operator-(D3 a, D3 b) {
-  return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-D3 operator*(double s, D3 a) {
-  return {s * a.x, s * a.y, s * a.z};
-}
-double dot(D3 a, D3 b) {
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-D3 unit(D3 a) {
-  return (1.0 / std::sqrt(dot(a, a))) * a;
-}
+using D3 = DVec3;
 
 /// Both roots of |o + t d - c| = 1 (d unit); false if the line misses.
 bool sphereRoots(D3 o, D3 d, D3 c, double& t0, double& t1) {
@@ -205,9 +189,9 @@ std::shared_ptr<Csg> lPrismCsg(Variant v) {
     case Variant::kMeshChild:  // the subtracted box as a closed 12-triangle mesh
       return std::make_shared<Csg>(
           CsgOp::kDifference,
-          std::vector<CsgChild>{
-              child(box(Vec3(-1), Vec3(1))),
-              child(std::make_shared<MeshSolid>(boxMesh({0, 0, -2}, {2, 2, 2}), acceleratorFactory("embree")))});
+          std::vector<CsgChild>{child(box(Vec3(-1), Vec3(1))),
+                                child(std::make_shared<MeshSolid>(boxMesh({0, 0, -2}, {2, 2, 2}),
+                                                                  acceleratorFactory("embree")))});
   }
   return nullptr;
 }

@@ -19,6 +19,7 @@
 #include "shapes/csg.h"
 #include "shapes/quadric.h"
 #include "shapes/torus.h"
+#include "tests/double_vec3.h"
 #include "tests/scene_builder.h"
 
 namespace tray {
@@ -28,24 +29,7 @@ using namespace tray::test;
 
 constexpr double kEps = 1e-5, kMinStep = 1e-6;
 
-struct P3 {
-  double x, y, z;
-};
-P3 operator+(P3 a, P3 b) {
-  return {a.x + b.x, a.y + b.y, a.z + b.z};
-}
-P3 operator-(P3 a, P3 b) {
-  return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-P3 operator*(double s, P3 a) {
-  return {s * a.x, s * a.y, s * a.z};
-}
-double dot(P3 a, P3 b) {
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-double len(P3 a) {
-  return std::sqrt(dot(a, a));
-}
+using P3 = DVec3;
 
 // Exact signed distances (object space; placements below are translations only).
 double torusSd(P3 p, double R, double r) {

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "shapes/torus.h"
+#include "tests/double_vec3.h"
 #include "tests/shapes/torus_reference.h"
 
 namespace tray {
@@ -29,27 +30,7 @@ struct Rng {
   double range(double a, double b) { return a + (b - a) * u(); }
 };
 
-struct V {
-  double x, y, z;
-};
-V operator+(V a, V b) {
-  return {a.x + b.x, a.y + b.y, a.z + b.z};
-}
-V operator-(V a, V b) {
-  return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-V operator*(double s, V a) {
-  return {s * a.x, s * a.y, s * a.z};
-}
-double dot(V a, V b) {
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-V cross(V a, V b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-V unit(V a) {
-  return (1.0 / std::sqrt(dot(a, a))) * a;
-}
+using V = test::DVec3;
 Vec3 f3(V a) {
   return {float(a.x), float(a.y), float(a.z)};
 }
