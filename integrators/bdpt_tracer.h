@@ -102,7 +102,6 @@ class BdptTracer {
   LightSet lights_;
   EmissionSampler emission_;
   MaterialEvaluator materials_;
-  static constexpr int kMaxNullCrossings = 64;  ///< as path's
 };
 
 }  // namespace tray

@@ -264,8 +264,6 @@ class PathEstimator {
   static constexpr int kMaxNanReports = 10;
   /// Mitsuba's default: Russian roulette from the fifth segment on.
   static constexpr int kRouletteDepth = 5;
-  /// Passes through false interfaces of nested dielectrics before giving up on a path.
-  static constexpr int kMaxNullCrossings = 64;
   const RenderContext& ctx_;
   int maxDepth_;
   float clampIndirect_;

@@ -7,6 +7,9 @@
 
 namespace tray {
 
+/// False interfaces of nested dielectrics a path passes through before it is given up.
+inline constexpr int kMaxNullCrossings = 64;
+
 /// Light crossing the surface changes the medium (nested dielectrics, MediumStack): it
 /// transmits, and is not all metal. A metallicRoughnessTexture can lower metallic below a
 /// factor of 1 (glTF's default factor, which the Khronos transmission samples keep): such a

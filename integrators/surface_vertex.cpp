@@ -1,5 +1,7 @@
 #include "integrators/surface_vertex.h"
 
+#include "integrators/surface_rules.h"
+
 namespace tray {
 
 SurfaceVertices::SurfaceVertices(const RenderContext& ctx, int samplesPerPixel)
@@ -13,8 +15,7 @@ VertexKind SurfaceVertices::at(Ray& ray, const Hit& hit, MediumStack& media, int
   const Material& m = *v.m;
   v.wo = -normalize(ray.d);
   // Nested dielectrics (Schmidt & Budge 2002): a surface of a medium not in effect is passed.
-  // A metallicRoughnessTexture may lower metallic below 1: such a surface may transmit too.
-  v.refractive = m.transmission > 0 && (m.metallic < 1 || m.metallicRoughnessTexture.valid());
+  v.refractive = isRefractive(m);
   v.eta = m.ior / media.currentIor();
   if (v.refractive) {
     const MediumStack::Interface iface = media.interface(s.material, m, s.frontFace);
@@ -27,8 +28,7 @@ VertexKind SurfaceVertices::at(Ray& ray, const Hit& hit, MediumStack& media, int
     v.eta = iface.etaT / iface.etaI;
   }
   v.sm = materials_.evaluate(hit, s);
-  // The clearcoat and sheen are on the outside of a transmissive solid: not seen from within.
-  if (v.refractive && !s.frontFace) v.sm.clearcoat = 0, v.sm.sheenColor = Color(0.0f);
+  hideOuterLayersInside(v.sm, v.refractive, s.frontFace);
   v.n = s.frontFace ? v.sm.n : -v.sm.n;
   return VertexKind::kSurface;
 }

@@ -42,8 +42,6 @@ class SurfaceVertices {
   static void transmit(const SurfaceVertex& v, MediumStack& media) {
     if (v.refractive) media.cross(v.s.material, *v.m, v.s.frontFace);
   }
-  /// Passes through false interfaces before giving up on a path (as the path tracer).
-  static constexpr int kMaxNullCrossings = 64;
 
  private:
   const Scene& scene_;
