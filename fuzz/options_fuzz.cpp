@@ -44,7 +44,7 @@ void fuzzOptions(const char* text, size_t size) {
     app.parse(int(argv.size()), argv.data());
     tray::validateOptions(settings);
     const tray::RenderSettings all = tray::withIntegratorOptions(settings);
-    tray::jobSignature(all, {"scene.gltf", -1, -1, 64, 48, "embree", ""});
+    tray::jobSignature(all, {"scene.gltf", -1, -1, 64, 48, "embree", "", "", ""});
     tray::ImageOutputOptions out;
     tray::addOptionMetadata(all, out);
   } catch (const CLI::ParseError&) {
