@@ -56,6 +56,10 @@ const std::vector<OptionSpec>& renderOptions() {
                   "environment rotation in degrees about +Y (overrides TRAY_environment)"),
       floatOption("env-intensity", 1, 0, 1e30f,
                   "environment radiance scale (overrides TRAY_environment)"),
+      // Read by the glTF loader (gltf/gltf_variants.h); the bad value's message lists them.
+      choiceOption("variant", "none", {},
+                   "KHR_materials_variants: the material variant to render, by name or index; "
+                   "none: each primitive's own material"),
   };
   static const std::vector<OptionSpec> all = withAnimationOptions(specs);  // --time, --fps, ...
   return all;

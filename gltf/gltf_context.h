@@ -24,6 +24,7 @@ struct GltfContext {
   std::string path;  ///< as the caller named the file; every message starts with it
   LoadReport* report = nullptr;
   bool ignoreRequiredExtensions = false;  ///< LoadOptions::ignoreRequiredExtensions
+  int variant = -1;  ///< the KHR_materials_variants variant chosen by --variant (-1: none)
 
   /// Throws tray::Error("PATH: problem") on one line.
   [[noreturn]] void fail(const std::string& problem) const;

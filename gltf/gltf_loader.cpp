@@ -4,6 +4,7 @@
 #include <new>
 
 #include "gltf/gltf_animation.h"
+#include "gltf/gltf_variants.h"
 #include "gltf/gltf_buffer_plan.h"
 #include "gltf/gltf_cameras_lights.h"
 #include "gltf/gltf_container.h"
@@ -141,6 +142,9 @@ Scene convert(const tinygltf::Model& model, const std::string& path, const LoadO
               MemoryEstimate& memory) {
   GltfContext ctx{model, path, report, options.ignoreRequiredExtensions};
   validateDocument(ctx);
+  const std::vector<std::string> variants = readVariantNames(ctx);
+  validateVariantMappings(ctx, variants.size());
+  ctx.variant = chooseVariant(ctx, variants, options.variant);
   warnUnsupported(ctx);
   // Cameras, lights, nodes and environments converted once, placed or not.
   ObjectTable objects = convertObjects(ctx);

@@ -21,6 +21,8 @@ struct LoadOptions {
   /// Which animation plays at `time`: "first" (the file's first, as glTF viewers play it),
   /// "all" (together), an index or a name.
   std::string animation = "first";
+  /// KHR_materials_variants: "none" (each primitive's own material), a variant's name or index.
+  std::string variant = "none";
   /// Motion blur (docs/scene-format.md, "Motion blur"), with a `time` only: the shutter in
   /// seconds and the number of times (>= 2, evenly spaced over it) the animation is posed at.
   /// Moving objects get Primitive::motion, deforming meshes positionSteps; 0 steps: none.

@@ -5,6 +5,7 @@
 #include <functional>
 
 #include "gltf/gltf_accessors.h"
+#include "gltf/gltf_variants.h"
 
 namespace tray {
 
@@ -177,7 +178,8 @@ std::vector<TriangleMesh> convertMesh(const GltfContext& ctx, int index, int def
     // Appended piecewise: GCC 12 warns falsely (-Wrestrict) about "literal" + std::string&&.
     mesh.name = g.name.empty() ? nameOf("mesh", index) : g.name;
     if (g.primitives.size() > 1) mesh.name.append("/").append(std::to_string(i));
-    mesh.material = p.material >= 0 ? p.material : defaultMaterial;
+    const int material = variantMaterial(p, ctx.variant);  // --variant, else p.material
+    mesh.material = material >= 0 ? material : defaultMaterial;
     std::string where = nameOf("mesh", index, g.name) + " primitive " + std::to_string(i);
     std::function<void(TriangleMesh&)> hook;
     if (deform) hook = [&deform, i](TriangleMesh& m) { deform(i, m); };

@@ -147,6 +147,7 @@ LoadOptions loadOptionsOf(const RenderJob& job) {
   load.allowAnyPath = job.scene.allowAnyPath;
   load.time = animationTime(s);
   load.animation = s.getString("animation");
+  load.variant = s.getString("variant");
   if (const auto shutter = shutterOf(s); shutter && load.time) {
     const float fps = s.getFloat("fps");
     load.shutterOpen = shutter->at(*load.time, fps, 0.0f);
