@@ -20,6 +20,7 @@
 #include "core/animation_time.h"
 #include "core/error.h"
 #include "integrators/registry.h"
+#include "render/auto_framing.h"
 #include "render/farm.h"
 #include "render/render_job.h"
 
@@ -121,6 +122,7 @@ int runFrames(const CliOptions& o, tray::RenderJob job) {
   const tray::GltfDocument document(job.scene.path, tray::loadOptionsOf(job), &parseReport);
   for (const auto& w : parseReport.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   job.scene.contentHash = tray::contentHashOf(job);  // hashed once for every frame's signature
+  job.framingBounds = tray::sweptFramingBounds(job, document);  // one framing for every frame
   for (int64_t f = range.first; f <= range.last; ++f) {
     tray::RenderJob frame = frameJob(f);
     frame.settings.set("time", tray::frameTime(f, fps));

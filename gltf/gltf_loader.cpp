@@ -1,10 +1,10 @@
 #include "gltf/gltf_loader.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <new>
 
 #include "gltf/gltf_animation.h"
-#include "gltf/gltf_variants.h"
 #include "gltf/gltf_buffer_plan.h"
 #include "gltf/gltf_cameras_lights.h"
 #include "gltf/gltf_container.h"
@@ -20,6 +20,7 @@
 #include "gltf/gltf_textures.h"
 #include "gltf/gltf_unsupported.h"
 #include "gltf/gltf_validate.h"
+#include "gltf/gltf_variants.h"
 
 // The loader in stages, each in its own file:
 //   1. read the file (gltf_file_access) and check its envelope (gltf_container);
@@ -196,8 +197,10 @@ Scene convert(const tinygltf::Model& model, const std::string& path, const LoadO
   for (const auto& m : scene.meshes) defaultUsed = defaultUsed || m.material == defaultMaterial;
   for (const auto& p : scene.primitives) defaultUsed = defaultUsed || p.material == defaultMaterial;
   if (defaultUsed) scene.materials.push_back(defaultGltfMaterial());
-  bindTextures(ctx, images, scene, memory, options.maxMemoryBytes);
-  loadEnvironmentImage(ctx, images, policy, scene, options.maxMemoryBytes);
+  if (!options.geometryOnly) {
+    bindTextures(ctx, images, scene, memory, options.maxMemoryBytes);
+    loadEnvironmentImage(ctx, images, policy, scene, options.maxMemoryBytes);
+  }
   scene.textureCacheMB = options.textureCacheMB;
   if (report) report->memory = memory;
   scene.finalize();
@@ -236,6 +239,26 @@ Scene GltfDocument::scene(const LoadOptions& options, LoadReport* report) const 
   MemoryEstimate memory = parsed_->memory;  // each conversion counts its own textures
   return convert(parsed_->model, parsed_->path, options, report, parsed_->images, parsed_->policy,
                  memory);
+}
+
+std::optional<std::pair<float, float>> GltfDocument::animationRange(
+    const LoadOptions& options) const {
+  const GltfContext ctx{parsed_->model, parsed_->path, nullptr, options.ignoreRequiredExtensions};
+  const std::vector<Animation> animations = readAnimations(ctx);
+  if (animations.empty()) return std::nullopt;
+  const int which = chooseAnimation(ctx, animations, options.animation);
+  std::optional<std::pair<float, float>> range;
+  for (size_t a = 0; a < animations.size(); ++a) {
+    if (which >= 0 && size_t(which) != a) continue;
+    for (const AnimationChannel& ch : animations[a].channels) {
+      if (ch.keys.times.empty()) continue;
+      const float first = ch.keys.times.front(), last = ch.keys.times.back();
+      if (!range) range.emplace(first, last);
+      range->first = std::min(range->first, first);
+      range->second = std::max(range->second, last);
+    }
+  }
+  return range;
 }
 
 Scene loadGltfFromMemory(const unsigned char* data, size_t size, const std::string& name,

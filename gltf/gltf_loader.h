@@ -40,6 +40,9 @@ struct LoadOptions {
   /// Render even if extensionsRequired names an extension TRay lacks (a warning instead of the
   /// error): the picture may then be wrong, e.g. missing geometry or materials.
   bool ignoreRequiredExtensions = false;
+  /// Geometry, cameras and lights only: no texture or environment image is bound (for bounds,
+  /// e.g. the automatic camera's sweep over an animation, render/auto_framing.h).
+  bool geometryOnly = false;
 };
 
 struct LoadReport {
@@ -67,6 +70,9 @@ class GltfDocument {
   GltfDocument(const GltfDocument&) = delete;
   GltfDocument& operator=(const GltfDocument&) = delete;
   Scene scene(const LoadOptions& options, LoadReport* report = nullptr) const;
+  /// The first and last keyframe times of the animation options.animation names (of all of
+  /// them for "all"); none when the file has no animation.
+  std::optional<std::pair<float, float>> animationRange(const LoadOptions& options) const;
 
  private:
   struct Parsed;

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <optional>
 
 #include "accel/registry.h"
 #include "io/environment_map.h"
 #include "io/memory_estimate.h"
+#include "render/auto_framing.h"
 #include "render/ray_range.h"
 
 namespace tray {
@@ -25,6 +27,24 @@ std::unique_ptr<Scene> loadScene(const RenderJob& job, const LoadOptions& loadOp
     report.memory.environment = environmentMapBytes(map->width, map->height);
   for (const auto& w : report.warnings) warn(events, w);
   return scene;
+}
+
+/// The placed camera, else one framing the scene: at a --time of an animated file, its bounds
+/// over the whole animation (render/auto_framing.h), so every frame is framed alike.
+CameraDesc jobCamera(const RenderJob& job, const Scene& scene, int placedCamera,
+                     const LoadOptions& loadOptions, const GltfDocument* document) {
+  if (placedCamera >= 0) return scene.cameras[size_t(placedCamera)];
+  std::optional<Bounds3> swept;
+  if (loadOptions.time) {
+    swept = job.framingBounds;
+    if (!swept) {
+      std::optional<GltfDocument> own;  // a still at a --time: the file is read once more
+      if (!document) document = &own.emplace(job.scene.path, loadOptions);
+      swept = sweptFramingBounds(job, *document);
+    }
+  }
+  // The sweep alone, not widened by this frame's bounds: every frame gets the same camera.
+  return Camera::framing(swept ? *swept : scene.bounds(), 4.0f / 3.0f);
 }
 
 /// Adds TRay's default lighting when the scene is unlit (and --no-default-light is not set);
@@ -79,7 +99,8 @@ PreparedScene prepareJobScene(const RenderJob& job, const RenderJobEvents& event
   std::unique_ptr<Scene> scene = loadScene(job, loadOptions, document, report, events);
 
   placedCamera = findCamera(*scene, job.camera);
-  CameraDesc cameraDesc = chooseCamera(*scene, job.camera);
+  const CameraDesc chosen = jobCamera(job, *scene, placedCamera, loadOptions, document);
+  CameraDesc cameraDesc = chosen;
   applyLensOptions(cameraDesc, job.settings);
   checkRayRange(job.scene.path, *scene, cameraDesc);  // before anything is built or traced
   const bool defaultLight = lightUnlitScene(job, *scene, cameraDesc, events);
@@ -94,7 +115,7 @@ PreparedScene prepareJobScene(const RenderJob& job, const RenderJobEvents& event
                      ": the camera is enclosed (a sky box?) and the default key light cannot get "
                      "in: a headlight at the camera replaces it");
   if (kept) {
-    kept->camera = chooseCamera(*scene, job.camera);
+    kept->camera = chosen;
     kept->placedCamera = placedCamera;
     kept->headlight = defaultLight;
     kept->scene = std::move(scene);

@@ -66,6 +66,9 @@ struct RenderJob {
   RenderSettings settings;  ///< the declared options: integrator, spp, env, lens, time ...
   JobOutputs outputs;
   JobPart part;
+  /// --frames: the automatic camera's bounds, swept once for every frame
+  /// (render/auto_framing.h); none: each job sweeps its own when it has a --time.
+  std::optional<Bounds3> framingBounds;
 };
 
 /// What the job tells its caller while it runs. Every member may be left empty.
