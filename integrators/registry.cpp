@@ -26,15 +26,15 @@ std::vector<IntegratorEntry>& table() {
       {"path",
        "path tracing: MIS next-event estimation, GGX/dielectric BSDFs, area lights; each "
        "bounce of a tile's samples traced as one batch",
-       makePathWavefront, pathOptions(), ""},
+       makePathWavefront, pathOptions(), "", true},
       {"path-scalar", "path's estimator one path at a time (the reference: the same pixels)",
-       makePath, pathOptions(), ""},
+       makePath, pathOptions(), "", true},
       {"path-wavefront", "another name for path (its wavefront driver)", makePathWavefront,
-       pathOptions(), ""},
+       pathOptions(), "", true},
       {"bdpt",
        "bidirectional path tracing: camera and light subpaths, every connection MIS-weighted; "
        "light tracing splats (caustics from point and spot lights)",
-       makeBdpt, bdptOptions(), ""},
+       makeBdpt, bdptOptions(), "", true},
       {"sppm",
        "stochastic progressive photon mapping: caustics and light through glass; consistent, "
        "iterations = --spp, --photons per iteration (docs/sppm.md)",
@@ -61,6 +61,17 @@ const IntegratorEntry& findIntegrator(const std::string& name) {
   std::string known;
   for (const auto& e : integratorRegistry()) known += (known.empty() ? "" : ", ") + e.name;
   throw Error("unknown integrator '" + name + "' (known: " + known + ")");
+}
+
+bool unlitSurfacesLight(const RenderSettings& settings) {
+  const RenderSettings bound = withIntegratorOptions(settings);
+  std::string name = bound.getString("integrator");
+  for (int depth = 0; depth < 8; ++depth) {  // a wrapper's inner integrator decides
+    const IntegratorEntry& e = findIntegrator(name);
+    if (e.innerOption.empty()) return e.unlitSurfacesLight;
+    name = bound.getString(e.innerOption);
+  }
+  return false;
 }
 
 RenderSettings withIntegratorOptions(const RenderSettings& settings, const std::string& name) {

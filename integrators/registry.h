@@ -23,6 +23,10 @@ struct IntegratorEntry {
   /// A wrapping integrator: the option that names the integrator it wraps (adaptive: "inner"),
   /// whose options then apply too. Empty for the others.
   std::string innerOption;
+  /// Unlit surfaces (KHR_materials_unlit) light the scene: paths that bounce off a surface and
+  /// find one carry its colour, as from an emitter. Then an unlit sky box around the camera is
+  /// the scene's light (render/render_setup.h useUnlitEnclosureAsLight).
+  bool unlitSurfacesLight = false;
 };
 
 /// The registry: one line per built-in integrator in integrators/registry.cpp, then any added
@@ -34,6 +38,10 @@ const std::vector<IntegratorEntry>& integratorRegistry();
 void registerIntegrator(IntegratorEntry entry);
 /// The entry named `name`; throws tray::Error naming the choices for an unknown name.
 const IntegratorEntry& findIntegrator(const std::string& name);
+
+/// Whether the integrator `settings` names (through the ones it wraps) lights the scene from
+/// unlit surfaces (IntegratorEntry::unlitSurfacesLight).
+bool unlitSurfacesLight(const RenderSettings& settings);
 
 /// `settings` with the options of its integrator (settings "integrator", or `name` if given)
 /// and of the integrators it wraps declared: exactly the options that render reads.

@@ -5,10 +5,12 @@
 #include <optional>
 
 #include "accel/registry.h"
+#include "integrators/registry.h"
 #include "io/environment_map.h"
 #include "io/memory_estimate.h"
 #include "render/auto_framing.h"
 #include "render/ray_range.h"
+#include "render/render_setup.h"
 
 namespace tray {
 namespace {
@@ -49,15 +51,29 @@ CameraDesc jobCamera(const RenderJob& job, const Scene& scene, int placedCamera,
 
 /// Adds TRay's default lighting when the scene is unlit (and --no-default-light is not set);
 /// returns whether it did.
-bool lightUnlitScene(const RenderJob& job, Scene& scene, const CameraDesc& camera,
-                     const RenderJobEvents& events) {
+bool lightUnlitScene(const RenderJob& job, Scene& scene, const CameraDesc& camera) {
   // --no-default-light: nothing added; an unlit asset renders black (or lit by weak emitters).
   if (job.settings.getBool("no-default-light")) return false;
-  if (!addDefaultLightingIfUnlit(scene, camera)) return false;
+  return addDefaultLightingIfUnlit(scene, camera);
+}
+
+/// Once the accelerator exists: an unlit sky box around the camera takes the default light's
+/// place, or a headlight replaces the key light that an enclosure keeps out; each said once.
+void placeDefaultLight(const RenderJob& job, Scene& scene, const CameraDesc& camera,
+                       const Accelerator& accel, const RenderJobEvents& events) {
+  if (unlitSurfacesLight(job.settings) && useUnlitEnclosureAsLight(scene, camera, accel)) {
+    warn(events, job.scene.path +
+                     " has no lights of meaningful power, and the camera is inside unlit "
+                     "geometry (a sky box or dome): it lights the scene as the sky it stands for");
+    return;
+  }
   warn(events, job.scene.path +
                    " has no lights of meaningful power: using TRay's default headlight and a 0.1 "
                    "environment (docs/scene-format.md; --no-default-light turns it off)");
-  return true;
+  if (useHeadlightIfEnclosed(scene, camera, accel))
+    warn(events, job.scene.path +
+                     ": the camera is enclosed (a sky box?) and the default key light cannot get "
+                     "in: a headlight at the camera replaces it");
 }
 
 /// Refuses a scene whose accelerator would not fit, before it is built: the loader's estimate
@@ -103,17 +119,21 @@ PreparedScene prepareJobScene(const RenderJob& job, const RenderJobEvents& event
   CameraDesc cameraDesc = chosen;
   applyLensOptions(cameraDesc, job.settings);
   checkRayRange(job.scene.path, *scene, cameraDesc);  // before anything is built or traced
-  const bool defaultLight = lightUnlitScene(job, *scene, cameraDesc, events);
+  const bool defaultLight = lightUnlitScene(job, *scene, cameraDesc);
   const ImageSize size = resolveImageSize(job.resolution, cameraDesc);
   auto camera = Camera::create(cameraDesc, size.width, size.height);
   checkAcceleratorMemory(job, *scene, report.memory, loadOptions.maxMemoryBytes);
 
   enterPhase(events, "building the accelerator");
   auto accel = makeAccelerator(job.accelerator, *scene);
-  if (defaultLight && useHeadlightIfEnclosed(*scene, cameraDesc, *accel))
+  if (defaultLight)
+    placeDefaultLight(job, *scene, cameraDesc, *accel, events);
+  else if (scene->environment.map && cameraEnclosed(*scene, cameraDesc, *accel)) {
     warn(events, job.scene.path +
-                     ": the camera is enclosed (a sky box?) and the default key light cannot get "
-                     "in: a headlight at the camera replaces it");
+                     ": the camera is enclosed (a sky box or a room): the environment map "
+                     "lights only what its light reaches through openings; nothing of it is "
+                     "seen");
+  }
   if (kept) {
     kept->camera = chosen;
     kept->placedCamera = placedCamera;

@@ -195,6 +195,59 @@ bool useHeadlightIfEnclosed(Scene& scene, const CameraDesc& camera, const Accele
   return true;
 }
 
+namespace {
+
+const Vec3 kAxes[] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+
+/// The material a hit shows (a CSG hit's own, else its primitive's or mesh's).
+const Material& hitMaterial(const Scene& scene, const Hit& hit) {
+  if (hit.material >= 0) return scene.material(hit.material);
+  const Primitive& p = scene.primitives[hit.primitive];
+  return scene.material(p.kind == Primitive::Kind::kMesh ? scene.meshes[p.mesh].material
+                                                         : p.material);
+}
+
+}  // namespace
+
+bool cameraEnclosed(const Scene& scene, const CameraDesc& camera, const Accelerator& accel) {
+  (void)scene;
+  const Vec3 eye = camera.toWorld.point(Vec3(0.0f));
+  for (const Vec3& d : kAxes) {
+    Hit hit;
+    if (!accel.intersect(Ray{eye, d}, hit)) return false;
+  }
+  return true;
+}
+
+bool useUnlitEnclosureAsLight(Scene& scene, const CameraDesc& camera, const Accelerator& accel) {
+  if (scene.lights.empty() || scene.lights.back().type != PunctualLightDesc::Type::kDirectional)
+    return false;
+  const Vec3 eye = camera.toWorld.point(Vec3(0.0f));
+  std::vector<Vec3> directions(std::begin(kAxes), std::end(kAxes));
+  directions.push_back(-scene.lights.back().direction);
+  for (const Vec3& d : directions) {
+    // Through what stands in the way (the asset itself), to what lies behind everything.
+    Ray ray{eye, d};
+    Hit hit;
+    const Material* last = nullptr;
+    for (int crossed = 0; crossed < 16 && accel.intersect(ray, hit); ++crossed) {
+      last = &hitMaterial(scene, hit);
+      if (last->unlit) break;
+      ray.tmin = hit.t * (1.0f + 1e-4f) + 1e-4f;
+      hit = Hit{};
+    }
+    // Escaped, or ended on a lit surface: no sky that way. A black unlit surface stands for
+    // none either (a texture counts as colour).
+    if (!last || !last->unlit ||
+        (maxComponent(last->baseColor) <= 0.0f && !last->baseColorTexture.valid()))
+      return false;
+  }
+  scene.lights.pop_back();  // the default key light, and the default 0.1 environment
+  scene.environment.ambient = Color(0.0f);
+  scene.environment.background = Color(0.0f);
+  return true;
+}
+
 ImageSize resolveImageSize(const std::string& text, const CameraDesc& camera) {
   ImageSize s;
   if (text.empty()) {

@@ -64,6 +64,18 @@ bool addDefaultLightingIfUnlit(Scene& scene, const CameraDesc& camera);
 /// whether it replaced the light.
 bool useHeadlightIfEnclosed(Scene& scene, const CameraDesc& camera, const Accelerator& accel);
 
+/// After addDefaultLightingIfUnlit, for an integrator that lights from unlit surfaces
+/// (integrators/registry.h unlitSurfacesLight): when every ray of useHeadlightIfEnclosed's test
+/// meets a KHR_materials_unlit surface of some colour, the camera is inside geometry the author
+/// made to stand for the sky (an unlit textured sky box or dome). That geometry is then the
+/// scene's light, as it was the author's: the default key light and 0.1 environment are taken
+/// out again, and paths that find the sky carry its colour. Returns whether it did.
+bool useUnlitEnclosureAsLight(Scene& scene, const CameraDesc& camera, const Accelerator& accel);
+
+/// Whether rays from the camera along the six axes all meet geometry: an environment map
+/// (--env, TRAY_environment) then lights nothing the camera sees.
+bool cameraEnclosed(const Scene& scene, const CameraDesc& camera, const Accelerator& accel);
+
 /// Parses "WxH"; empty: 640 wide with the height from the camera's aspect ratio (4:3 if unset).
 ImageSize resolveImageSize(const std::string& text, const CameraDesc& camera);
 

@@ -4,7 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <optional>
+
 #include "accel/registry.h"
+#include "integrators/registry.h"
 #include "tests/render_film.h"
 #include "tests/scene_builder.h"
 
@@ -125,8 +128,9 @@ TEST(DefaultLighting, UnusedEmissiveMaterialsDoNotCount) {
   EXPECT_TRUE(addDefaultLightingIfUnlit(s, lookAt(Vec3(0, 0, 5), Vec3(0.0f))));
 }
 
-/// The unlit sphere inside a closed 40 x 40 x 40 box of diffuse triangles: a sky box.
-Scene sphereInSkyBox() {
+/// The unlit sphere inside a closed 40 x 40 x 40 box of diffuse triangles: a sky box. With
+/// `sky`, the box is KHR_materials_unlit of that colour, as sky boxes in assets are.
+Scene sphereInSkyBox(std::optional<Color> sky = std::nullopt) {
   Scene s = unlitSphereScene();
   TriangleMesh box;
   const float h = 20;
@@ -135,7 +139,12 @@ Scene sphereInSkyBox() {
   // Two triangles per face; the winding does not matter to occlusion.
   box.indices = {0, 1, 3, 0, 3, 2, 4, 6, 7, 4, 7, 5, 0, 4, 5, 0, 5, 1,
                  2, 3, 7, 2, 7, 6, 0, 2, 6, 0, 6, 4, 1, 5, 7, 1, 7, 3};
-  box.material = addMaterial(s, diffuse(Color(0.5f)));
+  Material boxMaterial = diffuse(Color(0.5f));
+  if (sky) {
+    boxMaterial.unlit = true;
+    boxMaterial.baseColor = *sky;
+  }
+  box.material = addMaterial(s, boxMaterial);
   addMeshInstance(s, addMesh(s, box), Mat4::identity());
   s.finalize();
   return s;
@@ -165,6 +174,50 @@ TEST(DefaultLighting, AHeadlightReplacesTheKeyLightWhenASkyBoxEnclosesTheCamera)
   // Lambertian albedo 0.5 facing the light sends 0.5 / pi x 2.5 back.
   const float expected = 0.5f / kPi * EmissionSummary::kDefaultIrradiance;
   EXPECT_NEAR(centrePixel(s, cam), expected, 0.02f * expected);
+}
+
+TEST(DefaultLighting, AnUnlitSkyBoxLightsTheSceneInsteadOfTheDefaultLight) {
+  // Before: the headlight replaced the key light and added to the sky's own light (assets
+  // came out blown out). Now the unlit box is the light, as the sky it stands for.
+  const Color sky(0.8f, 0.6f, 0.4f);
+  Scene s = sphereInSkyBox(sky);
+  const CameraDesc cam = lookAt(Vec3(0, 0, 5), Vec3(0.0f));
+  ASSERT_TRUE(addDefaultLightingIfUnlit(s, cam));
+  auto accel = makeAccelerator("embree", s);
+  ASSERT_TRUE(useUnlitEnclosureAsLight(s, cam, *accel));
+  EXPECT_TRUE(s.lights.empty());
+  EXPECT_EQ(s.environment.ambient.x, 0.0f);
+  // A convex Lambertian of albedo 0.5 inside a uniform sky of radiance c sends 0.5 c back
+  // (one bounce: the sky is found by the BSDF sample, with no light sampling of it).
+  EXPECT_NEAR(centrePixel(s, cam), 0.5f * sky.x, 0.03f * 0.5f * sky.x);
+}
+
+TEST(DefaultLighting, ADiffuseOrBlackEnclosureIsNotASky) {
+  for (const auto& box : {sphereInSkyBox(), sphereInSkyBox(Color(0.0f))}) {
+    Scene s = box;
+    const CameraDesc cam = lookAt(Vec3(0, 0, 5), Vec3(0.0f));
+    ASSERT_TRUE(addDefaultLightingIfUnlit(s, cam));
+    auto accel = makeAccelerator("embree", s);
+    EXPECT_TRUE(cameraEnclosed(s, cam, *accel));
+    EXPECT_FALSE(useUnlitEnclosureAsLight(s, cam, *accel));
+    EXPECT_EQ(s.lights.size(), 1u);  // left for the headlight
+  }
+}
+
+TEST(DefaultLighting, OnlyIntegratorsThatGatherFromUnlitSurfacesUseTheSky) {
+  RenderSettings settings;
+  for (const char* name : {"path", "path-scalar", "bdpt"}) {
+    settings.set("integrator", name);
+    EXPECT_TRUE(unlitSurfacesLight(settings)) << name;
+  }
+  for (const char* name : {"whitted", "sppm"}) {
+    settings.set("integrator", name);
+    EXPECT_FALSE(unlitSurfacesLight(settings)) << name;
+  }
+  settings.set("integrator", "adaptive");  // its inner integrator (whitted by default) decides
+  EXPECT_FALSE(unlitSurfacesLight(settings));
+  settings.set("inner", "path");
+  EXPECT_TRUE(unlitSurfacesLight(settings));
 }
 
 TEST(DefaultLighting, TheKeyLightStaysWhereItCanReachTheScene) {
