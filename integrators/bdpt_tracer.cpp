@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "core/camera_culling.h"
 #include "core/error.h"
 #include "core/front_face.h"
 #include "integrators/absorption.h"
@@ -75,7 +76,10 @@ void BdptTracer::walk(Ray ray, Color beta, float pdfDir, Sampler& sampler, RaySt
   int nullCrossings = 0;
   while (path.size() < maxVertices) {
     Hit hit;
-    const bool found = ctx_.accel.intersect(ray, hit);
+    // The camera's ray passes single-sided back faces (core/camera_culling.h).
+    const bool found = mode == Mode::kRadiance && path.size() == 1 && nullCrossings == 0
+                           ? intersectCameraRay(ctx_.accel, ctx_.scene, ray, hit)
+                           : ctx_.accel.intersect(ray, hit);
     const Color sigmaA = media.currentAbsorption();
     const bool absorbing = !isBlack(sigmaA);
     if (!found) {

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <atomic>
 
+#include "core/camera_culling.h"
 #include "core/integrator.h"
 #include "core/light_paths.h"
 #include "integrators/glossy_batch.h"
@@ -170,9 +171,11 @@ class PathEstimator {
     if (maxDepth_ == 0) return Color(0.0f);
     PathState state = PathState::camera(cameraRay, x, y, primary ? primary->lightPaths : nullptr);
     ShadowQuery shadow;  // step() sets what resolveShadow reads: not re-initialised per vertex
-    for (;;) {
+    for (bool fromCamera = true;; fromCamera = false) {
       Hit hit;
-      const bool found = accel.intersect(state.ray, hit);
+      // The camera's ray passes single-sided back faces (core/camera_culling.h).
+      const bool found = fromCamera ? intersectCameraRay(accel, ctx_.scene, state.ray, hit)
+                                    : accel.intersect(state.ray, hit);
       bool wantsShadow;
       const PathStep next =
           step(state, sampler, found ? &hit : nullptr, shadow, wantsShadow, stats, primary);

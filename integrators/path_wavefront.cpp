@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "core/camera_culling.h"
 #include "core/simd_lanes.h"
 #include "integrators/camera_batch.h"
 #include "integrators/delta_batch.h"
@@ -223,9 +224,14 @@ void PathWavefrontIntegrator::bounce(Wave& w, RayStats& stats, bool cameraRays) 
   const size_t count = w.live.size();
   w.rays.resize(count), w.hits.resize(count), w.found.resize(count);
   for (size_t j = 0; j < count; ++j) w.rays[j] = w.paths[w.live[j]].ray;
-  if (cameraRays)
+  if (cameraRays) {
     ctx_.accel.intersectCoherentBatch(w.rays, w.hits, w.found);
-  else
+    // Single-sided back faces are culled for the camera (core/camera_culling.h): the rare ray
+    // that found one is traced on alone, as path-scalar traces it.
+    for (size_t j = 0; j < count; ++j)
+      if (w.found[j] && cameraCulls(ctx_.scene, w.rays[j], w.hits[j]))
+        w.found[j] = intersectCameraRay(ctx_.accel, ctx_.scene, w.rays[j], w.hits[j]);
+  } else
     ctx_.accel.intersectBatch(w.rays, w.hits, w.found);
   // The hits' surfaces in SIMD (integrators/surface_batch.h).
   const bool surfacesKnown = surfaces_.useful();

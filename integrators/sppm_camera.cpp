@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "core/camera_culling.h"
 #include "core/front_face.h"
 #include "integrators/absorption.h"
 #include "integrators/path_vertex_lanes.h"
@@ -52,7 +53,11 @@ Color SppmIntegrator::traceCamera(int x, int y, int k, VisiblePoint& vp, SppmPix
   const Vec3 origin = ray.o;
   for (int depth = 1;;) {
     Hit hit;
-    if (!ctx_.accel.intersect(ray, hit)) {
+    // The camera's ray passes single-sided back faces (core/camera_culling.h).
+    const bool found = depth == 1 && nullCrossings == 0
+                           ? intersectCameraRay(ctx_.accel, ctx_.scene, ray, hit)
+                           : ctx_.accel.intersect(ray, hit);
+    if (!found) {
       if (depth == 1 && transparentBackground()) break;
       const Vec3 dir = normalize(ray.d);
       if (isBlack(media.currentAbsorption()))

@@ -1,5 +1,6 @@
 #include "integrators/whitted.h"
 
+#include "core/camera_culling.h"
 #include "lights/environment_irradiance.h"
 #include "lights/light_set.h"
 #include "materials/fresnel.h"
@@ -49,7 +50,11 @@ class WhittedIntegrator final : public Integrator {
     Ray r = ray;
     r.blend = BlendRays::kHit;
     Hit hit;
-    if (!ctx_.accel.intersect(r, hit)) return background(ray.d);
+    // The camera's ray passes single-sided back faces (core/camera_culling.h).
+    const bool found = depth == 0 && crossings == 0
+                           ? intersectCameraRay(ctx_.accel, ctx_.scene, r, hit)
+                           : ctx_.accel.intersect(r, hit);
+    if (!found) return background(ray.d);
     Color L = shade(r, hit, depth, stats, primary);
     if (!hasBlend_) return L;
     const float alpha = coverage(ctx_.scene, hit);
