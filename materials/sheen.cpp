@@ -1,5 +1,6 @@
 #include "materials/sheen.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -58,7 +59,9 @@ float CharlieSheen::D(float cosH) const {
 }
 
 float CharlieSheen::lambda(float cosTheta) const {
-  const float c = std::fabs(cosTheta);
+  // |cos| of a unit vector can round past 1 (a direction along the normal, renormalised): the
+  // fit's pow(1 - c, C) is then NaN. That was the sheen NaN of issue 39, one sample per render.
+  const float c = std::min(std::fabs(cosTheta), 1.0f);
   return c < 0.5f ? std::exp(lFit(c, a_)) : std::exp(2.0f * lFit(0.5f, a_) - lFit(1.0f - c, a_));
 }
 

@@ -5,6 +5,8 @@
 // albedo table against Monte Carlo integration of the Charlie BRDF.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "materials/bsdf.h"
 #include "materials/fresnel.h"
 #include "materials/sheen.h"
@@ -277,6 +279,21 @@ TEST(Sheen, AlbedoTableMatchesMonteCarlo) {
       EXPECT_NEAR(sheen.albedo(wo.z), E, 0.01 + 0.02 * E) << roughness << " " << angle;
       EXPECT_LE(sheen.albedo(wo.z), 1.0f);
     }
+  }
+}
+
+TEST(Sheen, ADirectionAlongTheNormalRoundedPastOneIsNoNaN) {
+  // A unit vector along the normal may carry cos = 1.0000001 after renormalisation: the
+  // masking fit took pow(1 - cos, C) of a negative number and the sample became NaN.
+  const Vec3 along(0.0f, 0.0f, 1.0000001f);
+  ASSERT_GT(along.z, 1.0f);
+  for (float roughness : {0.07f, 0.3f, 0.5f, 1.0f}) {
+    const CharlieSheen sheen(roughness);
+    const Vec3 other = normalize(Vec3(0.3f, 0.1f, 0.9f));
+    EXPECT_TRUE(std::isfinite(sheen.eval(along, other))) << roughness;
+    EXPECT_TRUE(std::isfinite(sheen.eval(other, along))) << roughness;
+    EXPECT_TRUE(std::isfinite(sheen.eval(along, along))) << roughness;
+    EXPECT_TRUE(std::isfinite(sheen.albedo(along.z))) << roughness;
   }
 }
 
