@@ -3,7 +3,8 @@
 KHR_materials_anisotropy and KHR_materials_diffuse_transmission (docs/materials-extensions.md).
 Analytic TRAY_shape spheres and disks carry their own tangent (dp/du, the azimuthal direction),
 so the anisotropy direction follows circles of latitude (spheres) or circles about the centre
-(the disk: a brushed record)."""
+(the disk: a brushed record). Render them with `--integrator path` (the default, whitted, does
+not read these extensions)."""
 import json
 import math
 import os
@@ -30,10 +31,8 @@ def diffuse(name, color, dt=None, dt_color=None, double_sided=False):
     return m
 
 
-def emitter(name, strength):
-    return {"name": name, "emissiveFactor": [1, 1, 1],
-            "pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0},
-            "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": strength}}}
+def light(name, t, index):
+    return {"name": name, "translation": t, "extensions": {"KHR_lights_punctual": {"light": index}}}
 
 
 def shape(name, t, spec, rotation=None):
@@ -48,9 +47,12 @@ def camera_node(t, pitch):
             "rotation": [math.sin(pitch / 2), 0, 0, math.cos(pitch / 2)]}
 
 
-def document(nodes, materials, extensions_used, required):
+def document(nodes, materials, lights, extensions_used, required):
     return {"asset": {"version": "2.0", "generator": "TRay tools/make_extension_scenes.py"},
-            "extensionsUsed": sorted(set(extensions_used + ["TRAY_shape", "TRAY_environment"])),
+            "extensionsUsed": sorted(set(extensions_used + ["TRAY_shape", "TRAY_environment",
+                                                            "KHR_lights_punctual"])),
+            "extensions": {"KHR_lights_punctual": {"lights": [
+                {"type": "point", "color": [1, 1, 1], "intensity": i} for i in lights]}},
             "extensionsRequired": required,
             "scene": 0,
             "scenes": [{"nodes": list(range(len(nodes))),
@@ -68,22 +70,18 @@ def anisotropy():
         metal("anisotropic along the tangent", 0.3, [0.95, 0.85, 0.6], 0.9),
         metal("anisotropic, rotated 90 degrees", 0.3, [0.95, 0.85, 0.6], 0.9, math.pi / 2),
         metal("brushed disk", 0.25, [0.9, 0.9, 0.92], 0.95),
-        emitter("lamp", 400.0),
     ]
     nodes = [
-        # A box rather than TRAY_shape plane: the infinite plane renders black in `path`'s
-        # SIMD stages at some resolutions (main, db575a9; path-scalar is right).
         shape("floor", [0, 0, 0], {"type": "box", "min": [-30, -1, -30], "max": [30, 0, 30],
                                    "material": 0}),
         shape("isotropic", [-1.25, 0.55, 0], {"type": "sphere", "radius": 0.5, "material": 1}),
         shape("anisotropic", [0, 0.55, 0], {"type": "sphere", "radius": 0.5, "material": 2}),
         shape("rotated", [1.25, 0.55, 0], {"type": "sphere", "radius": 0.5, "material": 3}),
         shape("brushed disk", [0, 0.01, 1.3], {"type": "disk", "radius": 0.8, "material": 4}),
-        shape("lamp", [0.4, 3.0, 2.2], {"type": "sphere", "radius": 0.08, "material": 5}),
+        light("lamp", [0.4, 3.0, 2.2], 0),
         camera_node([0, 2.3, 4.6], -0.42),
     ]
-    return document(nodes, materials, ["KHR_materials_anisotropy",
-                                       "KHR_materials_emissive_strength"],
+    return document(nodes, materials, [60.0], ["KHR_materials_anisotropy"],
                     ["KHR_materials_anisotropy"])
 
 
@@ -92,27 +90,20 @@ def diffuse_transmission():
         diffuse("floor", [0.3, 0.3, 0.3]),
         diffuse("leaf", [0.15, 0.35, 0.05], 0.6, [0.5, 0.9, 0.2], True),
         diffuse("opaque card", [0.15, 0.35, 0.05], None, None, True),
-        emitter("lamp behind", 300.0),
-        emitter("fill", 3.0),
     ]
     # Two upright cards (disks facing the camera) with a small lamp behind each.
     upright = [math.sin(math.pi / 4), 0, 0, math.cos(math.pi / 4)]  # disk normal +y -> +z
     nodes = [
-        # A box rather than TRAY_shape plane: the infinite plane renders black in `path`'s
-        # SIMD stages at some resolutions (main, db575a9; path-scalar is right).
         shape("floor", [0, 0, 0], {"type": "box", "min": [-30, -1, -30], "max": [30, 0, 30],
                                    "material": 0}),
         shape("leaf", [-0.7, 0.8, 0], {"type": "disk", "radius": 0.6, "material": 1}, upright),
         shape("opaque", [0.7, 0.8, 0], {"type": "disk", "radius": 0.6, "material": 2}, upright),
-        shape("lamp behind leaf", [-0.7, 0.8, -0.6], {"type": "sphere", "radius": 0.1,
-                                                     "material": 3}),
-        shape("lamp behind card", [0.7, 0.8, -0.6], {"type": "sphere", "radius": 0.1,
-                                                    "material": 3}),
-        shape("fill", [0, 4, 4], {"type": "sphere", "radius": 0.5, "material": 4}),
+        light("lamp behind leaf", [-0.7, 0.8, -0.5], 0),
+        light("lamp behind card", [0.7, 0.8, -0.5], 0),
+        light("fill", [0, 4, 4], 1),
         camera_node([0, 1.0, 3.2], -0.06),
     ]
-    return document(nodes, materials, ["KHR_materials_diffuse_transmission",
-                                       "KHR_materials_emissive_strength"],
+    return document(nodes, materials, [1.5, 8.0], ["KHR_materials_diffuse_transmission"],
                     ["KHR_materials_diffuse_transmission"])
 
 
