@@ -85,7 +85,16 @@ class Bsdf {
   /// 5.3) is the caller's: it knows the geometric normal.
   Color evalImportance(const Vec3& wo, const Vec3& wi, float& pdf) const {
     Color f = eval(wo, wi, pdf);
-    if (wGlass_ > 0 && dot(wi, frame_.n) < 0) f *= coatEta_ * coatEta_;
+    if (wGlass_ > 0 && dot(wi, frame_.n) < 0) {
+      if (!diffuseTransmits_) return f * (coatEta_ * coatEta_);
+      // KHR_materials_diffuse_transmission's share below is not refracted: only the glass
+      // lobe's part (the same Bsdf without diffuse transmission, whose Lambert lobe is 0 on
+      // the far side) takes the factor.
+      Bsdf glassOnly = *this;
+      glassOnly.diffuseTransmits_ = false;
+      float unused;
+      f += glassOnly.eval(wo, wi, unused) * (coatEta_ * coatEta_ - 1.0f);
+    }
     return f;
   }
   /// sample() for importance: a sampled transmission's f without the 1/eta^2 (etaScale).

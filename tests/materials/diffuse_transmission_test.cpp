@@ -120,3 +120,31 @@ TEST(DiffuseTransmission, ZeroFactorIsThePlainMaterial) {
 
 }  // namespace
 }  // namespace tray
+
+namespace tray {
+namespace {
+
+TEST(DiffuseTransmission, ImportanceScalesOnlyTheRefractedPart) {
+  // With KHR_materials_transmission beside it, importance (bdpt, sppm) takes the 1/eta^2 of
+  // refraction off the glass lobe only (Veach 1997, 5.2): the diffusely transmitted part is
+  // not refracted.
+  ShadingMaterial both = transmitter(0.5f, 0.5f, Color(0.8f), Color(0.6f));
+  both.transmission = 0.5f;
+  ShadingMaterial glass = both;
+  glass.diffuseTransmission = 0;
+  const float eta = 1.5f;
+  const Bsdf a(both, Vec3(0, 0, 1), eta), b(glass, Vec3(0, 0, 1), eta);
+  const Vec3 wo = spherical(0.5, 0.3), wi = spherical(2.6, 3.0);  // wi below
+  float pdf;
+  const Color importance = a.evalImportance(wo, wi, pdf);
+  const Color expected = a.eval(wo, wi) + b.eval(wo, wi) * (eta * eta - 1);
+  EXPECT_GT(b.eval(wo, wi).x, 0.0f);
+  EXPECT_GT(a.eval(wo, wi).x, b.eval(wo, wi).x);  // the diffuse transmission adds
+  EXPECT_NEAR(importance.x, expected.x, 1e-5f * expected.x);
+  // Above the surface nothing changes.
+  const Vec3 up = spherical(0.9, 2.0);
+  EXPECT_EQ(a.evalImportance(wo, up, pdf).x, a.eval(wo, up).x);
+}
+
+}  // namespace
+}  // namespace tray
