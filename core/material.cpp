@@ -17,6 +17,9 @@ ShadingMaterial ShadingMaterial::of(const Material& m, const Vec3& n) {
   s.clearcoatRoughness = m.layers.clearcoatRoughness;
   s.sheenColor = m.layers.sheenColor;
   s.sheenRoughness = m.layers.sheenRoughness;
+  s.anisotropy = m.layers.anisotropyStrength;
+  s.diffuseTransmission = m.layers.diffuseTransmission;
+  s.diffuseTransmissionColor = m.layers.diffuseTransmissionColor;
   s.phong = m.phong;
   s.n = n;
   s.clearcoatN = n;

@@ -71,6 +71,15 @@ struct MaterialLayers {
   // KHR_materials_sheen: Charlie sheen over the base; black = off.
   Color sheenColor{0.0f};
   float sheenRoughness = 0.0f;
+  // KHR_materials_anisotropy: GGX stretched along a direction in the tangent plane.
+  float anisotropyStrength = 0.0f;
+  float anisotropyRotation = 0.0f;  ///< radians, counter-clockwise from the tangent
+  // KHR_materials_diffuse_transmission: Lambert transmission mixed into the diffuse base.
+  float diffuseTransmission = 0.0f;
+  Color diffuseTransmissionColor{1.0f};
+  /// anisotropyTexture (RG direction in tangent space, B strength; linear),
+  /// diffuseTransmissionTexture (A), diffuseTransmissionColorTexture (RGB, sRGB).
+  TextureRef anisotropyTexture, diffuseTransmissionTexture, diffuseTransmissionColorTexture;
   /// specularTexture (A), specularColorTexture (RGB, sRGB), clearcoatTexture (R),
   /// clearcoatRoughnessTexture (G), clearcoatNormalTexture: multiplied into the factors.
   /// sheenColorTexture (RGB, sRGB), sheenRoughnessTexture (A).
@@ -79,7 +88,9 @@ struct MaterialLayers {
   bool hasTextures() const {
     return specularTexture.valid() || specularColorTexture.valid() || clearcoatTexture.valid() ||
            clearcoatRoughnessTexture.valid() || clearcoatNormalTexture.valid() ||
-           sheenColorTexture.valid() || sheenRoughnessTexture.valid();
+           sheenColorTexture.valid() || sheenRoughnessTexture.valid() ||
+           anisotropyTexture.valid() || diffuseTransmissionTexture.valid() ||
+           diffuseTransmissionColorTexture.valid();
   }
 
   /// Beer-Lambert absorption coefficient sigma_a = -ln(attenuationColor) / attenuationDistance
@@ -134,6 +145,13 @@ struct ShadingMaterial {
   Vec3 clearcoatN;
   Color sheenColor{0.0f};  ///< KHR_materials_sheen
   float sheenRoughness = 0.0f;
+  /// KHR_materials_anisotropy: strength (factor x texture blue) and the direction of the
+  /// stretched roughness, world-space, perpendicular to n (set wherever anisotropy > 0).
+  float anisotropy = 0.0f;
+  Vec3 anisotropyDirection;
+  /// KHR_materials_diffuse_transmission (factor x texture alpha; colour factor x texture).
+  float diffuseTransmission = 0.0f;
+  Color diffuseTransmissionColor{1.0f};
   bool unlit = false;  ///< KHR_materials_unlit: baseColor is the outgoing radiance
   PhongParams phong;
   Vec3 n;  ///< shading normal, normal map applied; on the same side as SurfacePoint::n

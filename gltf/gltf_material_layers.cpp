@@ -43,6 +43,21 @@ void readMaterialLayers(const GltfContext& ctx, const tinygltf::Material& g,
     if (!(l.attenuationDistance > 0)) r.fail("'attenuationDistance' must be positive");
     // thicknessTexture is read nowhere: TRay traces the real geometry (see MaterialLayers).
   }
+  if (const auto* e = findExtension(ext, "KHR_materials_anisotropy")) {
+    ExtensionReader r(ctx, *e, where + " KHR_materials_anisotropy");
+    l.anisotropyStrength = float(r.number("anisotropyStrength", 0.0, 0.0, 1.0));
+    l.anisotropyRotation = float(r.number("anisotropyRotation", 0.0));
+    l.anisotropyTexture = readTextureInfo(ctx, r, "anisotropyTexture", r.where());
+  }
+  if (const auto* e = findExtension(ext, "KHR_materials_diffuse_transmission")) {
+    ExtensionReader r(ctx, *e, where + " KHR_materials_diffuse_transmission");
+    l.diffuseTransmission = float(r.number("diffuseTransmissionFactor", 0.0, 0.0, 1.0));
+    l.diffuseTransmissionColor =
+        r.vec3("diffuseTransmissionColorFactor", l.diffuseTransmissionColor, 0.0, 1.0);
+    l.diffuseTransmissionTexture = readTextureInfo(ctx, r, "diffuseTransmissionTexture", r.where());
+    l.diffuseTransmissionColorTexture =
+        readTextureInfo(ctx, r, "diffuseTransmissionColorTexture", r.where());
+  }
   if (const auto* e = findExtension(ext, "KHR_materials_specular")) {
     ExtensionReader r(ctx, *e, where + " KHR_materials_specular");
     l.specular = float(r.number("specularFactor", 1.0, 0.0, 1.0));

@@ -150,12 +150,19 @@ void bindTextures(const GltfContext& ctx, const ImageBytes& bytes, Scene& scene,
     binder.bind(l.clearcoatNormalTexture, false);
     binder.bind(l.sheenColorTexture, true);
     binder.bind(l.sheenRoughnessTexture, false, true);
+    binder.bind(l.anisotropyTexture, false);                 // KHR_materials_anisotropy: linear RGB
+    binder.bind(l.diffuseTransmissionTexture, false, true);  // _diffuse_transmission: A
+    binder.bind(l.diffuseTransmissionColorTexture, true);
   }
   binder.decode(bytes, memory, maxMemoryBytes);
   for (TriangleMesh& mesh : scene.meshes) {
     const Material& m = scene.materials[size_t(mesh.material)];
     if (m.normalTexture.valid() && mesh.tangents.empty())
       computeTangents(mesh, m.normalTexture.texCoord);
+    // KHR_materials_anisotropy's direction lives in the same tangent space.
+    if (m.layers.anisotropyStrength > 0 && mesh.tangents.empty())
+      computeTangents(mesh,
+                      m.layers.anisotropyTexture.valid() ? m.layers.anisotropyTexture.texCoord : 0);
   }
 }
 

@@ -203,6 +203,7 @@ bool isKnownExtension(const std::string& name) {
       "KHR_materials_unlit",        "KHR_texture_transform",
       "KHR_materials_volume",       "KHR_materials_specular",
       "KHR_materials_clearcoat",    "KHR_materials_sheen",
+      "KHR_materials_anisotropy",   "KHR_materials_diffuse_transmission",
       "KHR_mesh_quantization",      "KHR_materials_variants", "TRAY_shape",
       "TRAY_materials_phong",       "TRAY_materials_priority",
       "TRAY_environment",           "TRAY_camera"};

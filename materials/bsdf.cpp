@@ -16,9 +16,31 @@ void Bsdf::initLobes(const ShadingMaterial& m, float eta) {
                         ? GgxReflectionLobe::dielectric(alpha, eta, m.specular, m.specularColor)
                         : GgxReflectionLobe::dielectric(alpha, eta);
   glass_.value = DielectricLobe(alpha, eta, m.baseColor);
+  // KHR_materials_anisotropy (README, "Implementation"): alpha_t = mix(alpha, 1, strength^2)
+  // along the direction, alpha_b = alpha across it.
+  const float strength = std::min(m.anisotropy, 1.0f);
+  const float alphaT = alpha + (1.0f - alpha) * strength * strength;
+  const bool anisotropic = m.anisotropy > 0 && ggxAlpha(alphaT) != ggxAlpha(alpha);
+  if (anisotropic) {
+    frame_ = anisotropicFrame(frame_.n, m.anisotropyDirection);
+    metal_.value = GgxReflectionLobe::anisotropic(metal_.value, alphaT, alpha);
+    coatLobe_.value = GgxReflectionLobe::anisotropic(coatLobe_.value, alphaT, alpha);
+    glass_.value = DielectricLobe(alphaT, alpha, eta, m.baseColor);
+  }
+  // KHR_materials_diffuse_transmission (README, "Implementation"): the diffuse base is
+  // mix(diffuse_brdf(baseColor), diffuse_btdf(colour), dt).
+  diffuseTransmits_ = m.diffuseTransmission > 0;
+  if (diffuseTransmits_) {
+    const float dt = std::min(m.diffuseTransmission, 1.0f);
+    dtLobe_.value =
+        DiffuseTransmissionLobe((1.0f - dt) * m.baseColor, dt * m.diffuseTransmissionColor);
+    diffuse_.albedo = dtLobe_->reflect() + dtLobe_->transmit();
+  }
+  scalarMix_ = anisotropic || diffuseTransmits_;
   layers_.init(m, frame_);
-  hasNonDelta_ = (wMetal_ > 0 && !metal_->isDelta()) || (wGlass_ > 0 && !glass_->isDelta()) ||
-                 (wPlastic_ > 0 && (!isBlack(m.baseColor) || (coat_ > 0 && !coatLobe_->isDelta())));
+  hasNonDelta_ =
+      (wMetal_ > 0 && !metal_->isDelta()) || (wGlass_ > 0 && !glass_->isDelta()) ||
+      (wPlastic_ > 0 && (!isBlack(diffuse_.albedo) || (coat_ > 0 && !coatLobe_->isDelta())));
   // Lobes that can scatter at all (probabilities() gives the others probability 0). The
   // albedo test is maxComponent > 0 spelled without std::max, whose branches depend on the
   // colour and are mispredicted when the material changes between bounces (callgrind
@@ -35,12 +57,31 @@ void Bsdf::initLobes(const ShadingMaterial& m, float eta) {
           : glass && wGlass_ == 1     ? Only::kGlass
           : diffuse && wPlastic_ == 1 ? Only::kDiffuse
                                       : Only::kMixture;
+  // kDiffuse's shortcuts are Lambert reflection's alone.
+  if (only_ == Only::kDiffuse && diffuseTransmits_) only_ = Only::kMixture;
+}
+
+Frame Bsdf::anisotropicFrame(const Vec3& n, const Vec3& direction) {
+  Frame f = Frame::fromNormal(n);
+  const Vec3 t = direction - n * dot(n, direction);
+  const float len = length(t);
+  if (!(len > 1e-6f) || !std::isfinite(len)) return f;
+  f.t = t / len;
+  f.b = cross(n, f.t);  // t x b = n, as fromNormal's basis
+  return f;
+}
+
+Color Bsdf::diffuseEval(const Vec3& wo, const Vec3& wi) const {
+  if (!diffuseTransmits_) return includes(kDiffuseLobes) ? diffuse_.eval(wo, wi) : Color(0.0f);
+  // The transmitted half counts as transmission for the light-path AOVs (evalLobes).
+  if (!includes(sameHemisphere(wo, wi) ? kDiffuseLobes : kTransmissionLobes)) return Color(0.0f);
+  return dtLobe_->eval(wo, wi);
 }
 
 bool Bsdf::isGgxMixture(const ShadingMaterial& m) {
   if (!std::isfinite(m.metallic) || !std::isfinite(m.roughness) || !(m.transmission <= 0) ||
-      BsdfLayers::anyApplies(m) || m.specular != 1.0f ||
-      !(m.specularColor == Color(1.0f)) || isLambertOnly(m))
+      BsdfLayers::anyApplies(m) || m.specular != 1.0f || m.anisotropy > 0 ||
+      m.diffuseTransmission > 0 || !(m.specularColor == Color(1.0f)) || isLambertOnly(m))
     return false;
   const GgxMixtureOf<Vec3> x = ggxMixture(m.metallic, 0.0f, m.roughness, m.baseColor);
   const Color& a = m.baseColor;
@@ -53,7 +94,7 @@ bool Bsdf::isGgxMixture(const ShadingMaterial& m) {
 
 bool Bsdf::isSmoothGlass(const ShadingMaterial& m) {
   if (!std::isfinite(m.metallic) || !std::isfinite(m.roughness) || !std::isfinite(m.transmission) ||
-      BsdfLayers::anyApplies(m))
+      BsdfLayers::anyApplies(m) || m.anisotropy > 0 || m.diffuseTransmission > 0)
     return false;
   const GgxMixtureOf<Vec3> x = ggxMixture(m.metallic, m.transmission, m.roughness, m.baseColor);
   // initLobes' Only::kGlass: a glass weight (1 - wMetal) t of exactly 1 needs wMetal 0 and t 1,
@@ -81,6 +122,7 @@ float Bsdf::coatFresnel(const Vec3& wo) const {
 }
 
 Bsdf::Probabilities Bsdf::computeProbabilities(const Vec3& wo) const {
+  // diffuse_.albedo is reflect + transmit with diffuse transmission: the lobe's share.
   return mixtureProbabilities(mixture(), coatFresnel(wo));
 }
 
@@ -101,8 +143,8 @@ Color Bsdf::evalLocal(const Vec3& wo, const Vec3& wi) const {
   if (wGlass_ > 0 && includesGlass(wo, wi)) f += wGlass_ * glass_->eval(wo, wi);
   if (wPlastic_ > 0) {
     if (coat_ > 0 && includes(kSpecularLobes)) f += (wPlastic_ * coat_) * coatLobe_->eval(wo, wi);
-    if (includes(kDiffuseLobes))
-      f += (wPlastic_ * (1.0f - coatFresnel(wo))) * diffuse_.eval(wo, wi);
+    if (includes(kDiffuseLobes) || diffuseTransmits_)
+      f += (wPlastic_ * (1.0f - coatFresnel(wo))) * diffuseEval(wo, wi);
   }
   return f;
 }
@@ -125,7 +167,7 @@ float Bsdf::pdfLocal(const Vec3& wo, const Vec3& wi) const {
   if (p.metal > 0) pdf += p.metal * metal_->pdf(wo, wi);
   if (p.glass > 0) pdf += p.glass * glass_->pdf(wo, wi);
   if (p.coat > 0) pdf += p.coat * coatLobe_->pdf(wo, wi);
-  if (p.diffuse > 0) pdf += p.diffuse * diffuse_.pdf(wo, wi);
+  if (p.diffuse > 0) pdf += p.diffuse * diffusePdf(wo, wi);
   return pdf;
 }
 
@@ -154,7 +196,7 @@ BsdfSample Bsdf::sampleLocal(const Vec3& wo, float uc, Vec2 u) const {
     // Metal, coat and Lambert (mirrors too): the one-text sample, which evaluates only the
     // mixture (a rough GGX lobe's own f and pdf would only be thrown away for the mixture's:
     // the spheres scene spent ~1/3 of the BSDF's instructions on them, callgrind).
-    if (lobe != 1) {
+    if (lobe != 1 && !scalarMix_) {
       const MixtureSampleOf<Vec3> m =
           mixtureSample(mixture(), p, wo, uc, u, coatFresnelAt(), glassAt(p));
       BsdfSample s;
@@ -175,7 +217,7 @@ BsdfSample Bsdf::sampleLocal(const Vec3& wo, float uc, Vec2 u) const {
       case 2:
         return coatLobe_->sample(wo, u);
       case 3:
-        return diffuse_.sample(wo, u);
+        return diffuseTransmits_ ? dtLobe_->sample(wo, ucLobe, u) : diffuse_.sample(wo, u);
       default:
         return BsdfSample{};
     }
@@ -193,8 +235,13 @@ BsdfSample Bsdf::sampleLocal(const Vec3& wo, float uc, Vec2 u) const {
     s.pdf *= prob;
     return s;
   }
-  float unused;
-  s.f = mixtureEvalPdf(wo, s.wi, probabilities(wo), s.pdf, unused);
+  if (scalarMix_) {
+    s.f = evalLocal(wo, s.wi);
+    s.pdf = pdfLocal(wo, s.wi);
+  } else {
+    float unused;
+    s.f = mixtureEvalPdf(wo, s.wi, probabilities(wo), s.pdf, unused);
+  }
   if (!(s.pdf > 0) || !std::isfinite(s.pdf)) s.pdf = 0;
   return s;
 }
@@ -279,7 +326,7 @@ Color Bsdf::baseEval(const Vec3& wo, const Vec3& wi, float& pdf) const {
     pdf = t.pdf;
     return metal_->eval(t);
   }
-  if (only_ == Only::kMixture) {
+  if (only_ == Only::kMixture && !scalarMix_) {
     float unused;
     return mixtureEvalPdf(woLocal, wiLocal, probabilities(woLocal), pdf, unused);
   }

@@ -8,6 +8,7 @@
 #include "core/sampling.h"
 #include "materials/bsdf_layers.h"
 #include "materials/dielectric.h"
+#include "materials/diffuse_transmission.h"
 #include "materials/ggx_mixture_lanes.h"
 #include "materials/ggx_reflection.h"
 #include "materials/lambert.h"
@@ -28,6 +29,12 @@ namespace tray {
 /// outermost first as materials/bsdf_layers.h registers them: KHR_materials_clearcoat's GGX
 /// dielectric coat with its own normal (clearcoat_layer.h), then KHR_materials_sheen's Charlie
 /// sheen (sheen_layer.h).
+/// KHR_materials_anisotropy stretches the GGX lobes (metal, coat, glass) along the material's
+/// direction: the local frame's x axis is that direction, alpha_x = mix(alpha, 1, strength^2),
+/// alpha_y = alpha. KHR_materials_diffuse_transmission replaces the Lambert lobe with
+/// (1 - dt) Lambert(baseColor) + dt Lambert transmission(colour) on the far side
+/// (materials/diffuse_transmission.h). Both take the per-lobe scalar code (scalarMix_), not
+/// the one-text mixture the SIMD glossy stage shares (docs/materials-extensions.md).
 /// Built per shading point on the stack; directions are world-space, the shading normal n
 /// faces wo's side.
 class Bsdf {
@@ -51,6 +58,7 @@ class Bsdf {
       hasNonDelta_ = true;
       lambertOnly_ = true;
       probCached_ = false;
+      scalarMix_ = false, diffuseTransmits_ = false;
       only_ = Only::kDiffuse;
       return;
     }
@@ -77,7 +85,16 @@ class Bsdf {
   /// 5.3) is the caller's: it knows the geometric normal.
   Color evalImportance(const Vec3& wo, const Vec3& wi, float& pdf) const {
     Color f = eval(wo, wi, pdf);
-    if (wGlass_ > 0 && dot(wi, frame_.n) < 0) f *= coatEta_ * coatEta_;
+    if (wGlass_ > 0 && dot(wi, frame_.n) < 0) {
+      if (!diffuseTransmits_) return f * (coatEta_ * coatEta_);
+      // KHR_materials_diffuse_transmission's share below is not refracted: only the glass
+      // lobe's part (the same Bsdf without diffuse transmission, whose Lambert lobe is 0 on
+      // the far side) takes the factor.
+      Bsdf glassOnly = *this;
+      glassOnly.diffuseTransmits_ = false;
+      float unused;
+      f += glassOnly.eval(wo, wi, unused) * (coatEta_ * coatEta_ - 1.0f);
+    }
     return f;
   }
   /// sample() for importance: a sampled transmission's f without the 1/eta^2 (etaScale).
@@ -91,14 +108,15 @@ class Bsdf {
     return hasNonDelta_ || layers_.anyNonDelta();
   }
   /// True when light can also scatter to the far side of the surface.
-  bool transmits() const { return wGlass_ > 0; }
+  bool transmits() const { return wGlass_ > 0 || diffuseTransmits_; }
   /// Nothing but a Lambert lobe of albedo m.baseColor (matte): the SIMD matte stage repeats
   /// eval and sample for it (integrators/matte_batch.h). The constructor's test: metallic 0,
   /// roughness 1, no transmission, no layer (clearcoat, sheen), some albedo.
   static bool isLambertOnly(const ShadingMaterial& m) {
     const Color& a = m.baseColor;
     return m.metallic <= 0 && m.transmission <= 0 && !(m.roughness < 1.0f) &&
-           (a.x > 0 || a.y > 0 || a.z > 0) && !BsdfLayers::anyApplies(m);
+           !(m.diffuseTransmission > 0) && (a.x > 0 || a.y > 0 || a.z > 0) &&
+           !BsdfLayers::anyApplies(m);
   }
   /// Metal and plastic (GGX reflection, its dielectric coat and Lambert) and nothing else: no
   /// transmission, layer (clearcoat, sheen) or KHR_materials_specular tint, some lobe in use, not a lone
@@ -144,6 +162,14 @@ class Bsdf {
   };
   // Everything but the lone Lambert lobe, and the layers.
   void initLobes(const ShadingMaterial& m, float eta);
+  /// The frame whose x axis is KHR_materials_anisotropy's direction (projected onto the
+  /// tangent plane; the default frame's when it has no length there).
+  static Frame anisotropicFrame(const Vec3& n, const Vec3& direction);
+  /// The Lambert (or diffuse-transmission) lobe's value and pdf, with the lobe-kind mask.
+  Color diffuseEval(const Vec3& wo, const Vec3& wi) const;
+  float diffusePdf(const Vec3& wo, const Vec3& wi) const {
+    return diffuseTransmits_ ? dtLobe_->pdf(wo, wi) : diffuse_.pdf(wo, wi);
+  }
   Color layersEval(const Vec3& wo, const Vec3& wi, float& pdf) const;
   BsdfSample layersSample(const Vec3& wo, float uc, Vec2 u) const;
   /// The lone Lambert lobe in world space: only the cosines to n (and the frame to place the
@@ -206,7 +232,14 @@ class Bsdf {
   // are positive, which the lone Lambert lobe's are not.
   Slot<GgxReflectionLobe> metal_, coatLobe_;
   Slot<DielectricLobe> glass_;
+  /// The Lambert lobe; with diffuse transmission its albedo is reflect + transmit (for the
+  /// lobe's probability) and dtLobe_ gives its value.
   LambertLobe diffuse_;
+  Slot<DiffuseTransmissionLobe> dtLobe_;
+  /// The per-lobe scalar code rather than the one-text mixture (anisotropy, diffuse
+  /// transmission: the mixture has one isotropic alpha and Lambert reflection only).
+  bool scalarMix_;
+  bool diffuseTransmits_;  ///< dtLobe_ is built and replaces diffuse_'s value
   float coatEta_;
   bool coatTinted_;  ///< KHR_materials_specular changed the coat's Fresnel
   BsdfLayers layers_;  ///< clearcoat, sheen, ...: those the material has

@@ -16,6 +16,10 @@ class DielectricLobe {
  public:
   DielectricLobe(float alpha, float eta, const Color& tint)
       : dist_(alpha), eta_(eta), tint_(tint) {}
+  /// Anisotropic roughness (KHR_materials_anisotropy applies to the BTDF too): alphaX along
+  /// the local x axis.
+  DielectricLobe(float alphaX, float alphaY, float eta, const Color& tint)
+      : dist_(alphaX, alphaY), eta_(eta), tint_(tint) {}
   /// Index-matched interfaces pass light straight through: no scattering to see.
   bool isDelta() const { return eta_ == 1.0f || dist_.effectivelySmooth(); }
   float eta() const { return eta_; }

@@ -19,11 +19,12 @@ float GgxReflectionLobe::pdf(const Vec3& wo, const Vec3& wi) const {
 
 GgxReflectionLobe::Terms GgxReflectionLobe::terms(const Vec3& wo, const Vec3& wi) const {
   if (isDelta()) return {};
+  if (dist_.anisotropic()) return ggxTermsAniso(dist_.alpha(), dist_.alphaY(), wo, wi);
   return ggxTerms(dist_.alpha(), wo, wi);
 }
 
 bool GgxReflectionLobe::sampleDirection(const Vec3& wo, Vec2 u, Vec3& wi) const {
-  return ggxSampleDirection(dist_.alpha(), wo, u, wi);
+  return ggxSampleDirection(dist_.alpha(), dist_.alphaY(), wo, u, wi);
 }
 
 BsdfSample GgxReflectionLobe::sample(const Vec3& wo, Vec2 u) const {

@@ -14,6 +14,12 @@ class GgxReflectionLobe {
  public:
   /// A metal: Schlick Fresnel with F0 = baseColor.
   static GgxReflectionLobe metal(float alpha, const Color& f0) { return {alpha, f0, 0.0f}; }
+  /// An anisotropic metal or dielectric reflection (KHR_materials_anisotropy): alphaX along the
+  /// local x axis. Returns `l` with its distribution stretched; alphaX = alphaY changes nothing.
+  static GgxReflectionLobe anisotropic(GgxReflectionLobe l, float alphaX, float alphaY) {
+    l.dist_ = GgxDistribution(alphaX, alphaY);
+    return l;
+  }
   /// A dielectric's reflection: exact Fresnel with eta = n_t / n_i.
   static GgxReflectionLobe dielectric(float alpha, float eta) { return {alpha, Color(0.0f), eta}; }
   /// The same with KHR_materials_specular's weight and F0 colour: the exact Fresnel curve
@@ -33,6 +39,7 @@ class GgxReflectionLobe {
   }
   bool isDelta() const { return dist_.effectivelySmooth(); }
   float alpha() const { return dist_.alpha(); }
+  float alphaY() const { return dist_.alphaY(); }
   Color fresnel(float cosI) const {
     if (eta_ > 0 && tinted_) return tintedFresnel(fresnelDielectricAbs(cosI));
     return eta_ > 0 ? Color(fresnelDielectricAbs(cosI)) : fresnelSchlick(f0_, cosI);

@@ -43,38 +43,70 @@ struct GgxTermsOf {
 /// Lambda(wi)), and pdf = D_wo(wm) / (4 |wo.wm|) with the visible normals' density D_wo =
 /// G1(wo) D |wo.wm| / |cos_o|, G1(wo) = 1 / (1 + Lambda(wo)): the two share the half vector, D
 /// and 1 + Lambda(wo). Zero where wo and wi are on opposite sides or opposite directions.
-template <class V3, class F>
-TRAY_LANE GgxTermsOf<F> ggxTerms(F alpha, const V3& wo, const V3& wi) {
+/// D and Lambda, isotropic (alphaY not read) or anisotropic, chosen at compile time.
+template <bool kAniso, class V3, class F>
+TRAY_LANE F ggxDOf(F alpha, F alphaY, const V3& wm) {
+  if constexpr (kAniso)
+    return ggxDAniso(alpha, alphaY, wm);
+  else
+    return ggxD(alpha, wm);
+}
+template <bool kAniso, class V3, class F>
+TRAY_LANE F ggxLambdaOf(F alpha, F alphaY, const V3& w) {
+  if constexpr (kAniso)
+    return ggxLambdaAniso(alpha, alphaY, w);
+  else
+    return ggxLambda(alpha, w);
+}
+/// kAniso: the anisotropic D and Lambda with alphaX = alpha, alphaY (KHR_materials_anisotropy);
+/// otherwise alphaY is not read. ggxTerms and ggxTermsAniso below name the two.
+template <bool kAniso, class V3, class F>
+TRAY_LANE GgxTermsOf<F> ggxTermsOf(F alpha, F alphaY, const V3& wo, const V3& wi) {
   GgxTermsOf<F> t;
   V3 wm = wi + wo;
   const auto valid = wo.z * wi.z > F(0.0f) && lengthSquared(wm) != F(0.0f);
   if (noneOf(valid)) return t;
   wm = normalize(wm);
   wm = select(wm.z < F(0.0f), -wm, wm);
-  const F d = ggxD(alpha, wm), onePlusLambdaO = F(1.0f) + ggxLambda(alpha, wo);
+  const F d = ggxDOf<kAniso>(alpha, alphaY, wm);
+  const F onePlusLambdaO = F(1.0f) + ggxLambdaOf<kAniso>(alpha, alphaY, wo);
   const F cosOM = dot(wo, wm);
   const F pdf = ggxVisibleD(wo, wm, d, onePlusLambdaO) / (F(4.0f) * absOf(cosOM));
   const F cosO = absOf(wo.z), cosI = absOf(wi.z);
-  const F scale = d * (F(1.0f) / (onePlusLambdaO + ggxLambda(alpha, wi))) / (F(4.0f) * cosO * cosI);
+  const F scale = d * (F(1.0f) / (onePlusLambdaO + ggxLambdaOf<kAniso>(alpha, alphaY, wi))) /
+                  (F(4.0f) * cosO * cosI);
   t.cosOM = select(valid, cosOM, F(0.0f));
   t.pdf = select(valid, pdf, F(0.0f));
   t.nonzero = valid && !(cosO == F(0.0f) || cosI == F(0.0f));
   t.scale = select(t.nonzero, scale, F(0.0f));
   return t;
 }
+template <class V3, class F>
+TRAY_LANE GgxTermsOf<F> ggxTerms(F alpha, const V3& wo, const V3& wi) {
+  return ggxTermsOf<false>(alpha, alpha, wo, wi);
+}
+template <class V3, class F>
+TRAY_LANE GgxTermsOf<F> ggxTermsAniso(F alphaX, F alphaY, const V3& wo, const V3& wi) {
+  return ggxTermsOf<true>(alphaX, alphaY, wo, wi);
+}
 
 /// The sampled direction of a non-delta lobe: visible normals on the upper side, wo mirrored
 /// about one, the answer mirrored back for wo below. False (per lane) where wi falls below the
 /// microsurface: no sample (pbrt-v4 does the same).
+/// alphaY: KHR_materials_anisotropy's (equal to alpha: the isotropic lobe's floats).
 template <class V3, class V2, class F>
-TRAY_LANE MaskOf<F> ggxSampleDirection(F alpha, const V3& wo, const V2& u, V3& wi) {
+TRAY_LANE MaskOf<F> ggxSampleDirection(F alpha, F alphaY, const V3& wo, const V2& u, V3& wi) {
   const auto below = wo.z < F(0.0f);
   const V3 woUp = select(below, -wo, wo);
-  const V3 wm = ggxSampleVisibleNormal(alpha, woUp, u);
+  const V3 wm = ggxSampleVisibleNormalAniso(alpha, alphaY, woUp, u);
   wi = -woUp + F(2.0f) * dot(woUp, wm) * wm;
   const auto ok = !(wi.z <= F(0.0f));
   wi = select(below, -wi, wi);
   return ok;
+}
+template <class V3, class V2, class F>
+TRAY_LANE MaskOf<F> ggxSampleDirection(F alpha, const V3& wo, const V2& u, V3& wi) {
+  return ggxSampleDirection(alpha, alpha, wo, u, wi);
 }
 
 #include "core/lanes_end.h"

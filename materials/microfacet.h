@@ -12,15 +12,27 @@ namespace tray {
 class GgxDistribution {
  public:
   /// alpha = roughness^2 (glTF's perceptual roughness squared, as glTF's BRDF appendix says).
-  explicit GgxDistribution(float alpha) : alpha_(ggxAlpha(alpha)) {}
+  explicit GgxDistribution(float alpha) : alpha_(ggxAlpha(alpha)), alphaY_(alpha_) {}
+  /// Anisotropic (KHR_materials_anisotropy): alphaX along the local x axis (the frame's
+  /// tangent), alphaY along y. Equal alphas give the isotropic distribution's exact floats.
+  GgxDistribution(float alphaX, float alphaY)
+      : alpha_(ggxAlpha(alphaX)), alphaY_(ggxAlpha(alphaY)) {}
   static constexpr float kSmoothAlpha = kGgxSmoothAlpha;
-  bool effectivelySmooth() const { return alpha_ < kSmoothAlpha; }
+  /// Smooth only when both alphas are: a lobe stretched along one axis is not a mirror.
+  bool effectivelySmooth() const { return alpha_ < kSmoothAlpha && alphaY_ < kSmoothAlpha; }
+  /// alphaX (the isotropic alpha).
   float alpha() const { return alpha_; }
+  float alphaY() const { return alphaY_; }
+  bool anisotropic() const { return alpha_ != alphaY_; }
 
   /// Microfacet normal density D(wm), projected-area normalised: integral D cos = 1.
-  float D(const Vec3& wm) const { return ggxD(alpha_, wm); }
+  float D(const Vec3& wm) const {
+    return anisotropic() ? ggxDAniso(alpha_, alphaY_, wm) : ggxD(alpha_, wm);
+  }
   /// Smith's Lambda for GGX.
-  float lambda(const Vec3& w) const { return ggxLambda(alpha_, w); }
+  float lambda(const Vec3& w) const {
+    return anisotropic() ? ggxLambdaAniso(alpha_, alphaY_, w) : ggxLambda(alpha_, w);
+  }
   float G1(const Vec3& w) const { return 1.0f / (1.0f + lambda(w)); }
   /// Height-correlated masking-shadowing.
   float G(const Vec3& wo, const Vec3& wi) const { return 1.0f / (1.0f + lambda(wo) + lambda(wi)); }
@@ -31,11 +43,11 @@ class GgxDistribution {
   }
   /// Samples a visible microfacet normal from direction w (Heitz 2018, as in pbrt-v4 9.6.4).
   Vec3 sampleVisibleNormal(const Vec3& w, Vec2 u) const {
-    return ggxSampleVisibleNormal(alpha_, w, u);
+    return ggxSampleVisibleNormalAniso(alpha_, alphaY_, w, u);
   }
 
  private:
-  float alpha_;
+  float alpha_, alphaY_;
 };
 
 }  // namespace tray

@@ -62,10 +62,32 @@ TRAY_LANE F ggxVisibleD(const V3& w, const V3& wm, F d, F onePlusLambda) {
   const F c = absOf(w.z);
   return select(c == F(0.0f), F(0.0f), F(1.0f) / onePlusLambda / c * d * absOf(dot(w, wm)));
 }
-/// Samples a visible microfacet normal from direction w (Heitz 2018, as in pbrt-v4 9.6.4).
+/// Anisotropic GGX (Heitz 2014, eq. 85; Burley 2012 appendix B): alphaX along the local x
+/// axis, alphaY along y. D(wm) = 1 / (pi ax ay (x^2/ax^2 + y^2/ay^2 + z^2)^2) for unit wm,
+/// projected-area normalised like ggxD, which it equals for ax = ay up to rounding (the
+/// isotropic functions stay the ones isotropic lobes call, so their floats are unchanged).
+template <class V3, class F>
+TRAY_LANE F ggxDAniso(F ax, F ay, const V3& wm) {
+  const F x = wm.x / ax, y = wm.y / ay;
+  const F e = x * x + y * y + wm.z * wm.z;
+  return select(wm.z > F(0.0f), F(1.0f) / (F(kPi) * ax * ay * e * e), F(0.0f));
+}
+/// Smith's Lambda for anisotropic GGX (Heitz 2014, eq. 86): alpha projected on w's azimuth,
+/// alpha_o^2 tan^2 = (x^2 ax^2 + y^2 ay^2) / z^2.
+template <class V3, class F>
+TRAY_LANE F ggxLambdaAniso(F ax, F ay, const V3& w) {
+  const F cos2 = w.z * w.z;
+  const F a2tan2 = (w.x * w.x * ax * ax + w.y * w.y * ay * ay) / cos2;
+  const F l = (sqrtOf(F(1.0f) + a2tan2) - F(1.0f)) / F(2.0f);
+  return select(cos2 <= F(0.0f), F(kInfinity), l);
+}
+/// Samples a visible microfacet normal of the anisotropic distribution from direction w
+/// (Heitz 2018, listing 1, as in pbrt-v4 9.6.4): stretch w to the hemisphere configuration,
+/// sample the projected disk, unstretch. For ax = ay the same operations as the isotropic
+/// ggxSampleVisibleNormal below, which calls it.
 template <class V3, class V2, class F>
-TRAY_LANE V3 ggxSampleVisibleNormal(F alpha, const V3& w, const V2& u) {
-  V3 wh = normalize(V3{alpha * w.x, alpha * w.y, w.z});
+TRAY_LANE V3 ggxSampleVisibleNormalAniso(F ax, F ay, const V3& w, const V2& u) {
+  V3 wh = normalize(V3{ax * w.x, ay * w.y, w.z});
   wh = select(wh.z < F(0.0f), -wh, wh);
   const V3 up{F(0.0f), F(0.0f), F(1.0f)}, x{F(1.0f), F(0.0f), F(0.0f)};
   const V3 t1 = select(wh.z < F(0.99999f), normalize(cross(up, wh)), x);
@@ -76,7 +98,12 @@ TRAY_LANE V3 ggxSampleVisibleNormal(F alpha, const V3& w, const V2& u) {
   p.y = (F(1.0f) - s) * h + s * p.y;
   const F pz = sqrtOf(maxOf(F(0.0f), F(1.0f) - p.x * p.x - p.y * p.y));
   const V3 nh = p.x * t1 + p.y * t2 + pz * wh;
-  return normalize(V3{alpha * nh.x, alpha * nh.y, maxOf(F(1e-6f), nh.z)});
+  return normalize(V3{ax * nh.x, ay * nh.y, maxOf(F(1e-6f), nh.z)});
+}
+/// Samples a visible microfacet normal from direction w (Heitz 2018, as in pbrt-v4 9.6.4).
+template <class V3, class V2, class F>
+TRAY_LANE V3 ggxSampleVisibleNormal(F alpha, const V3& w, const V2& u) {
+  return ggxSampleVisibleNormalAniso(alpha, alpha, w, u);
 }
 
 #include "core/lanes_end.h"

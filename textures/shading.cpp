@@ -6,6 +6,7 @@
 #include "core/sampling.h"
 #include "core/unbuilt.h"
 #include "textures/alpha.h"
+#include "textures/tangent_frame.h"
 
 namespace tray {
 
@@ -49,7 +50,8 @@ MaterialEvaluator::MaterialEvaluator(const Scene& scene, const Camera& camera, i
   for (const Material& m : scene.materials) {
     const bool textured = sampler_ && m.hasTextures();
     prebuilt_.push_back(
-        {ShadingMaterial::of(m, Vec3()), textured, !textured && m.alphaMode != AlphaMode::kBlend});
+        {ShadingMaterial::of(m, Vec3()), textured,
+         !textured && m.alphaMode != AlphaMode::kBlend && !(m.layers.anisotropyStrength > 0)});
   }
   coloredMesh_.reserve(scene.primitives.size());
   for (const Primitive& p : scene.primitives)
@@ -64,18 +66,8 @@ Vec3 MaterialEvaluator::normalMapped(const ShadingMaterial& out, const UvFrame& 
   // glTF 2.0 §3.9.3: tangent-space normal = (2 rgb - 1) with x, y scaled by normalTexture.scale;
   // frame (t, b, n) with b = sign * cross(n, t), t the vertex tangent or dp/du.
   const Vec3& n = out.n;
-  Vec3 t = isBlack(f.tangent) ? f.dpdu : f.tangent;
-  float sign = f.bitangentSign;
-  if (isBlack(f.tangent)) sign = dot(cross(n, f.dpdu), f.dpdv) < 0 ? 1.0f : -1.0f;
-  t = t - n * dot(n, t);
-  float len = length(t);
-  Vec3 b;
-  if (len > 0 && std::isfinite(len)) {
-    t = t / len;
-    b = sign * cross(n, t);
-  } else {
-    orthonormalBasis(n, t, b);
-  }
+  Vec3 t, b;
+  tangentFrame(n, f, t, b);
   Vec3 m{(2.0f * texel.x - 1.0f) * scale, (2.0f * texel.y - 1.0f) * scale, 2.0f * texel.z - 1.0f};
   Vec3 mapped = m.x * t + m.y * b + m.z * n;
   float ml = length(mapped);
@@ -116,6 +108,10 @@ void MaterialEvaluator::modulate(const Hit& hit, const SurfacePoint& s,
   if (vertexColored) out.baseColor *= vertex;
   if (mesh && m.alphaMode == AlphaMode::kBlend) out.alpha = coverage(scene_, hit);
   if (!prebuilt_[size_t(s.material)].textured) {
+    // KHR_materials_anisotropy without a texture still needs the tangent frame's direction.
+    if (m.layers.anisotropyStrength > 0)
+      out.anisotropyDirection = anisotropyDirection(out.n, surfaceUvFrame(scene_, hit, s, 0),
+                                                    m.layers.anisotropyRotation, {}, false);
     if (vertexColored) finishPhong(m, out, vertex);
     return;
   }
@@ -178,6 +174,14 @@ void MaterialEvaluator::modulate(const Hit& hit, const SurfacePoint& s,
           textureAlpha(scene_.textures[size_t(l.sheenRoughnessTexture.image)],
                        l.sheenRoughnessTexture, frameOf(l.sheenRoughnessTexture.texCoord).uv);
     }
+    // KHR_materials_diffuse_transmission: the factor in A, the colour in RGB.
+    if (l.diffuseTransmissionTexture.valid()) {
+      out.diffuseTransmission *= textureAlpha(
+          scene_.textures[size_t(l.diffuseTransmissionTexture.image)], l.diffuseTransmissionTexture,
+          frameOf(l.diffuseTransmissionTexture.texCoord).uv);
+    }
+    if (l.diffuseTransmissionColorTexture.valid())
+      out.diffuseTransmissionColor *= lookup(l.diffuseTransmissionColorTexture);
     if (l.clearcoatNormalTexture.valid()) {
       ShadingMaterial geometric = out;
       geometric.n = s.n;
@@ -185,6 +189,16 @@ void MaterialEvaluator::modulate(const Hit& hit, const SurfacePoint& s,
           normalMapped(geometric, frameOf(l.clearcoatNormalTexture.texCoord),
                        lookup(l.clearcoatNormalTexture), l.clearcoatNormalTexture.scale, s);
     }
+  }
+  // KHR_materials_anisotropy: the direction in the frame of the (normal-mapped) normal; the
+  // texture's B scales the strength.
+  if (m.layers.anisotropyStrength > 0) {
+    const TextureRef& ref = m.layers.anisotropyTexture;
+    const Color texel = ref.valid() ? lookup(ref) : Color(1.0f);
+    out.anisotropy *= texel.z;
+    out.anisotropyDirection =
+        anisotropyDirection(out.n, frameOf(ref.valid() ? ref.texCoord : 0),
+                            m.layers.anisotropyRotation, {texel.x, texel.y}, ref.valid());
   }
   finishPhong(m, out, base * vertex);
 }
