@@ -17,6 +17,9 @@ ShadingMaterial ShadingMaterial::of(const Material& m, const Vec3& n) {
   s.clearcoatRoughness = m.layers.clearcoatRoughness;
   s.sheenColor = m.layers.sheenColor;
   s.sheenRoughness = m.layers.sheenRoughness;
+  s.iridescence = m.layers.iridescence;
+  s.iridescenceIor = m.layers.iridescenceIor;
+  s.iridescenceThickness = m.layers.iridescenceThicknessMax;
   s.phong = m.phong;
   s.n = n;
   s.clearcoatN = n;

@@ -150,6 +150,8 @@ void bindTextures(const GltfContext& ctx, const ImageBytes& bytes, Scene& scene,
     binder.bind(l.clearcoatNormalTexture, false);
     binder.bind(l.sheenColorTexture, true);
     binder.bind(l.sheenRoughnessTexture, false, true);
+    binder.bind(l.iridescenceTexture, false);
+    binder.bind(l.iridescenceThicknessTexture, false);
   }
   binder.decode(bytes, memory, maxMemoryBytes);
   for (TriangleMesh& mesh : scene.meshes) {
