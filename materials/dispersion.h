@@ -21,7 +21,7 @@ inline float dispersiveIor(float nd, float dispersion, float lambdaNm) {
 struct WavelengthSample {
   float lambda = 0;  ///< nanometres
   Color weight{1.0f};
-  float pdf = 0;     ///< per nanometre
+  float pdf = 0;  ///< per nanometre
 };
 WavelengthSample sampleWavelength(float u);
 /// The pdf sampleWavelength draws lambda with, and the normalised curves rbar_c / N_c there.

@@ -7,7 +7,9 @@ namespace tray {
 
 namespace {
 
-float sq(float x) { return x * x; }
+float sq(float x) {
+  return x * x;
+}
 
 /// Schlick's reflectance at cos (the reference's F_Schlick(f0, 1, cos)).
 float schlick(float f0, float c) {
@@ -32,10 +34,10 @@ Color evalSensitivity(float opd, const Color& shift) {
   const double sh[3] = {shift.x, shift.y, shift.z};
   double xyz[3];
   for (int i = 0; i < 3; ++i)
-    xyz[i] = val[i] * std::sqrt(kTwoPi * var[i]) *
-             std::cos(pos[i] * phase + sh[i]) * std::exp(-phase * phase * var[i]);
-  xyz[0] += 9.7470e-14 * std::sqrt(kTwoPi * 4.5282e+09) *
-            std::cos(2.2399e+06 * phase + sh[0]) * std::exp(-4.5282e+09 * phase * phase);
+    xyz[i] = val[i] * std::sqrt(kTwoPi * var[i]) * std::cos(pos[i] * phase + sh[i]) *
+             std::exp(-phase * phase * var[i]);
+  xyz[0] += 9.7470e-14 * std::sqrt(kTwoPi * 4.5282e+09) * std::cos(2.2399e+06 * phase + sh[0]) *
+            std::exp(-4.5282e+09 * phase * phase);
   for (double& v : xyz) v /= 1.0685e-7;
   return {float(3.2404542 * xyz[0] - 1.5371385 * xyz[1] - 0.4985314 * xyz[2]),
           float(-0.9692660 * xyz[0] + 1.8760108 * xyz[1] + 0.0415560 * xyz[2]),

@@ -48,7 +48,7 @@ def pbr(name, color, metallic, roughness, extensions=None, emissive=None):
     return m
 
 
-def document(nodes, materials, eye, target, background, yfov=0.5):
+def document(nodes, materials, eye, target, background, yfov=0.5, aspect=2.0):
     nodes = nodes + [{"name": "camera", "camera": 0, "translation": list(eye),
                       "rotation": look_at(eye, target)}]
     used = sorted({k for m in materials for k in m.get("extensions", {})} | {"TRAY_shape"})
@@ -59,33 +59,30 @@ def document(nodes, materials, eye, target, background, yfov=0.5):
                     "extensions": {"TRAY_environment": {"background": background}}}],
         "nodes": nodes, "materials": materials,
         "cameras": [{"type": "perspective",
-                     "perspective": {"yfov": yfov, "aspectRatio": 2.0, "znear": 0.01}}],
+                     "perspective": {"yfov": yfov, "aspectRatio": aspect, "znear": 0.01}}],
         "extensionsUsed": used + ["TRAY_environment"],
     }
 
 
 def iridescence():
-    film = {"iridescenceFactor": 1.0, "iridescenceIor": 1.33,
-            "iridescenceThicknessMinimum": 100, "iridescenceThicknessMaximum": 400}
-    materials = [
-        pbr("floor", (0.4, 0.4, 0.4), 0.0, 1.0),
-        # A soap bubble's look: a dark, glossy dielectric under a 400 nm water film.
-        pbr("soap film on black", (0.02, 0.02, 0.02), 0.0, 0.05,
-            {"KHR_materials_iridescence": film}),
-        # The same base without the film (reference).
-        pbr("plain black", (0.02, 0.02, 0.02), 0.0, 0.05),
-        # A metal (titanium-like grey) under a thinner oxide film of IOR 1.8.
-        pbr("oxide film on metal", (0.6, 0.6, 0.62), 1.0, 0.15,
-            {"KHR_materials_iridescence": {"iridescenceFactor": 1.0, "iridescenceIor": 1.8,
-                                           "iridescenceThicknessMaximum": 250}}),
-        pbr("softbox", (0, 0, 0), 0.0, 1.0, emissive=8.0),
-    ]
-    nodes = [shape("floor", "plane", 0),
-             shape("bubble", "sphere", 1, (-1.15, 0.5, 0), radius=0.5),
-             shape("plain", "sphere", 2, (0, 0.5, 0), radius=0.5),
-             shape("oxide", "sphere", 3, (1.15, 0.5, 0), radius=0.5),
-             shape("softbox", "sphere", 4, (1.5, 4.0, 4.0), radius=1.2)]
-    return document(nodes, materials, (0, 1.3, 4.2), (0, 0.45, 0), [0.35, 0.4, 0.5])
+    def film(nm, ior=1.33):
+        return {"KHR_materials_iridescence": {"iridescenceFactor": 1.0, "iridescenceIor": ior,
+                                              "iridescenceThicknessMaximum": nm}}
+    materials = [pbr("floor", (0.4, 0.4, 0.4), 0.0, 1.0),
+                 # The base without a film (reference): a dark, glossy dielectric.
+                 pbr("plain black", (0.02, 0.02, 0.02), 0.0, 0.05)]
+    # A soap bubble's look: the same base under water films of growing thickness.
+    for nm in (250, 400, 550):
+        materials.append(pbr(f"soap film {nm} nm", (0.02, 0.02, 0.02), 0.0, 0.05, film(nm)))
+    # A metal (titanium-like grey) under an oxide film of IOR 1.8.
+    materials.append(pbr("oxide film on metal", (0.6, 0.6, 0.62), 1.0, 0.15, film(250, 1.8)))
+    materials.append(pbr("softbox", (0, 0, 0), 0.0, 1.0, emissive=8.0))
+    nodes = [shape("floor", "plane", 0)]
+    for i in range(5):
+        nodes.append(shape(f"sphere{i}", "sphere", 1 + i, (-2.2 + 1.1 * i, 0.5, 0), radius=0.5))
+    nodes.append(shape("softbox", "sphere", 6, (1.5, 4.0, 4.0), radius=1.2))
+    return document(nodes, materials, (0, 1.6, 5.5), (0, 0.45, 0), [0.35, 0.4, 0.5],
+                    aspect=2.5)
 
 
 def dispersion():

@@ -125,9 +125,15 @@ using namespace tray::test;
 struct D3 {
   double x, y, z;
 };
-D3 operator+(D3 a, D3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-D3 operator*(double s, D3 a) { return {s * a.x, s * a.y, s * a.z}; }
-double dot(D3 a, D3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+D3 operator+(D3 a, D3 b) {
+  return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+D3 operator*(double s, D3 a) {
+  return {s * a.x, s * a.y, s * a.z};
+}
+double dot(D3 a, D3 b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 
 double fresnel(double cosI, double eta) {  // eta = n_t / n_i, unpolarised
   const double sin2T = (1 - cosI * cosI) / (eta * eta);
@@ -194,10 +200,11 @@ TEST(PathDispersion, SphereSpectrumAgainstSpectralReference) {
   }
   double scale = 0;
   for (int k = 0; k < 3; ++k) scale += std::fabs(exact[k]);
-  std::printf("sphere band: render %.4f %.4f %.4f, clamped ref %.4f %.4f %.4f, exact ref %.4f "
-              "%.4f %.4f\n",
-              sum[0] / n, sum[1] / n, sum[2] / n, clamped[0], clamped[1], clamped[2], exact[0],
-              exact[1], exact[2]);
+  std::printf(
+      "sphere band: render %.4f %.4f %.4f, clamped ref %.4f %.4f %.4f, exact ref %.4f "
+      "%.4f %.4f\n",
+      sum[0] / n, sum[1] / n, sum[2] / n, clamped[0], clamped[1], clamped[2], exact[0], exact[1],
+      exact[2]);
   ASSERT_GT(clamped[0] + clamped[1] + clamped[2], 0.05);  // the strip sees some of the spectrum
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(sum[k] / n, clamped[k], 0.01 + 0.03 * clamped[k]) << k;
 }

@@ -1,10 +1,11 @@
 // KHR_materials_dispersion's pieces (materials/dispersion.h): the Cauchy/Abbe IOR, and the
 // wavelength sampler whose RGB weights keep white white in expectation.
+#include "materials/dispersion.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "materials/dispersion.h"
 #include "materials/medium_stack.h"
 
 namespace tray {
@@ -15,7 +16,8 @@ TEST(Dispersion, IorFollowsTheAbbeNumber) {
   // with F = 486.13 nm, C = 656.27 nm comes back as 20 / dispersion.
   const float nd = 1.5168f, dispersion = 20.0f / 64.17f;  // BK7-like
   EXPECT_NEAR(dispersiveIor(nd, dispersion, 587.56f), nd, 2e-4f);
-  const float nF = dispersiveIor(nd, dispersion, 486.13f), nC = dispersiveIor(nd, dispersion, 656.27f);
+  const float nF = dispersiveIor(nd, dispersion, 486.13f),
+              nC = dispersiveIor(nd, dispersion, 656.27f);
   EXPECT_NEAR((nd - 1.0f) / (nF - nC), 64.17f, 1.0f);
   EXPECT_GT(dispersiveIor(nd, dispersion, 420.0f), dispersiveIor(nd, dispersion, 680.0f));
   EXPECT_EQ(dispersiveIor(nd, 0.0f, 450.0f), nd);
@@ -55,7 +57,8 @@ TEST(Dispersion, ClampErrorAgainstExactColorimetry) {
   double worstBand = 0, worstBroad = 0;
   for (float lo = 400; lo + 20 <= 700; lo += 10) {
     Color a(0.0f), b(0.0f);
-    for (float l = lo + 0.5f; l < lo + 20; l += 1) a += wavelengthResponse(l), b += wavelengthResponseSigned(l);
+    for (float l = lo + 0.5f; l < lo + 20; l += 1)
+      a += wavelengthResponse(l), b += wavelengthResponseSigned(l);
     // Relative to the band's luminance-like scale (the sum of the exact channels' magnitudes).
     const double scale = std::fabs(b.x) + std::fabs(b.y) + std::fabs(b.z);
     for (int k = 0; k < 3; ++k) worstBand = std::max(worstBand, std::fabs(a[k] - b[k]) / scale);

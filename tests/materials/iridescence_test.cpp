@@ -10,6 +10,8 @@
 // Belcour & Barla's Fourier-space Gaussians). This is the reference implementation's colour
 // convention: the spectrally flat part of the reflectance is white, the oscillating part is
 // taken through XYZ -> Rec.709 (docs/materials-iridescence-dispersion.md, "Limits").
+#include "materials/iridescence.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -17,7 +19,6 @@
 
 #include "materials/bsdf.h"
 #include "materials/ggx_reflection.h"
-#include "materials/iridescence.h"
 
 namespace tray {
 namespace {
@@ -162,7 +163,8 @@ TEST(Iridescence, BsdfOffIsPlainAndOnDiffers) {
     ShadingMaterial off = a, on = a;
     off.iridescence = 1.0f, off.iridescenceThickness = 0.0f;
     on.iridescence = 1.0f, on.iridescenceThickness = 350.0f;
-    const Bsdf b0(a, Vec3(0, 0, 1), 1.5f), b1(off, Vec3(0, 0, 1), 1.5f), b2(on, Vec3(0, 0, 1), 1.5f);
+    const Bsdf b0(a, Vec3(0, 0, 1), 1.5f), b1(off, Vec3(0, 0, 1), 1.5f),
+        b2(on, Vec3(0, 0, 1), 1.5f);
     const Vec3 wo = normalize(Vec3(0.3f, 0.1f, 0.9f)), wi = normalize(Vec3(-0.2f, -0.1f, 0.95f));
     float p0, p1, p2;
     const Color f0 = b0.eval(wo, wi, p0), f1 = b1.eval(wo, wi, p1), f2 = b2.eval(wo, wi, p2);
