@@ -20,6 +20,9 @@ ShadingMaterial ShadingMaterial::of(const Material& m, const Vec3& n) {
   s.anisotropy = m.layers.anisotropyStrength;
   s.diffuseTransmission = m.layers.diffuseTransmission;
   s.diffuseTransmissionColor = m.layers.diffuseTransmissionColor;
+  s.iridescence = m.layers.iridescence;
+  s.iridescenceIor = m.layers.iridescenceIor;
+  s.iridescenceThickness = m.layers.iridescenceThicknessMax;
   s.phong = m.phong;
   s.n = n;
   s.clearcoatN = n;

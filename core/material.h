@@ -85,12 +85,21 @@ struct MaterialLayers {
   /// sheenColorTexture (RGB, sRGB), sheenRoughnessTexture (A).
   TextureRef specularTexture, specularColorTexture, clearcoatTexture, clearcoatRoughnessTexture,
       clearcoatNormalTexture, sheenColorTexture, sheenRoughnessTexture;
+  // KHR_materials_iridescence (docs/materials-iridescence-dispersion.md): a thin film over the
+  // GGX reflection; factor 0 = off. Thickness in nanometres: thicknessMaximum without a
+  // texture, else mix(minimum, maximum, texture G). iridescenceTexture (R) scales the factor.
+  float iridescence = 0.0f, iridescenceIor = 1.3f;
+  float iridescenceThicknessMin = 100.0f, iridescenceThicknessMax = 400.0f;
+  TextureRef iridescenceTexture, iridescenceThicknessTexture;
+  // KHR_materials_dispersion: 20 / Abbe number of the transmissive volume; 0 = none.
+  float dispersion = 0.0f;
   bool hasTextures() const {
     return specularTexture.valid() || specularColorTexture.valid() || clearcoatTexture.valid() ||
            clearcoatRoughnessTexture.valid() || clearcoatNormalTexture.valid() ||
            sheenColorTexture.valid() || sheenRoughnessTexture.valid() ||
            anisotropyTexture.valid() || diffuseTransmissionTexture.valid() ||
-           diffuseTransmissionColorTexture.valid();
+           diffuseTransmissionColorTexture.valid() ||
+           iridescenceTexture.valid() || iridescenceThicknessTexture.valid();
   }
 
   /// Beer-Lambert absorption coefficient sigma_a = -ln(attenuationColor) / attenuationDistance
@@ -152,6 +161,8 @@ struct ShadingMaterial {
   /// KHR_materials_diffuse_transmission (factor x texture alpha; colour factor x texture).
   float diffuseTransmission = 0.0f;
   Color diffuseTransmissionColor{1.0f};
+  /// KHR_materials_iridescence: factor (x texture R), film IOR, film thickness in nm.
+  float iridescence = 0.0f, iridescenceIor = 1.3f, iridescenceThickness = 400.0f;
   bool unlit = false;  ///< KHR_materials_unlit: baseColor is the outgoing radiance
   PhongParams phong;
   Vec3 n;  ///< shading normal, normal map applied; on the same side as SurfacePoint::n

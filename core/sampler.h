@@ -80,6 +80,8 @@ class Sampler {
   /// Dimensions set apart for one use each, far beyond any path's count: drawing them with
   /// reserved1D leaves every other number of the sample as it was.
   static constexpr uint32_t kShutterDimension = 0x40000000u;  ///< the camera ray's time
+  /// The wavelength of a path through dispersive glass (KHR_materials_dispersion).
+  static constexpr uint32_t kWavelengthDimension = 0x40000001u;
   /// Uniform in [0, 1) at a fixed `dimension`, without advancing the counter: a feature that
   /// is off draws nothing, and on it changes no other number (so images without it keep every
   /// bit). With kSobol the values over a pixel's samples are one stratified 1D sequence.

@@ -81,6 +81,20 @@ void readMaterialLayers(const GltfContext& ctx, const tinygltf::Material& g,
     l.sheenColorTexture = readTextureInfo(ctx, r, "sheenColorTexture", r.where());
     l.sheenRoughnessTexture = readTextureInfo(ctx, r, "sheenRoughnessTexture", r.where());
   }
+  if (const auto* e = findExtension(ext, "KHR_materials_iridescence")) {
+    ExtensionReader r(ctx, *e, where + " KHR_materials_iridescence");
+    l.iridescence = float(r.number("iridescenceFactor", 0.0, 0.0, 1.0));
+    l.iridescenceIor = float(r.number("iridescenceIor", 1.3, 1.0));
+    l.iridescenceThicknessMin = float(r.number("iridescenceThicknessMinimum", 100.0, 0.0));
+    l.iridescenceThicknessMax = float(r.number("iridescenceThicknessMaximum", 400.0, 0.0));
+    l.iridescenceTexture = readTextureInfo(ctx, r, "iridescenceTexture", r.where());
+    l.iridescenceThicknessTexture =
+        readTextureInfo(ctx, r, "iridescenceThicknessTexture", r.where());
+  }
+  if (const auto* e = findExtension(ext, "KHR_materials_dispersion")) {
+    ExtensionReader r(ctx, *e, where + " KHR_materials_dispersion");
+    l.dispersion = float(r.number("dispersion", 0.0, 0.0));
+  }
 }
 
 }  // namespace tray

@@ -153,6 +153,8 @@ void bindTextures(const GltfContext& ctx, const ImageBytes& bytes, Scene& scene,
     binder.bind(l.anisotropyTexture, false);                 // KHR_materials_anisotropy: linear RGB
     binder.bind(l.diffuseTransmissionTexture, false, true);  // _diffuse_transmission: A
     binder.bind(l.diffuseTransmissionColorTexture, true);
+    binder.bind(l.iridescenceTexture, false);
+    binder.bind(l.iridescenceThicknessTexture, false);
   }
   binder.decode(bytes, memory, maxMemoryBytes);
   for (TriangleMesh& mesh : scene.meshes) {

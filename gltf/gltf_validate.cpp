@@ -206,7 +206,8 @@ bool isKnownExtension(const std::string& name) {
       "KHR_materials_anisotropy",   "KHR_materials_diffuse_transmission",
       "KHR_mesh_quantization",      "KHR_materials_variants", "TRAY_shape",
       "TRAY_materials_phong",       "TRAY_materials_priority",
-      "TRAY_environment",           "TRAY_camera"};
+      "TRAY_environment",           "TRAY_camera",
+      "KHR_materials_iridescence",  "KHR_materials_dispersion"};
   return kKnown.count(name) != 0;
 }
 

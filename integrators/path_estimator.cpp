@@ -114,6 +114,15 @@ void PathEstimator::escape(PathState& st) const {
   }
 }
 
+/// KHR_materials_dispersion: the path's one wavelength, drawn at a reserved dimension (no other
+/// number of the sample moves: paths that never meet dispersive glass keep every bit), and its
+/// spectral-to-RGB weight (materials/dispersion.h) taken into the throughput.
+void PathEstimator::chooseWavelength(PathState& st, const Sampler& sampler) {
+  const WavelengthSample w = sampleWavelength(sampler.reserved1D(Sampler::kWavelengthDimension));
+  st.media.setWavelength(w.lambda);
+  st.beta *= w.weight;
+}
+
 PathStep PathEstimator::step(PathState& st, Sampler& sampler, const Hit* found, ShadowQuery& shadow,
                              bool& wantsShadow, RayStats& stats, PrimaryHit* primary,
                              const WavefrontVertex& wave) const {
@@ -144,6 +153,8 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, const Hit* found, 
 
   // Nested dielectrics: a surface of a medium that is not in effect is passed straight by.
   v.refractive = isRefractive(m);
+  if (v.refractive && m.layers.dispersion > 0 && st.media.wavelength() == 0)
+    chooseWavelength(st, sampler);
   float eta = m.ior / st.media.currentIor();
   if (v.refractive) {
     MediumStack::Interface iface = st.media.interface(s.material, m, s.frontFace);

@@ -264,6 +264,8 @@ class PathEstimator {
   enum class DeferStage : uint8_t { kNone, kMatte, kGlossy, kDelta };
   static DeferStage stageOf(const ShadingMaterial& sm);
   void reportNan(const PathState& state, const char* what, int depth) const;
+  /// KHR_materials_dispersion: picks the path's wavelength at its first dispersive surface.
+  static void chooseWavelength(PathState& st, const Sampler& sampler);
   static constexpr int kMaxNanReports = 10;
   /// Mitsuba's default: Russian roulette from the fifth segment on.
   static constexpr int kRouletteDepth = 5;

@@ -37,6 +37,13 @@ void Bsdf::initLobes(const ShadingMaterial& m, float eta) {
     diffuse_.albedo = dtLobe_->reflect() + dtLobe_->transmit();
   }
   scalarMix_ = anisotropic || diffuseTransmits_;
+  // KHR_materials_iridescence: a thin film over the metal and the coat (not the glass lobe).
+  iridescent_ = iridescenceApplies(m.iridescence, m.iridescenceThickness);
+  if (iridescent_) {
+    metal_->setIridescence(m.iridescence, m.iridescenceIor, m.iridescenceThickness);
+    coatLobe_->setIridescence(m.iridescence, m.iridescenceIor, m.iridescenceThickness);
+    coatTinted_ = true;  // the coat's Fresnel is the lobe's: coatFresnel reads it
+  }
   layers_.init(m, frame_);
   hasNonDelta_ =
       (wMetal_ > 0 && !metal_->isDelta()) || (wGlass_ > 0 && !glass_->isDelta()) ||
@@ -81,7 +88,9 @@ Color Bsdf::diffuseEval(const Vec3& wo, const Vec3& wi) const {
 bool Bsdf::isGgxMixture(const ShadingMaterial& m) {
   if (!std::isfinite(m.metallic) || !std::isfinite(m.roughness) || !(m.transmission <= 0) ||
       BsdfLayers::anyApplies(m) || m.specular != 1.0f || m.anisotropy > 0 ||
-      m.diffuseTransmission > 0 || !(m.specularColor == Color(1.0f)) || isLambertOnly(m))
+      m.diffuseTransmission > 0 ||
+      iridescenceApplies(m.iridescence, m.iridescenceThickness) ||  // scalar: the film
+      !(m.specularColor == Color(1.0f)) || isLambertOnly(m))
     return false;
   const GgxMixtureOf<Vec3> x = ggxMixture(m.metallic, 0.0f, m.roughness, m.baseColor);
   const Color& a = m.baseColor;
@@ -173,6 +182,9 @@ float Bsdf::pdfLocal(const Vec3& wo, const Vec3& wi) const {
 
 Color Bsdf::mixtureEvalPdf(const Vec3& wo, const Vec3& wi, const Probabilities& p, float& pdf,
                            float& ggxPdf) const {
+  if (iridescent_)
+    return tray::mixtureEvalPdf(mixture(), p, wo, wi, coatFresnelAt(), glassAt(p), pdf, ggxPdf,
+                                metalFresnelAt());
   return tray::mixtureEvalPdf(mixture(), p, wo, wi, coatFresnelAt(), glassAt(p), pdf, ggxPdf);
 }
 
@@ -198,7 +210,9 @@ BsdfSample Bsdf::sampleLocal(const Vec3& wo, float uc, Vec2 u) const {
     // the spheres scene spent ~1/3 of the BSDF's instructions on them, callgrind).
     if (lobe != 1 && !scalarMix_) {
       const MixtureSampleOf<Vec3> m =
-          mixtureSample(mixture(), p, wo, uc, u, coatFresnelAt(), glassAt(p));
+          iridescent_ ? mixtureSample(mixture(), p, wo, uc, u, coatFresnelAt(), glassAt(p),
+                                      metalFresnelAt())
+                      : mixtureSample(mixture(), p, wo, uc, u, coatFresnelAt(), glassAt(p));
       BsdfSample s;
       s.wi = m.wi, s.f = m.f, s.pdf = m.pdf;
       s.delta = m.delta;

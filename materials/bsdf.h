@@ -208,6 +208,10 @@ class Bsdf {
   auto coatFresnelAt() const {
     return [this](float cosOM) { return coatLobe_->fresnel(cosOM); };
   }
+  /// The metal's Fresnel colour at a microfacet cosine, for an iridescent metal (the lobe's).
+  auto metalFresnelAt() const {
+    return [this](const Vec3&, float cosOM) { return metal_->fresnel(cosOM); };
+  }
   /// The glass lobe's value (where eval includes it) and pdf (where it can be sampled), for the
   /// mixture's sums: the glass lobe stays scalar.
   auto glassAt(const Probabilities& p) const {
@@ -241,7 +245,8 @@ class Bsdf {
   bool scalarMix_;
   bool diffuseTransmits_;  ///< dtLobe_ is built and replaces diffuse_'s value
   float coatEta_;
-  bool coatTinted_;  ///< KHR_materials_specular changed the coat's Fresnel
+  bool coatTinted_;  ///< KHR_materials_specular or _iridescence changed the coat's Fresnel
+  bool iridescent_;  ///< KHR_materials_iridescence: metal and coat carry a thin film
   BsdfLayers layers_;  ///< clearcoat, sheen, ...: those the material has
   bool hasNonDelta_;
   // probabilities()' last answer and the bits of its wo.z: one computation per vertex instead

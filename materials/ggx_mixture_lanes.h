@@ -100,10 +100,18 @@ TRAY_LANE F coatFresnelOf(F coat, F woZ, F eta) {
 /// includes it and its pdf where p.glass > 0 (0 where there is none: noGlass). Each sum in
 /// Bsdf's order, a lobe left out adding 0 (to a sum that is never -0: the same bits as
 /// skipping it).
-template <class V3, class F, class CoatFresnel, class Glass>
+/// The metal lobe's Fresnel: glTF's Schlick with F0 = albedo, unless the caller passes its
+/// own metalFresnel(albedo, cosOM) (the scalar Bsdf's iridescent metal, which stays scalar).
+struct SchlickMetal {
+  template <class V3, class F>
+  TRAY_LANE V3 operator()(const V3& albedo, F cosOM) const {
+    return fresnelSchlick(albedo, cosOM);
+  }
+};
+template <class V3, class F, class CoatFresnel, class Glass, class MetalFresnel = SchlickMetal>
 TRAY_LANE V3 mixtureEvalPdf(const GgxMixtureOf<V3>& x, const MixtureProbabilitiesOf<F>& p,
                             const V3& wo, const V3& wi, CoatFresnel coatFresnel, Glass glass,
-                            F& pdf, F& ggxPdf) {
+                            F& pdf, F& ggxPdf, MetalFresnel metalFresnel = {}) {
   const V3 zero{F(0.0f), F(0.0f), F(0.0f)};
   const auto ggxOn =
       (x.metalOn || x.coatOn || p.metal > F(0.0f) || p.coat > F(0.0f)) && !x.ggxDelta;
@@ -118,7 +126,7 @@ TRAY_LANE V3 mixtureEvalPdf(const GgxMixtureOf<V3>& x, const MixtureProbabilitie
   // Each term only where some lane has it: for one float, the scalar Bsdf's branches.
   V3 f = zero;
   if (anyOf(x.metalOn)) {
-    const V3 metal = select(t.nonzero, fresnelSchlick(x.albedo, t.cosOM) * t.scale, zero);
+    const V3 metal = select(t.nonzero, metalFresnel(x.albedo, t.cosOM) * t.scale, zero);
     f = f + select(x.metalOn, x.wMetal * metal, zero);
   }
   F glassPdf(0.0f);
@@ -169,10 +177,12 @@ struct MixtureSampleOf {
   decltype(V3::x) pdf;
   MaskOf<decltype(V3::x)> delta;
 };
-template <class V3, class V2, class F, class CoatFresnel, class Glass>
+template <class V3, class V2, class F, class CoatFresnel, class Glass,
+          class MetalFresnel = SchlickMetal>
 TRAY_LANE MixtureSampleOf<V3> mixtureSample(const GgxMixtureOf<V3>& x,
                                             const MixtureProbabilitiesOf<F>& p, const V3& wo, F uc,
-                                            const V2& u, CoatFresnel coatFresnel, Glass glass) {
+                                            const V2& u, CoatFresnel coatFresnel, Glass glass,
+                                            MetalFresnel metalFresnel = {}) {
   const V3 zero{F(0.0f), F(0.0f), F(0.0f)};
   const auto pastMetal = uc >= p.metal;
   const auto lambert = pastMetal && uc >= p.metal + p.glass + p.coat;
@@ -188,7 +198,7 @@ TRAY_LANE MixtureSampleOf<V3> mixtureSample(const GgxMixtureOf<V3>& x,
     lobeValid = lobeValid || (!lambert && ggxValid);
   }
   F pdf, ggxPdf;
-  s.f = mixtureEvalPdf(x, p, wo, s.wi, coatFresnel, glass, pdf, ggxPdf);
+  s.f = mixtureEvalPdf(x, p, wo, s.wi, coatFresnel, glass, pdf, ggxPdf, metalFresnel);
   // A GGX lobe's own sample the lobe gives no density: dropped.
   lobeValid = lobeValid && (lambert || ggxPdf > F(0.0f));
   const auto valid = prob > F(0.0f) && lobeValid && pdf > F(0.0f) && isFiniteOf(pdf);
@@ -196,7 +206,7 @@ TRAY_LANE MixtureSampleOf<V3> mixtureSample(const GgxMixtureOf<V3>& x,
   s.delta = x.ggxDelta && !lambert;
   if (anyOf(s.delta)) {  // mirrors: GgxReflectionLobe::sample's delta branch, then weighted
     const V3 mirror{-wo.x, -wo.y, wo.z};
-    const V3 fresnel = select(pastMetal, coatFresnel(wo.z), fresnelSchlick(x.albedo, wo.z));
+    const V3 fresnel = select(pastMetal, coatFresnel(wo.z), metalFresnel(x.albedo, wo.z));
     const F weight = select(pastMetal, x.wPlastic * x.coat, x.wMetal);
     s.wi = select(s.delta, mirror, s.wi);
     s.f = select(s.delta, fresnel / absOf(mirror.z) * weight, s.f);

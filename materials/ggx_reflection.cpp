@@ -9,6 +9,13 @@ float GgxReflectionLobe::fresnelDielectricAbs(float cosI) const {
   return fresnelDielectric(std::fabs(cosI), eta_);
 }
 
+Color GgxReflectionLobe::iridescentMix(float cosI) const {
+  // The film sits on the outside (air): the reference's outsideIOR 1 (iridescence.glsl).
+  Color film = iridescentFresnel(1.0f, filmIor_, std::fabs(cosI), filmNm_, filmBase_);
+  if (eta_ > 0 && tinted_) film *= weight_;
+  return (1.0f - irid_) * plainFresnel(cosI) + irid_ * film;
+}
+
 Color GgxReflectionLobe::eval(const Vec3& wo, const Vec3& wi) const {
   return eval(terms(wo, wi));
 }

@@ -1,6 +1,7 @@
 #pragma once
 #include "materials/bsdf_sample.h"
 #include "materials/fresnel.h"
+#include "materials/iridescence.h"
 #include "materials/microfacet.h"
 // terms and the sampled direction, written once for scalar code and the SIMD stages.
 #include "materials/ggx_reflection_lanes.h"
@@ -37,12 +38,27 @@ class GgxReflectionLobe {
     l.tinted_ = true;
     return l;
   }
+  /// KHR_materials_iridescence: a thin film (IOR filmIor, thicknessNm nanometres) whose
+  /// Fresnel (materials/iridescence.h) is mixed with the plain one by `factor`. The film's base
+  /// is this lobe's F0: the metal's colour, or the dielectric's (tinted) F0. No change unless
+  /// iridescenceApplies(factor, thicknessNm).
+  void setIridescence(float factor, float filmIor, float thicknessNm) {
+    if (!iridescenceApplies(factor, thicknessNm)) return;
+    irid_ = factor, filmIor_ = filmIor, filmNm_ = thicknessNm;
+    if (eta_ > 0) {
+      const float r = (eta_ - 1.0f) / (eta_ + 1.0f);
+      filmBase_ = tinted_ ? f0_ : Color(std::min(r * r, 0.999f));
+    } else {
+      filmBase_ = f0_;
+    }
+  }
+  bool iridescent() const { return irid_ > 0; }
   bool isDelta() const { return dist_.effectivelySmooth(); }
   float alpha() const { return dist_.alpha(); }
   float alphaY() const { return dist_.alphaY(); }
   Color fresnel(float cosI) const {
-    if (eta_ > 0 && tinted_) return tintedFresnel(fresnelDielectricAbs(cosI));
-    return eta_ > 0 ? Color(fresnelDielectricAbs(cosI)) : fresnelSchlick(f0_, cosI);
+    if (irid_ > 0) return iridescentMix(cosI);
+    return plainFresnel(cosI);
   }
   Color eval(const Vec3& wo, const Vec3& wi) const;
   float pdf(const Vec3& wo, const Vec3& wi) const;
@@ -62,6 +78,12 @@ class GgxReflectionLobe {
  private:
   GgxReflectionLobe(float alpha, const Color& f0, float eta) : dist_(alpha), f0_(f0), eta_(eta) {}
   float fresnelDielectricAbs(float cosI) const;
+  Color plainFresnel(float cosI) const {
+    if (eta_ > 0 && tinted_) return tintedFresnel(fresnelDielectricAbs(cosI));
+    return eta_ > 0 ? Color(fresnelDielectricAbs(cosI)) : fresnelSchlick(f0_, cosI);
+  }
+  /// (1 - factor) plain + factor film; the tinted dielectric's film also takes its weight.
+  Color iridescentMix(float cosI) const;
   Color tintedFresnel(float F) const {
     const float t = std::max(0.0f, (F - f0Exact_) / (1.0f - f0Exact_));
     return weight_ * (f0_ + (Color(1.0f) - f0_) * t);
@@ -71,6 +93,8 @@ class GgxReflectionLobe {
   float eta_;  ///< > 0: dielectric Fresnel with this eta; 0: Schlick with f0_
   bool tinted_ = false;  ///< dielectric with KHR_materials_specular: f0_ is F0', weight_ applies
   float f0Exact_ = 0, weight_ = 1;
+  float irid_ = 0, filmIor_ = 1.3f, filmNm_ = 0;  ///< KHR_materials_iridescence (0: off)
+  Color filmBase_{0.0f};
 };
 
 }  // namespace tray

@@ -1,5 +1,6 @@
 #pragma once
 #include "core/material.h"
+#include "materials/dispersion.h"
 
 namespace tray {
 
@@ -24,17 +25,17 @@ class MediumStack {
     if (entering) {
       r.real = cur < 0 || entries_[cur].priority <= m.priority;
       r.etaI = cur < 0 ? 1.0f : entries_[cur].ior;
-      r.etaT = m.ior;
+      r.etaT = iorOf(m);
       return r;
     }
     int at = find(id);
     if (at < 0) {  // leaving a medium never entered (the path started inside it)
-      r.etaI = m.ior;
+      r.etaI = iorOf(m);
       r.etaT = cur < 0 ? 1.0f : entries_[cur].ior;
       return r;
     }
     r.real = at == cur;
-    r.etaI = m.ior;
+    r.etaI = iorOf(m);
     int next = current(at);
     r.etaT = next < 0 ? 1.0f : entries_[next].ior;
     return r;
@@ -42,7 +43,7 @@ class MediumStack {
   /// Records that the path went through `id`'s surface.
   void cross(int id, const Material& m, bool entering) {
     if (entering) {
-      if (size_ < kCapacity) entries_[size_++] = {id, m.priority, m.ior, m.layers.absorption()};
+      if (size_ < kCapacity) entries_[size_++] = {id, m.priority, iorOf(m), m.layers.absorption()};
       return;
     }
     int at = find(id);
@@ -62,6 +63,17 @@ class MediumStack {
     return c < 0 ? Color(0.0f) : entries_[c].sigmaA;
   }
   int size() const { return size_; }
+  /// KHR_materials_dispersion: the one wavelength (nm) the path carries since it first met
+  /// dispersive glass (hero-wavelength style, docs/materials-iridescence-dispersion.md); 0: none
+  /// chosen, and every IOR is the material's own.
+  float wavelength() const { return wavelength_; }
+  void setWavelength(float nm) { wavelength_ = nm; }
+  /// A material's IOR for this path: n(lambda) for dispersive glass once a wavelength is chosen.
+  float iorOf(const Material& m) const {
+    if (wavelength_ > 0 && m.layers.dispersion > 0)
+      return dispersiveIor(m.ior, m.layers.dispersion, wavelength_);
+    return m.ior;
+  }
 
  private:
   struct Entry {
@@ -85,6 +97,7 @@ class MediumStack {
   /// First: a path outside every medium reads only this (one cache line of the path's state,
   /// the entries after it untouched).
   int size_ = 0;
+  float wavelength_ = 0;  ///< nm; 0: no wavelength chosen (see wavelength())
   /// Only the first size_ entries are ever read: the rest are left unbuilt. Every path state
   /// holds a stack, made per camera ray; building all eight entries cost about 40
   /// instructions per path (callgrind, heavy spheres).

@@ -182,6 +182,13 @@ void MaterialEvaluator::modulate(const Hit& hit, const SurfacePoint& s,
     }
     if (l.diffuseTransmissionColorTexture.valid())
       out.diffuseTransmissionColor *= lookup(l.diffuseTransmissionColorTexture);
+    // KHR_materials_iridescence: factor in R, thickness between min and max in G.
+    if (l.iridescenceTexture.valid()) out.iridescence *= lookup(l.iridescenceTexture).x;
+    if (l.iridescenceThicknessTexture.valid()) {
+      const float g = lookup(l.iridescenceThicknessTexture).y;
+      out.iridescenceThickness =
+          l.iridescenceThicknessMin + (l.iridescenceThicknessMax - l.iridescenceThicknessMin) * g;
+    }
     if (l.clearcoatNormalTexture.valid()) {
       ShadingMaterial geometric = out;
       geometric.n = s.n;
