@@ -40,7 +40,7 @@ std::optional<InstanceAttributes> parseInstancing(const GltfContext& ctx, int no
   if (!ext) return std::nullopt;
   ExtensionReader r(ctx, *ext, nameOf("node", node, n.name) + " EXT_mesh_gpu_instancing");
   const tinygltf::Value* attributes = r.value("attributes");
-  if (!attributes || !attributes->IsObject()) r.fail("needs an 'attributes' object");
+  if (!attributes || !attributes->IsObject()) r.fail("needs an 'attributes' object with at least one of TRANSLATION, ROTATION, SCALE");
   const auto& used = ctx.model.extensionsUsed;
   const bool quantized =
       std::find(used.begin(), used.end(), "KHR_mesh_quantization") != used.end();
@@ -75,7 +75,7 @@ std::optional<InstanceAttributes> parseInstancing(const GltfContext& ctx, int no
     out.count = a.count;
     counted = true;
   }
-  if (!counted) r.fail("needs at least one of TRANSLATION, ROTATION, SCALE");
+  if (!counted) r.fail("'attributes' needs at least one of TRANSLATION, ROTATION, SCALE");
   if (out.count > kMaxPrimitives)
     r.fail("places " + std::to_string(out.count) + " instances, more than " +
            std::to_string(kMaxPrimitives));
