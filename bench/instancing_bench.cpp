@@ -63,7 +63,9 @@ int main(int argc, char** argv) {
   const std::string integrator = argc > 5 ? argv[5] : "whitted";
   std::printf("sizeof(Primitive) %zu bytes, sizeof(Transform) %zu\n", sizeof(Primitive),
               sizeof(Transform));
-  { Phase p{"start"}; }
+  {
+    Phase p{"start"};
+  }
   Scene scene;
   {
     Phase p{"load"};

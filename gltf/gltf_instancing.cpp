@@ -40,10 +40,10 @@ std::optional<InstanceAttributes> parseInstancing(const GltfContext& ctx, int no
   if (!ext) return std::nullopt;
   ExtensionReader r(ctx, *ext, nameOf("node", node, n.name) + " EXT_mesh_gpu_instancing");
   const tinygltf::Value* attributes = r.value("attributes");
-  if (!attributes || !attributes->IsObject()) r.fail("needs an 'attributes' object with at least one of TRANSLATION, ROTATION, SCALE");
+  if (!attributes || !attributes->IsObject())
+    r.fail("needs an 'attributes' object with at least one of TRANSLATION, ROTATION, SCALE");
   const auto& used = ctx.model.extensionsUsed;
-  const bool quantized =
-      std::find(used.begin(), used.end(), "KHR_mesh_quantization") != used.end();
+  const bool quantized = std::find(used.begin(), used.end(), "KHR_mesh_quantization") != used.end();
   InstanceAttributes out;
   bool counted = false;
   for (const std::string& semantic : attributes->Keys()) {
@@ -69,8 +69,8 @@ std::optional<InstanceAttributes> parseInstancing(const GltfContext& ctx, int no
                                      : "VEC3 float, or byte/short with KHR_mesh_quantization") +
              ")");
     if (counted && a.count != out.count)
-      r.fail("attributes have different counts (" + semantic + " has " +
-             std::to_string(a.count) + ", others " + std::to_string(out.count) + ")");
+      r.fail("attributes have different counts (" + semantic + " has " + std::to_string(a.count) +
+             ", others " + std::to_string(out.count) + ")");
     *slot = index;
     out.count = a.count;
     counted = true;
@@ -92,20 +92,19 @@ InstanceData readInstanceData(const GltfContext& ctx, const InstanceAttributes& 
 
 Mat4 instanceMatrix(const GltfContext& ctx, const float* t, const float* r, const float* s,
                     const std::string& where, size_t k) {
-  for (auto [v, size, name] : {std::tuple{t, 3, "TRANSLATION"}, std::tuple{r, 4, "ROTATION"},
-                               std::tuple{s, 3, "SCALE"}})
+  for (auto [v, size, name] :
+       {std::tuple{t, 3, "TRANSLATION"}, std::tuple{r, 4, "ROTATION"}, std::tuple{s, 3, "SCALE"}})
     for (int i = 0; v && i < size; ++i)
       if (!std::isfinite(v[i])) failInstance(ctx, where, k, std::string(name) + " is not finite");
   Mat4 tm, rm, sm;
   if (t) tm = Mat4::translate({t[0], t[1], t[2]});
   if (r) {
-    const double len = std::sqrt(double(r[0]) * r[0] + double(r[1]) * r[1] +
-                                 double(r[2]) * r[2] + double(r[3]) * r[3]);
+    const double len = std::sqrt(double(r[0]) * r[0] + double(r[1]) * r[1] + double(r[2]) * r[2] +
+                                 double(r[3]) * r[3]);
     if (!(len > 0)) failInstance(ctx, where, k, "ROTATION is not a unit quaternion");
     // Quantized rotations are unit only to the quantization step: renormalise, as node
     // rotations are (gltf/gltf_scene_graph.cpp).
-    rm = Mat4::rotate(float(r[0] / len), float(r[1] / len), float(r[2] / len),
-                      float(r[3] / len));
+    rm = Mat4::rotate(float(r[0] / len), float(r[1] / len), float(r[2] / len), float(r[3] / len));
   }
   if (s) sm = Mat4::scale({s[0], s[1], s[2]});
   return tm * rm * sm;

@@ -65,7 +65,8 @@ void addMotionSteps(const GltfContext& ctx, const std::vector<std::vector<Mat4>>
     // A skinned mesh is placed by its joints alone: its motion is in its positionSteps.
     if (deformer.skinned(node)) continue;
     std::vector<Mat4> motion;
-    for (const auto& w : world) motion.push_back(placedAt(p, instanceNode, w[size_t(node)], frameWorld));
+    for (const auto& w : world)
+      motion.push_back(placedAt(p, instanceNode, w[size_t(node)], frameWorld));
     if (stepsMove(motion)) {
       for (const Mat4& m : motion)
         if (!m.isFinite())
@@ -90,9 +91,9 @@ void addPreviousFrame(const GltfContext& ctx, const std::vector<Animation>& anim
     const Primitive& p = scene.primitives[i];
     const int instanceNode = instanceNodes.empty() ? -1 : instanceNodes[i];
     const int node = instanceNode >= 0 ? instanceNode : p.objectId;
-    scene.previousToWorld.push_back(deformer.skinned(node)
-                                        ? p.toWorld.m
-                                        : placedAt(p, instanceNode, world[size_t(node)], frameWorld));
+    scene.previousToWorld.push_back(
+        deformer.skinned(node) ? p.toWorld.m
+                               : placedAt(p, instanceNode, world[size_t(node)], frameWorld));
   }
   for (CameraDesc& c : scene.cameras) {
     if (c.node < 0 || !stepsMove({c.toWorld.m, world[size_t(c.node)]})) continue;

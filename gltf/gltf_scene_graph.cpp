@@ -87,7 +87,6 @@ struct Walker {
   int nextInstanceId;
   size_t hiddenNodes = 0, hiddenInstances = 0;
 
-
   /// Motion blur: the vertices of primitive `primitive` of node `node`'s mesh (as read, in `m`)
   /// deformed at each motion step, kept when they differ between steps.
   void deformSteps(int node, size_t primitive, TriangleMesh& m) const {
@@ -305,9 +304,8 @@ void addSceneNodes(const GltfContext& ctx, const ObjectTable& objects, int scene
                    MeshStats& stats, Scene& scene, const std::vector<Deformer>* stepDeformers,
                    std::vector<int>* instanceNodes) {
   if (instanceNodes) instanceNodes->clear();
-  Walker walker{ctx,   objects,      defaultMaterial, meshes,
-                deformer, stats,   scene,           stepDeformers,
-                instanceNodes, int(ctx.model.nodes.size())};
+  Walker walker{ctx,   objects, defaultMaterial, meshes,        deformer,
+                stats, scene,   stepDeformers,   instanceNodes, int(ctx.model.nodes.size())};
   scene.environment = objects.environments[size_t(sceneIndex)];
   // Explicit stack of (node, parent's world matrix); children pushed in reverse so nodes are
   // visited in the order a recursive pre-order walk would (cameras keep the file's order).

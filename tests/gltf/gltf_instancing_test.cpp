@@ -76,9 +76,9 @@ struct Doc {
   fs::path write() {
     static std::atomic<int> counter{0};
     doc["buffers"] = json::array();
-    doc["buffers"].push_back({{"byteLength", bytes.size()},
-                              {"uri", "data:application/octet-stream;base64," +
-                                          test::base64(bytes)}});
+    doc["buffers"].push_back(
+        {{"byteLength", bytes.size()},
+         {"uri", "data:application/octet-stream;base64," + test::base64(bytes)}});
     const fs::path dir = test::testDir() / ("doc" + std::to_string(counter++));
     fs::create_directories(dir);
     const fs::path file = dir / "instanced.gltf";
@@ -90,8 +90,8 @@ struct Doc {
 const float kT[9] = {1, 0, 0, 0, 2, 0, -3, 0, 1};
 const float kS[9] = {1, 1, 1, 2, 2, 2, 0.5f, 1, 3};
 /// Unit quaternions (x, y, z, w): identity, 90 degrees about z, 60 degrees about (1, 1, 0)/sqrt2.
-const float kR[12] = {0, 0, 0, 1, 0, 0, 0.70710678f, 0.70710678f, 0.35355339f, 0.35355339f, 0,
-                      0.8660254f};
+const float kR[12] = {0,           0,           0,           1,           0, 0,
+                      0.70710678f, 0.70710678f, 0.35355339f, 0.35355339f, 0, 0.8660254f};
 
 Mat4 expected(const float* t, const float* r, const float* s, int k) {
   Mat4 m;
@@ -113,7 +113,7 @@ std::string loadError(Doc& d) {
   } catch (const Error& e) {
     const std::string message = e.what();
     EXPECT_EQ(message.find('\n'), std::string::npos) << message;  // one line
-    EXPECT_EQ(message.rfind(file.string(), 0), 0u) << message;  // naming the file first
+    EXPECT_EQ(message.rfind(file.string(), 0), 0u) << message;    // naming the file first
     return message;
   }
   return "";
@@ -219,8 +219,7 @@ TEST(GltfInstancing, BadAccessorsFailWithOneLine) {
       {"SCALE", [](Doc& d) { d.instance("SCALE", 99); }},
       {"at least one of TRANSLATION, ROTATION, SCALE",
        [](Doc& d) {
-         d.doc["nodes"][0]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"] =
-             json::object();
+         d.doc["nodes"][0]["extensions"]["EXT_mesh_gpu_instancing"]["attributes"] = json::object();
        }},
       {"not a unit quaternion",
        [](Doc& d) {
@@ -276,7 +275,7 @@ TEST(GltfInstancing, StaticInstancesStayPutUnderMotionBlur) {
 
 TEST(GltfInstancing, TestSceneHasEveryInstanceWithItsOwnId) {
   const Scene s = loadGltf(kScene.string());
-  EXPECT_EQ(s.meshes.size(), 3u);           // balls, lamps, floor: stored once each
+  EXPECT_EQ(s.meshes.size(), 3u);  // balls, lamps, floor: stored once each
   EXPECT_EQ(s.primitives.size(), 125u + 4 + 1);
   std::set<int> ids;
   std::set<std::string> names;
@@ -311,10 +310,9 @@ TEST(GltfInstancing, RaysHitTheInstanceTheyAimAtWithEitherAccelerator) {
       EXPECT_NEAR(length(local), 1.0f, 0.07f) << p.name;
       const TriangleMesh& m = s.meshes[p.mesh];
       const uint32_t* v = &m.indices[3 * h.triangle];
-      const Vec3 facet = cross(m.positions[v[1]] - m.positions[v[0]],
-                               m.positions[v[2]] - m.positions[v[0]]);
-      EXPECT_NEAR(std::fabs(dot(sp.ng, normalize(p.toWorld.normal(facet)))), 1.0f, 1e-4f)
-          << p.name;
+      const Vec3 facet =
+          cross(m.positions[v[1]] - m.positions[v[0]], m.positions[v[2]] - m.positions[v[0]]);
+      EXPECT_NEAR(std::fabs(dot(sp.ng, normalize(p.toWorld.normal(facet)))), 1.0f, 1e-4f) << p.name;
       ++aimed;
     }
     EXPECT_EQ(aimed, 125);
