@@ -195,7 +195,10 @@ struct Walker {
     forEachInstance(ctx, instances, where, [&](size_t k, const Mat4& local) {
       Transform toWorld;
       const int id = nextInstanceId++;
-      if (!worldTransform(ctx, world * local, where + " instance " + std::to_string(k), toWorld))
+      const Mat4 m = world * local;
+      if (!m.isFinite())  // named here: a message built per instance would cost 10^6 strings
+        ctx.fail(where + " instance " + std::to_string(k) + " world transform overflows");
+      if (!worldTransform(ctx, m, where, toWorld))
         return void(++hiddenInstances);  // a zero scale hides the instance
       place(index, shape, placed, toWorld, {id, k});
     });
@@ -237,7 +240,9 @@ struct Walker {
     if (instances)
       return placeInstances(index, world, *instances, s, s ? none : nodeMeshes(index, node.mesh));
     if (!invertible && !skinned) return void(++hiddenNodes);
-    place(index, s, s ? none : nodeMeshes(index, node.mesh), skinned ? Transform() : toWorld);
+    // A skinned mesh converted for this node alone is in world space already.
+    const bool worldSpace = skinned && deformsOverShutter(index);
+    place(index, s, s ? none : nodeMeshes(index, node.mesh), worldSpace ? Transform() : toWorld);
   }
 };
 

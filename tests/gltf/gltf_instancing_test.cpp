@@ -25,6 +25,7 @@
 #include "render/render_setup.h"
 #include "render/renderer.h"
 #include "tests/base64.h"
+#include "tests/cli/cli_run.h"
 #include "tests/temp_dir.h"
 
 namespace tray {
@@ -367,6 +368,27 @@ TEST(GltfInstancing, EmbreeAndBvhGiveTheSameImages) {
       EXPECT_LE(std::fabs(meanA - meanB), 1e-3 * meanB) << integrator;
     }
   }
+}
+
+/// --max-memory counts placements, not only triangles: 20000 instances of one triangle need
+/// about 14 MB (io/memory_estimate.h's kBytesPerPlacement), which 10 MB refuses.
+TEST(GltfInstancing, MaxMemoryCountsInstances) {
+  Doc d;
+  std::vector<float> t;
+  for (int k = 0; k < 20000; ++k) t.insert(t.end(), {float(k % 100), float(k / 100), -10.0f});
+  d.instance("TRANSLATION", d.add(t.data(), 4 * t.size(), 5126, "VEC3", 20000));
+  const fs::path file = d.write(), dir = file.parent_path();
+  const test::CliResult r = test::runCli(
+      TRAY_RENDER_BIN,
+      test::quoted(file) + " --resolution 8x6 --max-memory 10 -o " + test::quoted(dir / "x.exr"),
+      dir);
+  EXPECT_EQ(r.exitCode, 2) << r.err;
+  EXPECT_NE(r.err.find("geometry 14 MB"), std::string::npos) << r.err;
+  const test::CliResult ok = test::runCli(
+      TRAY_RENDER_BIN,
+      test::quoted(file) + " --resolution 8x6 --max-memory 40 -o " + test::quoted(dir / "x.exr"),
+      dir);
+  EXPECT_EQ(ok.exitCode, 0) << ok.err;
 }
 
 }  // namespace
