@@ -379,6 +379,7 @@ std::vector<uint8_t> embreeFlattenedMeshes(const Scene& scene) {
 }
 
 bool embreeTwoLevelTop(const Scene& scene, const std::vector<uint8_t>& flattened) {
+  if (scene.primitives.size() >= kEmbreeTwoLevelMaxPrimitives) return false;
   for (size_t i = 0; i < flattened.size(); ++i)
     if (flattened[i] &&
         scene.meshes[scene.primitives[i].mesh].triangleCount() >= kEmbreeOneTreeTriangles)

@@ -182,13 +182,20 @@ Scene convert(const tinygltf::Model& model, const std::string& path, const LoadO
     stepDeformers.emplace_back(ctx, posed.poses, posed.world);
     stepWorlds.push_back(std::move(posed.world));
   }
+  // Per primitive: the node of an EXT_mesh_gpu_instancing instance, for motion (else -1).
+  std::vector<int> instanceNodes;
+  const bool moving = steps.count >= 2 || (options.time && options.previousTime);
   if (sceneIndex >= 0)
     addSceneNodes(ctx, objects, sceneIndex, defaultMaterial, meshes, deformer, stats, scene,
-                  stepDeformers.empty() ? nullptr : &stepDeformers);
-  if (steps.count >= 2) addMotionSteps(ctx, stepWorlds, deformer, steps, scene);
+                  stepDeformers.empty() ? nullptr : &stepDeformers,
+                  moving ? &instanceNodes : nullptr);
+  const std::vector<Mat4> frameWorld =
+      moving ? worldMatrices(ctx, objects.localMatrices) : std::vector<Mat4>();
+  if (steps.count >= 2)
+    addMotionSteps(ctx, stepWorlds, deformer, steps, scene, instanceNodes, frameWorld);
   if (options.time && options.previousTime)
     addPreviousFrame(ctx, animations, which, objects.localMatrices, deformer, *options.previousTime,
-                     scene);
+                     scene, instanceNodes, frameWorld);
   if (deformer.renormalisedVertices())
     ctx.warn(std::to_string(deformer.renormalisedVertices()) +
              " skinned vertex(es) with weights not summing to 1: rescaled to 1");

@@ -34,14 +34,20 @@ PosedNodes poseNodes(const GltfContext& ctx, const std::vector<Animation>& anima
 /// their motion is their vertices' (TriangleMesh::positionSteps, set by addSceneNodes). An
 /// animated camera node gets its steps as CameraDesc::motion. Sets scene.shutterOpen and
 /// shutterClose.
+/// EXT_mesh_gpu_instancing instances (instanceNodes[i] >= 0: primitive i is an instance of that
+/// node; empty: none) move with their node: node world at the step * inverse of the node's world
+/// at the frame (`frameWorld`, per node) * the instance's frame placement.
 void addMotionSteps(const GltfContext& ctx, const std::vector<std::vector<Mat4>>& world,
-                    const Deformer& deformer, const MotionSteps& steps, Scene& scene);
+                    const Deformer& deformer, const MotionSteps& steps, Scene& scene,
+                    const std::vector<int>& instanceNodes = {},
+                    const std::vector<Mat4>& frameWorld = {});
 
 /// Motion vectors: poses animation `which` at `time` (the previous frame) and records every
 /// primitive's placement then (Scene::previousToWorld; skinned meshes: their frame placement,
 /// no deformation) and every camera's (CameraDesc::previousToWorld, when it differs).
 void addPreviousFrame(const GltfContext& ctx, const std::vector<Animation>& animations, int which,
                       const std::vector<Mat4>& local, const Deformer& deformer, float time,
-                      Scene& scene);
+                      Scene& scene, const std::vector<int>& instanceNodes = {},
+                      const std::vector<Mat4>& frameWorld = {});
 
 }  // namespace tray

@@ -68,6 +68,12 @@ bool worldTransform(const GltfContext& ctx, const Mat4& m, const std::string& wh
   return true;
 }
 
+/// An EXT_mesh_gpu_instancing instance: its object id and index k in its node (id -1: none).
+struct Instance {
+  int id = -1;
+  size_t k = 0;
+};
+
 struct Walker {
   const GltfContext& ctx;
   const ObjectTable& objects;
@@ -77,7 +83,9 @@ struct Walker {
   MeshStats& stats;
   Scene& scene;
   const std::vector<Deformer>* stepDeformers;
-  size_t hiddenNodes = 0;
+  std::vector<int>* instanceNodes;
+  int nextInstanceId;
+  size_t hiddenNodes = 0, hiddenInstances = 0;
 
   /// Motion blur: the vertices of primitive `primitive` of node `node`'s mesh (as read, in `m`)
   /// deformed at each motion step, kept when they differ between steps.
@@ -95,8 +103,8 @@ struct Walker {
   }
 
   /// A deformed mesh is converted again for this node alone: its vertices depend on the node's
-  /// weights and skin. Skinned ones are already in world space.
-  void placeDeformed(int node, int mesh, const Transform& toWorld) {
+  /// weights and skin. Returns the Scene::meshes indices of its primitives.
+  std::vector<uint32_t> convertDeformed(int node, int mesh) {
     MeshStats copy = stats;  // the caps count the copies; the warnings counted the file once
     std::vector<TriangleMesh> converted =
         convertMesh(ctx, mesh, defaultMaterial, copy, [&](size_t primitive, TriangleMesh& m) {
@@ -104,15 +112,12 @@ struct Walker {
           deformer.apply(node, primitive, m);
         });
     stats.triangles = copy.triangles, stats.vertices = copy.vertices;
-    const Transform placement = deformer.skinned(node) ? Transform() : toWorld;
+    std::vector<uint32_t> placed;
     for (auto& m : converted) {
-      Primitive p;
-      p.kind = Primitive::Kind::kMesh;
-      p.mesh = uint32_t(scene.meshes.size());
-      p.material = m.material;
+      placed.push_back(uint32_t(scene.meshes.size()));
       scene.meshes.push_back(std::move(m));
-      addPrimitive(node, placement, p);
     }
+    return placed;
   }
 
   /// The node's mesh deforms at the frame's time or, with motion blur, at some motion step.
@@ -124,8 +129,10 @@ struct Walker {
     return false;
   }
 
-  void placeMesh(int node, int mesh, const Transform& toWorld) {
-    if (deformsOverShutter(node)) return placeDeformed(node, mesh, toWorld);
+  /// The Scene::meshes indices of node `node`'s mesh: stored once for every node that places
+  /// it, or converted for this node alone when it deforms.
+  std::vector<uint32_t> nodeMeshes(int node, int mesh) {
+    if (deformsOverShutter(node)) return convertDeformed(node, mesh);
     if (!meshes.moved[size_t(mesh)]) {
       meshes.moved[size_t(mesh)] = true;
       for (auto& m : meshes.converted[size_t(mesh)]) {
@@ -133,23 +140,68 @@ struct Walker {
         scene.meshes.push_back(std::move(m));
       }
     }
-    for (uint32_t m : meshes.placed[size_t(mesh)]) {
+    return meshes.placed[size_t(mesh)];
+  }
+
+  /// Places what node `node` carries (a shape, or its mesh's primitives `placed`) at toWorld.
+  void place(int node, const TrayShape* shape, const std::vector<uint32_t>& placed,
+             const Transform& toWorld, Instance instance = {}) {
+    if (shape) {  // a shape replaces the node's mesh, if any
+      Primitive p;
+      p.kind = Primitive::Kind::kShape;
+      p.shape = shape->shape;
+      p.material = shape->material >= 0 ? shape->material : defaultMaterial;
+      return addPrimitive(node, toWorld, p, instance);
+    }
+    for (uint32_t m : placed) {
       Primitive p;
       p.kind = Primitive::Kind::kMesh;
       p.mesh = m;
       p.material = scene.meshes[m].material;
-      addPrimitive(node, toWorld, p);
+      addPrimitive(node, toWorld, p, instance);
     }
   }
 
-  void addPrimitive(int node, const Transform& toWorld, Primitive& p) {
+  void addPrimitive(int node, const Transform& toWorld, Primitive& p, const Instance& instance) {
     if (scene.primitives.size() >= kMaxPrimitives)
       ctx.fail("the scene places more than " + std::to_string(kMaxPrimitives) +
                " objects (node and mesh primitive instances)");
     p.toWorld = toWorld;
-    p.objectId = node;
-    p.name = ctx.model.nodes[size_t(node)].name;
+    p.objectId = instance.id >= 0 ? instance.id : node;
+    p.name = instance.id >= 0 ? instanceName(node, instance.k) : ctx.model.nodes[size_t(node)].name;
     scene.primitives.push_back(std::move(p));
+    if (instanceNodes) instanceNodes->push_back(instance.id >= 0 ? node : -1);
+  }
+
+  /// EXT_mesh_gpu_instancing: "<node name>#k", or "node<index>#k" for an unnamed node.
+  std::string instanceName(int node, size_t k) const {
+    std::string name = ctx.model.nodes[size_t(node)].name;
+    if (name.empty()) name = "node" + std::to_string(node);
+    name += '#';
+    name += std::to_string(k);
+    return name;
+  }
+
+  /// Every instance of node `index` (EXT_mesh_gpu_instancing) at world * its local matrix,
+  /// each with an object id of its own after the node indices (docs/instancing.md).
+  void placeInstances(int index, const Mat4& world, const InstanceAttributes& instances,
+                      const TrayShape* shape, const std::vector<uint32_t>& placed) {
+    const std::string where = nameOf("node", index, ctx.model.nodes[size_t(index)].name);
+    const size_t perInstance = shape ? 1 : placed.size();
+    // One allocation for all of them: growing by doubling would briefly hold 1.5x to 2x.
+    const size_t needed = scene.primitives.size() + instances.count * perInstance;
+    if (needed > scene.primitives.capacity() && needed <= kMaxPrimitives)
+      scene.primitives.reserve(needed);
+    forEachInstance(ctx, instances, where, [&](size_t k, const Mat4& local) {
+      Transform toWorld;
+      const int id = nextInstanceId++;
+      const Mat4 m = world * local;
+      if (!m.isFinite())  // named here: a message built per instance would cost 10^6 strings
+        ctx.fail(where + " instance " + std::to_string(k) + " world transform overflows");
+      if (!worldTransform(ctx, m, where, toWorld))
+        return void(++hiddenInstances);  // a zero scale hides the instance
+      place(index, shape, placed, toWorld, {id, k});
+    });
   }
 
   void visit(int index, const Mat4& world) {
@@ -177,20 +229,20 @@ struct Walker {
       scene.lights.push_back(light);
     }
     const std::optional<TrayShape>& shape = objects.shapes[size_t(index)];
+    if (!shape && node.mesh < 0) return;
+    static const std::vector<uint32_t> none;
+    const TrayShape* s = shape ? &*shape : nullptr;
     // A skinned mesh ignores its node's transform (glTF 2.0 §3.7.3.3), singular or not.
     const bool skinned = !shape && deformer.skinned(index);
-    if ((shape || node.mesh >= 0) && !invertible && !skinned) {
-      ++hiddenNodes;
-    } else if (shape) {  // a shape replaces the node's mesh, if any
-      const TrayShape& s = *shape;
-      Primitive p;
-      p.kind = Primitive::Kind::kShape;
-      p.shape = s.shape;
-      p.material = s.material >= 0 ? s.material : defaultMaterial;
-      addPrimitive(index, toWorld, p);
-    } else if (node.mesh >= 0) {
-      placeMesh(index, node.mesh, toWorld);
-    }
+    const std::optional<InstanceAttributes>& instances = objects.instancing[size_t(index)];
+    if (instances && skinned)
+      ctx.fail(where + " EXT_mesh_gpu_instancing on a skinned mesh is not supported");
+    if (instances)
+      return placeInstances(index, world, *instances, s, s ? none : nodeMeshes(index, node.mesh));
+    if (!invertible && !skinned) return void(++hiddenNodes);
+    // A skinned mesh converted for this node alone is in world space already.
+    const bool worldSpace = skinned && deformsOverShutter(index);
+    place(index, s, s ? none : nodeMeshes(index, node.mesh), worldSpace ? Transform() : toWorld);
   }
 };
 
@@ -245,6 +297,7 @@ ObjectTable convertObjects(const GltfContext& ctx) {
     t.shapes.push_back(
         ext ? std::optional(parseTrayShape(ctx, *ext, nameOf("node", int(i), node.name)))
             : std::nullopt);
+    t.instancing.push_back(parseInstancing(ctx, int(i)));
   }
   for (size_t i = 0; i < model.scenes.size(); ++i)
     t.environments.push_back(sceneEnvironment(ctx, int(i)));
@@ -253,8 +306,11 @@ ObjectTable convertObjects(const GltfContext& ctx) {
 
 void addSceneNodes(const GltfContext& ctx, const ObjectTable& objects, int sceneIndex,
                    int defaultMaterial, MeshTable& meshes, const Deformer& deformer,
-                   MeshStats& stats, Scene& scene, const std::vector<Deformer>* stepDeformers) {
-  Walker walker{ctx, objects, defaultMaterial, meshes, deformer, stats, scene, stepDeformers, 0};
+                   MeshStats& stats, Scene& scene, const std::vector<Deformer>* stepDeformers,
+                   std::vector<int>* instanceNodes) {
+  if (instanceNodes) instanceNodes->clear();
+  Walker walker{ctx,   objects, defaultMaterial, meshes,        deformer,
+                stats, scene,   stepDeformers,   instanceNodes, int(ctx.model.nodes.size())};
   scene.environment = objects.environments[size_t(sceneIndex)];
   // Explicit stack of (node, parent's world matrix); children pushed in reverse so nodes are
   // visited in the order a recursive pre-order walk would (cameras keep the file's order).
@@ -269,6 +325,10 @@ void addSceneNodes(const GltfContext& ctx, const ObjectTable& objects, int scene
     const auto& children = ctx.model.nodes[size_t(index)].children;
     for (auto it = children.rbegin(); it != children.rend(); ++it) stack.push_back({*it, world});
   }
+  if (walker.hiddenInstances)
+    ctx.warn(std::to_string(walker.hiddenInstances) +
+             " EXT_mesh_gpu_instancing instance(s) with a singular (zero-scale) transform were "
+             "skipped");
   if (walker.hiddenNodes)
     ctx.warn(std::to_string(walker.hiddenNodes) +
              " node(s) with a singular (zero-scale) transform were skipped");

@@ -7,6 +7,7 @@
 #include "core/scene.h"
 #include "gltf/gltf_context.h"
 #include "gltf/gltf_deform.h"
+#include "gltf/gltf_instancing.h"
 #include "gltf/gltf_meshes.h"
 #include "gltf/tray_shape.h"
 
@@ -33,6 +34,8 @@ struct ObjectTable {
   std::vector<int> nodeLights;                   ///< per node: its light, or -1
   std::vector<std::optional<TrayShape>> shapes;  ///< per node: its TRAY_shape, if any
   std::vector<Environment> environments;         ///< per scene: its TRAY_environment
+  /// Per node: its EXT_mesh_gpu_instancing attributes, if any (gltf/gltf_instancing.h).
+  std::vector<std::optional<InstanceAttributes>> instancing;
 };
 
 /// Converts every object of the document once; throws (ctx.fail) on the first invalid one.
@@ -44,10 +47,15 @@ ObjectTable convertObjects(const GltfContext& ctx);
 /// `deformer` deforms (skin, non-zero morph weights) gets geometry of its own, converted again
 /// through the deformer; `stats` counts it against the vertex and triangle caps. With
 /// `stepDeformers` (motion blur: one per motion step), such a mesh whose vertices differ between
-/// the steps gets their positions at each (TriangleMesh::positionSteps).
+/// the steps gets their positions at each (TriangleMesh::positionSteps). A node with
+/// EXT_mesh_gpu_instancing places one primitive per instance (and mesh primitive) at its world
+/// matrix times the instance's, object id nodes.size() + (instances placed before it), named
+/// "<node>#k"; `instanceNodes`, if given, gets per primitive its node for instances, -1 for
+/// the others (whose objectId is their node).
 void addSceneNodes(const GltfContext& ctx, const ObjectTable& objects, int sceneIndex,
                    int defaultMaterial, MeshTable& meshes, const Deformer& deformer,
                    MeshStats& stats, Scene& scene,
-                   const std::vector<Deformer>* stepDeformers = nullptr);
+                   const std::vector<Deformer>* stepDeformers = nullptr,
+                   std::vector<int>* instanceNodes = nullptr);
 
 }  // namespace tray

@@ -197,17 +197,28 @@ void checkScenes(const GltfContext& ctx, const std::vector<int>& parent) {
 }  // namespace
 
 bool isKnownExtension(const std::string& name) {
-  static const std::set<std::string> kKnown = {
-      "KHR_lights_punctual",        "KHR_materials_emissive_strength",
-      "KHR_materials_transmission", "KHR_materials_ior",
-      "KHR_materials_unlit",        "KHR_texture_transform",
-      "KHR_materials_volume",       "KHR_materials_specular",
-      "KHR_materials_clearcoat",    "KHR_materials_sheen",
-      "KHR_materials_anisotropy",   "KHR_materials_diffuse_transmission",
-      "KHR_mesh_quantization",      "KHR_materials_variants", "TRAY_shape",
-      "TRAY_materials_phong",       "TRAY_materials_priority",
-      "TRAY_environment",           "TRAY_camera",
-      "KHR_materials_iridescence",  "KHR_materials_dispersion"};
+  static const std::set<std::string> kKnown = {"KHR_lights_punctual",
+                                               "KHR_materials_emissive_strength",
+                                               "KHR_materials_transmission",
+                                               "KHR_materials_ior",
+                                               "KHR_materials_unlit",
+                                               "KHR_texture_transform",
+                                               "KHR_materials_volume",
+                                               "KHR_materials_specular",
+                                               "KHR_materials_clearcoat",
+                                               "KHR_materials_sheen",
+                                               "KHR_materials_anisotropy",
+                                               "KHR_materials_diffuse_transmission",
+                                               "KHR_mesh_quantization",
+                                               "KHR_materials_variants",
+                                               "TRAY_shape",
+                                               "TRAY_materials_phong",
+                                               "TRAY_materials_priority",
+                                               "TRAY_environment",
+                                               "TRAY_camera",
+                                               "KHR_materials_iridescence",
+                                               "KHR_materials_dispersion",
+                                               "EXT_mesh_gpu_instancing"};
   return kKnown.count(name) != 0;
 }
 

@@ -75,7 +75,7 @@ HWY_INLINE void Block(const SurfaceBatchPrimitive& p, const int32_t* order, size
     return {hn::GatherIndex(df, p.uvs, at), hn::GatherIndex(df, p.uvs + 1, at)};
   };
   MeshSurfaceOf<FloatVec> s;
-  meshSurfaceOf(p.toWorld.m.m, p.toWorld.inv.m, FloatVec(b1), FloatVec(b2),
+  meshSurfaceOf(p.toWorld->m.m, p.toWorld->inv.m, FloatVec(b1), FloatVec(b2),
                 Gather3(p.positions, i0), Gather3(p.positions, i1), Gather3(p.positions, i2),
                 p.hasNormals, normal, p.hasUvs, uv, s);
   // To the hits' own SurfacePoints, lane by lane.
@@ -137,7 +137,7 @@ SurfaceBatch::SurfaceBatch(const Scene& scene) : scene_(scene) {
     SurfaceBatchPrimitive& p = primitives_[i];
     batched_[i] = 1;
     p.material = mesh.material;
-    p.toWorld = prim.toWorld;
+    p.toWorld = &prim.toWorld;
     p.indices = mesh.indices.data();
     p.positions = &mesh.positions.data()->x;
     p.hasNormals = !mesh.normals.empty();

@@ -17,7 +17,8 @@ namespace tray {
 struct SurfaceBatchPrimitive {
   bool hasNormals = false, hasUvs = false;
   int32_t material = 0;
-  Transform toWorld;
+  const Transform* toWorld =
+      nullptr;  ///< the Primitive's: a copy would cost 128 bytes per instance
   const uint32_t* indices = nullptr;
   const float* positions = nullptr;  ///< Vec3s as floats
   const float* normals = nullptr;
@@ -49,7 +50,7 @@ class SurfaceBatch {
   const Scene& scene_;
   std::vector<SurfaceBatchPrimitive> primitives_;
   /// Per primitive: a static triangle mesh, the kernel's (else Scene::surface's); apart from
-  /// primitives_ so that the per-hit test reads a byte, not a struct of two matrices.
+  /// primitives_ so that the per-hit test reads a byte, not the struct.
   std::vector<uint8_t> batched_;
   bool useful_ = false;
 };

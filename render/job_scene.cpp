@@ -83,6 +83,7 @@ void checkAcceleratorMemory(const RenderJob& job, const Scene& scene, MemoryEsti
   for (const auto& m : scene.meshes)
     need.geometry += m.triangleCount() * std::max<size_t>(1, m.positionSteps.size());
   need.geometry *= kGeometryBytesPerTriangle;
+  need.geometry += scene.primitives.size() * kBytesPerPlacement;  // instances cost too
   checkMemory(job.scene.path, need, limitBytes);
 }
 

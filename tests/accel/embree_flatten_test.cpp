@@ -142,6 +142,32 @@ TEST(EmbreeFlatten, TwoLevelsUnlessABigMeshIsFlattened) {
   EXPECT_GT(hits, 500);
 }
 
+TEST(EmbreeFlatten, OneTreeOverManyInstances) {
+  // kEmbreeTwoLevelMaxPrimitives placements of one small mesh (EXT_mesh_gpu_instancing): one
+  // tree, whose hits are still the BVH's.
+  Scene s;
+  const int mat = addMaterial(s, diffuse(Color(0.5f)));
+  const uint32_t shared = addMesh(s, grid(1, mat));
+  for (size_t k = 0; k + 1 < kEmbreeTwoLevelMaxPrimitives; ++k)
+    addMeshInstance(s, shared,
+                    Mat4::translate({float(k % 100) * 0.05f - 2.5f, float(k / 100) * 0.05f - 2.5f,
+                                     -0.01f * float(k % 7)}) *
+                        Mat4::scale({0.02f, 0.02f, 0.02f}));  // 0.04 wide: no overlaps
+  s.finalize();
+  EXPECT_TRUE(embreeTwoLevelTop(s, embreeFlattenedMeshes(s)));
+  addMeshInstance(s, shared, Mat4::translate({0, 0, 5}));
+  EXPECT_FALSE(embreeTwoLevelTop(s, embreeFlattenedMeshes(s)));
+  auto embree = makeAccelerator("embree", s), bvh = makeAccelerator("bvh", s);
+  int hits = 0;
+  for (const Ray& r : rays(2000)) {
+    Hit e, b;
+    const bool he = embree->intersect(r, e), hb = bvh->intersect(r, b);
+    ASSERT_EQ(he, hb);
+    if (he) expectSameHit(s, r, e, b), ++hits;
+  }
+  EXPECT_GT(hits, 100);
+}
+
 TEST(EmbreeFlatten, BigMeshPlacedOnceHitsAsTheInstancedTree) {
   Scene s = scene(diffuse(Color(0.5f)));
   int meshHits[3] = {0, 0, 0};
