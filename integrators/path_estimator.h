@@ -24,6 +24,11 @@ struct PathState {
   Color L{0.0f}, beta{1.0f};
   int depth = 1;  ///< segments so far, counting the one being traced
   int nullCrossings = 0;
+  int mediumEvents = 0;  ///< scatterings inside media so far (docs/subsurface.md)
+  /// Scattering media (integrators/free_flight.h): the channel whose extinction draws the
+  /// path's free flights (-1 until its first), and the path's pdf per channel over their mean.
+  int8_t heroChannel = -1;
+  Color channelRatios{1.0f};
   bool specular = true;  ///< the last scattering was a delta lobe (or the camera): no MIS
   bool nan = false;      ///< the throughput became non-finite: the sample is discarded
   /// Firefly clamping (--clamp-indirect): a non-delta vertex precedes the current one, and
@@ -255,6 +260,13 @@ class PathEstimator {
     return c;
   }
   void escape(PathState& state) const;
+  /// TRAY_materials_scattering (integrators/path_medium.cpp, docs/subsurface.md): the free
+  /// flight of st.ray's segment through the scattering medium in effect. True: a medium event
+  /// came before `hit` (null: the segment escapes) and `next` is what became of the path (its
+  /// next segment set); false: the segment reaches `hit` (or escapes), the throughput weighted
+  /// for it, and `ahead` holds the draws made ahead that are left for the vertex there.
+  bool mediumEvent(PathState& st, Sampler& sampler, const Hit* hit, DrawsAhead& ahead,
+                   RayStats& stats, PathStep& next) const;
   void recordPrimary(PrimaryHit& primary, const PathState& st, const SurfacePoint& s,
                      const Vec3& shadingN, const Color& albedo) const;
   /// Which SIMD stage a vertex of material `sm` may go to (step's test, before its lights).
@@ -264,6 +276,9 @@ class PathEstimator {
   static constexpr int kMaxNanReports = 10;
   /// Mitsuba's default: Russian roulette from the fifth segment on.
   static constexpr int kRouletteDepth = 5;
+  /// A random walk in a scattering medium ends after this many events (Cycles stops its
+  /// random-walk subsurface at 256): a bias only for media far denser than their size.
+  static constexpr int kMaxMediumEvents = 1024;
   const RenderContext& ctx_;
   int maxDepth_;
   float clampIndirect_;
