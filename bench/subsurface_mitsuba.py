@@ -96,12 +96,12 @@ def tray_gltf(sigma_t, albedo, g):
     }
 
 
-def mitsuba_scene(sigma_t, albedo, g, size, spp):
+def mitsuba_scene(sigma_t, albedo, g, size, spp, integrator):
     T = mi.ScalarTransform4f
     rgb = lambda v: {"type": "rgb", "value": v}  # noqa: E731
     return {
         "type": "scene",
-        "integrator": {"type": "volpath", "max_depth": -1},
+        "integrator": {"type": integrator, "max_depth": -1},
         "sensor": {"type": "perspective", "fov_axis": "y", "fov": math.degrees(YFOV),
                    "to_world": T().look_at(origin=[0, 0, CAM_Z], target=[0, 0, 0], up=[0, 1, 0]),
                    "film": {"type": "hdrfilm", "width": size, "height": size,
@@ -114,8 +114,12 @@ def mitsuba_scene(sigma_t, albedo, g, size, spp):
                   "bsdf": {"type": "diffuse", "reflectance": rgb([0, 0, 0])}},
         "sphere": {"type": "sphere", "radius": 1.0,
                    "bsdf": {"type": "dielectric", "int_ior": 1.5, "ext_ior": 1.0},
-                   "interior": {"type": "homogeneous", "sigma_t": rgb(sigma_t),
-                                "albedo": rgb(albedo), "phase": {"type": "hg", "g": g}}},
+                   # sigma_t as an RGB in [0, 1] times `scale` (Mitsuba reads the RGB as a
+                   # reflectance-like spectrum, bounded by 1).
+                   "interior": {"type": "homogeneous",
+                                "sigma_t": rgb([s / max(sigma_t) for s in sigma_t]),
+                                "scale": max(sigma_t), "albedo": rgb(albedo),
+                                "phase": {"type": "hg", "g": g}}},
     }
 
 
@@ -139,12 +143,18 @@ def main():
     p.add_argument("--variant", default="llvm_ad_rgb")
     p.add_argument("--out", default=None, help="folder to keep the renders (EXR) in")
     p.add_argument("--scenes", nargs="*", default=list(SCENES))
+    p.add_argument("--runs", type=int, default=4,
+                   help="independent renders (seeds 1..runs) per renderer: the standard error")
+    p.add_argument("--integrator", default="volpathmis",
+                   help="Mitsuba's: volpathmis (spectral MIS, as TRay) or volpath (one "
+                        "channel's pdf: unbiased but heavy-tailed in chromatic media)")
     a = p.parse_args()
     mi.set_variant(a.variant)
     out = a.out or tempfile.mkdtemp(prefix="tray-sss-")
     os.makedirs(out, exist_ok=True)
     mask = interior_mask(a.size)
-    print(f"{a.size}x{a.size}, {a.spp} spp; means: whole image | sphere interior ({mask.sum()} px)")
+    print(f"{a.size}x{a.size}, {a.spp} spp x {a.runs} runs; channel means ± standard error: "
+          f"whole image | sphere interior ({mask.sum()} px)")
     print("| scene | renderer | time s | R | G | B | interior R | interior G | interior B |")
     print("|---|---|---|---|---|---|---|---|---|")
     for name in a.scenes:
@@ -152,29 +162,39 @@ def main():
         gltf = os.path.join(out, f"{name}.gltf")
         with open(gltf, "w") as f:
             json.dump(tray_gltf(sigma_t, albedo, g), f, indent=1)
-        exr = os.path.join(out, f"{name}.tray.exr")
-        t0 = time.time()
-        subprocess.run([os.path.join(a.tray_build, "tray-render"), "--allow-any-path",
-                        "--integrator", "path", "--max-depth", "1000", "--spp", str(a.spp),
-                        "--resolution", f"{a.size}x{a.size}", "--float", gltf, "-o", exr],
-                       check=True, capture_output=True)
-        t_tray = time.time() - t0
-        tray = read_exr(exr)
-        t0 = time.time()
-        img = np.array(mi.render(mi.load_dict(mitsuba_scene(sigma_t, albedo, g, a.size, a.spp)),
-                                 seed=1))[:, :, :3]
-        t_mi = time.time() - t0
-        mi.Bitmap(img).write(os.path.join(out, f"{name}.mitsuba.exr"))
-        rows = {}
-        for who, im, t in (("TRay path", tray, t_tray), ("Mitsuba volpath", img, t_mi)):
-            whole, inner = im.reshape(-1, 3).mean(0), im[mask].mean(0)
-            rows[who] = (whole, inner)
-            print(f"| {name} | {who} | {t:.0f} | " + " | ".join(f"{v:.5f}" for v in whole) +
-                  " | " + " | ".join(f"{v:.5f}" for v in inner) + " |")
-        (tw, ti), (mw, mi_) = rows["TRay path"], rows["Mitsuba volpath"]
+        scene = mi.load_dict(mitsuba_scene(sigma_t, albedo, g, a.size, a.spp, a.integrator))
+        runs = {"TRay path": [], f"Mitsuba {a.integrator}": []}
+        times = {k: 0.0 for k in runs}
+        for run in range(a.runs):
+            exr = os.path.join(out, f"{name}.tray.{run}.exr")
+            t0 = time.time()
+            subprocess.run([os.path.join(a.tray_build, "tray-render"), "--allow-any-path",
+                            "--integrator", "path", "--max-depth", "1000", "--spp", str(a.spp),
+                            "--seed", str(run + 1), "--resolution", f"{a.size}x{a.size}",
+                            "--float", gltf, "-o", exr], check=True, capture_output=True)
+            times["TRay path"] += time.time() - t0
+            runs["TRay path"].append(read_exr(exr))
+            t0 = time.time()
+            img = np.array(mi.render(scene, seed=run + 1))[:, :, :3].astype(np.float64)
+            times[f"Mitsuba {a.integrator}"] += time.time() - t0
+            mi.Bitmap(img.astype(np.float32)).write(os.path.join(out, f"{name}.mitsuba.{run}.exr"))
+            runs[f"Mitsuba {a.integrator}"].append(img)
+        stats = {}
+        for who, ims in runs.items():
+            whole = np.array([im.reshape(-1, 3).mean(0) for im in ims])
+            inner = np.array([im[mask].mean(0) for im in ims])
+            # Mean over the runs and its standard error from their spread.
+            se = lambda v: v.std(0, ddof=1) / math.sqrt(len(v)) if len(v) > 1 else 0 * v[0]  # noqa
+            stats[who] = (whole.mean(0), se(whole), inner.mean(0), se(inner))
+            w, ws, i, is_ = stats[who]
+            print(f"| {name} | {who} | {times[who]:.0f} | " +
+                  " | ".join(f"{v:.5f} ± {e:.5f}" for v, e in zip(w, ws)) + " | " +
+                  " | ".join(f"{v:.5f} ± {e:.5f}" for v, e in zip(i, is_)) + " |")
+        (tw, tws, ti, tis), (mw, mws, mi_, mis) = stats.values()
+        rel = lambda x, y, ex, ey: f"{100 * (x / y - 1):+.2f}% ± {100 * math.hypot(ex, ey) / y:.2f}%"  # noqa
         print(f"| {name} | TRay / Mitsuba - 1 | | " +
-              " | ".join(f"{100 * (x / y - 1):+.2f}%" for x, y in zip(tw, mw)) + " | " +
-              " | ".join(f"{100 * (x / y - 1):+.2f}%" for x, y in zip(ti, mi_)) + " |")
+              " | ".join(rel(*v) for v in zip(tw, mw, tws, mws)) + " | " +
+              " | ".join(rel(*v) for v in zip(ti, mi_, tis, mis)) + " |")
         sys.stdout.flush()
     print(f"renders in {out}")
 

@@ -3,7 +3,8 @@
 scattering (TRAY_materials_scattering, docs/subsurface.md).
 
 A skin-like sphere, a marble-like torus and a jade-like capped cylinder on a grey floor, lit by
-an emissive disk above and behind them (so light shows through the thin parts) and a dim sky.
+an emissive disk above and behind them (so light shows through the thin parts) and a sky; rough boundaries (light sampling at
+the walk's exits through the microfacet transmission).
 Coefficients are Jensen et al. 2001's measured skin and marble (sigma_s', sigma_a per mm) with
 one scene unit = 10 mm. Run from the repo root.
 """
@@ -44,12 +45,12 @@ def main():
                0.0, ior=1.4, roughness=0.35),
         # marble: sigma_s' = (2.19, 2.62, 3.00), sigma_a = (0.0021, 0.0041, 0.0071)
         medium("marble", [2.19 * mm, 2.62 * mm, 3.00 * mm],
-               [0.0021 * mm, 0.0041 * mm, 0.0071 * mm], 0.0, ior=1.5),
-        medium("jade", [6.0, 9.0, 7.0], [2.0, 0.25, 0.9], 0.3, ior=1.6),
+               [0.0021 * mm, 0.0041 * mm, 0.0071 * mm], 0.0, ior=1.5, roughness=0.25),
+        medium("jade", [6.0, 9.0, 7.0], [2.0, 0.25, 0.9], 0.3, ior=1.6, roughness=0.2),
         {"name": "lamp", "pbrMetallicRoughness": {"baseColorFactor": [0, 0, 0, 1],
                                                   "metallicFactor": 0},
          "emissiveFactor": [1, 0.92, 0.8],
-         "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 12}}},
+         "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 6}}},
     ]
     nodes = [
         shape("floor", {"type": "plane", "material": 0}),
@@ -60,7 +61,7 @@ def main():
         shape("jade cylinder", {"type": "cylinder", "radius": 0.3, "height": 0.9,
                                 "capped": True, "material": 3}, t=[1.2, 0, 0.1]),
         # The lamp faces down-forward: a disk tilted toward the objects from behind.
-        shape("lamp", {"type": "disk", "radius": 0.8, "material": 4}, t=[0, 2.6, -2.2],
+        shape("lamp", {"type": "disk", "radius": 1.5, "material": 4}, t=[0, 2.6, -2.2],
               r=[math.sin(math.radians(150) / 2), 0, 0, math.cos(math.radians(150) / 2)]),
         {"name": "camera", "camera": 0, "translation": [0, 1.5, 4.2],
          "rotation": [math.sin(math.radians(-14) / 2), 0, 0, math.cos(math.radians(-14) / 2)]},
@@ -72,7 +73,7 @@ def main():
                            "KHR_materials_volume", "KHR_materials_emissive_strength"],
         "scene": 0,
         "scenes": [{"nodes": list(range(len(nodes))),
-                    "extensions": {"TRAY_environment": {"background": [0.05, 0.06, 0.08]}}}],
+                    "extensions": {"TRAY_environment": {"background": [0.2, 0.23, 0.3]}}}],
         "nodes": nodes,
         "cameras": [{"type": "perspective",
                      "perspective": {"yfov": 0.6, "aspectRatio": 1.5, "znear": 0.01}}],
