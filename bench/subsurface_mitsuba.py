@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""TRay's random-walk subsurface scattering (docs/subsurface.md) against Mitsuba 3's `volpath`.
+"""TRay's random-walk subsurface scattering (docs/subsurface.md) against Mitsuba 3's `volpathmis`.
 
 One scene, written here for both renderers: a glass sphere (radius 1, IOR 1.5, smooth) filled
 with a homogeneous medium (sigma_t per channel, single-scattering albedo, Henyey-Greenstein g),
@@ -9,16 +9,18 @@ box pixel filter. TRay reads it as glTF: TRAY_shape sphere, KHR_materials_transm
 + volume (sigma_a = (1 - albedo) sigma_t as attenuationColor exp(-sigma_a) at distance 1) +
 TRAY_materials_scattering (sigma_s = albedo sigma_t, g). Mitsuba gets the same as a dict:
 `sphere` with a `dielectric` BSDF and a `homogeneous` interior (sigma_t, albedo, `hg` phase),
-`rectangle` with an `area` emitter, `constant` emitter.
+`rectangle` with an `area` emitter, `constant` emitter, rendered by `volpathmis` (spectral MIS;
+`--integrator volpath` for the plain one, whose weights in chromatic media are heavy-tailed).
 
 Both are unbiased with unlimited depth (TRay: --max-depth 1000 surface segments, medium events
 not counted, docs/subsurface.md; Mitsuba: max_depth -1), so converged channel means must agree.
-Printed: channel means over the whole image and over the pixels that see only the sphere's
-interior (a disk of 0.9 x its angular radius), and the relative differences.
+Printed (a markdown table): channel means over the whole image and over the pixels that see
+the sphere's interior (a disk of 0.9 x its angular radius), each the mean of --runs renders
+(seeds 1..runs) ± the standard error from their spread, and the relative differences.
 
 Usage (Mitsuba from tools/setup-mitsuba.sh):
   DRJIT_LIBLLVM_PATH=/usr/lib/x86_64-linux-gnu/libLLVM.so.19.1 \\
-    build/mitsuba-venv/bin/python bench/subsurface_mitsuba.py --tray-build build --spp 1024
+    build/mitsuba-venv/bin/python bench/subsurface_mitsuba.py --tray-build build --spp 512 --runs 4
 """
 import argparse
 import base64
