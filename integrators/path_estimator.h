@@ -24,11 +24,6 @@ struct PathState {
   Color L{0.0f}, beta{1.0f};
   int depth = 1;  ///< segments so far, counting the one being traced
   int nullCrossings = 0;
-  int mediumEvents = 0;  ///< scatterings inside media so far (docs/subsurface.md)
-  /// Scattering media (integrators/free_flight.h): the channel whose extinction draws the
-  /// path's free flights (-1 until its first), and the path's pdf per channel over their mean.
-  int8_t heroChannel = -1;
-  Color channelRatios{1.0f};
   bool specular = true;  ///< the last scattering was a delta lobe (or the camera): no MIS
   bool nan = false;      ///< the throughput became non-finite: the sample is discarded
   /// Firefly clamping (--clamp-indirect): a non-delta vertex precedes the current one, and
@@ -48,6 +43,12 @@ struct PathState {
   /// cache lines only, not the entries' (the wavefront's steps reach a wave's paths out of
   /// order, from the L2 cache).
   MediumStack media;
+  /// Scattering media (docs/subsurface.md), after the stack: touched only inside one. Events
+  /// so far, the channel whose extinction draws the path's free flights (-1 until its first),
+  /// and the path's pdf per channel over their mean (integrators/free_flight.h).
+  int mediumEvents = 0;
+  int8_t heroChannel = -1;
+  Color channelRatios{1.0f};
   /// The members' own initializers only. Written out, not defaulted: value-initialising a
   /// class whose default constructor is implicit zeroes all of it first, and the wavefront's
   /// emplace_back() did so for every camera path (a 384-byte `rep stos`; the media's entries
