@@ -62,6 +62,12 @@ struct MaterialLayers {
   float thickness = 0.0f;
   Color attenuationColor{1.0f};
   float attenuationDistance = kInfinity;
+  // TRAY_materials_scattering (docs/subsurface.md): the volume also scatters, a homogeneous
+  // medium of scattering coefficient sigma_s (per channel, per scene unit) and
+  // Henyey-Greenstein anisotropy g; its absorption is the volume's sigma_a above.
+  bool scatteringMedium = false;
+  Color scattering{0.0f};
+  float scatterAnisotropy = 0.0f;
   // KHR_materials_specular: weight and F0 tint of the dielectric specular reflection.
   float specular = 1.0f;
   Color specularColor{1.0f};

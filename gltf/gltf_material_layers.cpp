@@ -58,6 +58,15 @@ void readMaterialLayers(const GltfContext& ctx, const tinygltf::Material& g,
     l.diffuseTransmissionColorTexture =
         readTextureInfo(ctx, r, "diffuseTransmissionColorTexture", r.where());
   }
+  if (const auto* e = findExtension(ext, "TRAY_materials_scattering")) {
+    // docs/subsurface.md: the volume scatters; its boundary must be a dielectric to enter.
+    ExtensionReader r(ctx, *e, where + " TRAY_materials_scattering");
+    l.scatteringMedium = true;
+    l.scattering = r.vec3("scatteringCoefficient", l.scattering, 0.0);
+    l.scatterAnisotropy = float(r.number("anisotropy", 0.0, -0.99, 0.99));
+    r.finish();
+    if (!(m.transmission > 0)) r.fail("needs KHR_materials_transmission (a dielectric boundary)");
+  }
   if (const auto* e = findExtension(ext, "KHR_materials_specular")) {
     ExtensionReader r(ctx, *e, where + " KHR_materials_specular");
     l.specular = float(r.number("specularFactor", 1.0, 0.0, 1.0));

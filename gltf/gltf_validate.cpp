@@ -218,7 +218,8 @@ bool isKnownExtension(const std::string& name) {
                                                "TRAY_camera",
                                                "KHR_materials_iridescence",
                                                "KHR_materials_dispersion",
-                                               "EXT_mesh_gpu_instancing"};
+                                               "EXT_mesh_gpu_instancing",
+                                               "TRAY_materials_scattering"};
   return kKnown.count(name) != 0;
 }
 

@@ -19,4 +19,12 @@ inline Color farSideAbsorption(const MediumStack& media, int id, const Material&
   return far.currentAbsorption();
 }
 
+/// Extinction of the medium beyond a refractive surface (sigma_a + sigma_s where it scatters,
+/// docs/subsurface.md): what a shadow ray crossing it is attenuated by.
+inline Color farSideExtinction(const MediumStack& media, int id, const Material& m, bool entering) {
+  MediumStack far = media;
+  far.cross(id, m, entering);
+  return far.currentExtinction();
+}
+
 }  // namespace tray

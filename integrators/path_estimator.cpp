@@ -66,9 +66,11 @@ PathEstimator::PathEstimator(const RenderContext& ctx)
       maxDepth_(ctx.settings.getInt("max-depth")),
       clampIndirect_(ctx.settings.getFloat("clamp-indirect")),
       debugNan_(ctx.settings.getBool("debug-nan")),
-      absorbingMedia_(
-          std::any_of(ctx.scene.materials.begin(), ctx.scene.materials.end(),
-                      [](const Material& m) { return !isBlack(m.layers.absorption()); })),
+      absorbingMedia_(std::any_of(ctx.scene.materials.begin(), ctx.scene.materials.end(),
+                                  [](const Material& m) {
+                                    return !isBlack(m.layers.absorption()) ||
+                                           m.layers.scatteringMedium;
+                                  })),
       lights_(ctx.scene, lightSamplerKind(ctx.settings.getString("light-sampler")),
               triangleSampling(ctx.settings.getString("triangle-sampling"))),
       materials_(ctx.scene, ctx.camera, ctx.settings.getInt("spp")) {
@@ -127,13 +129,25 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, const Hit* found, 
                              bool& wantsShadow, RayStats& stats, PrimaryHit* primary,
                              const WavefrontVertex& wave) const {
   const SurfacePoint* surface = wave.surface;
-  const DrawsAhead ahead = wave.ahead;
+  DrawsAhead ahead = wave.ahead;
   const ShadingDeferral* deferral = wave.deferral;
   const uint32_t path = wave.path;
   wantsShadow = false;
   // KHR_materials_volume: the segment crosses the medium in effect, which absorbs.
-  const Color sigmaA = st.media.currentAbsorption();
-  const bool absorbing = !isBlack(sigmaA);
+  Color sigmaA = st.media.currentAbsorption();
+  bool absorbing = !isBlack(sigmaA);
+  // TRAY_materials_scattering: a medium event may end the segment first; if not, the flight's
+  // weight is the segment's attenuation, and shadow rays from the hit see the extinction.
+  if (st.media.scatters()) [[unlikely]] {
+    PathStep next;
+    if (mediumEvent(st, sampler, found, ahead, stats, next)) return next;
+    sigmaA = st.media.currentExtinction();
+    absorbing = false;
+    if (!found) {
+      escape(st);
+      return PathStep::kDone;
+    }
+  }
   if (!found) {
     // Lost inside an open absorbing mesh: transmittance exp(-inf) = 0.
     if (!absorbing) escape(st);
@@ -262,7 +276,7 @@ PathStep PathEstimator::step(PathState& st, Sampler& sampler, const Hit* found, 
   float w = ls.delta ? 1.0f : powerHeuristic(ls.pdf, bsdfPdf);
   // An unoccluded shadow ray crossed one medium: the one on its side of s.
   const Color sigma = absorbingMedia_ && v.refractive && dot(ls.wi, v.n) < 0
-                          ? farSideAbsorption(st.media, s.material, *v.m, s.frontFace)
+                          ? farSideExtinction(st.media, s.material, *v.m, s.frontFace)
                           : v.sigmaA;
   if (!isBlack(sigma)) f *= ls.infinite ? Color(0.0f) : transmittance(sigma, length(ls.p - s.p));
   shadow.contribution = neeContribution(st.beta, f, ls.L, w, ls.pdf);

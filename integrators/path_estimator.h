@@ -44,6 +44,12 @@ struct PathState {
   /// cache lines only, not the entries' (the wavefront's steps reach a wave's paths out of
   /// order, from the L2 cache).
   MediumStack media;
+  /// Scattering media (docs/subsurface.md), after the stack: touched only inside one. Events
+  /// so far, the channel whose extinction draws the path's free flights (-1 until its first),
+  /// and the path's pdf per channel over their mean (integrators/free_flight.h).
+  int mediumEvents = 0;
+  int8_t heroChannel = -1;
+  Color channelRatios{1.0f};
   /// The members' own initializers only. Written out, not defaulted: value-initialising a
   /// class whose default constructor is implicit zeroes all of it first, and the wavefront's
   /// emplace_back() did so for every camera path (a 384-byte `rep stos`; the media's entries
@@ -258,6 +264,13 @@ class PathEstimator {
     return c;
   }
   void escape(PathState& state) const;
+  /// TRAY_materials_scattering (integrators/path_medium.cpp, docs/subsurface.md): the free
+  /// flight of st.ray's segment through the scattering medium in effect. True: a medium event
+  /// came before `hit` (null: the segment escapes) and `next` is what became of the path (its
+  /// next segment set); false: the segment reaches `hit` (or escapes), the throughput weighted
+  /// for it, and `ahead` holds the draws made ahead that are left for the vertex there.
+  bool mediumEvent(PathState& st, Sampler& sampler, const Hit* hit, DrawsAhead& ahead,
+                   RayStats& stats, PathStep& next) const;
   void recordPrimary(PrimaryHit& primary, const PathState& st, const SurfacePoint& s,
                      const Vec3& shadingN, const Color& albedo) const;
   /// Which SIMD stage a vertex of material `sm` may go to (step's test, before its lights).
@@ -269,6 +282,9 @@ class PathEstimator {
   static constexpr int kMaxNanReports = 10;
   /// Mitsuba's default: Russian roulette from the fifth segment on.
   static constexpr int kRouletteDepth = 5;
+  /// A random walk in a scattering medium ends after this many events (Cycles stops its
+  /// random-walk subsurface at 256): a bias only for media far denser than their size.
+  static constexpr int kMaxMediumEvents = 1024;
   const RenderContext& ctx_;
   int maxDepth_;
   float clampIndirect_;

@@ -43,7 +43,14 @@ class MediumStack {
   /// Records that the path went through `id`'s surface.
   void cross(int id, const Material& m, bool entering) {
     if (entering) {
-      if (size_ < kCapacity) entries_[size_++] = {id, m.priority, iorOf(m), m.layers.absorption()};
+      if (size_ < kCapacity)
+        entries_[size_++] = {id,
+                             m.priority,
+                             iorOf(m),
+                             m.layers.absorption(),
+                             m.layers.scatteringMedium,
+                             m.layers.scattering,
+                             m.layers.scatterAnisotropy};
       return;
     }
     int at = find(id);
@@ -61,6 +68,29 @@ class MediumStack {
   Color currentAbsorption() const {
     int c = current();
     return c < 0 ? Color(0.0f) : entries_[c].sigmaA;
+  }
+  /// The scattering medium in effect (TRAY_materials_scattering, docs/subsurface.md): true
+  /// with its sigma_a, sigma_s and Henyey-Greenstein g; false outside every medium or in one
+  /// that only absorbs.
+  bool currentScattering(Color& sigmaA, Color& sigmaS, float& g) const {
+    int c = current();
+    if (c < 0 || !entries_[c].scatters) return false;
+    sigmaA = entries_[c].sigmaA, sigmaS = entries_[c].sigmaS, g = entries_[c].g;
+    return true;
+  }
+  /// Whether the medium in effect scatters (cheap: no medium, no search).
+  bool scatters() const {
+    if (size_ == 0) return false;
+    int c = current();
+    return entries_[c].scatters;
+  }
+  /// Extinction sigma_t = sigma_a + sigma_s of the medium in effect: what an unscattered
+  /// (shadow) segment through it is attenuated by. sigma_a alone in a medium that does not
+  /// scatter.
+  Color currentExtinction() const {
+    int c = current();
+    if (c < 0) return Color(0.0f);
+    return entries_[c].scatters ? entries_[c].sigmaA + entries_[c].sigmaS : entries_[c].sigmaA;
   }
   int size() const { return size_; }
   /// KHR_materials_dispersion: the one wavelength (nm) the path carries since it first met
@@ -81,6 +111,9 @@ class MediumStack {
     int priority = 0;
     float ior = 1;
     Color sigmaA{0.0f};
+    bool scatters = false;  ///< TRAY_materials_scattering: sigmaS and g below apply
+    Color sigmaS{0.0f};
+    float g = 0;
   };
   /// Index of the medium in effect, ignoring entry `skip`; -1 if none.
   int current(int skip = -1) const {
