@@ -205,7 +205,8 @@ bool isKnownExtension(const std::string& name) {
       "KHR_materials_clearcoat",    "KHR_materials_sheen",
       "KHR_mesh_quantization",      "TRAY_shape",
       "TRAY_materials_phong",       "TRAY_materials_priority",
-      "TRAY_environment",           "TRAY_camera"};
+      "TRAY_environment",           "TRAY_camera",
+      "TRAY_materials_hair"};
   return kKnown.count(name) != 0;
 }
 

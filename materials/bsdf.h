@@ -10,6 +10,7 @@
 #include "materials/dielectric.h"
 #include "materials/ggx_mixture_lanes.h"
 #include "materials/ggx_reflection.h"
+#include "materials/hair_bsdf.h"
 #include "materials/lambert.h"
 
 namespace tray {
@@ -38,6 +39,11 @@ class Bsdf {
   /// per vertex (see setSpawnRay in core/ray.h).
   Bsdf(const ShadingMaterial& m, const Vec3& n, float eta)
       : frame_(Frame::fromNormal(n)), diffuse_{m.baseColor}, coatEta_(eta) {
+    // TRAY_materials_hair: the hair BSDF alone (materials/hair_bsdf.h), no glTF lobe or layer.
+    if (m.hair) {
+      initHair(*m.hair, m.tangent, n);
+      return;
+    }
     // A lone Lambert lobe under no layer (matte: metallic 0, roughness 1, no transmission)
     // with some albedo: nothing else is built. Building every lobe took 222 instructions per
     // vertex (callgrind, Cornell box). The weights are the general path's up to the sign of
@@ -91,13 +97,13 @@ class Bsdf {
     return hasNonDelta_ || layers_.anyNonDelta();
   }
   /// True when light can also scatter to the far side of the surface.
-  bool transmits() const { return wGlass_ > 0; }
+  bool transmits() const { return wGlass_ > 0 || only_ == Only::kHair; }
   /// Nothing but a Lambert lobe of albedo m.baseColor (matte): the SIMD matte stage repeats
   /// eval and sample for it (integrators/matte_batch.h). The constructor's test: metallic 0,
   /// roughness 1, no transmission, no layer (clearcoat, sheen), some albedo.
   static bool isLambertOnly(const ShadingMaterial& m) {
     const Color& a = m.baseColor;
-    return m.metallic <= 0 && m.transmission <= 0 && !(m.roughness < 1.0f) &&
+    return !m.hair && m.metallic <= 0 && m.transmission <= 0 && !(m.roughness < 1.0f) &&
            (a.x > 0 || a.y > 0 || a.z > 0) && !BsdfLayers::anyApplies(m);
   }
   /// Metal and plastic (GGX reflection, its dielectric coat and Lambert) and nothing else: no
@@ -131,7 +137,8 @@ class Bsdf {
   /// The one lobe with any weight, when there is only one (matte, pure metal, pure glass):
   /// sample, eval and pdf then skip the mixture's bookkeeping. Same values, fewer
   /// instructions (7% of the Cornell box render's, callgrind on bench/path_bench).
-  enum class Only : uint8_t { kMixture, kMetal, kGlass, kDiffuse, kNothing };
+  /// kHair: TRAY_materials_hair's fibre BSDF alone (hair_), outside the glTF mixture.
+  enum class Only : uint8_t { kMixture, kMetal, kGlass, kDiffuse, kNothing, kHair };
   /// Storage for a member that only some materials read: left unbuilt (no stores) until one
   /// assigns it. The lone Lambert lobe (every matte surface, all of the Cornell box) builds
   /// none of them; reads are guarded by the weights and flags that say the member is in use.
@@ -144,6 +151,7 @@ class Bsdf {
   };
   // Everything but the lone Lambert lobe, and the layers.
   void initLobes(const ShadingMaterial& m, float eta);
+  void initHair(const HairParams& p, const Vec3& tangent, const Vec3& n);
   Color layersEval(const Vec3& wo, const Vec3& wi, float& pdf) const;
   BsdfSample layersSample(const Vec3& wo, float uc, Vec2 u) const;
   /// The lone Lambert lobe in world space: only the cosines to n (and the frame to place the
@@ -206,6 +214,7 @@ class Bsdf {
   // are positive, which the lone Lambert lobe's are not.
   Slot<GgxReflectionLobe> metal_, coatLobe_;
   Slot<DielectricLobe> glass_;
+  Slot<HairBsdf> hair_;  ///< only_ == Only::kHair
   LambertLobe diffuse_;
   float coatEta_;
   bool coatTinted_;  ///< KHR_materials_specular changed the coat's Fresnel
