@@ -1,6 +1,7 @@
 #include "accel/embree_native.h"
 
 #include <cstring>
+#include <vector>
 
 #include "core/error.h"
 #include "shapes/curves.h"
@@ -53,7 +54,12 @@ RTCGeometry curveGeometry(RTCDevice device, const Curves& c) {
 RTCGeometry subdivisionGeometry(RTCDevice device, const SubdivisionSurface& s) {
   const SubdivisionCage& c = s.cage();
   RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_SUBDIVISION);
-  copyBuffer(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, c.positions.data(), sizeof(Vec3),
+  // 16-byte vertices with w = 0: Embree's subdivision code loads 4 floats per vertex and
+  // asserts they are all finite (a 12-byte stride let rtcInterpolate read the padding).
+  std::vector<float> padded(4 * c.positions.size(), 0.0f);
+  for (size_t i = 0; i < c.positions.size(); ++i)
+    std::memcpy(&padded[4 * i], &c.positions[i], sizeof(Vec3));
+  copyBuffer(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, padded.data(), 4 * sizeof(float),
              c.positions.size());
   copyBuffer(g, RTC_BUFFER_TYPE_FACE, RTC_FORMAT_UINT, c.faceVertexCounts.data(),
              sizeof(uint32_t), c.faceVertexCounts.size());
