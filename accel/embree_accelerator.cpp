@@ -397,8 +397,8 @@ class EmbreeAccelerator final : public Accelerator {
   RTCDevice device_ = nullptr;
   RTCScene top_ = nullptr;
   std::unordered_map<uint32_t, RTCScene> meshScenes_;
-  std::vector<RTCScene> nativeScenes_;       ///< one per curves / subdivision primitive
-  std::vector<RTCGeometry> subdivisions_;   ///< per primitive: its subdivision geometry or null
+  std::vector<RTCScene> nativeScenes_;     ///< one per curves / subdivision primitive
+  std::vector<RTCGeometry> subdivisions_;  ///< per primitive: its subdivision geometry or null
   std::vector<ShapeUserData> userData_;
   std::atomic<int64_t> memory_{0};
   std::mutex errorMutex_;

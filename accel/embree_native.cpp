@@ -25,7 +25,8 @@ void copyBuffer(RTCGeometry g, RTCBufferType type, RTCFormat format, const void*
 void frontOnly(const RTCFilterFunctionNArguments* args) {
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] != -1) continue;
-    const float dx = RTCRayN_dir_x(args->ray, args->N, i), dy = RTCRayN_dir_y(args->ray, args->N, i),
+    const float dx = RTCRayN_dir_x(args->ray, args->N, i),
+                dy = RTCRayN_dir_y(args->ray, args->N, i),
                 dz = RTCRayN_dir_z(args->ray, args->N, i);
     const float nx = RTCHitN_Ng_x(args->hit, args->N, i), ny = RTCHitN_Ng_y(args->hit, args->N, i),
                 nz = RTCHitN_Ng_z(args->hit, args->N, i);
@@ -61,8 +62,8 @@ RTCGeometry subdivisionGeometry(RTCDevice device, const SubdivisionSurface& s) {
     std::memcpy(&padded[4 * i], &c.positions[i], sizeof(Vec3));
   copyBuffer(g, RTC_BUFFER_TYPE_VERTEX, RTC_FORMAT_FLOAT3, padded.data(), 4 * sizeof(float),
              c.positions.size());
-  copyBuffer(g, RTC_BUFFER_TYPE_FACE, RTC_FORMAT_UINT, c.faceVertexCounts.data(),
-             sizeof(uint32_t), c.faceVertexCounts.size());
+  copyBuffer(g, RTC_BUFFER_TYPE_FACE, RTC_FORMAT_UINT, c.faceVertexCounts.data(), sizeof(uint32_t),
+             c.faceVertexCounts.size());
   copyBuffer(g, RTC_BUFFER_TYPE_INDEX, RTC_FORMAT_UINT, c.indices.data(), sizeof(uint32_t),
              c.indices.size());
   if (!c.creaseEdges.empty()) {
@@ -77,9 +78,9 @@ RTCGeometry subdivisionGeometry(RTCDevice device, const SubdivisionSurface& s) {
     copyBuffer(g, RTC_BUFFER_TYPE_VERTEX_CREASE_WEIGHT, RTC_FORMAT_FLOAT, c.cornerWeights.data(),
                sizeof(float), c.cornerWeights.size());
   }
-  rtcSetGeometrySubdivisionMode(g, 0,
-                                c.smoothBoundary ? RTC_SUBDIVISION_MODE_SMOOTH_BOUNDARY
-                                                 : RTC_SUBDIVISION_MODE_PIN_BOUNDARY);
+  rtcSetGeometrySubdivisionMode(
+      g, 0,
+      c.smoothBoundary ? RTC_SUBDIVISION_MODE_SMOOTH_BOUNDARY : RTC_SUBDIVISION_MODE_PIN_BOUNDARY);
   rtcSetGeometryTessellationRate(g, c.tessellationRate);
   return g;
 }

@@ -99,10 +99,10 @@ struct MaterialLayers {
 struct HairParams {
   bool enabled = false;
   Color sigmaA{0.0f};
-  float betaM = 0.3f;       ///< longitudinal roughness, (0, 1]
-  float betaN = 0.3f;       ///< azimuthal roughness, (0, 1]
-  float ior = 1.55f;        ///< of the fibre (keratin)
-  float alpha = 2.0f;       ///< cuticle scale tilt, degrees
+  float betaM = 0.3f;  ///< longitudinal roughness, (0, 1]
+  float betaN = 0.3f;  ///< azimuthal roughness, (0, 1]
+  float ior = 1.55f;   ///< of the fibre (keratin)
+  float alpha = 2.0f;  ///< cuticle scale tilt, degrees
 };
 
 /// One material, holding both the glTF metallic-roughness description (used by physically
@@ -123,7 +123,8 @@ struct Material {
   bool unlit = false;        ///< KHR_materials_unlit: shows base colour, no lighting
   MaterialLayers layers;  ///< KHR_materials_volume / specular / clearcoat / sheen
   PhongParams phong;
-  HairParams hair;  ///< TRAY_materials_hair; enabled: the hair BSDF replaces everything above
+  /// TRAY_materials_hair; enabled: the hair BSDF replaces everything above.
+  HairParams hair;
   bool hasPhong = false;  ///< phong came from TRAY_materials_phong rather than the mapping
   TextureRef baseColorTexture, metallicRoughnessTexture, emissiveTexture, normalTexture;
   bool hasTextures() const {

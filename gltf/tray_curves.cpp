@@ -73,7 +73,8 @@ void cageFromMesh(const GltfContext& ctx, ExtensionReader& r, int meshIndex, Sub
     for (uint32_t i : idx) {
       if (i >= points.size()) r.fail("'mesh' has an index past its vertices");
       const Vec3& q = points[i];
-      auto [it, added] = welded.emplace(std::make_tuple(q.x, q.y, q.z), uint32_t(c.positions.size()));
+      auto [it, added] =
+          welded.emplace(std::make_tuple(q.x, q.y, q.z), uint32_t(c.positions.size()));
       if (added) c.positions.push_back(q);
       c.indices.push_back(it->second);
     }
@@ -109,7 +110,8 @@ void readCreases(const GltfContext& ctx, ExtensionReader& r, SubdivisionCage& c)
 }  // namespace
 
 std::shared_ptr<const Shape> parseCurves(const GltfContext& ctx, ExtensionReader& r) {
-  const std::string basisName = r.string("basis", "bspline"), profile = r.string("profile", "round");
+  const std::string basisName = r.string("basis", "bspline"),
+                    profile = r.string("profile", "round");
   if (basisName != "bspline" && basisName != "bezier")
     r.fail("'basis' must be \"bspline\" or \"bezier\"");
   if (profile != "round" && profile != "flat") r.fail("'profile' must be \"round\" or \"flat\"");
@@ -118,7 +120,8 @@ std::shared_ptr<const Shape> parseCurves(const GltfContext& ctx, ExtensionReader
   std::vector<CurvePoint> points(f.size() / 4);
   for (size_t i = 0; i < points.size(); ++i) {
     points[i] = {{f[4 * i], f[4 * i + 1], f[4 * i + 2]}, f[4 * i + 3]};
-    if (!(points[i].radius >= 0)) r.fail("'points' has a negative radius at point " + std::to_string(i));
+    if (!(points[i].radius >= 0))
+      r.fail("'points' has a negative radius at point " + std::to_string(i));
   }
   std::vector<uint32_t> segments;
   if (r.has("strands") && r.has("segments")) r.fail("give 'strands' or 'segments', not both");
@@ -129,8 +132,9 @@ std::shared_ptr<const Shape> parseCurves(const GltfContext& ctx, ExtensionReader
         r.fail("'segments' has a segment starting at " + std::to_string(s) +
                " without 4 control points");
   } else {
-    std::vector<uint32_t> counts =
-        r.has("strands") ? indicesOf(ctx, r, "strands") : std::vector<uint32_t>{uint32_t(points.size())};
+    std::vector<uint32_t> counts = r.has("strands")
+                                       ? indicesOf(ctx, r, "strands")
+                                       : std::vector<uint32_t>{uint32_t(points.size())};
     uint64_t total = 0;
     for (uint32_t n : counts) total += n;
     if (total != points.size())
@@ -139,7 +143,8 @@ std::shared_ptr<const Shape> parseCurves(const GltfContext& ctx, ExtensionReader
     size_t bad = 0;
     segments = curveSegmentsOfStrands(basis, counts, &bad);
     if (segments.empty())
-      r.fail("strand " + std::to_string(bad) + " has " + std::to_string(counts.empty() ? 0 : counts[bad]) +
+      r.fail("strand " + std::to_string(bad) + " has " +
+             std::to_string(counts.empty() ? 0 : counts[bad]) +
              (basis == CurveBasis::kBezier ? " points: a Bezier strand needs 3k + 1 >= 4"
                                            : " points: a B-spline strand needs at least 4"));
   }
@@ -169,7 +174,8 @@ std::shared_ptr<const Shape> parseSubdivision(const GltfContext& ctx, ExtensionR
     r.fail("'faceVertexCounts' sum to " + std::to_string(sum) + " but 'indices' has " +
            std::to_string(c.indices.size()));
   for (uint32_t i : c.indices)
-    if (i >= c.positions.size()) r.fail("'indices' refers to a missing vertex " + std::to_string(i));
+    if (i >= c.positions.size())
+      r.fail("'indices' refers to a missing vertex " + std::to_string(i));
   if (c.faceVertexCounts.empty()) r.fail("has no face");
   c.tessellationRate = float(r.number("tessellationRate", 16.0, 1.0, 4096.0));
   const std::string boundary = r.string("boundary", "smooth");

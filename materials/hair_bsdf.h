@@ -31,7 +31,9 @@ class HairBsdf {
   HairLobe lobe(float h) const {
     return HairLobe(h, p_.ior, p_.sigmaA, p_.betaM, p_.betaN, p_.alpha);
   }
-  static Vec3 toLocal(const Placed& f, const Vec3& w) { return {dot(w, f.x), dot(w, f.y), dot(w, f.z)}; }
+  static Vec3 toLocal(const Placed& f, const Vec3& w) {
+    return {dot(w, f.x), dot(w, f.y), dot(w, f.z)};
+  }
   HairParams p_;
   Vec3 t_, n_;
 };

@@ -8,9 +8,15 @@
 namespace tray {
 namespace {
 
-float safeSqrt(float x) { return std::sqrt(std::max(0.0f, x)); }
-float safeAsin(float x) { return std::asin(std::clamp(x, -1.0f, 1.0f)); }
-float sqr(float x) { return x * x; }
+float safeSqrt(float x) {
+  return std::sqrt(std::max(0.0f, x));
+}
+float safeAsin(float x) {
+  return std::asin(std::clamp(x, -1.0f, 1.0f));
+}
+float sqr(float x) {
+  return x * x;
+}
 
 // Modified Bessel function of the first kind, order 0, by its series (pbrt-v4 B.2 I0).
 float besselI0(float x) {
@@ -34,8 +40,7 @@ float logBesselI0(float x) {
 // small-variance branch works in logarithms to stay finite (pbrt-v4 9.9.1).
 float mp(float cosThetaI, float cosThetaO, float sinThetaI, float sinThetaO, float v) {
   float a = cosThetaI * cosThetaO / v, b = sinThetaI * sinThetaO / v;
-  if (v <= 0.1f)
-    return std::exp(logBesselI0(a) - b - 1 / v + 0.6931f + std::log(1 / (2 * v)));
+  if (v <= 0.1f) return std::exp(logBesselI0(a) - b - 1 / v + 0.6931f + std::log(1 / (2 * v)));
   return std::exp(-b) * besselI0(a) / (std::sinh(1 / v) * 2 * v);
 }
 
@@ -43,7 +48,9 @@ float logistic(float x, float s) {
   x = std::fabs(x);
   return std::exp(-x / s) / (s * sqr(1 + std::exp(-x / s)));
 }
-float logisticCdf(float x, float s) { return 1 / (1 + std::exp(-x / s)); }
+float logisticCdf(float x, float s) {
+  return 1 / (1 + std::exp(-x / s));
+}
 float trimmedLogistic(float x, float s, float a, float b) {
   return logistic(x, s) / (logisticCdf(b, s) - logisticCdf(a, s));
 }
@@ -54,7 +61,9 @@ float sampleTrimmedLogistic(float u, float s, float a, float b) {
 }
 
 // Azimuth after p internal paths (Chiang et al. 2016, equation 4; pbrt-v4 9.9.5).
-float phiOf(int p, float gammaO, float gammaT) { return 2 * p * gammaT - 2 * gammaO + p * kPi; }
+float phiOf(int p, float gammaO, float gammaT) {
+  return 2 * p * gammaT - 2 * gammaO + p * kPi;
+}
 
 float np(float phi, int p, float s, float gammaO, float gammaT) {
   float dphi = phi - phiOf(p, gammaO, gammaT);
@@ -62,7 +71,9 @@ float np(float phi, int p, float s, float gammaO, float gammaT) {
   return trimmedLogistic(dphi, s, -kPi, kPi);
 }
 
-float average(const Color& c) { return (c.x + c.y + c.z) / 3; }
+float average(const Color& c) {
+  return (c.x + c.y + c.z) / 3;
+}
 
 }  // namespace
 
@@ -75,8 +86,8 @@ HairLobe::HairLobe(float h, float eta, const Color& sigmaA, float betaM, float b
   v_[1] = 0.25f * v_[0];
   v_[2] = 4 * v_[0];
   for (int p = 3; p <= kPMax; ++p) v_[p] = v_[2];
-  s_ = std::sqrt(kPi / 8) *
-       (0.265f * betaN + 1.194f * sqr(betaN) + 5.372f * std::pow(betaN, 22.0f));
+  s_ =
+      std::sqrt(kPi / 8) * (0.265f * betaN + 1.194f * sqr(betaN) + 5.372f * std::pow(betaN, 22.0f));
   sin2kAlpha_[0] = std::sin(alphaDegrees * kPi / 180);
   cos2kAlpha_[0] = safeSqrt(1 - sqr(sin2kAlpha_[0]));
   for (int i = 1; i < 3; ++i) {

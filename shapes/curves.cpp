@@ -32,8 +32,7 @@ void Curves::evaluate(uint32_t segment, float u, Vec3& p, Vec3& dpdu, float& rad
   if (basis_ == CurveBasis::kBezier) {
     // Bernstein polynomials and their derivatives.
     w[0] = s * s * s, w[1] = 3 * u * s * s, w[2] = 3 * u * u * s, w[3] = u * u * u;
-    d[0] = -3 * s * s, d[1] = 3 * s * s - 6 * u * s, d[2] = 6 * u * s - 3 * u * u,
-    d[3] = 3 * u * u;
+    d[0] = -3 * s * s, d[1] = 3 * s * s - 6 * u * s, d[2] = 6 * u * s - 3 * u * u, d[3] = 3 * u * u;
   } else {
     // Uniform cubic B-spline basis (Embree's, e.g. Foley et al. 11.2.3).
     w[0] = s * s * s / 6, w[1] = (3 * u * u * u - 6 * u * u + 4) / 6,

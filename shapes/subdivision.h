@@ -25,7 +25,7 @@ struct SubdivisionCage {
   std::vector<float> creaseWeights;  ///< per crease edge; infinity: a sharp edge
   std::vector<uint32_t> cornerVertices;
   std::vector<float> cornerWeights;  ///< per corner vertex
-  float tessellationRate = 16;      ///< Embree's quads per patch edge
+  float tessellationRate = 16;       ///< Embree's quads per patch edge
   /// Boundary rule: true smooths boundary edges (Embree's RTC_SUBDIVISION_MODE_SMOOTH_BOUNDARY),
   /// false pins boundary vertices and edges (PIN_BOUNDARY).
   bool smoothBoundary = true;

@@ -29,7 +29,9 @@ Vec3 uniformSphere(double u1, double u2) {
 }
 constexpr double kSpherePdf = 1 / (4 * M_PI);
 
-float average(const Color& c) { return (c.x + c.y + c.z) / 3; }
+float average(const Color& c) {
+  return (c.x + c.y + c.z) / 3;
+}
 
 const float kBetas[] = {0.1f, 0.3f, 0.5f, 0.7f, 0.9f};
 
@@ -69,10 +71,11 @@ TEST(Hair, WhiteFurnaceEveryRoughnessBySampling) {
       for (int i = 0; i < count; ++i) {
         const float h = std::clamp(float(-1 + 2 * radicalInverse(2, uint64_t(i))), -0.999f, 0.999f);
         const HairLobe hair(h, 1.55f, Color(0.0f), betaM, betaN, 2.0f);
-        const Vec3 wo = uniformSphere(radicalInverse(3, uint64_t(i)), radicalInverse(5, uint64_t(i)));
-        BsdfSample s = hair.sample(wo, float(radicalInverse(7, uint64_t(i))),
-                                   {float(radicalInverse(11, uint64_t(i))),
-                                    float(radicalInverse(13, uint64_t(i)))});
+        const Vec3 wo =
+            uniformSphere(radicalInverse(3, uint64_t(i)), radicalInverse(5, uint64_t(i)));
+        BsdfSample s = hair.sample(
+            wo, float(radicalInverse(7, uint64_t(i))),
+            {float(radicalInverse(11, uint64_t(i))), float(radicalInverse(13, uint64_t(i)))});
         if (!(s.pdf > 0)) continue;
         const double w = average(s.f) / s.pdf;
         EXPECT_NEAR(w, 1.0, 1e-3) << betaM << " " << betaN << " h " << h;
@@ -94,9 +97,9 @@ TEST(Hair, PdfMatchesSamplesAndIntegratesToOne) {
       for (int i = 0; i < count; ++i) {
         Vec3 wi = uniformSphere(radicalInverse(2, uint64_t(i)), radicalInverse(3, uint64_t(i)));
         integral += hair.pdf(wo, wi) / kSpherePdf;
-        BsdfSample s = hair.sample(wo, float(radicalInverse(5, uint64_t(i))),
-                                   {float(radicalInverse(7, uint64_t(i))),
-                                    float(radicalInverse(11, uint64_t(i)))});
+        BsdfSample s = hair.sample(
+            wo, float(radicalInverse(5, uint64_t(i))),
+            {float(radicalInverse(7, uint64_t(i))), float(radicalInverse(11, uint64_t(i)))});
         if (i % 16 == 0 && s.pdf > 1e-3f) {
           EXPECT_NEAR(s.pdf, hair.pdf(wo, s.wi), 1e-3f * s.pdf);
         }
@@ -142,9 +145,9 @@ TEST(Hair, SampledDirectionsFollowThePdf) {
     return a * kPhi + b;
   };
   for (int i = 0; i < samples; ++i) {
-    BsdfSample s = hair.sample(wo, float(radicalInverse(2, uint64_t(i))),
-                               {float(radicalInverse(3, uint64_t(i))),
-                                float(radicalInverse(5, uint64_t(i)))});
+    BsdfSample s =
+        hair.sample(wo, float(radicalInverse(2, uint64_t(i))),
+                    {float(radicalInverse(3, uint64_t(i))), float(radicalInverse(5, uint64_t(i)))});
     if (s.pdf > 0) observed[size_t(cell(s.wi))] += 1;
   }
   // Expected: pdf integrated over each cell by a fine midpoint rule (area element
@@ -152,7 +155,8 @@ TEST(Hair, SampledDirectionsFollowThePdf) {
   const int sub = 8;
   for (int a = 0; a < kTheta * sub; ++a)
     for (int b = 0; b < kPhi * sub; ++b) {
-      double x = -1 + 2 * (a + 0.5) / (kTheta * sub), phi = -M_PI + 2 * M_PI * (b + 0.5) / (kPhi * sub);
+      double x = -1 + 2 * (a + 0.5) / (kTheta * sub),
+             phi = -M_PI + 2 * M_PI * (b + 0.5) / (kPhi * sub);
       double c = std::sqrt(1 - x * x);
       Vec3 w{float(x), float(c * std::cos(phi)), float(c * std::sin(phi))};
       double area = (2.0 / (kTheta * sub)) * (2 * M_PI / (kPhi * sub));
@@ -190,9 +194,9 @@ TEST(Hair, BsdfFurnaceInWorldSpace) {
     Vec3 wi = uniformSphere(radicalInverse(2, uint64_t(i)), radicalInverse(3, uint64_t(i)));
     float pdf;
     sum += average(bsdf.eval(wo, wi, pdf)) * std::fabs(wi.z) / kSpherePdf;
-    BsdfSample s = bsdf.sample(wo, float(radicalInverse(5, uint64_t(i))),
-                               {float(radicalInverse(7, uint64_t(i))),
-                                float(radicalInverse(11, uint64_t(i)))});
+    BsdfSample s = bsdf.sample(
+        wo, float(radicalInverse(5, uint64_t(i))),
+        {float(radicalInverse(7, uint64_t(i))), float(radicalInverse(11, uint64_t(i)))});
     if (i % 64 == 0 && s.pdf > 1e-3f) {
       EXPECT_NEAR(s.pdf, bsdf.pdf(wo, s.wi), 2e-3f * s.pdf);
       EXPECT_NEAR(average(s.f) * std::fabs(s.wi.z) / s.pdf, 1.0, 2e-3);

@@ -257,9 +257,9 @@ TEST(Subdivision, InfinitelySharpEdgesKeepTheCube) {
 }
 
 TEST(EmbreeOnly, TheInHouseBvhRefusesCurvesAndSubdivisionByName) {
-  for (auto shape : {std::shared_ptr<const Shape>(straightCurve(CurveBasis::kBezier,
-                                                                CurveShape::kRound, 0.1f)),
-                     std::shared_ptr<const Shape>(std::make_shared<SubdivisionSurface>(cubeCage()))})
+  for (auto shape :
+       {std::shared_ptr<const Shape>(straightCurve(CurveBasis::kBezier, CurveShape::kRound, 0.1f)),
+        std::shared_ptr<const Shape>(std::make_shared<SubdivisionSurface>(cubeCage()))})
     for (const char* name : {"bvh", "bvh-gs", "naive"}) {
       Scene scene = sceneOf(shape);
       scene.sourcePath = "hair.gltf";
