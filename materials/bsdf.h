@@ -82,6 +82,7 @@ class Bsdf {
   /// eta relative to wo (n faces wo) is the constructor's. Shading normals' asymmetry (Veach
   /// 5.3) is the caller's: it knows the geometric normal.
   Color evalImportance(const Vec3& wo, const Vec3& wi, float& pdf) const {
+    if (only_ == Only::kHair) return hairImportance(wo, wi, pdf);
     Color f = eval(wo, wi, pdf);
     if (wGlass_ > 0 && dot(wi, frame_.n) < 0) f *= coatEta_ * coatEta_;
     return f;
@@ -90,6 +91,10 @@ class Bsdf {
   BsdfSample sampleImportance(const Vec3& wo, float uc, Vec2 u) const {
     BsdfSample s = sample(wo, uc, u);
     if (s.transmission && s.etaScale > 0) s.f = s.f * (1.0f / s.etaScale);
+    if (only_ == Only::kHair && s.pdf > 0) {
+      float unused;
+      s.f = hairImportance(wo, s.wi, unused);
+    }
     return s;
   }
   /// False when every lobe is a delta: light sampling cannot help and MIS is off.
@@ -152,6 +157,14 @@ class Bsdf {
   // Everything but the lone Lambert lobe, and the layers.
   void initLobes(const ShadingMaterial& m, float eta);
   void initHair(const HairParams& p, const Vec3& tangent, const Vec3& n);
+  /// The hair model is not reciprocal (its offset h is read from wo: materials/hair_bsdf.h), so
+  /// its adjoint is stated: f*(wo, wi) = f(wi, wo) (Veach 1997, 3.7.6), with the pdf of
+  /// sampling wi from wo.
+  Color hairImportance(const Vec3& wo, const Vec3& wi, float& pdf) const {
+    float unused;
+    hair_->eval(wo, wi, pdf);
+    return hair_->eval(wi, wo, unused);
+  }
   Color layersEval(const Vec3& wo, const Vec3& wi, float& pdf) const;
   BsdfSample layersSample(const Vec3& wo, float uc, Vec2 u) const;
   /// The lone Lambert lobe in world space: only the cosines to n (and the frame to place the

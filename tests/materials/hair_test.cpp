@@ -205,6 +205,38 @@ TEST(Hair, BsdfFurnaceInWorldSpace) {
   EXPECT_NEAR(sum / count, 1.0, 0.02);
 }
 
+// The model reads h from wo, so it is not reciprocal; importance transport (BDPT's light
+// subpaths, SPPM's photons) uses the adjoint f*(wo, wi) = f(wi, wo), with the pdf of sampling wi
+// from wo.
+TEST(Hair, ImportanceUsesTheAdjoint) {
+  Material m;
+  m.hair.enabled = true;
+  m.hair.sigmaA = Color(0.2f, 0.5f, 1.0f);
+  const Vec3 n(0, 0, 1);
+  ShadingMaterial sm = ShadingMaterial::of(m, n);
+  sm.tangent = Vec3(1, 0, 0);
+  const Bsdf bsdf(sm, n, 1.55f);
+  bool differs = false;
+  for (int i = 1; i < 200; ++i) {
+    Vec3 wo = uniformSphere(radicalInverse(2, uint64_t(i)), radicalInverse(3, uint64_t(i)));
+    Vec3 wi = uniformSphere(radicalInverse(5, uint64_t(i)), radicalInverse(7, uint64_t(i)));
+    if (wo.z < 0) wo.z = -wo.z;
+    float pdf, pdfIgnored;
+    const Color adj = bsdf.evalImportance(wo, wi, pdf);
+    const Color back = bsdf.eval(wi, wo, pdfIgnored);
+    EXPECT_NEAR(adj.y, back.y, 1e-5f * (1 + back.y));
+    EXPECT_NEAR(pdf, bsdf.pdf(wo, wi), 1e-5f * (1 + pdf));
+    const Color fwd = bsdf.eval(wo, wi);
+    if (std::fabs(fwd.y - back.y) > 1e-3f * (fwd.y + back.y)) differs = true;
+    BsdfSample s = bsdf.sampleImportance(wo, float(radicalInverse(11, uint64_t(i))),
+                                         {float(radicalInverse(13, uint64_t(i))), 0.37f});
+    if (s.pdf > 0) {
+      EXPECT_NEAR(s.f.y, bsdf.eval(s.wi, wo).y, 1e-5f * (1 + s.f.y));
+    }
+  }
+  EXPECT_TRUE(differs) << "the hair model came out reciprocal: the adjoint is then moot";
+}
+
 TEST(Hair, AbsorptionFromColourAndMelanin) {
   // Chiang et al.'s inversion: white hair has no absorption, darker colours more.
   EXPECT_EQ(HairLobe::sigmaAFromReflectance(Color(1.0f), 0.3f).x, 0.0f);
