@@ -14,6 +14,7 @@
 #include "accel/bvh_batch.h"
 #include "accel/bvh_mesh.h"
 #include "accel/bvh_object_ray.h"
+#include "accel/embree_only.h"
 #include "core/motion.h"
 #include "core/scene.h"
 #include "textures/alpha.h"
@@ -329,6 +330,7 @@ int bvhBatchRays(BvhBatch batch) {
 
 std::unique_ptr<Accelerator> makeTwoLevelAccelerator(const Scene& scene,
                                                      const TwoLevelOptions& options) {
+  refuseEmbreeOnlyShapes(scene, "the in-house BVH (--accel bvh, bvh-gs, naive)");
   return std::make_unique<TwoLevelAccelerator>(scene, options);
 }
 

@@ -14,6 +14,7 @@
 
 #include "accel/embree_alpha_filter.h"
 #include "accel/embree_batch.h"
+#include "accel/embree_native.h"
 #include "accel/embree_rays.h"
 #include "core/error.h"
 #include "core/motion.h"
@@ -37,13 +38,21 @@ struct AllHitsContext {
   RTCIntersectContext base;
   const Scene* scene;
   std::vector<Hit>* hits;
+  const std::vector<RTCGeometry>* subdivisions;  ///< per primitive; see refineNativeHit
 };
+
+/// A subdivision surface's hit gets its limit normal (accel/embree_native.h); others unchanged.
+void refineNativeHit(const std::vector<RTCGeometry>& subdivisions, Hit& hit) {
+  if (hit.primitive < subdivisions.size() && subdivisions[hit.primitive])
+    embreeSubdivisionNormal(subdivisions[hit.primitive], hit);
+}
 
 void allHitsFilter(const RTCFilterFunctionNArguments* args) {
   auto* ctx = reinterpret_cast<const AllHitsContext*>(args->context);
   const RTCHit* h = reinterpret_cast<const RTCHit*>(args->hit);
   const RTCRay* r = reinterpret_cast<const RTCRay*>(args->ray);
   Hit hit = hitFromEmbree(*h, r->tfar, *ctx->scene);
+  refineNativeHit(*ctx->subdivisions, hit);
   // Embree may report a triangle more than once (RenderKit/embree#12): keep one.
   auto same = [&](const Hit& o) {
     return o.primitive == hit.primitive && o.triangle == hit.triangle && o.t == hit.t &&
@@ -160,6 +169,9 @@ class EmbreeAccelerator final : public Accelerator {
   ~EmbreeAccelerator() override {
     if (top_) rtcReleaseScene(top_);
     for (auto& [mesh, s] : meshScenes_) rtcReleaseScene(s);
+    for (RTCScene s : nativeScenes_) rtcReleaseScene(s);
+    for (RTCGeometry g : subdivisions_)
+      if (g) rtcReleaseGeometry(g);
     rtcReleaseDevice(device_);
   }
 
@@ -169,6 +181,7 @@ class EmbreeAccelerator final : public Accelerator {
     rtcIntersect1(top_, &ctx.base, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
     hit = hitFromEmbree(rh.hit, rh.ray.tfar, scene_);
+    if (!subdivisions_.empty()) refineNativeHit(subdivisions_, hit);
     return true;
   }
 
@@ -205,6 +218,7 @@ class EmbreeAccelerator final : public Accelerator {
     ctx.base.filter = allHitsFilter;
     ctx.scene = &scene_;
     ctx.hits = &hits;
+    ctx.subdivisions = &subdivisions_;
     RTCRayHit rh = toEmbree(ray);
     rtcIntersect1(top_, &ctx.base, &rh);
     std::sort(hits.begin(), hits.end(), [](const Hit& a, const Hit& b) {
@@ -235,6 +249,8 @@ class EmbreeAccelerator final : public Accelerator {
     if (!error_.empty()) throw Error("Embree: " + error_, Error::Kind::kRender);
   }
 
+  // Scenes with Embree's own curves or subdivision surfaces also trace ray by ray: their hits
+  // go through intersect() (refineNativeHit).
   bool streamable() const { return batch_ != EmbreeBatch::kLoop && !hasUserGeometry_; }
 
   /// A new Embree-owned buffer of `count` items of `stride` bytes, filled from `data` (`slot`:
@@ -308,6 +324,31 @@ class EmbreeAccelerator final : public Accelerator {
       rtcSetGeometryTransform(g, k, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, &p.motion[k].m[0][0]);
   }
 
+  /// Embree's own curves or subdivision surface of primitive i (accel/embree_native.h), in a
+  /// scene of its own placed by an instance, as a mesh is: hits then arrive in object space.
+  RTCGeometry nativeInstance(uint32_t i, RTCGeometry native) {
+    const Primitive& p = scene_.primitives[i];
+    hasUserGeometry_ = true;  // trace ray by ray (streamable)
+    rtcCommitGeometry(native);
+    RTCScene s = rtcNewScene(device_);
+    rtcSetSceneFlags(s, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
+    rtcSetSceneBuildQuality(s, RTC_BUILD_QUALITY_HIGH);
+    rtcAttachGeometryByID(s, native, 0);
+    if (embreeNativeIsSubdivision(*p.shape)) {
+      subdivisions_.resize(scene_.primitives.size(), nullptr);
+      subdivisions_[i] = native;  // kept for rtcInterpolate
+    } else {
+      rtcReleaseGeometry(native);
+    }
+    rtcCommitScene(s);
+    checkError();
+    nativeScenes_.push_back(s);
+    RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(g, s);
+    setInstanceMotion(g, p);
+    return g;
+  }
+
   void build() {
     top_ = rtcNewScene(device_);
     rtcSetSceneFlags(top_, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
@@ -328,6 +369,8 @@ class EmbreeAccelerator final : public Accelerator {
         g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
         rtcSetGeometryInstancedScene(g, meshScene(p.mesh));
         setInstanceMotion(g, p);
+      } else if (RTCGeometry native = embreeNativeGeometry(device_, *p.shape)) {
+        g = nativeInstance(i, native);
       } else {
         hasUserGeometry_ = true;
         userData_[i] = {&scene_, i};
@@ -354,6 +397,8 @@ class EmbreeAccelerator final : public Accelerator {
   RTCDevice device_ = nullptr;
   RTCScene top_ = nullptr;
   std::unordered_map<uint32_t, RTCScene> meshScenes_;
+  std::vector<RTCScene> nativeScenes_;     ///< one per curves / subdivision primitive
+  std::vector<RTCGeometry> subdivisions_;  ///< per primitive: its subdivision geometry or null
   std::vector<ShapeUserData> userData_;
   std::atomic<int64_t> memory_{0};
   std::mutex errorMutex_;

@@ -79,6 +79,12 @@ inline Hit hitFromEmbree(const RTCHit& h, float t, const Scene& scene) {
     hit.triangle = h.primID;
     hit.b1 = h.u;
     hit.b2 = h.v;
+    // Embree's own curves and subdivision surfaces (accel/embree_native.h, instanced like
+    // meshes) are shapes: their shade() reads Ng and u, v.
+    if (!inTop && scene.primitives[hit.primitive].kind == Primitive::Kind::kShape) {
+      hit.normal = {h.Ng_x, h.Ng_y, h.Ng_z};
+      hit.uv = {h.u, h.v};
+    }
   } else {
     // User geometry: primID carries the material override + 1 (0: none), Ng the object-space
     // normal and u, v the shape's uv (see shapeIntersect).

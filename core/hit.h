@@ -32,6 +32,7 @@ struct SurfacePoint {
                             ///< vertex normals): the side one-sided emitters emit from
   bool frontFace = true;    ///< the ray arrived from the side ng points to
   float time = 0.0f;        ///< the ray's shutter time (Ray::time): rays leaving here keep it
+  Vec3 tangent;             ///< curves (shapes/curves.h): unit direction along the fibre; else 0
 };
 
 }  // namespace tray

@@ -26,6 +26,7 @@ ShadingMaterial ShadingMaterial::of(const Material& m, const Vec3& n) {
   s.phong = m.phong;
   s.n = n;
   s.clearcoatN = n;
+  s.hair = m.hair.enabled ? &m.hair : nullptr;
   return s;
 }
 

@@ -119,6 +119,18 @@ struct MaterialLayers {
   bool hasSpecular() const { return specular != 1.0f || !(specularColor == Color(1.0f)); }
 };
 
+/// TRAY_materials_hair (docs/curves-subdivision.md): Chiang et al. 2016's hair BSDF
+/// (materials/hair_bsdf.h) instead of the glTF lobes. sigmaA is per unit fibre radius, already
+/// derived from melanin or colour by the glTF reader.
+struct HairParams {
+  bool enabled = false;
+  Color sigmaA{0.0f};
+  float betaM = 0.3f;  ///< longitudinal roughness, (0, 1]
+  float betaN = 0.3f;  ///< azimuthal roughness, (0, 1]
+  float ior = 1.55f;   ///< of the fibre (keratin)
+  float alpha = 2.0f;  ///< cuticle scale tilt, degrees
+};
+
 /// One material, holding both the glTF metallic-roughness description (used by physically
 /// based integrators) and the Phong parameters (used by Whitted). Defaults are glTF's.
 struct Material {
@@ -137,6 +149,8 @@ struct Material {
   bool unlit = false;        ///< KHR_materials_unlit: shows base colour, no lighting
   MaterialLayers layers;  ///< KHR_materials_volume / specular / clearcoat / sheen
   PhongParams phong;
+  /// TRAY_materials_hair; enabled: the hair BSDF replaces everything above.
+  HairParams hair;
   bool hasPhong = false;  ///< phong came from TRAY_materials_phong rather than the mapping
   TextureRef baseColorTexture, metallicRoughnessTexture, emissiveTexture, normalTexture;
   bool hasTextures() const {
@@ -172,6 +186,10 @@ struct ShadingMaterial {
   bool unlit = false;  ///< KHR_materials_unlit: baseColor is the outgoing radiance
   PhongParams phong;
   Vec3 n;  ///< shading normal, normal map applied; on the same side as SurfacePoint::n
+  /// TRAY_materials_hair: the material's hair parameters (null: not hair) and the fibre's
+  /// direction there (SurfacePoint::tangent; zero off curves).
+  const HairParams* hair = nullptr;
+  Vec3 tangent;
 
   /// The untextured material at a point with shading normal n.
   static ShadingMaterial of(const Material& m, const Vec3& n);

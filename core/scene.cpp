@@ -77,6 +77,12 @@ void shapeSurface(const Primitive& prim, const Transform& toWorld, const Ray& ra
   s.front = ng;  // outward
   s.uv = hit.uv;
   s.material = hit.material >= 0 ? hit.material : prim.material;
+  // Curves and subdivision surfaces (shapes/curves.h, subdivision.h) say more than hit.normal.
+  if (ShapeShading sh; prim.shape->shade(local, hit, sh)) {
+    s.ng = s.front = normalize(toWorld.normal(sh.ng));
+    s.n = normalize(toWorld.normal(sh.n));
+    if (!isBlack(sh.tangent)) s.tangent = normalize(toWorld.vector(sh.tangent));
+  }
 }
 
 // The surface of a mesh triangle placed by toWorld. Inlined into Scene::surface's static path:

@@ -41,6 +41,13 @@ struct ShapeSampleContext {
 /// n: |det M| |M^-T n| (Nanson's formula).
 float areaScale(const Transform& toWorld, const Vec3& n);
 
+/// What Shape::shade adds to a hit, in object space (unnormalised allowed).
+struct ShapeShading {
+  Vec3 ng;       ///< outward geometric normal
+  Vec3 n;        ///< shading normal
+  Vec3 tangent;  ///< a fibre's direction (curves); zero elsewhere
+};
+
 /// An analytic shape in its own object space. The primitive's transform places it in the world;
 /// rays arrive already transformed (direction not normalised, so t is the world t).
 class Shape {
@@ -58,6 +65,17 @@ class Shape {
   /// operand. Open surfaces (a disk, an uncapped cylinder) are not: their intervals() is empty
   /// and Csg refuses them by name.
   virtual bool isSolid() const { return true; }
+  /// Shapes only Embree intersects (curves, subdivision surfaces: shapes/curves.h,
+  /// shapes/subdivision.h): why, in a few words; nullptr for the others. Every other
+  /// accelerator refuses a scene holding one, naming it (docs/curves-subdivision.md).
+  virtual const char* embreeOnly() const { return nullptr; }
+  /// The normals (and a fibre's tangent) at a hit, for shapes whose hit.normal does not say it
+  /// all (curves: the fibre's axis; flat ribbons' round-fibre normal). false: hit.normal is both
+  /// normals. local: the ray in object space.
+  virtual bool shade(const Ray& local, const Hit& hit, ShapeShading& out) const {
+    (void)local, (void)hit, (void)out;
+    return false;
+  }
   /// Projects a computed hit point back onto the surface, to tighten the ray-offset error.
   virtual Vec3 refine(const Vec3& p) const { return p; }
   /// Object-space derivatives of the surface point with respect to its uv at surface point p

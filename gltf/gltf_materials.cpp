@@ -4,6 +4,7 @@
 
 #include "gltf/gltf_material_layers.h"
 #include "gltf/gltf_value.h"
+#include "gltf/tray_hair.h"
 
 namespace tray {
 
@@ -141,6 +142,8 @@ Material convertMaterial(const GltfContext& ctx, int index) {
     m.priority = r.integer("priority", 0);
     r.finish();
   }
+  if (const auto* e = findExtension(ext, "TRAY_materials_hair"))
+    readHairMaterial(ctx, *e, where, m);  // Chiang et al. 2016 (docs/curves-subdivision.md)
   // The Phong mapping reads the PBR factors above, so it comes last.
   if (const auto* e = findExtension(ext, "TRAY_materials_phong")) {
     m.phong = readPhong(ctx, *e, where);

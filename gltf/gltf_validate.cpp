@@ -219,7 +219,8 @@ bool isKnownExtension(const std::string& name) {
                                                "KHR_materials_iridescence",
                                                "KHR_materials_dispersion",
                                                "EXT_mesh_gpu_instancing",
-                                               "TRAY_materials_scattering"};
+                                               "TRAY_materials_scattering",
+                                               "TRAY_materials_hair"};
   return kKnown.count(name) != 0;
 }
 

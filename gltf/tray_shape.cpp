@@ -2,6 +2,7 @@
 
 #include "gltf/gltf_value.h"
 #include "gltf/tray_csg.h"
+#include "gltf/tray_curves.h"
 #include "shapes/box.h"
 #include "shapes/plane.h"
 #include "shapes/quadric.h"
@@ -76,6 +77,10 @@ TrayShape parseTrayShape(const GltfContext& ctx, const tinygltf::Value& value,
     out.shape = parseQuadric(r, Quadric::Kind::kHyperboloid);
   } else if (type == "disk") {
     out.shape = parseDisk(r);
+  } else if (type == "curves") {
+    out.shape = parseCurves(ctx, r);
+  } else if (type == "subdivision") {
+    out.shape = parseSubdivision(ctx, r);
   } else if (type == "csg") {
     out.shape = parseCsg(ctx, value, r, where);
   } else {

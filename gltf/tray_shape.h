@@ -14,7 +14,8 @@ struct TrayShape {
 };
 
 /// Parses a TRAY_shape object (docs/scene-format.md): {"type": "sphere" | "plane" | "box" |
-/// "torus" | "cylinder" | "cone" | "paraboloid" | "hyperboloid" | "disk" | "csg", ...,
+/// "torus" | "cylinder" | "cone" | "paraboloid" | "hyperboloid" | "disk" | "csg" | "curves" |
+/// "subdivision" (gltf/tray_curves.h), ...,
 /// "material": index}. Every number must be finite, sizes positive, box min < max; unknown keys
 /// and unknown types are errors. `where` names the node in messages.
 TrayShape parseTrayShape(const GltfContext& ctx, const tinygltf::Value& value,

@@ -85,7 +85,18 @@ Color Bsdf::diffuseEval(const Vec3& wo, const Vec3& wi) const {
   return dtLobe_->eval(wo, wi);
 }
 
+void Bsdf::initHair(const HairParams& p, const Vec3& tangent, const Vec3& n) {
+  wMetal_ = wGlass_ = wPlastic_ = coat_ = 0;
+  coatTinted_ = false;
+  hasNonDelta_ = true;
+  lambertOnly_ = false;
+  probCached_ = false;
+  only_ = Only::kHair;
+  new (&hair_.value) HairBsdf(p, tangent, n);
+}
+
 bool Bsdf::isGgxMixture(const ShadingMaterial& m) {
+  if (m.hair) return false;
   if (!std::isfinite(m.metallic) || !std::isfinite(m.roughness) || !(m.transmission <= 0) ||
       BsdfLayers::anyApplies(m) || m.specular != 1.0f || m.anisotropy > 0 ||
       m.diffuseTransmission > 0 ||
@@ -102,6 +113,7 @@ bool Bsdf::isGgxMixture(const ShadingMaterial& m) {
 }
 
 bool Bsdf::isSmoothGlass(const ShadingMaterial& m) {
+  if (m.hair) return false;
   if (!std::isfinite(m.metallic) || !std::isfinite(m.roughness) || !std::isfinite(m.transmission) ||
       BsdfLayers::anyApplies(m) || m.anisotropy > 0 || m.diffuseTransmission > 0)
     return false;
@@ -143,6 +155,10 @@ Color Bsdf::evalLocal(const Vec3& wo, const Vec3& wi) const {
       return glass_->eval(wo, wi);
     case Only::kDiffuse:
       return diffuse_.eval(wo, wi);
+    case Only::kHair: {  // world space (materials/hair_bsdf.h)
+      float unused;
+      return hair_->eval(frame_.toWorld(wo), frame_.toWorld(wi), unused);
+    }
     case Only::kNothing:
     case Only::kMixture:
       break;
@@ -166,6 +182,11 @@ float Bsdf::pdfLocal(const Vec3& wo, const Vec3& wi) const {
       return glass_->pdf(wo, wi);
     case Only::kDiffuse:
       return diffuse_.pdf(wo, wi);
+    case Only::kHair: {
+      float pdf;
+      hair_->eval(frame_.toWorld(wo), frame_.toWorld(wi), pdf);
+      return pdf;
+    }
     case Only::kNothing:
       return 0.0f;
     case Only::kMixture:
@@ -189,6 +210,11 @@ Color Bsdf::mixtureEvalPdf(const Vec3& wo, const Vec3& wi, const Probabilities& 
 }
 
 BsdfSample Bsdf::sampleLocal(const Vec3& wo, float uc, Vec2 u) const {
+  if (only_ == Only::kHair) {  // world space (materials/hair_bsdf.h), back to the local frame
+    BsdfSample s = hair_->sample(frame_.toWorld(wo), uc, u);
+    s.wi = frame_.toLocal(s.wi);
+    return s;
+  }
   // A lone lobe takes uc whole; a mixture picks a lobe with uc, then rescales uc to [0,1) for
   // the lobe's own discrete choice. -1: no lobe.
   int lobe = only_ == Only::kMetal     ? 0
@@ -262,12 +288,14 @@ BsdfSample Bsdf::sampleLocal(const Vec3& wo, float uc, Vec2 u) const {
 
 Color Bsdf::eval(const Vec3& wo, const Vec3& wi) const {
   float unused;
+  if (only_ == Only::kHair) return hair_->eval(wo, wi, unused);
   if (layers_.any()) return eval(wo, wi, unused);
   return evalLocal(frame_.toLocal(wo), frame_.toLocal(wi));
 }
 
 float Bsdf::pdf(const Vec3& wo, const Vec3& wi) const {
   float p;
+  if (only_ == Only::kHair) return hair_->eval(wo, wi, p), p;
   if (layers_.any()) return eval(wo, wi, p), p;
   return pdfLocal(frame_.toLocal(wo), frame_.toLocal(wi));
 }
@@ -323,10 +351,12 @@ BsdfSample Bsdf::sampleFrom(const Vec3& wo, float uc, Vec2 u) const {
 }
 
 Color Bsdf::layersEval(const Vec3& wo, const Vec3& wi, float& pdf) const {
+  if (only_ == Only::kHair) return hair_->eval(wo, wi, pdf);
   return evalFrom<0>(wo, wi, pdf);
 }
 
 BsdfSample Bsdf::layersSample(const Vec3& wo, float uc, Vec2 u) const {
+  if (only_ == Only::kHair) return hair_->sample(wo, uc, u);
   return sampleFrom<0>(wo, uc, u);
 }
 
@@ -358,6 +388,12 @@ BsdfSample Bsdf::baseSample(const Vec3& wo, float uc, Vec2 u) const {
 
 LobeSplit Bsdf::evalLobes(const Vec3& wo, const Vec3& wi) const {
   // The same sums as eval, one kind of lobe at a time (the lone-lobe shortcuts skip the masks).
+  if (only_ == Only::kHair) {
+    // Light-path AOVs: the fibre's lobes count as diffuse (R, TT and TRT are all rough).
+    LobeSplit out;
+    out.diffuse = eval(wo, wi);
+    return out;
+  }
   Bsdf part = *this;
   part.only_ = only_ == Only::kNothing ? Only::kNothing : Only::kMixture;
   part.lambertOnly_ = false;

@@ -11,6 +11,7 @@
 #include "materials/diffuse_transmission.h"
 #include "materials/ggx_mixture_lanes.h"
 #include "materials/ggx_reflection.h"
+#include "materials/hair_bsdf.h"
 #include "materials/lambert.h"
 
 namespace tray {
@@ -45,6 +46,11 @@ class Bsdf {
   /// per vertex (see setSpawnRay in core/ray.h).
   Bsdf(const ShadingMaterial& m, const Vec3& n, float eta)
       : frame_(Frame::fromNormal(n)), diffuse_{m.baseColor}, coatEta_(eta) {
+    // TRAY_materials_hair: the hair BSDF alone (materials/hair_bsdf.h), no glTF lobe or layer.
+    if (m.hair) {
+      initHair(*m.hair, m.tangent, n);
+      return;
+    }
     // A lone Lambert lobe under no layer (matte: metallic 0, roughness 1, no transmission)
     // with some albedo: nothing else is built. Building every lobe took 222 instructions per
     // vertex (callgrind, Cornell box). The weights are the general path's up to the sign of
@@ -84,6 +90,7 @@ class Bsdf {
   /// eta relative to wo (n faces wo) is the constructor's. Shading normals' asymmetry (Veach
   /// 5.3) is the caller's: it knows the geometric normal.
   Color evalImportance(const Vec3& wo, const Vec3& wi, float& pdf) const {
+    if (only_ == Only::kHair) return hairImportance(wo, wi, pdf);
     Color f = eval(wo, wi, pdf);
     if (wGlass_ > 0 && dot(wi, frame_.n) < 0) {
       if (!diffuseTransmits_) return f * (coatEta_ * coatEta_);
@@ -101,26 +108,28 @@ class Bsdf {
   BsdfSample sampleImportance(const Vec3& wo, float uc, Vec2 u) const {
     BsdfSample s = sample(wo, uc, u);
     if (s.transmission && s.etaScale > 0) s.f = s.f * (1.0f / s.etaScale);
+    if (only_ == Only::kHair && s.pdf > 0) {
+      float unused;
+      s.f = hairImportance(wo, s.wi, unused);
+    }
     return s;
   }
   /// False when every lobe is a delta: light sampling cannot help and MIS is off.
-  bool hasNonDelta() const {
-    return hasNonDelta_ || layers_.anyNonDelta();
-  }
+  bool hasNonDelta() const { return hasNonDelta_ || layers_.anyNonDelta(); }
   /// True when light can also scatter to the far side of the surface.
-  bool transmits() const { return wGlass_ > 0 || diffuseTransmits_; }
+  bool transmits() const { return wGlass_ > 0 || diffuseTransmits_ || only_ == Only::kHair; }
   /// Nothing but a Lambert lobe of albedo m.baseColor (matte): the SIMD matte stage repeats
   /// eval and sample for it (integrators/matte_batch.h). The constructor's test: metallic 0,
   /// roughness 1, no transmission, no layer (clearcoat, sheen), some albedo.
   static bool isLambertOnly(const ShadingMaterial& m) {
     const Color& a = m.baseColor;
-    return m.metallic <= 0 && m.transmission <= 0 && !(m.roughness < 1.0f) &&
+    return !m.hair && m.metallic <= 0 && m.transmission <= 0 && !(m.roughness < 1.0f) &&
            !(m.diffuseTransmission > 0) && (a.x > 0 || a.y > 0 || a.z > 0) &&
            !BsdfLayers::anyApplies(m);
   }
   /// Metal and plastic (GGX reflection, its dielectric coat and Lambert) and nothing else: no
-  /// transmission, layer (clearcoat, sheen) or KHR_materials_specular tint, some lobe in use, not a lone
-  /// Lambert lobe, and some lobe that is not a delta (mirrors only beside a Lambert lobe). The
+  /// transmission, layer (clearcoat, sheen) or KHR_materials_specular tint, some lobe in use, not a
+  /// lone Lambert lobe, and some lobe that is not a delta (mirrors only beside a Lambert lobe). The
   /// SIMD glossy stage repeats eval and sample for it (integrators/glossy_batch.h): initLobes'
   /// Only::kMetal or kMixture, whose lone metal lobe is the mixture with weight 1.
   /// Out of line: inlined, it cost the matte vertices' step more than the call costs these.
@@ -149,7 +158,8 @@ class Bsdf {
   /// The one lobe with any weight, when there is only one (matte, pure metal, pure glass):
   /// sample, eval and pdf then skip the mixture's bookkeeping. Same values, fewer
   /// instructions (7% of the Cornell box render's, callgrind on bench/path_bench).
-  enum class Only : uint8_t { kMixture, kMetal, kGlass, kDiffuse, kNothing };
+  /// kHair: TRAY_materials_hair's fibre BSDF alone (hair_), outside the glTF mixture.
+  enum class Only : uint8_t { kMixture, kMetal, kGlass, kDiffuse, kNothing, kHair };
   /// Storage for a member that only some materials read: left unbuilt (no stores) until one
   /// assigns it. The lone Lambert lobe (every matte surface, all of the Cornell box) builds
   /// none of them; reads are guarded by the weights and flags that say the member is in use.
@@ -169,6 +179,15 @@ class Bsdf {
   Color diffuseEval(const Vec3& wo, const Vec3& wi) const;
   float diffusePdf(const Vec3& wo, const Vec3& wi) const {
     return diffuseTransmits_ ? dtLobe_->pdf(wo, wi) : diffuse_.pdf(wo, wi);
+  }
+  void initHair(const HairParams& p, const Vec3& tangent, const Vec3& n);
+  /// The hair model is not reciprocal (its offset h is read from wo: materials/hair_bsdf.h), so
+  /// its adjoint is stated: f*(wo, wi) = f(wi, wo) (Veach 1997, 3.7.6), with the pdf of
+  /// sampling wi from wo.
+  Color hairImportance(const Vec3& wo, const Vec3& wi, float& pdf) const {
+    float unused;
+    hair_->eval(wo, wi, pdf);
+    return hair_->eval(wi, wo, unused);
   }
   Color layersEval(const Vec3& wo, const Vec3& wi, float& pdf) const;
   BsdfSample layersSample(const Vec3& wo, float uc, Vec2 u) const;
@@ -236,6 +255,7 @@ class Bsdf {
   // are positive, which the lone Lambert lobe's are not.
   Slot<GgxReflectionLobe> metal_, coatLobe_;
   Slot<DielectricLobe> glass_;
+  Slot<HairBsdf> hair_;  ///< only_ == Only::kHair
   /// The Lambert lobe; with diffuse transmission its albedo is reflect + transmit (for the
   /// lobe's probability) and dtLobe_ gives its value.
   LambertLobe diffuse_;
@@ -245,8 +265,8 @@ class Bsdf {
   bool scalarMix_;
   bool diffuseTransmits_;  ///< dtLobe_ is built and replaces diffuse_'s value
   float coatEta_;
-  bool coatTinted_;  ///< KHR_materials_specular or _iridescence changed the coat's Fresnel
-  bool iridescent_;  ///< KHR_materials_iridescence: metal and coat carry a thin film
+  bool coatTinted_;    ///< KHR_materials_specular or _iridescence changed the coat's Fresnel
+  bool iridescent_;    ///< KHR_materials_iridescence: metal and coat carry a thin film
   BsdfLayers layers_;  ///< clearcoat, sheen, ...: those the material has
   bool hasNonDelta_;
   // probabilities()' last answer and the bits of its wo.z: one computation per vertex instead

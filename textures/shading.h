@@ -41,6 +41,7 @@ class MaterialEvaluator {
   static void placeAt(ShadingMaterial& factors, const SurfacePoint& s) {
     factors.n = s.n;
     factors.clearcoatN = s.n;
+    if (factors.hair) factors.tangent = s.tangent;  // the hair BSDF's fibre axis
   }
   /// Whether some material samples a texture (else prefetchTextures never does anything).
   bool textured() const { return sampler_ != nullptr; }

@@ -20,7 +20,7 @@ ALLOWED = {
     "textures": {"core"},
     "film": {"core"},
     "shapes": {"core"},
-    "accel": {"core", "textures"},
+    "accel": {"core", "textures", "shapes"},  # shapes: Embree's own curves, subdivision
     "materials": {"core"},
     "lights": {"core"},
     "integrators": {"core", "textures", "film", "materials", "lights"},
