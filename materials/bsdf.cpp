@@ -91,6 +91,9 @@ void Bsdf::initHair(const HairParams& p, const Vec3& tangent, const Vec3& n) {
   hasNonDelta_ = true;
   lambertOnly_ = false;
   probCached_ = false;
+  // Read by transmits() and the mixture paths, which the hair lobe never takes: set, not left
+  // unbuilt (valgrind saw transmits() read diffuseTransmits_ uninitialised on the fur scene).
+  scalarMix_ = false, diffuseTransmits_ = false, iridescent_ = false;
   only_ = Only::kHair;
   new (&hair_.value) HairBsdf(p, tangent, n);
 }

@@ -64,7 +64,7 @@ class Bsdf {
       hasNonDelta_ = true;
       lambertOnly_ = true;
       probCached_ = false;
-      scalarMix_ = false, diffuseTransmits_ = false;
+      scalarMix_ = false, diffuseTransmits_ = false, iridescent_ = false;
       only_ = Only::kDiffuse;
       return;
     }
