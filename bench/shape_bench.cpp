@@ -2,17 +2,21 @@
 // capped quadric, the analytic shape against its tessellation at a given silhouette error (the
 // largest distance between the surface and its inscribed mesh): triangles, memory (geometry +
 // accelerator), accelerator build time, and the time to trace the same camera and bounce rays
-// (Embree, one thread), plus the fraction of camera rays whose hit or miss differs.
-// Prints a Markdown table (docs/shapes.md). Not a test: figures only.
+// (Embree, one thread), plus the fraction of camera rays whose hit or miss differs; with
+// --images, the image each makes (path, one thread) against a converged render of the
+// analytic shape: what the tessellation costs in the picture. Prints Markdown tables
+// (docs/shapes.md) and, with --csv, the rows for tools/plot_shapes.py. Figures only.
 //
-//   shape_bench [--size N]   (camera rays: N x N, default 512)
+//   shape_bench [--size N] [--images SPP] [--csv FILE]   (camera rays: N x N, default 512)
 #include <tbb/global_control.h>
 
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <algorithm>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "accel/registry.h"
@@ -20,6 +24,7 @@
 #include "bench/cpu_time.h"
 #include "shapes/quadric.h"
 #include "shapes/torus.h"
+#include "tests/render_film.h"
 #include "tests/scene_builder.h"
 #include "tests/shapes/solid_meshes.h"
 
@@ -58,7 +63,87 @@ struct Measure {
   size_t triangles = 0, bytes = 0;
   double buildMs = 0, camMrays = 0, bounceMrays = 0;
   double differ = 0;  ///< fraction of camera rays whose hit / miss differs from the analytic
+  double renderSeconds = 0, rmse = -1;  ///< --images: the render's CPU time, its RMSE
 };
+
+/// Vertex normals of the analytic surface, as an exporter writes them for a smooth mesh (a
+/// mesh without them shades flat, which no asset of a torus would): the torus' from its ring,
+/// a quadric's from the gradient of x^2 + z^2 - rho^2(y); cap fans get vertices of their own
+/// with the cap's normal.
+void addSurfaceNormals(TriangleMesh& m, const Shape& shape) {
+  if (auto* t = dynamic_cast<const Torus*>(&shape)) {
+    for (const Vec3& p : m.positions) {
+      const Vec3 ring = t->majorRadius() * normalize(Vec3(p.x, 0.0f, p.z));
+      m.normals.push_back(normalize(p - ring));
+    }
+    return;
+  }
+  const auto& q = static_cast<const Quadric&>(shape);
+  const size_t side = m.positions.size() - (q.capped() ? 2 : 0);  // the fans' centres last
+  // revolvedMesh's layout: vertex k is at azimuth 2 pi (k mod nu) / nu. Divided by 2 rho the
+  // gradient is (sin phi, -d rho / dy, cos phi), which holds at an apex too (a cone's, where
+  // each generator keeps its own normal, as an exporter splits the apex), unlike the gradient.
+  const size_t nu = q.kind() == Quadric::Kind::kCylinder || q.kind() == Quadric::Kind::kCone
+                        ? side / 2
+                        : 0;
+  for (size_t k = 0; k < side; ++k) {
+    const Vec3 p = m.positions[k];
+    const double h = 1e-4 * q.height(), y = std::clamp<double>(p.y, h, q.height() - h);
+    const double slope = (q.rho2(y + h) - q.rho2(y - h)) / (2 * h);  // d rho^2 / dy
+    const double rho = std::sqrt(std::max(0.0, q.rho2(y)));
+    Vec3 n(2 * p.x, float(-slope), 2 * p.z);
+    if (nu && rho > 1e-6) {
+      const double phi = 2 * M_PI * double(k % nu) / double(nu);
+      n = Vec3(float(std::sin(phi)), float(-slope / (2 * rho)), float(std::cos(phi)));
+    }
+    m.normals.push_back(length(n) > 0 ? normalize(n) : Vec3(0, p.y > 0 ? 1.0f : -1.0f, 0));
+  }
+  for (size_t k = side; k < m.positions.size(); ++k)
+    m.normals.push_back(Vec3(0, m.positions[k].y > 0 ? 1.0f : -1.0f, 0));
+  // Each fan triangle (centre, rim, rim): its rim vertices copied with the cap's normal.
+  for (size_t t = 0; t + 2 < m.indices.size(); t += 3) {
+    const uint32_t centre = m.indices[t];
+    if (centre < side) continue;  // a side triangle
+    for (size_t c = 1; c < 3; ++c) {
+      m.positions.push_back(m.positions[m.indices[t + c]]);
+      m.normals.push_back(m.normals[centre]);
+      m.indices[t + c] = uint32_t(m.positions.size() - 1);
+    }
+  }
+}
+
+/// The shapes' scene for images: a grey Lambertian under a point light and a dim sky.
+void light(Scene& s) {
+  s.lights.push_back(test::pointLight(Vec3(3, 4, 5), Color(60.0f)));
+  s.environment.ambient = Color(0.2f);
+  s.environment.background = Color(0.2f);
+}
+
+constexpr int kImageSize = 96;
+
+Film renderImage(const Scene& scene, int spp, int seed, double* cpu) {
+  RenderSettings settings;
+  settings.set("integrator", "path");
+  settings.set("spp", spp);
+  settings.set("seed", seed);
+  settings.set("max-depth", 4);
+  const CameraDesc cam = Camera::framing(scene.bounds(), 1.0f);
+  const double c0 = cpuSeconds();
+  Film f = test::renderFilm(scene, cam, kImageSize, kImageSize, settings, nullptr, {}, "embree", 1);
+  if (cpu) *cpu = cpuSeconds() - c0;
+  return f;
+}
+
+double rmse(const Film& a, const Film& b) {
+  double sum = 0;
+  for (int y = 0; y < a.height(); ++y)
+    for (int x = 0; x < a.width(); ++x)
+      for (int c = 0; c < 3; ++c) {
+        const double d = a.pixel(Film::kBeauty, x, y)[c] - b.pixel(Film::kBeauty, x, y)[c];
+        sum += d * d;
+      }
+  return std::sqrt(sum / (3.0 * a.width() * a.height()));
+}
 
 /// Best of kRepeats: builds and traces are short (milliseconds), so the minimum is the figure
 /// least disturbed by whatever else runs on the machine.
@@ -104,17 +189,24 @@ Measure measure(const Scene& scene, const bench::RaySet& rays, size_t geometryBy
   return m;
 }
 
+std::vector<std::pair<std::string, Measure>> gRows;  // for the --images table and --csv
+
 void row(const char* name, const char* model, const Measure& m) {
   std::printf("| %s | %s | %zu | %.1f | %.2f | %.2f | %.2f | %.4f%% |\n", name, model, m.triangles,
               double(m.bytes) / 1024.0, m.buildMs, m.camMrays, m.bounceMrays, 100 * m.differ);
+  gRows.push_back({std::string(name) + "\t" + model, m});
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  int size = 512;
-  for (int i = 1; i + 1 < argc; ++i)
+  int size = 512, imageSpp = 0;
+  const char* csv = nullptr;
+  for (int i = 1; i + 1 < argc; ++i) {
     if (!std::strcmp(argv[i], "--size")) size = std::atoi(argv[i + 1]);
+    if (!std::strcmp(argv[i], "--images")) imageSpp = std::atoi(argv[i + 1]);
+    if (!std::strcmp(argv[i], "--csv")) csv = argv[i + 1];
+  }
   tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
   struct Case {
     const char* name;
@@ -144,6 +236,14 @@ int main(int argc, char** argv) {
     const size_t shapeBytes =
         dynamic_cast<const Torus*>(c.shape.get()) ? sizeof(Torus) : sizeof(Quadric);
     Measure ma = measure(a, rays, shapeBytes, nullptr, &reference);
+    // The converged reference: the analytic shape at 16x the spp, another seed.
+    std::optional<Film> converged;
+    if (imageSpp > 0) {
+      Scene lit = a;
+      light(lit);
+      converged = renderImage(lit, 16 * imageSpp, 1, nullptr);
+      ma.rmse = rmse(renderImage(lit, imageSpp, 0, &ma.renderSeconds), *converged);
+    }
     row(c.name, "analytic", ma);
     if (auto* t = dynamic_cast<const Torus*>(c.shape.get())) {
       // The same torus with the closed-form solver (polished): what robustness costs.
@@ -170,14 +270,47 @@ int main(int argc, char** argv) {
       test::addMaterial(m, test::diffuse(Color(0.5f)));
       const size_t tris = mesh.indices.size() / 3;
       const size_t bytes = mesh.positions.size() * sizeof(Vec3) + mesh.indices.size() * 4;
+      TriangleMesh smooth = mesh;  // for the image: with the normals an exporter writes
       test::addMeshInstance(m, test::addMesh(m, std::move(mesh)), Mat4::identity());
       m.finalize();
       Measure mm = measure(m, rays, bytes, &reference, nullptr);
       mm.triangles = tris;
+      if (converged) {
+        addSurfaceNormals(smooth, *c.shape);
+        Scene lit;
+        test::addMaterial(lit, test::diffuse(Color(0.5f)));
+        test::addMeshInstance(lit, test::addMesh(lit, std::move(smooth)), Mat4::identity());
+        light(lit);
+        lit.finalize();
+        mm.rmse = rmse(renderImage(lit, imageSpp, 0, &mm.renderSeconds), *converged);
+      }
       char model[64];
       std::snprintf(model, sizeof model, "mesh, error %g", eps);
       row(c.name, model, mm);
     }
+  }
+  if (imageSpp > 0) {
+    std::printf("\nImages: %dx%d, path (max depth 4), %d spp, one thread, against the analytic "
+                "shape at %d spp (another seed); the analytic row's RMSE is the noise floor.\n\n"
+                "| shape | model | render CPU s | RMSE |\n|---|---|---|---|\n",
+                kImageSize, kImageSize, imageSpp, 16 * imageSpp);
+    for (const auto& [key, m] : gRows) {
+      if (m.rmse < 0) continue;
+      std::string cells = key;
+      cells.replace(cells.find('\t'), 1, " | ");
+      std::printf("| %s | %.3f | %.5f |\n", cells.c_str(), m.renderSeconds, m.rmse);
+    }
+  }
+  if (csv) {
+    FILE* f = std::fopen(csv, "w");
+    if (!f) return 1;
+    std::fprintf(f, "shape\tmodel\ttriangles\tbytes\tbuild_ms\tcamera_mrays\tbounce_mrays\t"
+                    "differing\trender_s\trmse\n");
+    for (const auto& [key, m] : gRows)
+      std::fprintf(f, "%s\t%zu\t%zu\t%.4f\t%.4f\t%.4f\t%.6f\t%.4f\t%.6f\n", key.c_str(),
+                   m.triangles, m.bytes, m.buildMs, m.camMrays, m.bounceMrays, m.differ,
+                   m.renderSeconds, m.rmse);
+    std::fclose(f);
   }
   return 0;
 }
