@@ -210,20 +210,11 @@ int chooseAnimation(const GltfContext& ctx, const std::vector<Animation>& animat
                     const std::string& which) {
   if (which == "all") return -1;
   if (which.empty() || which == "first") return 0;  // poseAt skips none when there is none
-  for (size_t i = 0; i < animations.size(); ++i)
-    if (animations[i].name == which) return int(i);
-  if (which.find_first_not_of("0123456789") == std::string::npos && which.size() < 9) {
-    const size_t i = std::stoul(which);
-    if (i < animations.size()) return int(i);
-  }
-  std::string names;
-  for (size_t i = 0; i < animations.size(); ++i) {
-    names += i ? ", " : ": ";
-    names += std::to_string(i);
-    if (!animations[i].name.empty()) names += " '" + animations[i].name + "'";
-  }
+  std::vector<std::string> names;
+  for (const Animation& a : animations) names.push_back(a.name);
+  if (const int i = findByNameOrIndex(names, which); i >= 0) return i;
   ctx.fail("--animation " + which + ": no such animation (the file has " +
-           std::to_string(animations.size()) + names + "; or first, all)");
+           std::to_string(animations.size()) + listOfChoices(names) + "; or first, all)");
 }
 
 std::vector<NodePose> poseAt(const GltfContext& ctx, const std::vector<Animation>& animations,

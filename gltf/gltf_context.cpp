@@ -23,6 +23,27 @@ std::string oneLine(const std::string& text) {
   return out;
 }
 
+int findByNameOrIndex(const std::vector<std::string>& names, const std::string& which) {
+  for (size_t i = 0; i < names.size(); ++i)
+    if (names[i] == which) return int(i);
+  if (!which.empty() && which.size() < 9 &&
+      which.find_first_not_of("0123456789") == std::string::npos) {
+    const size_t i = std::stoul(which);
+    if (i < names.size()) return int(i);
+  }
+  return -1;
+}
+
+std::string listOfChoices(const std::vector<std::string>& names) {
+  std::string list;
+  for (size_t i = 0; i < names.size(); ++i) {
+    list += i ? ", " : ": ";
+    list += std::to_string(i);
+    if (!names[i].empty()) list += " '" + names[i] + "'";
+  }
+  return list;
+}
+
 std::string nameOf(const char* kind, int index, const std::string& name) {
   std::string s = std::string(kind) + " " + std::to_string(index);
   if (!name.empty()) s += " '" + name + "'";

@@ -4,6 +4,7 @@
 #include <tiny_gltf.h>
 
 #include <string>
+#include <vector>
 
 #include "gltf/gltf_loader.h"
 
@@ -40,5 +41,11 @@ std::string oneLine(const std::string& text);
 
 /// "accessor 3", "node 2 'Arm'": how messages name a glTF object.
 std::string nameOf(const char* kind, int index, const std::string& name = "");
+
+/// What a command-line choice (--animation, --variant) names among `names`: the first of that
+/// name, else a decimal index in range; -1 for neither.
+int findByNameOrIndex(const std::vector<std::string>& names, const std::string& which);
+/// ": 0 'Walk', 1, 2 'Run'": the choices, for the message that refuses another.
+std::string listOfChoices(const std::vector<std::string>& names);
 
 }  // namespace tray

@@ -73,21 +73,9 @@ void validateVariantMappings(const GltfContext& ctx, size_t variantCount) {
 int chooseVariant(const GltfContext& ctx, const std::vector<std::string>& names,
                   const std::string& which) {
   if (which == "none") return -1;
-  for (size_t i = 0; i < names.size(); ++i)
-    if (names[i] == which) return int(i);
-  if (!which.empty() && which.size() < 9 &&
-      which.find_first_not_of("0123456789") == std::string::npos) {
-    const size_t i = std::stoul(which);
-    if (i < names.size()) return int(i);
-  }
-  std::string list;
-  for (size_t i = 0; i < names.size(); ++i) {
-    list += i ? ", " : ": ";
-    list += std::to_string(i);
-    if (!names[i].empty()) list += " '" + names[i] + "'";
-  }
+  if (const int i = findByNameOrIndex(names, which); i >= 0) return i;
   ctx.fail("--variant " + which + ": no such material variant (the file has " +
-           std::to_string(names.size()) + list + "; or none)");
+           std::to_string(names.size()) + listOfChoices(names) + "; or none)");
 }
 
 int variantMaterial(const tinygltf::Primitive& p, int variant) {
