@@ -9,7 +9,8 @@
 # MAP defaults to $TRAY_GALLERY_ENV, else Blender's courtyard.exr when tools/setup-blender.sh
 # installed Blender 5.2 in build/cycles5-venv; without one the map column is left out.
 # Animated assets are rendered at --time 1 (skins and morphs posed); the rest as they are.
-# TRAY_GALLERY_README_ONLY=1 rewrites the README from the renders there (after editing verdicts).
+# TRAY_GALLERY_README_ONLY=1 rewrites the README and contact sheets from the renders there (after
+# editing verdicts or re-rendering one asset).
 set -uo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 size=${1:-128} spp=${2:-16} build=${3:-build}
@@ -65,10 +66,8 @@ sheet() {  # OUTPUT SUFFIX
   oiiotool "${tiles[@]}" --mosaic:pad=2 "${cols}x${rows}" -o "$1"
   rm -f "$out/blank.tmp.png"
 }
-if [ "$readmeOnly" != 1 ]; then
-  sheet "$out/contact.png" ""
-  [ -n "$map" ] && sheet "$out/contact-env.png" "-env"
-fi
+sheet "$out/contact.png" ""
+[ -n "$map" ] && [ -f "$out/${names[0]}-env.png" ] && sheet "$out/contact-env.png" "-env"
 
 verdict() {  # NAME -> "verdict<TAB>note", or not judged
   local line
