@@ -29,11 +29,11 @@ inline bool cameraCulls(const Scene& scene, const Ray& ray, const Hit& hit) {
   return dot(front, ray.d) > 0;
 }
 
-/// The camera ray's first hit that is not culled: `hit` is on the ray as given (t from its
-/// origin). Returns false when it escapes.
-inline bool intersectCameraRay(const Accelerator& accel, const Scene& scene, const Ray& ray,
-                               Hit& hit) {
-  if (!accel.intersect(ray, hit)) return false;
+/// Given the camera ray's first hit, the first that is not culled: `hit` stays on the ray as
+/// given (t from its origin). Returns false when the ray escapes past the culled faces. Callers
+/// that already traced the ray (a batch) pass its hit instead of tracing it again.
+inline bool passCulledFaces(const Accelerator& accel, const Scene& scene, const Ray& ray,
+                            Hit& hit) {
   Ray beyond = ray;
   for (int culled = 0; culled < kMaxCulledFaces && cameraCulls(scene, ray, hit); ++culled) {
     // Just past the culled face, relative to its distance (a coplanar face is taken with it).
@@ -42,6 +42,12 @@ inline bool intersectCameraRay(const Accelerator& accel, const Scene& scene, con
     if (!accel.intersect(beyond, hit)) return false;
   }
   return true;
+}
+
+/// The camera ray's first hit that is not culled; false when it escapes.
+inline bool intersectCameraRay(const Accelerator& accel, const Scene& scene, const Ray& ray,
+                               Hit& hit) {
+  return accel.intersect(ray, hit) && passCulledFaces(accel, scene, ray, hit);
 }
 
 }  // namespace tray

@@ -227,10 +227,9 @@ void PathWavefrontIntegrator::bounce(Wave& w, RayStats& stats, bool cameraRays) 
   if (cameraRays) {
     ctx_.accel.intersectCoherentBatch(w.rays, w.hits, w.found);
     // Single-sided back faces are culled for the camera (core/camera_culling.h): the rare ray
-    // that found one is traced on alone, as path-scalar traces it.
+    // that found one is traced on alone from there, as path-scalar traces it.
     for (size_t j = 0; j < count; ++j)
-      if (w.found[j] && cameraCulls(ctx_.scene, w.rays[j], w.hits[j]))
-        w.found[j] = intersectCameraRay(ctx_.accel, ctx_.scene, w.rays[j], w.hits[j]);
+      if (w.found[j]) w.found[j] = passCulledFaces(ctx_.accel, ctx_.scene, w.rays[j], w.hits[j]);
   } else
     ctx_.accel.intersectBatch(w.rays, w.hits, w.found);
   // The hits' surfaces in SIMD (integrators/surface_batch.h).

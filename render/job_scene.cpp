@@ -129,7 +129,7 @@ PreparedScene prepareJobScene(const RenderJob& job, const RenderJobEvents& event
   auto accel = makeAccelerator(job.accelerator, *scene);
   if (defaultLight)
     placeDefaultLight(job, *scene, cameraDesc, *accel, events);
-  else if (scene->environment.map && cameraEnclosed(*scene, cameraDesc, *accel)) {
+  else if (scene->environment.map && cameraEnclosed(cameraDesc, *accel)) {
     warn(events, job.scene.path +
                      ": the camera is enclosed (a sky box or a room): the environment map "
                      "lights only what its light reaches through openings; nothing of it is "

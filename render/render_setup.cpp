@@ -168,33 +168,6 @@ bool addDefaultLightingIfUnlit(Scene& scene, const CameraDesc& camera) {
   return true;
 }
 
-bool useHeadlightIfEnclosed(Scene& scene, const CameraDesc& camera, const Accelerator& accel) {
-  if (scene.lights.empty() || scene.lights.back().type != PunctualLightDesc::Type::kDirectional)
-    return false;
-  const Vec3 eye = camera.toWorld.point(Vec3(0.0f));
-  const Vec3 directions[] = {-scene.lights.back().direction,
-                             {1, 0, 0},
-                             {-1, 0, 0},
-                             {0, 1, 0},
-                             {0, -1, 0},
-                             {0, 0, 1},
-                             {0, 0, -1}};
-  for (const Vec3& d : directions) {
-    Hit hit;
-    if (!accel.intersect(Ray{eye, d}, hit)) return false;  // light gets in (or out) that way
-  }
-  // The subject's distance: where the centre of the view meets the scene.
-  Hit centre;
-  const Vec3 forward = normalize(camera.toWorld.vector(Vec3(0, 0, -1)));
-  const float d = accel.intersect(Ray{eye, forward}, centre) ? centre.t : 1.0f;
-  PunctualLightDesc headlight;
-  headlight.type = PunctualLightDesc::Type::kPoint;
-  headlight.position = eye;
-  headlight.intensity = Color(EmissionSummary::kDefaultIrradiance * d * d);
-  scene.lights.back() = headlight;
-  return true;
-}
-
 namespace {
 
 const Vec3 kAxes[] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
@@ -209,13 +182,32 @@ const Material& hitMaterial(const Scene& scene, const Hit& hit) {
 
 }  // namespace
 
-bool cameraEnclosed(const Scene& scene, const CameraDesc& camera, const Accelerator& accel) {
-  (void)scene;
+bool cameraEnclosed(const CameraDesc& camera, const Accelerator& accel) {
   const Vec3 eye = camera.toWorld.point(Vec3(0.0f));
   for (const Vec3& d : kAxes) {
     Hit hit;
     if (!accel.intersect(Ray{eye, d}, hit)) return false;
   }
+  return true;
+}
+
+bool useHeadlightIfEnclosed(Scene& scene, const CameraDesc& camera, const Accelerator& accel) {
+  if (scene.lights.empty() || scene.lights.back().type != PunctualLightDesc::Type::kDirectional)
+    return false;
+  const Vec3 eye = camera.toWorld.point(Vec3(0.0f));
+  Hit towardsLight;  // light gets in (or out) that way, or along an axis
+  if (!accel.intersect(Ray{eye, -scene.lights.back().direction}, towardsLight) ||
+      !cameraEnclosed(camera, accel))
+    return false;
+  // The subject's distance: where the centre of the view meets the scene.
+  Hit centre;
+  const Vec3 forward = normalize(camera.toWorld.vector(Vec3(0, 0, -1)));
+  const float d = accel.intersect(Ray{eye, forward}, centre) ? centre.t : 1.0f;
+  PunctualLightDesc headlight;
+  headlight.type = PunctualLightDesc::Type::kPoint;
+  headlight.position = eye;
+  headlight.intensity = Color(EmissionSummary::kDefaultIrradiance * d * d);
+  scene.lights.back() = headlight;
   return true;
 }
 

@@ -74,7 +74,7 @@ bool useUnlitEnclosureAsLight(Scene& scene, const CameraDesc& camera, const Acce
 
 /// Whether rays from the camera along the six axes all meet geometry: an environment map
 /// (--env, TRAY_environment) then lights nothing the camera sees.
-bool cameraEnclosed(const Scene& scene, const CameraDesc& camera, const Accelerator& accel);
+bool cameraEnclosed(const CameraDesc& camera, const Accelerator& accel);
 
 /// Parses "WxH"; empty: 640 wide with the height from the camera's aspect ratio (4:3 if unset).
 ImageSize resolveImageSize(const std::string& text, const CameraDesc& camera);

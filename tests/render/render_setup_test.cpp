@@ -198,7 +198,7 @@ TEST(DefaultLighting, ADiffuseOrBlackEnclosureIsNotASky) {
     const CameraDesc cam = lookAt(Vec3(0, 0, 5), Vec3(0.0f));
     ASSERT_TRUE(addDefaultLightingIfUnlit(s, cam));
     auto accel = makeAccelerator("embree", s);
-    EXPECT_TRUE(cameraEnclosed(s, cam, *accel));
+    EXPECT_TRUE(cameraEnclosed(cam, *accel));
     EXPECT_FALSE(useUnlitEnclosureAsLight(s, cam, *accel));
     EXPECT_EQ(s.lights.size(), 1u);  // left for the headlight
   }
