@@ -37,9 +37,16 @@ void fuzzOptions(const char* text, size_t size) {
   if (args.size() > 64) return;  // long lists add nothing CLI11 has not seen
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
-  tray::RenderSettings settings;
-  CLI::App app{"fuzz"};
-  tray::addRenderOptions(app, settings);
+  // Built once: constructing ~100 CLI11 options took most of each execution, and the set does
+  // not depend on the input. clear() resets CLI11's parse state, the assignment the values.
+  static tray::RenderSettings settings;
+  static CLI::App& app = [] () -> CLI::App& {
+    static CLI::App built{"fuzz"};
+    tray::addRenderOptions(built, settings);
+    return built;
+  }();
+  settings = tray::RenderSettings{};
+  app.clear();
   try {
     app.parse(int(argv.size()), argv.data());
     tray::validateOptions(settings);
