@@ -1,7 +1,9 @@
 #include "gltf/gltf_validate.h"
 
 #include <algorithm>
+#include <map>
 #include <set>
+#include <string>
 
 #include "gltf/gltf_accessors.h"
 
@@ -13,18 +15,41 @@ bool inRange(int index, size_t size) {
   return index >= 0 && size_t(index) < size;
 }
 
+/// Why TRay leaves out an extension that real assets use (issue 39: a refusal names its
+/// reason), or "" for one it does not know at all.
+std::string unsupportedReason(const std::string& name) {
+  static const std::map<std::string, std::string> kReasons = {
+      {"KHR_materials_pbrSpecularGlossiness",
+       "archived by Khronos in favour of KHR_materials_specular and KHR_materials_ior; convert "
+       "the file with `gltf-transform metalrough`"},
+      {"KHR_draco_mesh_compression",
+       "TRay decodes no Draco-compressed geometry; use the asset's uncompressed variant"},
+      {"EXT_meshopt_compression",
+       "TRay decodes no meshoptimizer-compressed buffers; use the asset's uncompressed variant"},
+      {"KHR_texture_basisu",
+       "TRay decodes no KTX2/Basis Universal textures; use the asset's PNG/JPEG variant"},
+  };
+  const auto it = kReasons.find(name);
+  return it == kReasons.end() ? std::string() : it->second;
+}
+
 void checkExtensions(const GltfContext& ctx) {
   std::set<std::string> warned;
   for (const auto& e : ctx.model.extensionsRequired) {
     if (isKnownExtension(e)) continue;
-    if (!ctx.ignoreRequiredExtensions) ctx.fail("required extension '" + e + "' is not supported");
+    std::string line = "required extension '" + e + "' is not supported";
+    if (const std::string why = unsupportedReason(e); !why.empty()) line += ": " + why;
+    if (!ctx.ignoreRequiredExtensions) ctx.fail(line);
     if (warned.insert(e).second)
       ctx.warn("required extension '" + e + "' is not supported: rendering without it " +
                "(--ignore-required-extensions); the image may be wrong");
   }
   for (const auto& e : ctx.model.extensionsUsed)
-    if (!isKnownExtension(e) && warned.insert(e).second)
-      ctx.warn("extension '" + e + "' is not supported and is ignored");
+    if (!isKnownExtension(e) && warned.insert(e).second) {
+      std::string line = "extension '" + e + "' is not supported and is ignored";
+      if (const std::string why = unsupportedReason(e); !why.empty()) line += " (" + why + ")";
+      ctx.warn(line);
+    }
 }
 
 void checkTextures(const GltfContext& ctx) {

@@ -92,7 +92,8 @@ done
   echo "Contact sheets: [defaults](contact.png), [under the map](contact-env.png). The verdicts"
   echo "are a person's, from looking at both renders beside what the asset is known to look like"
   echo "(\`docs/gallery/verdicts.tsv\`; the script only counts them). Scope: the samples in"
-  echo "\`../shared\`, not the whole Khronos set (its repository snapshot is too large to fetch here)."
+  echo "\`../shared\`; the whole Khronos sample set, each model beside its own screenshot, is"
+  echo "[khronos/](khronos/README.md) (\`tools/khronos_gallery.py\`)."
   echo
   echo "**${#names[@]} assets: $authored rendered as authored, $named with a named difference,"
   echo "$wrong wrong, $unjudged not judged; $failed failed to render.**"

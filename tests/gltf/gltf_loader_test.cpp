@@ -561,6 +561,24 @@ TEST(GltfTiny, UnknownExtensions) {
   EXPECT_NE(report.warnings[1].find("'EXT_other'"), std::string::npos);
 }
 
+TEST(GltfTiny, AKnownButUnsupportedExtensionIsRefusedWithItsReason) {
+  // SpecGlossVsMetalRough of the Khronos samples requires it (docs/gallery/khronos).
+  std::string e = errorOf([] {
+    TinyDoc().load(R"("extensionsUsed":["KHR_materials_pbrSpecularGlossiness"],)"
+                   R"("extensionsRequired":["KHR_materials_pbrSpecularGlossiness"])");
+  });
+  EXPECT_NE(e.find("required extension 'KHR_materials_pbrSpecularGlossiness' is not supported: "
+                   "archived by Khronos"),
+            std::string::npos)
+      << e;
+  EXPECT_EQ(e.find('\n'), std::string::npos) << "one line";
+  LoadReport report;
+  TinyDoc().load(R"("extensionsUsed":["KHR_draco_mesh_compression"])", {}, &report);
+  ASSERT_EQ(report.warnings.size(), 1u);
+  EXPECT_NE(report.warnings[0].find("ignored (TRay decodes no Draco"), std::string::npos)
+      << report.warnings[0];
+}
+
 TEST(GltfTiny, PathTraversalRefusedUnlessAllowed) {
   fs::path root = freshFolder();
   fs::create_directories(root / "scene");
