@@ -37,11 +37,12 @@ void Bsdf::initLobes(const ShadingMaterial& m, float eta) {
     diffuse_.albedo = dtLobe_->reflect() + dtLobe_->transmit();
   }
   scalarMix_ = anisotropic || diffuseTransmits_;
-  // KHR_materials_iridescence: a thin film over the metal and the coat (not the glass lobe).
+  // KHR_materials_iridescence: a thin film over the metal, the coat and the glass.
   iridescent_ = iridescenceApplies(m.iridescence, m.iridescenceThickness);
   if (iridescent_) {
     metal_->setIridescence(m.iridescence, m.iridescenceIor, m.iridescenceThickness);
     coatLobe_->setIridescence(m.iridescence, m.iridescenceIor, m.iridescenceThickness);
+    glass_->setIridescence(m.iridescence, m.iridescenceIor, m.iridescenceThickness);
     coatTinted_ = true;  // the coat's Fresnel is the lobe's: coatFresnel reads it
   }
   layers_.init(m, frame_);
@@ -118,7 +119,8 @@ bool Bsdf::isGgxMixture(const ShadingMaterial& m) {
 bool Bsdf::isSmoothGlass(const ShadingMaterial& m) {
   if (m.hair) return false;
   if (!std::isfinite(m.metallic) || !std::isfinite(m.roughness) || !std::isfinite(m.transmission) ||
-      BsdfLayers::anyApplies(m) || m.anisotropy > 0 || m.diffuseTransmission > 0)
+      BsdfLayers::anyApplies(m) || m.anisotropy > 0 || m.diffuseTransmission > 0 ||
+      iridescenceApplies(m.iridescence, m.iridescenceThickness))  // scalar: the film
     return false;
   const GgxMixtureOf<Vec3> x = ggxMixture(m.metallic, m.transmission, m.roughness, m.baseColor);
   // initLobes' Only::kGlass: a glass weight (1 - wMetal) t of exactly 1 needs wMetal 0 and t 1,
