@@ -109,7 +109,7 @@ TRAY_LANE Vec2Of<decltype(V3::x)> sampleSphericalRectangle(const SphericalRectan
 /// elevation lies between h0 and h1 (section 4's h). Clamped to [0,1]^2.
 template <class V3>
 TRAY_LANE Vec2Of<decltype(V3::x)> invertSphericalRectangleSample(const SphericalRectangleOf<V3>& r,
-                                                                  const V3& q) {
+                                                                 const V3& q) {
   using F = decltype(V3::x);
   const F xu = clampOf(dot(q, r.x), r.x0, r.x1), yv = dot(q, r.y);
   const V3 n1 = normalize(V3{-r.z0, F(0.0f), xu});

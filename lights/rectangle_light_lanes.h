@@ -38,8 +38,8 @@
 /// is mostly float error.
 template <class F>
 TRAY_LANE MaskOf<F> rectangleBySolidAngle(TriangleSampling mode, F solidAngle) {
-  const float lo = mode == TriangleSampling::kAuto ? kMinSphericalSolidAngle
-                                                   : kMinSphericalRectangleSolidAngle;
+  const float lo =
+      mode == TriangleSampling::kAuto ? kMinSphericalSolidAngle : kMinSphericalRectangleSolidAngle;
   return solidAngle >= F(lo) && solidAngle <= F(kMaxSphericalSolidAngle);
 }
 
@@ -56,8 +56,8 @@ TRAY_LANE decltype(V3::x) preciseRectangleSolidAngle(const SphericalRectangleOf<
                                                      const TriangleLightOf<V3>& t, const V3& c) {
   using F = decltype(V3::x);
   const V3 diagonal = t.e1 + t.e2;
-  const F far2 = F(2.0f) * (lengthSquared(c + F(0.5f) * diagonal) +
-                            F(0.25f) * lengthSquared(diagonal));
+  const F far2 =
+      F(2.0f) * (lengthSquared(c + F(0.5f) * diagonal) + F(0.25f) * lengthSquared(diagonal));
   return select(r.z0 * r.z0 >= F(1e-3f) * far2 || r.area >= F(0.1f), r.area, F(0.0f));
 }
 
@@ -69,8 +69,7 @@ TRAY_LANE MaskOf<decltype(V3::x)> surelyRectangleByArea(const TriangleLightOf<V3
   const V3 diagonal = t.e1 + t.e2;
   const V3 c = t.p0 + F(0.5f) * diagonal - ref;
   const F r2 = F(0.25f) * lengthSquared(diagonal), d2 = lengthSquared(c);
-  return d2 > r2 &&
-         F(2.0f * kPi) * r2 < F(0.5f * kMinSphericalSolidAngle) * (F(2.0f) * d2 - r2);
+  return d2 > r2 && F(2.0f * kPi) * r2 < F(0.5f * kMinSphericalSolidAngle) * (F(2.0f) * d2 - r2);
 }
 
 /// The receiver's cosine folded in as for triangles (cosineWarpOf): u's square warped
@@ -87,8 +86,8 @@ TRAY_LANE BilinearOf<decltype(V3::x)> rectangleCosineWarpOf(const V3& s, const V
 /// A point on the rectangle for the receiver at `ref` with shading normal n, as
 /// sampleTriangleLight gives one for a triangle.
 template <class V3, class V2>
-TRAY_LANE TriangleLightSampleOf<V3> sampleRectangleLight(const TriangleLightOf<V3>& t, const V3& ref,
-                                                         const V3& n, const V2& u,
+TRAY_LANE TriangleLightSampleOf<V3> sampleRectangleLight(const TriangleLightOf<V3>& t,
+                                                         const V3& ref, const V3& n, const V2& u,
                                                          TriangleSampling mode) {
   using F = decltype(V3::x);
   TriangleLightSampleOf<V3> s;
@@ -135,8 +134,8 @@ TRAY_LANE decltype(V3::x) rectangleLightPdf(const TriangleLightOf<V3>& t, const 
   const SphericalRectangleOf<V3> r = sphericalRectangleOf(c, t.e1, t.e2);
   const MaskOf<F> spherical = rectangleBySolidAngle(mode, preciseRectangleSolidAngle(r, t, c));
   if (noneOf(spherical)) return byArea;
-  const F warped = bilinearPdf(invertSphericalRectangleSample(r, d),
-                               rectangleCosineWarpOf(c, t.e1, t.e2, n));
+  const F warped =
+      bilinearPdf(invertSphericalRectangleSample(r, d), rectangleCosineWarpOf(c, t.e1, t.e2, n));
   return select(spherical, warped / r.area, byArea);
 }
 

@@ -47,7 +47,9 @@ constexpr int kBins = 24;  // the rectangle's parameters (s, t) binned: equal ar
 
 /// Where the light samples by solid angle at all (not "edge-on", whose 1e-4 imprecision
 /// preciseRectangleSolidAngle avoids).
-bool sphericalCase(const Case& c) { return std::string(c.name) != "edge-on"; }
+bool sphericalCase(const Case& c) {
+  return std::string(c.name) != "edge-on";
+}
 
 TEST(RectangleSampling, SolidAngleIsTwoSphericalTriangles) {
   for (const Case& c : kCases) {
@@ -117,8 +119,8 @@ void checkCase(const Case& c, TriangleSampling mode) {
       chi2 += (observed[b] - expected[b]) * (observed[b] - expected[b]) / expected[b], ++dof;
   const double p = test::gammaQ(dof / 2.0, chi2 / 2.0);
   std::printf("%-10s %-5s solid angle %.3g sr: chi2 %.1f, dof %d, p %.3f, integral %.5f\n", c.name,
-              modeName(mode), double(sphericalRectangleOf(c.corner - c.ref, c.ex, c.ey).area),
-              chi2, dof, p, integral);
+              modeName(mode), double(sphericalRectangleOf(c.corner - c.ref, c.ex, c.ey).area), chi2,
+              dof, p, integral);
   EXPECT_GT(dof, 100);
   EXPECT_GT(p, 1e-3) << "chi2 " << chi2 << " dof " << dof;
 }
@@ -156,22 +158,20 @@ TriangleMesh twoTriangles(const Vec3& a, const Vec3& b, const Vec3& c, const Vec
 TEST(RectangleSampling, FindsRectanglesNotParallelograms) {
   const Transform id{Mat4::identity()};
   // A rectangle 2 x 1 in z = 0, both triangles wound the same way (front +z).
-  const auto rect = findMeshRectangles(twoTriangles({0, 0, 0}, {2, 0, 0}, {0, 1, 0}, {2, 1, 0}), id);
+  const auto rect =
+      findMeshRectangles(twoTriangles({0, 0, 0}, {2, 0, 0}, {0, 1, 0}, {2, 1, 0}), id);
   ASSERT_EQ(rect.size(), 1u);
   EXPECT_FLOAT_EQ(length(cross(rect[0].ex, rect[0].ey)), 2.0f);
   EXPECT_NEAR(dot(rect[0].ex, rect[0].ey), 0.0f, 1e-6f);
   // Within the tolerance (1e-4): a corner off by 1e-6.
-  EXPECT_EQ(
-      findMeshRectangles(twoTriangles({0, 0, 0}, {2, 0, 0}, {0, 1, 0}, {2, 1.000001f, 0}), id)
-          .size(),
-      1u);
+  EXPECT_EQ(findMeshRectangles(twoTriangles({0, 0, 0}, {2, 0, 0}, {0, 1, 0}, {2, 1.000001f, 0}), id)
+                .size(),
+            1u);
   // A parallelogram that is no rectangle; a kite; triangles facing opposite ways.
-  EXPECT_TRUE(
-      findMeshRectangles(twoTriangles({0, 0, 0}, {2, 0, 0}, {0.5f, 1, 0}, {2.5f, 1, 0}), id)
-          .empty());
-  EXPECT_TRUE(
-      findMeshRectangles(twoTriangles({0, 0, 0}, {2, 0, 0}, {0, 1, 0}, {2.5f, 1.5f, 0}), id)
-          .empty());
+  EXPECT_TRUE(findMeshRectangles(twoTriangles({0, 0, 0}, {2, 0, 0}, {0.5f, 1, 0}, {2.5f, 1, 0}), id)
+                  .empty());
+  EXPECT_TRUE(findMeshRectangles(twoTriangles({0, 0, 0}, {2, 0, 0}, {0, 1, 0}, {2.5f, 1.5f, 0}), id)
+                  .empty());
   TriangleMesh flipped = twoTriangles({0, 0, 0}, {2, 0, 0}, {0, 1, 0}, {2, 1, 0});
   std::swap(flipped.indices[4], flipped.indices[5]);
   EXPECT_TRUE(findMeshRectangles(flipped, id).empty());
@@ -207,8 +207,8 @@ TEST(RectangleSampling, BsdfHitOnEitherTrianglePdfEqualsTheLightSample) {
     int hits[2] = {0, 0};
     for (int i = 0; i < 4000; ++i) {
       const Vec3 ref(4 * u01(rng) - 2, 1.8f * u01(rng) - 0.5f, 4 * u01(rng) - 2);
-      const LightSampleContext ctx{ref, normalize(Vec3(u01(rng) - 0.5f, 1, u01(rng) - 0.5f)),
-                                   true, true};
+      const LightSampleContext ctx{ref, normalize(Vec3(u01(rng) - 0.5f, 1, u01(rng) - 0.5f)), true,
+                                   true};
       const LightSample s = lights.sample(ctx, u01(rng), Vec2{u01(rng), u01(rng)});
       if (!s.valid()) continue;
       // The triangle the point lies on: a b c where its (x, z) parameters sum to at most 1.
