@@ -1,8 +1,9 @@
-// Emissive triangles sampled by area, by solid angle and by pbrt-v4's choice between them
-// (--triangle-sampling; lights/triangle_light_lanes.h), measured in one run on three scenes:
-// the shared Cornell box against Mitsuba 3's reference (and its direct light alone), a large
-// panel light against a wall and the many-lights ground (tests/light_scenes.h) against
-// converged renders. For each mode: RMSE
+// Emissive triangles and rectangles (triangle pairs, lights/quad_lights.h) sampled by area, by
+// solid angle and by pbrt-v4's choice between them (--triangle-sampling;
+// lights/triangle_light_lanes.h, lights/rectangle_light_lanes.h), measured in one run on four
+// scenes: the shared Cornell box against Mitsuba 3's reference (and its direct light alone), a
+// large panel light against a wall and the many-lights ground with triangle lamps and with
+// rectangle lamps (tests/light_scenes.h) against converged renders. For each mode: RMSE
 // at equal spp (the whole image, and away from the light's own pixels, where the pixel
 // filter's coverage noise dominates), Msamples per CPU-second, and RMSE at equal CPU time.
 // Usage: triangle_sampling_bench [--threads N] [--ref-spp N] [--spp N] [--integrator path]
@@ -13,6 +14,7 @@
 #include "bench/cpu_time.h"
 #include "bench/image_error.h"
 #include "gltf/gltf_loader.h"
+#include "lights/light_set.h"
 #include "tests/light_scenes.h"
 #include "tests/render_film.h"
 
@@ -71,8 +73,9 @@ double offLightRmse(const Film& im, const Film& ref) {
 
 void measure(const char* name, const Scene& scene, int w, int h, const Film& reference,
              const Setup& setup) {
-  std::printf("\n%s (%dx%d, %d thread(s), %s)\n", name, w, h, setup.threads,
-              setup.integrator.c_str());
+  std::printf("\n%s (%dx%d, %d thread(s), %s; %zu rectangle(s) found)\n", name, w, h,
+              setup.threads, setup.integrator.c_str(),
+              LightSet(scene, LightSamplerKind::kBvh, TriangleSampling::kAuto).rectangleCount());
   const char* modes[3] = {"area", "solid-angle", "auto"};
   std::printf("| spp | mode | RMSE | RMSE off the light | CPU s | Msamples/s |\n");
   std::printf("|---|---|---|---|---|---|\n");
@@ -123,5 +126,8 @@ int main(int argc, char** argv) {
           render(panel, 128, 96, ref, setup.refSpp, "auto", 99).film, setup);
   measure("many lights (tests/light_scenes.h manyLightsScene)", many, 128, 96,
           render(many, 128, 96, ref, setup.refSpp, "auto", 99).film, setup);
+  const Scene manyQuads = test::manyLightsScene(true);
+  measure("many rectangle lights (manyLightsScene(true))", manyQuads, 128, 96,
+          render(manyQuads, 128, 96, ref, setup.refSpp, "auto", 99).film, setup);
   return 0;
 }

@@ -71,14 +71,15 @@ MatteBatch::MatteBatch(const LightSet& lights)
     : choices_(lights.size(), kOtherLight), triangleSampling_(lights.triangleSampling()) {
   for (size_t i = 0; i < lights.size(); ++i) {
     const AreaLight* area = lights.areaLight(i);
-    if (!area || !area->isTriangle()) continue;
+    if (!area || !(area->isTriangle() || area->isRectangle())) continue;
     const AreaLight::Triangle t = area->triangleData();
     choices_[i] = int32_t(table_.size() / kColumnCount);
     // One line per group of Column.
     // clang-format off
     const float row[kColumnCount] = {t.p0.x, t.p0.y, t.p0.z, t.e1.x, t.e1.y, t.e1.z,
                                      t.e2.x, t.e2.y, t.e2.z, t.n.x, t.n.y, t.n.z,
-                                     t.area, t.Le.x, t.Le.y, t.Le.z, t.doubleSided ? 1.0f : 0.0f};
+                                     area->isRectangle() ? -t.area : t.area,
+                                     t.Le.x, t.Le.y, t.Le.z, t.doubleSided ? 1.0f : 0.0f};
     // clang-format on
     table_.insert(table_.end(), row, row + kColumnCount);
   }

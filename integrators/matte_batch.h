@@ -50,7 +50,8 @@ class MatteBatch {
   }
 
   /// Floats per row: vertex 0, the two edges, the unit front normal, the area, the radiance
-  /// and whether both faces emit (1 or 0).
+  /// and whether both faces emit (1 or 0). A rectangle (AreaLight::isRectangle: corner and
+  /// edges) has its area negated: one table, no column more to gather.
   // clang-format off
   enum Column : uint8_t {
     kP0x, kP0y, kP0z, kE1x, kE1y, kE1z, kE2x, kE2y, kE2z, kNx, kNy, kNz,

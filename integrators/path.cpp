@@ -52,7 +52,8 @@ const std::vector<OptionSpec>& pathOptions() {
                    "how an emissive triangle is sampled from a shading point: area (uniform "
                    "points), solid-angle (directions in the solid angle it subtends, Arvo "
                    "1995, weighted by the receiver's cosine) or auto (solid angle unless it "
-                   "is below 3e-4 or above 6.22 sr)"),
+                   "is below 3e-4 or above 6.22 sr); solid-angle and auto sample two "
+                   "triangles of a mesh that form a rectangle as one (Urena et al. 2013)"),
   };
   return specs;
 }

@@ -22,9 +22,11 @@
 #define TRAY_LANES_SIMD
 #include "core/ray_lanes.h"
 #include "core/sampling_lanes.h"
+#include "core/spherical_rectangle_lanes.h"
 #include "core/spherical_triangle_lanes.h"
 #include "integrators/path_vertex_lanes.h"
 #include "lights/punctual_light_lanes.h"
+#include "lights/rectangle_light_lanes.h"
 #include "lights/triangle_light_lanes.h"
 #include "materials/dielectric_lanes.h"
 #include "materials/ggx_mixture_lanes.h"
@@ -113,6 +115,23 @@ inline HWY_NOINLINE PunctualLightOf<V3> GatherPunctual(const float* table, IntVe
   l.cosOuter = r.column(T::kCosOuter), l.cosInner = r.column(T::kCosInner);
   return l;
 }
+/// A row's triangle (sampleTriangleLight) or rectangle (sampleRectangleLight, where the row's
+/// area is negative: MatteBatch's table), each lane as the scalar AreaLight::sample would.
+HWY_INLINE TriangleLightSampleOf<V3> SampleTriangleOrRectangle(TriangleLightOf<V3> l, const V3& p,
+                                                               const V3& n, const V2& u,
+                                                               const EmitterTables& tables) {
+  const MaskVec rectangle = l.area < FloatVec(0.0f);
+  if (noneOf(rectangle)) return sampleTriangleLight(l, p, n, u, tables.triangleSampling);
+  l.area = absOf(l.area);
+  const TriangleLightSampleOf<V3> r = sampleRectangleLight(l, p, n, u, tables.triangleSampling);
+  if (allOf(rectangle)) return r;
+  TriangleLightSampleOf<V3> t = sampleTriangleLight(l, p, n, u, tables.triangleSampling);
+  t.p = select(rectangle, r.p, t.p), t.wi = select(rectangle, r.wi, t.wi);
+  t.pdf = select(rectangle, r.pdf, t.pdf);
+  t.valid = (rectangle && r.valid) || (!rectangle && t.valid);
+  return t;
+}
+
 /// The lanes whose choice is the constant environment.
 HWY_INLINE MaskVec EnvironmentLanes(const Fields& f) {
   return f.load(f.m.emitter) == IntVec(kConstantEnvironment);
@@ -127,8 +146,8 @@ HWY_INLINE ChosenLightSample SampleChosenLight(const Fields& f, const EmitterTab
   const V2 u = f.load(f.m.lightDraw);
   const FloatVec pmf = f.load(f.m.pmf);
   ChosenLightSample s;
-  const TriangleLightSampleOf<V3> t = sampleTriangleLight(
-      GatherTriangles(tables.triangles, row, s.Le), p, n, u, tables.triangleSampling);
+  const TriangleLightSampleOf<V3> t =
+      SampleTriangleOrRectangle(GatherTriangles(tables.triangles, row, s.Le), p, n, u, tables);
   s.wi = t.wi, s.target = t.p, s.pdf = t.pdf * pmf;
   s.ok = row > IntVec(-1) && t.valid && s.pdf > 0.0f && !isBlack(s.Le);
   s.unbounded = MaskVec(false), s.delta = MaskVec(false);

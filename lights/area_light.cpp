@@ -18,6 +18,15 @@ AreaLight AreaLight::triangle(const Vec3& p0, const Vec3& p1, const Vec3& p2, co
   return l;
 }
 
+AreaLight AreaLight::rectangle(const Vec3& corner, const Vec3& ex, const Vec3& ey,
+                               const Vec3& front, const Color& Le, bool doubleSided,
+                               TriangleSampling sampling) {
+  AreaLight l = triangle(corner, corner + ex, corner + ey, front, Le, doubleSided, sampling);
+  l.area_ = length(ex) * length(ey);
+  l.rectangle_ = true;
+  return l;
+}
+
 AreaLight AreaLight::shape(const Shape& shape, const Transform& toWorld, const Color& Le,
                            bool doubleSided) {
   AreaLight l;
@@ -45,6 +54,7 @@ LightBounds AreaLight::bounds() const {
   box.extend(p0_);
   box.extend(p0_ + e1_);
   box.extend(p0_ + e2_);
+  if (rectangle_) box.extend(p0_ + e1_ + e2_);
   return LightBounds::finite(box, n_, L * area_, 1.0f, 0.0f, doubleSided_);
 }
 

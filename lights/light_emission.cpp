@@ -39,8 +39,12 @@ LightLeSample AreaLight::sampleLe(Vec2 u1, Vec2 u2, const WorldSphere&) const {
     if (!ss) return s;
     p = ss->p, n = ss->n;
   } else {
-    const Vec3 b = sampleUniformTriangle(u1);
-    p = p0_ + b.y * e1_ + b.z * e2_;
+    if (rectangle_) {  // uniform over the rectangle
+      p = p0_ + u1.x * e1_ + u1.y * e2_;
+    } else {
+      const Vec3 b = sampleUniformTriangle(u1);
+      p = p0_ + b.y * e1_ + b.z * e2_;
+    }
     n = n_;
     if (doubleSided_) {  // either face with probability 1/2; u2.x reused
       flip = u2.x < 0.5f;

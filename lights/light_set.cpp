@@ -1,6 +1,7 @@
 #include "lights/light_set.h"
 
 #include "core/front_face.h"
+#include "lights/quad_lights.h"
 
 namespace tray {
 
@@ -23,15 +24,38 @@ void LightSet::addPrimitive(const Scene& scene, size_t i, std::vector<float>& po
     if (!sampledEmitter(m)) return;
     firstLight_[i] = int(power.size());
     isTriangles_[i] = true;
+    // Rectangles (two triangles each) sampled as one where triangles may be sampled by solid
+    // angle: the first triangle's light is the rectangle, the second's has no power and hits
+    // on it are the first's (lightAt). --triangle-sampling area keeps every triangle.
+    std::vector<const MeshRectangle*> rectangleAt(mesh.triangleCount(), nullptr);
+    std::vector<MeshRectangle> rectangles;
+    if (triangleSampling_ != TriangleSampling::kArea)
+      rectangles = findMeshRectangles(mesh, prim.toWorld);
+    for (const MeshRectangle& r : rectangles) rectangleAt[r.first] = rectangleAt[r.second] = &r;
+    if (!rectangles.empty() && !anyRectangle_) {  // the identity for the lights before
+      anyRectangle_ = true;
+      for (size_t l = 0; l < power.size(); ++l) merged_.push_back(int(l));
+    }
     for (size_t t = 0; t < mesh.triangleCount(); ++t) {
       const uint32_t* idx = &mesh.indices[3 * t];
       const Vec3 &a = mesh.positions[idx[0]], &b = mesh.positions[idx[1]],
                  &c = mesh.positions[idx[2]];
-      // Degenerate triangles stay in the index space (lightAt relies on it), with no power.
-      area_.push_back(AreaLight::triangle(prim.toWorld.point(a), prim.toWorld.point(b),
-                                          prim.toWorld.point(c),
-                                          triangleFrontNormal(prim.toWorld, a, b, c), m.emissive,
-                                          m.doubleSided, triangleSampling_));
+      const Vec3 front = triangleFrontNormal(prim.toWorld, a, b, c);
+      const MeshRectangle* r = rectangleAt[t];
+      if (r && r->first == t) {
+        area_.push_back(AreaLight::rectangle(r->corner, r->ex, r->ey, front, m.emissive,
+                                             m.doubleSided, triangleSampling_));
+        ++rectangleCount_;
+      } else {
+        // Degenerate triangles and a rectangle's second stay in the index space (lightAt
+        // relies on it), with no power.
+        area_.push_back(AreaLight::triangle(prim.toWorld.point(a), prim.toWorld.point(b),
+                                            prim.toWorld.point(c), front,
+                                            r ? Color(0.0f) : m.emissive, m.doubleSided,
+                                            triangleSampling_));
+      }
+      if (anyRectangle_)
+        merged_.push_back(r && r->second == t ? firstLight_[i] + int(r->first) : int(power.size()));
       power.push_back(area_.back().power());
       ++triangleCount_;
     }
@@ -40,6 +64,7 @@ void LightSet::addPrimitive(const Scene& scene, size_t i, std::vector<float>& po
     // Shapes that cannot be sampled (planes, CSG) are left to BSDF sampling.
     if (!sampledEmitter(m) || !(prim.shape->area(prim.toWorld) > 0)) return;
     firstLight_[i] = int(power.size());
+    if (anyRectangle_) merged_.push_back(int(power.size()));
     area_.push_back(AreaLight::shape(*prim.shape, prim.toWorld, m.emissive, m.doubleSided));
     power.push_back(area_.back().power());
   }

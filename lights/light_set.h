@@ -69,7 +69,8 @@ class LightSet {
   /// surface is not in the set (it may still glow: BSDF sampling then gets full weight).
   int lightAt(uint32_t primitive, uint32_t triangle) const {
     if (primitive >= firstLight_.size() || firstLight_[primitive] < 0) return -1;
-    return firstLight_[primitive] + (isTriangles_[primitive] ? int(triangle) : 0);
+    const int i = firstLight_[primitive] + (isTriangles_[primitive] ? int(triangle) : 0);
+    return merged_.empty() ? i : merged_[size_t(i)];
   }
   /// Pdf (choice x solid angle) that sample() from ctx returns direction wi towards light
   /// `index`, meeting it at p with geometric normal n (finite lights; see Light::pdf).
@@ -109,6 +110,9 @@ class LightSet {
   const WorldSphere& world() const { return world_; }
   /// Number of emissive triangles in the set.
   size_t triangleCount() const { return triangleCount_; }
+  /// Number of rectangles among them (pairs of triangles sampled as one, lights/quad_lights.h;
+  /// none with --triangle-sampling area).
+  size_t rectangleCount() const { return rectangleCount_; }
   /// How its emissive triangles are sampled (--triangle-sampling).
   TriangleSampling triangleSampling() const { return triangleSampling_; }
 
@@ -131,7 +135,11 @@ class LightSet {
   int constantEnvironment_ = -1;  ///< environment_[0]'s index (sampled inline), or -1
   int escapeLight_ = -1;          ///< see escapeLight()
   WorldSphere world_;
-  size_t triangleCount_ = 0;
+  size_t triangleCount_ = 0, rectangleCount_ = 0;
+  /// Per area light: the light that hits on it belong to (a rectangle's second triangle: its
+  /// first's); empty (the identity) while there is no rectangle.
+  std::vector<int> merged_;
+  bool anyRectangle_ = false;
   TriangleSampling triangleSampling_ = TriangleSampling::kAuto;
   bool anyPower_ = false;
   std::unique_ptr<LightSampler> chooser_;

@@ -28,6 +28,10 @@ using lane_args::TriangleSampling;
 /// divides by nearly zero. Steradians.
 inline constexpr float kMinSphericalSolidAngle = 3e-4f;
 inline constexpr float kMaxSphericalSolidAngle = 6.22f;
+/// pbrt-v4's BilinearPatch::MinSphericalSampleArea: a rectangle's solid angle comes from four
+/// angles near pi/2 summed less 2 pi (Urena et al. 2013), about 1e-6 sr of float error, so
+/// even the forced mode (kSolidAngle) samples a rectangle by solid angle only above this.
+inline constexpr float kMinSphericalRectangleSolidAngle = 1e-4f;
 
 /// "auto", "area" or "solid-angle" (the choices of --triangle-sampling); throws tray::Error
 /// otherwise.

@@ -37,8 +37,9 @@ inline Scene sunAndSkyScene() {
 
 /// A ground under a 16 x 16 grid of small emissive triangles of varied colour and height, two
 /// emissive spheres, two point lights and a spot, with occluders between: at any point a few
-/// nearby lights matter and hundreds do not.
-inline Scene manyLightsScene() {
+/// nearby lights matter and hundreds do not. quadLamps: each lamp a rectangle 0.24 x 0.08 of two
+/// triangles instead (spherical rectangles, lights/quad_lights.h).
+inline Scene manyLightsScene(bool quadLamps = false) {
   Scene s;
   const int ground = addMaterial(s, diffuse(Color(0.6f)));
   const int grey = addMaterial(s, diffuse(Color(0.4f, 0.45f, 0.5f)));
@@ -53,6 +54,12 @@ inline Scene manyLightsScene() {
       lamps.positions.insert(lamps.positions.end(),
                              {{x, y, z}, {x + 0.08f, y, z}, {x, y, z + 0.08f}});
       lamps.indices.insert(lamps.indices.end(), {k, k + 1, k + 2});
+      if (!quadLamps) continue;
+      // A rectangle 0.24 x 0.08 instead (two triangles sharing their diagonal; issue 37's
+      // spherical rectangles): the far corner, and the first corner moved out along x.
+      lamps.positions[k + 1].x += 0.16f;
+      lamps.positions.push_back({x + 0.24f, y, z + 0.08f});
+      lamps.indices.insert(lamps.indices.end(), {k + 2, k + 1, k + 3});
     }
   Material lampMaterial = diffuse(Color(0.0f));
   lampMaterial.emissive = Color(30.0f, 24.0f, 18.0f);

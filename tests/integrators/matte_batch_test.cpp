@@ -1,7 +1,7 @@
 // The SIMD matte stage (integrators/matte_batch.h) on every SIMD target the CPU has:
 // - its kernel against the scalar pieces PathEstimator::step runs for a lone Lambert lobe and
-//   a triangle light (sampled by area, by solid angle or either: every --triangle-sampling
-//   mode) or the constant environment (AreaLight::sample, EnvironmentLight::sample,
+//   a triangle or rectangle light (sampled by area, by solid angle or either: every
+//   --triangle-sampling mode) or the constant environment (AreaLight::sample, EnvironmentLight::sample,
 //   Bsdf::eval and sample, powerHeuristic, spawnRayTo, spawnRay), bit for bit, on random vertices
 //   including the edge cases (no light chosen, lights facing away, receivers below the light's
 //   plane, the disk map's centre, black channels);
@@ -122,6 +122,51 @@ TEST_P(MatteBatchModes, KernelIsTheScalarStepBitForBit) {
     return compared;
   });
 }
+/// A rectangle of two triangles (lights/quad_lights.h finds it where triangles may be sampled
+/// by solid angle): random centre, size and orientation, front face along u x v.
+void addEmissiveRectangle(Scene& scene, std::mt19937_64& rng, bool doubleSided) {
+  std::uniform_real_distribution<float> u(-2.0f, 2.0f), size(0.3f, 2.0f);
+  const Vec3 a = randomUnit(rng), b = normalize(cross(a, randomUnit(rng)));
+  const Vec3 c(u(rng), u(rng), u(rng)), ea = size(rng) * a, eb = size(rng) * b;
+  Material m = test::diffuse(Color(0.5f));
+  m.emissive = Color(2.0f, 3.0f, 1.5f);
+  m.doubleSided = doubleSided;
+  TriangleMesh quad;
+  quad.positions = {c, c + ea, c + eb, c + ea + eb};
+  quad.indices = {0, 1, 2, 2, 1, 3};
+  quad.material = test::addMaterial(scene, m);
+  test::addMeshInstance(scene, test::addMesh(scene, std::move(quad)), Mat4());
+}
+
+TEST_P(MatteBatchModes, RectanglesAreTheScalarStepBitForBit) {
+  // Rectangle rows (a negative area in the table) mixed with triangle rows in one vector: the
+  // stage's SampleTriangleOrRectangle against AreaLight::sample of either kind.
+  std::mt19937_64 rng(41);
+  Scene scene = emitters(rng, 3, true);
+  addEmissiveRectangle(scene, rng, false);
+  addEmissiveRectangle(scene, rng, true);
+  const LightSet lights(scene, LightSamplerKind::kBvh, GetParam());
+  EXPECT_EQ(lights.rectangleCount(), GetParam() == TriangleSampling::kArea ? 0u : 2u);
+  const MatteBatch batch(lights);
+  if (!hasSimdTarget()) GTEST_SKIP() << "no SIMD target: the wavefront keeps to scalar code";
+  ASSERT_TRUE(batch.useful());
+  test::onEverySimdTarget(1000, [&] {
+    int compared = 0, lit = 0, environmentLit = 0, punctualLit = 0;
+    ShadingLanes m;
+    for (int wave = 0; wave < 40 && !testing::Test::HasFailure(); ++wave) {
+      const size_t count = std::uniform_int_distribution<size_t>(1, 100)(rng);
+      m.reset(count);
+      for (m.count = 0; m.count < count; ++m.count)
+        randomVertex(rng, batch, lights.size(), m, m.count);
+      batch.compute(m);
+      for (size_t q = 0; q < count; ++q)
+        lit += compareVertex(lights, m, q, environmentLit, punctualLit), ++compared;
+    }
+    EXPECT_GT(lit, compared / 5);
+    return compared;
+  });
+}
+
 INSTANTIATE_TEST_SUITE_P(TriangleSampling, MatteBatchModes,
                          testing::Values(TriangleSampling::kAuto, TriangleSampling::kArea,
                                          TriangleSampling::kSolidAngle));

@@ -84,7 +84,9 @@ TEST(Sppm, EmittingBoxMatchesTheClosedFormAtEachDepth) {
   const Scene s = emittingBox(a, Le);
   for (int depth : {1, 2, 3, 8}) {
     const float expected = Le * (1 - std::pow(a, float(depth))) / (1 - a);
-    const Color m = mean(renderWith(s, 24, 24, sppm(6, 40000, depth)).film);
+    // Depth 2: 24 passes, its NEE's noise (about 0.5% at 6) below the tolerance for any seed
+    // or light sampling (issue 37's rectangles moved one 6-pass estimate to -0.8%).
+    const Color m = mean(renderWith(s, 24, 24, sppm(depth == 2 ? 24 : 6, 40000, depth)).film);
     // NEE alone (depth <= 2) is exact up to its noise; photons carry (1 - a^D) / (1 - a) - 1 - a
     // of it at depth D (59% at D = 8), with the density estimate's bias at the box's edges.
     const float tolerance = depth <= 2 ? 0.005f : 0.02f;

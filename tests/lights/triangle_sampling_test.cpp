@@ -134,5 +134,46 @@ TEST(TriangleSampling, SolidAnglePdfIsOneOverTheSolidAngleWhereItIsChosen) {
   }
 }
 
+
+TEST(TriangleSampling, ChoiceBoundIsConservative) {
+  // surelyByArea, kAuto's cheap pre-test, must only ever send a triangle to area sampling
+  // where the float solid angle is below kMinSphericalSolidAngle (so the choice is the one
+  // the exact solid angle makes), and must decide the far, small triangles. Random slivers
+  // and fat triangles at 3 to 1000 times their size (solid angles 1e-6 to 0.3 sr).
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f), scale(-4.0f, 0.0f);
+  int decided = 0, below = 0;
+  for (int i = 0; i < 200000; ++i) {
+    const float size = std::pow(10.0f, scale(rng));
+    const Vec3 p0(u(rng), u(rng), u(rng));
+    const Vec3 e1 = size * Vec3(u(rng), u(rng), u(rng)),
+               e2 = (i % 2 ? 0.01f : 1.0f) * size * Vec3(u(rng), u(rng), u(rng));
+    const Vec3 ref = p0 + std::pow(10.0f, 1.75f + 1.25f * u(rng)) * size *
+                              normalize(Vec3(u(rng), u(rng), u(rng)));
+    const TriangleLightOf<Vec3> t{p0, e1, e2, normalize(cross(e1, e2)), 0.5f, true};
+    const float omega = sphericalTriangleFrom(t, ref).area;
+    const bool sure = surelyByArea(t, ref);
+    below += omega < kMinSphericalSolidAngle;
+    decided += sure;
+    if (sure) {
+      ASSERT_LT(omega, kMinSphericalSolidAngle) << i;
+    }
+    ASSERT_EQ(bySolidAngle(TriangleSampling::kAuto, omega) && !sure,
+              bySolidAngle(TriangleSampling::kAuto, omega)) << i;
+  }
+  std::printf("surelyByArea decided %d of the %d below the threshold (200000 cases)\n", decided,
+              below);
+  EXPECT_GT(decided, below / 4);
+  // The far and tiny cases of kCases: decided without the solid angle.
+  const Case& tiny = kCases[4];
+  const TriangleLightOf<Vec3> t{tiny.p0, tiny.p1 - tiny.p0, tiny.p2 - tiny.p0, Vec3(0, 0, 1),
+                                1.0f, true};
+  EXPECT_TRUE(surelyByArea(t, tiny.ref));
+  const Case& far = kCases[0];
+  EXPECT_FALSE(surelyByArea(
+      TriangleLightOf<Vec3>{far.p0, far.p1 - far.p0, far.p2 - far.p0, Vec3(0, 1, 0), 1.0f, true},
+      far.ref));
+}
+
 }  // namespace
 }  // namespace tray
