@@ -21,7 +21,8 @@ namespace tray {
 class TwoLevelParts {
  public:
   virtual ~TwoLevelParts() = default;
-  /// As the single-ray closest-hit query does for primitive i: lowers tmax and sets hit.
+  /// As the single-ray closest-hit query does for item i (a primitive or an instance of an
+  /// instance array, see placed()): lowers tmax and sets hit.
   virtual bool intersectPrimitive(uint32_t i, const Ray& ray, float& tmax, Hit& hit) const = 0;
   /// As the single-ray any-hit query does for primitive i, remembering a blocker in the
   /// last-occluder cache.
@@ -30,6 +31,22 @@ class TwoLevelParts {
   /// primitive and block that blocked this thread's last shadow ray block `ray`.
   virtual bool occludedByCached(const Ray& ray) const = 0;
   virtual void cacheOccluder(uint32_t primitive, uint32_t block) const = 0;
+
+  /// Top-tree leaves are items: items 0..primitives-1 are the primitives (an instance array's
+  /// own stays out of the tree), then each instance array's instances, array a's instance k
+  /// at item arrayFirst[a] + k.
+  struct Placed {
+    uint32_t primitive, instance;
+  };
+  Placed placed(uint32_t item) const {
+    if (item < itemsBase) return {item, 0};
+    size_t a = arrayFirst.size() - 1;
+    while (arrayFirst[a] > item) --a;  // a few arrays at most
+    return {arrayPrimitive[a], item - arrayFirst[a]};
+  }
+  uint32_t itemsBase = 0;  ///< the number of primitives
+  uint32_t itemCount = 0;
+  std::vector<uint32_t> arrayFirst, arrayPrimitive;  ///< per instance array, ascending
 
   const Scene* scene = nullptr;
   const Bvh4* top = nullptr;

@@ -188,7 +188,7 @@ Scene convert(const tinygltf::Model& model, const std::string& path, const LoadO
   if (sceneIndex >= 0)
     addSceneNodes(ctx, objects, sceneIndex, defaultMaterial, meshes, deformer, stats, scene,
                   stepDeformers.empty() ? nullptr : &stepDeformers,
-                  moving ? &instanceNodes : nullptr);
+                  moving ? &instanceNodes : nullptr, options.instanceArrayMin);
   const std::vector<Mat4> frameWorld =
       moving ? worldMatrices(ctx, objects.localMatrices) : std::vector<Mat4>();
   if (steps.count >= 2)
