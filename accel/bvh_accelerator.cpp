@@ -19,8 +19,14 @@
 #include "core/scene.h"
 #include "textures/alpha.h"
 
+#include <fstream>
 namespace tray {
 namespace {
+inline void expMem(const char* what) {
+  if (!getenv("TRAY_EXP_MEM")) return;
+  std::ifstream f("/proc/self/status"); std::string l;
+  while (std::getline(f, l)) if (l.rfind("VmRSS", 0) == 0 || l.rfind("VmHWM", 0) == 0) fprintf(stderr, "%s %s\n", what, l.c_str());
+}
 
 std::atomic<uint64_t> gNextAcceleratorId{1};
 
@@ -118,10 +124,18 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
       // so each is culled by its own box first.
       BvhBuildOptions topOptions = options.build;
       topOptions.maxLeafSize = 1;
-      Bvh top = buildBvh(boxes, topOptions);
+      if (!arrayFirst.empty() && getenv("TRAY_EXP_LEAF")) topOptions.maxLeafSize = atoi(getenv("TRAY_EXP_LEAF"));
+      if (!arrayFirst.empty() && getenv("TRAY_EXP_ICOST")) topOptions.intersectionCost = float(atof(getenv("TRAY_EXP_ICOST")));
+      expMem("boxes");
+      Bvh top = topOptions.builder == BvhBuilder::kBinnedSah
+                    ? buildBvhBinnedSah(std::move(boxes), topOptions)
+                    : buildBvh(boxes, topOptions);
+      std::vector<Bounds3>().swap(boxes);
+      expMem("built");
       topSahCost_ = sahCost(top, options.build);
       topBinaryNodes_ = top.nodes.size();
       top_ = collapseToBvh4(std::move(top));
+      expMem("collapsed");
       // One placed primitive (a single mesh, say): its own tree culls, the top tree adds nothing.
       if (top_.primitives.size() == 1) single_ = top_.primitives[0];
     }

@@ -355,7 +355,8 @@ class EmbreeAccelerator final : public Accelerator {
   /// Instance array i as one user geometry over its instances (accel/embree_instance_array.h).
   RTCGeometry instanceArray(uint32_t i) {
     const Primitive& p = scene_.primitives[i];
-    hasUserGeometry_ = true;  // callbacks trace one ray at a time (streamable)
+    // No hasUserGeometry_: the callbacks take packets lane by lane, and report mesh hits
+    // (accel/embree_batch.cpp reads the instance from them).
     arrays_[i] = {p.instances.get(), meshScene(p.mesh), scene_.meshes[p.mesh].bounds()};
     return embreeInstanceArray(device_, arrays_[i]);
   }
@@ -376,6 +377,8 @@ class EmbreeAccelerator final : public Accelerator {
     // (kEmbreeOneTreeTriangles).
     rtcSetSceneBuildQuality(
         top_, embreeTwoLevelTop(scene_, flat) ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_MEDIUM);
+    if (!arrays_.empty() && getenv("TRAY_EXP_EQ")) rtcSetSceneBuildQuality(top_, RTCBuildQuality(atoi(getenv("TRAY_EXP_EQ"))));
+    if (!arrays_.empty() && getenv("TRAY_EXP_NOCOMPACT")) rtcSetSceneFlags(top_, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
     for (uint32_t i = 0; i < scene_.primitives.size(); ++i) {
       const Primitive& p = scene_.primitives[i];
       RTCGeometry g;

@@ -66,25 +66,37 @@ struct InstanceArray {
   size_t size() const { return worldToObject.size(); }
   uint32_t index(uint32_t j) const { return indexInNode.empty() ? j : indexInNode[j]; }
   /// Instance j's placement: its stored world-to-object matrix and the object-to-world one
-  /// derived from it (in double, core/transform.h's invert). Valid: singular instances are
-  /// never stored.
+  /// derived from it (affineInverse). Singular instances are never stored.
   Transform placement(uint32_t j) const {
     Transform t;
     t.inv = mat4Of(worldToObject[j]);
-    invert(t.inv, t.m);
-    t.m.m[3][0] = t.m.m[3][1] = t.m.m[3][2] = 0.0f, t.m.m[3][3] = 1.0f;
+    t.m = affineInverse(worldToObject[j]);
     return t;
   }
-  /// Appends an instance whose world-to-object matrix is `toObject` (invertible), index k in
-  /// its node.
-  void add(const Mat4& toObject, uint32_t k) {
-    if (indexInNode.empty() && k != worldToObject.size()) {  // the first skipped instance
-      for (uint32_t j = 0; j < worldToObject.size(); ++j) indexInNode.push_back(j);
-      indexInNode.push_back(k);
-    } else if (!indexInNode.empty()) {
-      indexInNode.push_back(k);
+  /// The inverse of an invertible affine a, in double: the 3x3 part by cofactors over the
+  /// determinant, the translation -A^-1 t. Per shaded hit, cheaper than core/transform.h's
+  /// 4x4 Gauss-Jordan elimination.
+  static Mat4 affineInverse(const Affine3& a) {
+    double m[3][3];
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) m[r][c] = a.m[r][c];
+    const double c00 = m[1][1] * m[2][2] - m[1][2] * m[2][1];
+    const double c01 = m[1][2] * m[2][0] - m[1][0] * m[2][2];
+    const double c02 = m[1][0] * m[2][1] - m[1][1] * m[2][0];
+    const double invDet = 1.0 / (m[0][0] * c00 + m[0][1] * c01 + m[0][2] * c02);
+    const double inv[3][3] = {
+        {c00 * invDet, (m[0][2] * m[2][1] - m[0][1] * m[2][2]) * invDet,
+         (m[0][1] * m[1][2] - m[0][2] * m[1][1]) * invDet},
+        {c01 * invDet, (m[0][0] * m[2][2] - m[0][2] * m[2][0]) * invDet,
+         (m[0][2] * m[1][0] - m[0][0] * m[1][2]) * invDet},
+        {c02 * invDet, (m[0][1] * m[2][0] - m[0][0] * m[2][1]) * invDet,
+         (m[0][0] * m[1][1] - m[0][1] * m[1][0]) * invDet}};
+    Mat4 r;
+    for (int i = 0; i < 3; ++i) {
+      for (int c = 0; c < 3; ++c) r.m[i][c] = float(inv[i][c]);
+      r.m[i][3] = float(-(inv[i][0] * a.m[0][3] + inv[i][1] * a.m[1][3] + inv[i][2] * a.m[2][3]));
     }
-    worldToObject.push_back(affineOf(toObject));
+    return r;
   }
 };
 

@@ -233,24 +233,33 @@ struct Walker {
     const auto& node = ctx.model.nodes[size_t(index)];
     const std::string where = nameOf("node", index, node.name);
     auto array = std::make_shared<InstanceArray>();
-    array->worldToObject.reserve(instances.count);
     array->firstObjectId = nextInstanceId;
     nextInstanceId += int(instances.count);
     array->name = node.name.empty() ? "node" + std::to_string(index) : node.name;
-    forEachInstance(ctx, instances, where, [&](size_t k, const Mat4& local) {
+    // The local matrices first, in place of the world-to-object ones (no second array).
+    std::vector<Affine3>& slots = array->worldToObject;
+    composeInstanceMatrices(ctx, instances, where, slots);
+    size_t kept = 0;
+    for (size_t k = 0; k < slots.size(); ++k) {
       if (scene.primitives.size() + arrayPlacements + placed.size() > kMaxPrimitives)
         ctx.fail("the scene places more than " + std::to_string(kMaxPrimitives) +
                  " objects (node and mesh primitive instances)");
-      const Mat4 m = world * local;
+      const Mat4 m = world * mat4Of(slots[k]);
       if (!m.isFinite())
         ctx.fail(where + " instance " + std::to_string(k) + " world transform overflows");
-      Mat4 inv;  // the inverse Transform(m) holds (core/transform.cpp), bit for bit
-      if (!invert(m, inv)) return void(++hiddenInstances);
-      array->add(inv, uint32_t(k));
+      Mat4 inv;  // as Transform(m) inverts (core/transform.cpp)
+      if (!invert(m, inv)) {
+        ++hiddenInstances;  // a zero scale hides the instance
+        continue;
+      }
+      if (kept != k && array->indexInNode.empty())  // the first skipped: note every index
+        for (uint32_t j = 0; j < kept; ++j) array->indexInNode.push_back(j);
+      if (!array->indexInNode.empty()) array->indexInNode.push_back(uint32_t(k));
+      slots[kept++] = affineOf(inv);
       arrayPlacements += placed.size();
-    });
-    if (array->size() == 0) return;
-    array->worldToObject.shrink_to_fit();
+    }
+    if (kept == 0) return;
+    if (kept < slots.size()) slots.resize(kept), slots.shrink_to_fit();
     for (uint32_t m : placed) {
       Primitive p;
       p.kind = Primitive::Kind::kMesh;
