@@ -19,14 +19,8 @@
 #include "core/scene.h"
 #include "textures/alpha.h"
 
-#include <fstream>
 namespace tray {
 namespace {
-inline void expMem(const char* what) {
-  if (!getenv("TRAY_EXP_MEM")) return;
-  std::ifstream f("/proc/self/status"); std::string l;
-  while (std::getline(f, l)) if (l.rfind("VmRSS", 0) == 0 || l.rfind("VmHWM", 0) == 0) fprintf(stderr, "%s %s\n", what, l.c_str());
-}
 
 std::atomic<uint64_t> gNextAcceleratorId{1};
 
@@ -88,7 +82,8 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
       if (prims[i].instances) {
         arrayFirst.push_back(uint32_t(items));
         arrayPrimitive.push_back(i);
-        items += prims[i].instances->size();
+        arraySize.push_back(uint32_t(prims[i].instances->size()));
+        items += (prims[i].instances->size() + kArrayGroup - 1) / kArrayGroup;
       }
     itemCount = uint32_t(items);
     std::vector<Bounds3> boxes(items);
@@ -96,11 +91,15 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
       const Primitive& p = prims[arrayPrimitive[a]];
       const Bounds3 b = meshes_[p.mesh]->bounds();
       if (b.empty()) continue;
-      tbb::parallel_for(size_t(0), p.instances->size(), [&](size_t k) {
-        boxes[arrayFirst[a] + k] = p.instances->placement(uint32_t(k)).bounds(b);
+      const uint32_t groups = (arraySize[a] + kArrayGroup - 1) / kArrayGroup;
+      tbb::parallel_for(uint32_t(0), groups, [&](uint32_t g) {
+        const Placed group = placed(arrayFirst[a] + g);
+        Bounds3& box = boxes[arrayFirst[a] + g];
+        for (uint32_t k = group.instance; k < group.instance + group.count; ++k)
+          box.extend(p.instances->placement(k).bounds(b));
       });
       if (!options.hierarchy)
-        for (size_t k = 0; k < p.instances->size(); ++k) flat_.push_back(uint32_t(arrayFirst[a] + k));
+        for (uint32_t g = 0; g < groups; ++g) flat_.push_back(arrayFirst[a] + g);
     }
     for (uint32_t i = 0; i < prims.size(); ++i) {
       const Primitive& p = prims[i];
@@ -124,18 +123,13 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
       // so each is culled by its own box first.
       BvhBuildOptions topOptions = options.build;
       topOptions.maxLeafSize = 1;
-      if (!arrayFirst.empty() && getenv("TRAY_EXP_LEAF")) topOptions.maxLeafSize = atoi(getenv("TRAY_EXP_LEAF"));
-      if (!arrayFirst.empty() && getenv("TRAY_EXP_ICOST")) topOptions.intersectionCost = float(atof(getenv("TRAY_EXP_ICOST")));
-      expMem("boxes");
       Bvh top = topOptions.builder == BvhBuilder::kBinnedSah
                     ? buildBvhBinnedSah(std::move(boxes), topOptions)
                     : buildBvh(boxes, topOptions);
       std::vector<Bounds3>().swap(boxes);
-      expMem("built");
       topSahCost_ = sahCost(top, options.build);
       topBinaryNodes_ = top.nodes.size();
       top_ = collapseToBvh4(std::move(top));
-      expMem("collapsed");
       // One placed primitive (a single mesh, say): its own tree culls, the top tree adds nothing.
       if (top_.primitives.size() == 1) single_ = top_.primitives[0];
     }
@@ -195,13 +189,16 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
     hits.clear();
     const float tmax = ray.tmax;
     forEachPrimitive(ray, tmax, [&](uint32_t item) {
-      const auto [i, instance] = placed(item);
+      const auto [i, first, count] = placed(item);
       const Primitive& p = scene_.primitives[i];
       if (p.kind == Primitive::Kind::kMesh) {
-        Ray local;
-        const size_t before = hits.size();
-        if (objectRay(p, instance, ray, ray.tmax, local)) meshes_[p.mesh]->allHits(local, i, hits);
-        for (size_t k = before; k < hits.size(); ++k) hits[k].instance = instance;
+        for (uint32_t instance = first; instance < first + count; ++instance) {
+          Ray local;
+          const size_t before = hits.size();
+          if (objectRay(p, instance, ray, ray.tmax, local))
+            meshes_[p.mesh]->allHits(local, i, hits);
+          for (size_t k = before; k < hits.size(); ++k) hits[k].instance = instance;
+        }
       } else {
         shapeCrossings(p, i, ray, hits);
       }
@@ -274,7 +271,19 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
   bool byOctant() const { return options_.batch == BvhBatch::kStream64; }
 
   bool intersectPrimitive(uint32_t item, const Ray& ray, float& tmax, Hit& hit) const override {
-    const auto [i, instance] = placed(item);
+    const Placed pl = placed(item);
+    if (pl.count > 1) {  // a group of an instance array's instances
+      bool found = false;
+      for (uint32_t instance = pl.instance; instance < pl.instance + pl.count; ++instance)
+        found |= intersectInstance(pl.primitive, instance, ray, tmax, hit);
+      return found;
+    }
+    return intersectInstance(pl.primitive, pl.instance, ray, tmax, hit);
+  }
+
+  /// The closest-hit query of primitive i (instance `instance` of an instance array).
+  bool intersectInstance(uint32_t i, uint32_t instance, const Ray& ray, float& tmax,
+                         Hit& hit) const {
     const Primitive& p = scene_.primitives[i];
     if (p.kind == Primitive::Kind::kMesh) {
       Hit h;
@@ -303,7 +312,13 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
   }
 
   bool occludedPrimitive(uint32_t item, const Ray& ray, uint32_t& block) const {
-    const auto [i, instance] = placed(item);
+    const Placed pl = placed(item);
+    for (uint32_t instance = pl.instance; instance < pl.instance + pl.count; ++instance)
+      if (occludedInstance(pl.primitive, instance, ray, block)) return true;
+    return false;
+  }
+
+  bool occludedInstance(uint32_t i, uint32_t instance, const Ray& ray, uint32_t& block) const {
     const Primitive& p = scene_.primitives[i];
     block = 0;
     Ray local;
@@ -327,13 +342,18 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
   }
 
   bool occludedBy(uint32_t item, uint32_t block, const Ray& ray) const {
-    const auto [i, instance] = placed(item);
+    const auto [i, first, count] = placed(item);
     const Primitive& p = scene_.primitives[i];
     Ray local;
-    if (p.kind == Primitive::Kind::kMesh)
-      return meshes_[p.mesh] && !alphaTested_[p.mesh] &&
-             objectRay(p, instance, ray, ray.tmax, local) &&
-             meshes_[p.mesh]->occludedBy(local, block);
+    if (p.kind == Primitive::Kind::kMesh) {
+      if (!meshes_[p.mesh] || alphaTested_[p.mesh]) return false;
+      // A group's blocker is one of its instances: the block is tested in each.
+      for (uint32_t instance = first; instance < first + count; ++instance)
+        if (objectRay(p, instance, ray, ray.tmax, local) &&
+            meshes_[p.mesh]->occludedBy(local, block))
+          return true;
+      return false;
+    }
     Hit h;
     return scene_.intersectShape(i, ray, h);
   }

@@ -101,16 +101,19 @@ class Group {
   }
 
   RayMask intersectPrimitive(uint32_t item, RayMask m, Hit* hits) {
-    const auto [i, instance] = parts_.placed(item);
+    const auto [i, first, count] = parts_.placed(item);
     const Primitive& p = parts_.scene->primitives[i];
     RayMask found = 0;
     if (const MeshBvh* mesh = packetMesh(p)) {
       const PacketAlpha alpha{*parts_.scene, rays_, i};
       const PacketTriangleFilter filter = alpha.filter();
-      found = mesh->intersectPacket(local_, enter(p, instance, m), tmax_, hits,
-                                    (*parts_.alphaTested)[p.mesh] ? &filter : nullptr);
-      for (RayMask f = found; f; f &= f - 1)
-        hits[nextRay(f)].primitive = i, hits[nextRay(f)].instance = instance;
+      for (uint32_t instance = first; instance < first + count; ++instance) {
+        const RayMask f = mesh->intersectPacket(local_, enter(p, instance, m), tmax_, hits,
+                                                (*parts_.alphaTested)[p.mesh] ? &filter : nullptr);
+        for (RayMask r = f; r; r &= r - 1)
+          hits[nextRay(r)].primitive = i, hits[nextRay(r)].instance = instance;
+        found |= f;
+      }
       return found;
     }
     for (; m; m &= m - 1) {
@@ -121,7 +124,7 @@ class Group {
   }
 
   void occludedPrimitive(uint32_t item, RayMask m, RayMask& alive) {
-    const auto [i, instance] = parts_.placed(item);
+    const auto [i, first, count] = parts_.placed(item);
     const Primitive& p = parts_.scene->primitives[i];
     if (const MeshBvh* mesh = packetMesh(p)) {
       const PacketAlpha alpha{*parts_.scene, rays_, i};
@@ -129,8 +132,9 @@ class Group {
       const bool alphaTested = (*parts_.alphaTested)[p.mesh];
       const RayMask before = alive;
       uint32_t block = 0;
-      mesh->occludedPacket(local_, enter(p, instance, m), alive, tmax_, block,
-                           alphaTested ? &filter : nullptr);
+      for (uint32_t instance = first; instance < first + count && (m & alive); ++instance)
+        mesh->occludedPacket(local_, enter(p, instance, m & alive), alive, tmax_, block,
+                             alphaTested ? &filter : nullptr);
       // The blocker of the group's highest-numbered blocked ray is cached: the next group's
       // first rays are its neighbours. As in the single-ray query, an alpha-tested mesh's
       // block is not (block 0 there: occludedBy refuses alpha-tested meshes).

@@ -355,8 +355,10 @@ class EmbreeAccelerator final : public Accelerator {
   /// Instance array i as one user geometry over its instances (accel/embree_instance_array.h).
   RTCGeometry instanceArray(uint32_t i) {
     const Primitive& p = scene_.primitives[i];
-    // No hasUserGeometry_: the callbacks take packets lane by lane, and report mesh hits
-    // (accel/embree_batch.cpp reads the instance from them).
+    // Traced ray by ray: 8-wide packets reach the callbacks, which take them lane by lane, and
+    // cost 1.38x the render time at 10^6 instances (0.764 against 1.056 CPU s, bench/
+    // instancing_bench, docs/bench/instancing-arrays-2026-12-06.md).
+    hasUserGeometry_ = true;
     arrays_[i] = {p.instances.get(), meshScene(p.mesh), scene_.meshes[p.mesh].bounds()};
     return embreeInstanceArray(device_, arrays_[i]);
   }
@@ -367,7 +369,8 @@ class EmbreeAccelerator final : public Accelerator {
     userData_.resize(scene_.primitives.size());
     for (const Primitive& p : scene_.primitives)
       if (p.instances) arrays_.resize(scene_.primitives.size());
-    // Instance arrays: a compact top tree (bench/instancing_bench, docs/instancing.md).
+    // Instance arrays: a compact top tree (RTC_SCENE_FLAG_COMPACT: 21 MiB less at 10^6
+    // instances, as fast; bench/instancing_bench).
     if (!arrays_.empty())
       rtcSetSceneFlags(top_, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION |
                                  RTC_SCENE_FLAG_COMPACT);
@@ -377,8 +380,11 @@ class EmbreeAccelerator final : public Accelerator {
     // (kEmbreeOneTreeTriangles).
     rtcSetSceneBuildQuality(
         top_, embreeTwoLevelTop(scene_, flat) ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_MEDIUM);
-    if (!arrays_.empty() && getenv("TRAY_EXP_EQ")) rtcSetSceneBuildQuality(top_, RTCBuildQuality(atoi(getenv("TRAY_EXP_EQ"))));
-    if (!arrays_.empty() && getenv("TRAY_EXP_NOCOMPACT")) rtcSetSceneFlags(top_, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
+    // Instance arrays: Embree's low-quality (Morton) build of the top tree over their
+    // instances. At 10^6 instances it holds 25 MiB where the medium (SAH) one holds 71 and
+    // peaks 32 MiB above that, for 1.22x the render time (docs/bench/
+    // instancing-arrays-2026-12-06.md): the memory target is met only so.
+    if (!arrays_.empty()) rtcSetSceneBuildQuality(top_, RTC_BUILD_QUALITY_LOW);
     for (uint32_t i = 0; i < scene_.primitives.size(); ++i) {
       const Primitive& p = scene_.primitives[i];
       RTCGeometry g;
