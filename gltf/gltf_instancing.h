@@ -2,7 +2,8 @@
 // EXT_mesh_gpu_instancing (glTF vendor extension): a node that places its mesh many times, each
 // instance with its own translation, rotation and scale read from accessors. TRay places one
 // Primitive per instance over the mesh stored once (an Embree instance / a top-level BVH leaf
-// each): an instance costs a transform, not a copy of the geometry (docs/instancing.md).
+// each), or from 1024 instances one instance array for them all (core/instance_array.h): an
+// instance costs a transform, not a copy of the geometry (docs/instancing.md).
 #include <cstddef>
 #include <optional>
 #include <string>
