@@ -165,8 +165,7 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
 
   bool occludedByCached(const Ray& ray) const override {
     const LastOccluder& cache = tLastOccluder;
-    return options_.occluderCache && cache.accelerator == id_ &&
-           cache.primitive < itemCount &&
+    return options_.occluderCache && cache.accelerator == id_ && cache.primitive < itemCount &&
            occludedBy(cache.primitive, cache.block, ray);
   }
 

@@ -80,6 +80,8 @@ RTCGeometry embreeInstanceArray(RTCDevice device, const EmbreeArrayData& data) {
   return g;
 }
 
-uint32_t embreeArrayInstanceInFlight() { return tInstanceInFlight; }
+uint32_t embreeArrayInstanceInFlight() {
+  return tInstanceInFlight;
+}
 
 }  // namespace tray

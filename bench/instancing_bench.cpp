@@ -54,8 +54,7 @@ struct Phase {
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr,
-                 "usage: %s scene.gltf [embree|bvh] [WxH] [spp] [integrator] [array-min]\n",
+    std::fprintf(stderr, "usage: %s scene.gltf [embree|bvh] [WxH] [spp] [integrator] [array-min]\n",
                  argv[0]);
     return 2;
   }

@@ -130,11 +130,11 @@ void composeInstanceMatrices(const GltfContext& ctx, const InstanceAttributes& a
       for (int i = 0; i < 4; ++i)
         if (!std::isfinite(q[i])) failInstance(ctx, where, k, "ROTATION is not finite");
       // As instanceMatrix: renormalised in double.
-      const double len = std::sqrt(double(q[0]) * q[0] + double(q[1]) * q[1] +
-                                   double(q[2]) * q[2] + double(q[3]) * q[3]);
+      const double len = std::sqrt(double(q[0]) * q[0] + double(q[1]) * q[1] + double(q[2]) * q[2] +
+                                   double(q[3]) * q[3]);
       if (!(len > 0)) failInstance(ctx, where, k, "ROTATION is not a unit quaternion");
-      const Mat4 rm = Mat4::rotate(float(q[0] / len), float(q[1] / len), float(q[2] / len),
-                                   float(q[3] / len));
+      const Mat4 rm =
+          Mat4::rotate(float(q[0] / len), float(q[1] / len), float(q[2] / len), float(q[3] / len));
       out[k] = affineOf(rm * mat4Of(out[k]));
     }
   }

@@ -380,11 +380,16 @@ void addSceneNodes(const GltfContext& ctx, const ObjectTable& objects, int scene
                    MeshStats& stats, Scene& scene, const std::vector<Deformer>* stepDeformers,
                    std::vector<int>* instanceNodes, size_t instanceArrayMin) {
   if (instanceNodes) instanceNodes->clear();
-  Walker walker{ctx,           objects,
-                defaultMaterial, meshes,
-                deformer,      stats,
-                scene,         stepDeformers,
-                instanceNodes, int(ctx.model.nodes.size()),
+  Walker walker{ctx,
+                objects,
+                defaultMaterial,
+                meshes,
+                deformer,
+                stats,
+                scene,
+                stepDeformers,
+                instanceNodes,
+                int(ctx.model.nodes.size()),
                 instanceArrayMin};
   scene.environment = objects.environments[size_t(sceneIndex)];
   // Explicit stack of (node, parent's world matrix); children pushed in reverse so nodes are

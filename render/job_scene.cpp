@@ -84,7 +84,8 @@ void checkAcceleratorMemory(const RenderJob& job, const Scene& scene, MemoryEsti
     need.geometry += m.triangleCount() * std::max<size_t>(1, m.positionSteps.size());
   need.geometry *= kGeometryBytesPerTriangle;
   for (const Primitive& p : scene.primitives)  // instances cost too
-    need.geometry += p.instances ? p.instances->size() * kBytesPerArrayInstance : kBytesPerPlacement;
+    need.geometry +=
+        p.instances ? p.instances->size() * kBytesPerArrayInstance : kBytesPerPlacement;
   checkMemory(job.scene.path, need, limitBytes);
 }
 
