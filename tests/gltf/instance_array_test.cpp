@@ -8,6 +8,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <string>
 #include <vector>
@@ -20,6 +22,7 @@
 #include "render/prepared_scene.h"
 #include "render/render_setup.h"
 #include "render/renderer.h"
+#include "tests/base64.h"
 #include "tests/cli/cli_run.h"
 #include "tests/exr_read.h"
 #include "tests/temp_dir.h"
@@ -227,6 +230,94 @@ TEST(InstanceArray, ObjectIdsAndCryptomatteAreTheInstancesOwn) {
     EXPECT_EQ(exr[1].spec.get_string_attribute(name), exr[0].spec.get_string_attribute(name));
   }
   EXPECT_EQ(manifests, 1);
+}
+
+/// A triangle (node 0, "Row") instanced `count` times along x by TRANSLATION and SCALE (instance
+/// `hidden` at zero scale, -1: none), its material's alphaMode `alpha`.
+fs::path rowOfTriangles(int count, int hidden, const char* alpha) {
+  std::string bytes;
+  auto append = [&](const std::vector<float>& v) {
+    const size_t at = bytes.size();
+    bytes.append(reinterpret_cast<const char*>(v.data()), 4 * v.size());
+    return at;
+  };
+  std::vector<float> t, s;
+  for (int k = 0; k < count; ++k) {
+    t.insert(t.end(), {float(k), 0, 0});
+    const float scale = k == hidden ? 0.0f : 0.4f;
+    s.insert(s.end(), {scale, scale, scale});
+  }
+  const size_t tri = append({-1, -1, 0, 1, -1, 0, 0, 1, 0}), tAt = append(t), sAt = append(s);
+  nlohmann::json doc = nlohmann::json::parse(R"({
+      "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+      "extensionsUsed": ["EXT_mesh_gpu_instancing"],
+      "nodes": [{"name": "Row", "mesh": 0, "extensions": {"EXT_mesh_gpu_instancing":
+                 {"attributes": {"TRANSLATION": 1, "SCALE": 2}}}}],
+      "materials": [{}],
+      "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "material": 0}]}],
+      "accessors": [
+        {"bufferView": 0, "componentType": 5126, "type": "VEC3", "count": 3,
+         "min": [-1, -1, 0], "max": [1, 1, 0]},
+        {"bufferView": 1, "componentType": 5126, "type": "VEC3"},
+        {"bufferView": 2, "componentType": 5126, "type": "VEC3"}]})");
+  doc["materials"][0]["alphaMode"] = alpha;
+  doc["accessors"][1]["count"] = count;
+  doc["accessors"][2]["count"] = count;
+  doc["bufferViews"] = nlohmann::json::array();
+  for (auto [at, length] : {std::pair{tri, size_t(36)}, {tAt, 12 * size_t(count)},
+                            {sAt, 12 * size_t(count)}})
+    doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", at}, {"byteLength", length}});
+  doc["buffers"] = nlohmann::json::array();
+  doc["buffers"].push_back(
+      {{"byteLength", bytes.size()},
+       {"uri", "data:application/octet-stream;base64," + test::base64(bytes)}});
+  static int counter = 0;
+  const fs::path dir = test::testDir() / ("row" + std::to_string(counter++));
+  fs::create_directories(dir);
+  std::ofstream(dir / "row.gltf") << doc.dump();
+  return dir / "row.gltf";
+}
+
+TEST(InstanceArray, NonOpaqueMeshesKeepOnePrimitivePerInstance) {
+  LoadOptions o;
+  o.instanceArrayMin = 1;
+  for (const char* alpha : {"BLEND", "MASK"}) {
+    const Scene s = loadGltf(rowOfTriangles(8, -1, alpha).string(), o);
+    EXPECT_EQ(arrayOf(s), kNoPrimitive) << alpha;
+    EXPECT_EQ(s.primitives.size(), 8u) << alpha;
+  }
+  const Scene opaque = loadGltf(rowOfTriangles(8, -1, "OPAQUE").string(), o);
+  ASSERT_EQ(opaque.primitives.size(), 1u);
+  EXPECT_EQ(opaque.primitives[0].instanceCount(), 8u);
+}
+
+// A zero-scale instance is skipped, its id and name unused, as one primitive per instance does;
+// the others keep theirs, and rays find them.
+TEST(InstanceArray, ZeroScaleInstancesKeepTheOthersIds) {
+  LoadOptions o;
+  o.instanceArrayMin = 1;
+  const fs::path file = rowOfTriangles(6, 2, "OPAQUE");
+  const Scene array = loadGltf(file.string(), o);
+  o.instanceArrayMin = 0;
+  const Scene perInstance = loadGltf(file.string(), o);
+  ASSERT_EQ(perInstance.primitives.size(), 5u);
+  ASSERT_EQ(array.primitives.size(), 1u);
+  ASSERT_EQ(array.primitives[0].instanceCount(), 5u);
+  for (uint32_t k = 0; k < 5; ++k) {
+    EXPECT_EQ(array.objectId(0, k), perInstance.primitives[k].objectId);
+    EXPECT_EQ(array.objectName(0, k), perInstance.primitives[k].name);
+  }
+  EXPECT_EQ(array.objectName(0, 2), "Row#3");
+  for (const char* name : {"embree", "bvh"}) {
+    const auto accel = makeAccelerator(name, array);
+    for (int x : {0, 1, 3, 4, 5}) {
+      Hit h;
+      ASSERT_TRUE(accel->intersect(Ray{{float(x), 0, 5}, {0, 0, -1}}, h)) << name << " " << x;
+      EXPECT_EQ(array.objectName(0, h.instance), "Row#" + std::to_string(x)) << name;
+    }
+    Hit h;
+    EXPECT_FALSE(accel->intersect(Ray{{2, 0, 5}, {0, 0, -1}}, h)) << name;
+  }
 }
 
 TEST(InstanceArray, MotionKeepsOnePrimitivePerInstance) {
