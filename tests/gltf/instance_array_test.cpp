@@ -264,8 +264,8 @@ fs::path rowOfTriangles(int count, int hidden, const char* alpha) {
   doc["accessors"][1]["count"] = count;
   doc["accessors"][2]["count"] = count;
   doc["bufferViews"] = nlohmann::json::array();
-  for (auto [at, length] : {std::pair{tri, size_t(36)}, {tAt, 12 * size_t(count)},
-                            {sAt, 12 * size_t(count)}})
+  for (auto [at, length] :
+       {std::pair{tri, size_t(36)}, {tAt, 12 * size_t(count)}, {sAt, 12 * size_t(count)}})
     doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", at}, {"byteLength", length}});
   doc["buffers"] = nlohmann::json::array();
   doc["buffers"].push_back(
