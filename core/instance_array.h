@@ -84,13 +84,12 @@ struct InstanceArray {
     const double c01 = m[1][2] * m[2][0] - m[1][0] * m[2][2];
     const double c02 = m[1][0] * m[2][1] - m[1][1] * m[2][0];
     const double invDet = 1.0 / (m[0][0] * c00 + m[0][1] * c01 + m[0][2] * c02);
-    const double inv[3][3] = {
-        {c00 * invDet, (m[0][2] * m[2][1] - m[0][1] * m[2][2]) * invDet,
-         (m[0][1] * m[1][2] - m[0][2] * m[1][1]) * invDet},
-        {c01 * invDet, (m[0][0] * m[2][2] - m[0][2] * m[2][0]) * invDet,
-         (m[0][2] * m[1][0] - m[0][0] * m[1][2]) * invDet},
-        {c02 * invDet, (m[0][1] * m[2][0] - m[0][0] * m[2][1]) * invDet,
-         (m[0][0] * m[1][1] - m[0][1] * m[1][0]) * invDet}};
+    const double inv[3][3] = {{c00 * invDet, (m[0][2] * m[2][1] - m[0][1] * m[2][2]) * invDet,
+                               (m[0][1] * m[1][2] - m[0][2] * m[1][1]) * invDet},
+                              {c01 * invDet, (m[0][0] * m[2][2] - m[0][2] * m[2][0]) * invDet,
+                               (m[0][2] * m[1][0] - m[0][0] * m[1][2]) * invDet},
+                              {c02 * invDet, (m[0][1] * m[2][0] - m[0][0] * m[2][1]) * invDet,
+                               (m[0][0] * m[1][1] - m[0][1] * m[1][0]) * invDet}};
     Mat4 r;
     for (int i = 0; i < 3; ++i) {
       for (int c = 0; c < 3; ++c) r.m[i][c] = float(inv[i][c]);
