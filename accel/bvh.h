@@ -64,6 +64,9 @@ struct BvhBuildOptions {
 /// non-finite bounds are left out of the tree.
 Bvh buildBvh(const std::vector<Bounds3>& bounds, const BvhBuildOptions& options = {});
 Bvh buildBvhBinnedSah(const std::vector<Bounds3>& bounds, const BvhBuildOptions& options);
+/// The same tree, `bounds` freed (emptied) once read, before the nodes are made: a top tree
+/// over 10^6 instances holds 24 MiB less at its peak.
+Bvh buildBvhBinnedSah(std::vector<Bounds3>&& bounds, const BvhBuildOptions& options);
 Bvh buildBvhGoldsmithSalmon(const std::vector<Bounds3>& bounds, const BvhBuildOptions& options);
 
 /// Surface area heuristic cost of a tree (MacDonald & Booth 1990): expected cost of a random

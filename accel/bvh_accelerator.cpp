@@ -75,9 +75,35 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
       uint32_t m = used[k];
       meshes_[m] = std::make_unique<MeshBvh>(scene.meshes[m], options.build, options.hierarchy);
     });
-    std::vector<Bounds3> boxes(prims.size());
+    // Items (TwoLevelParts::placed): the primitives, then every instance array's instances.
+    itemsBase = uint32_t(prims.size());
+    size_t items = prims.size();
+    for (uint32_t i = 0; i < prims.size(); ++i)
+      if (prims[i].instances) {
+        arrayFirst.push_back(uint32_t(items));
+        arrayPrimitive.push_back(i);
+        arraySize.push_back(uint32_t(prims[i].instances->size()));
+        items += (prims[i].instances->size() + kArrayGroup - 1) / kArrayGroup;
+      }
+    itemCount = uint32_t(items);
+    std::vector<Bounds3> boxes(items);
+    for (size_t a = 0; a < arrayFirst.size(); ++a) {
+      const Primitive& p = prims[arrayPrimitive[a]];
+      const Bounds3 b = meshes_[p.mesh]->bounds();
+      if (b.empty()) continue;
+      const uint32_t groups = (arraySize[a] + kArrayGroup - 1) / kArrayGroup;
+      tbb::parallel_for(uint32_t(0), groups, [&](uint32_t g) {
+        const Placed group = placed(arrayFirst[a] + g);
+        Bounds3& box = boxes[arrayFirst[a] + g];
+        for (uint32_t k = group.instance; k < group.instance + group.count; ++k)
+          box.extend(p.instances->placement(k).bounds(b));
+      });
+      if (!options.hierarchy)
+        for (uint32_t g = 0; g < groups; ++g) flat_.push_back(arrayFirst[a] + g);
+    }
     for (uint32_t i = 0; i < prims.size(); ++i) {
       const Primitive& p = prims[i];
+      if (p.instances) continue;  // its instances are items of their own
       if (p.kind == Primitive::Kind::kMesh) {
         Bounds3 b = meshes_[p.mesh]->bounds();
         if (!b.empty()) boxes[i] = motionBounds(p, b);  // over the shutter when it moves
@@ -97,7 +123,10 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
       // so each is culled by its own box first.
       BvhBuildOptions topOptions = options.build;
       topOptions.maxLeafSize = 1;
-      Bvh top = buildBvh(boxes, topOptions);
+      Bvh top = topOptions.builder == BvhBuilder::kBinnedSah
+                    ? buildBvhBinnedSah(std::move(boxes), topOptions)
+                    : buildBvh(boxes, topOptions);
+      std::vector<Bounds3>().swap(boxes);
       topSahCost_ = sahCost(top, options.build);
       topBinaryNodes_ = top.nodes.size();
       top_ = collapseToBvh4(std::move(top));
@@ -136,8 +165,7 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
 
   bool occludedByCached(const Ray& ray) const override {
     const LastOccluder& cache = tLastOccluder;
-    return options_.occluderCache && cache.accelerator == id_ &&
-           cache.primitive < scene_.primitives.size() &&
+    return options_.occluderCache && cache.accelerator == id_ && cache.primitive < itemCount &&
            occludedBy(cache.primitive, cache.block, ray);
   }
 
@@ -159,11 +187,17 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
   void allHits(const Ray& ray, std::vector<Hit>& hits) const override {
     hits.clear();
     const float tmax = ray.tmax;
-    forEachPrimitive(ray, tmax, [&](uint32_t i) {
+    forEachPrimitive(ray, tmax, [&](uint32_t item) {
+      const auto [i, first, count] = placed(item);
       const Primitive& p = scene_.primitives[i];
       if (p.kind == Primitive::Kind::kMesh) {
-        Ray local;
-        if (objectRay(p, ray, ray.tmax, local)) meshes_[p.mesh]->allHits(local, i, hits);
+        for (uint32_t instance = first; instance < first + count; ++instance) {
+          Ray local;
+          const size_t before = hits.size();
+          if (objectRay(p, instance, ray, ray.tmax, local))
+            meshes_[p.mesh]->allHits(local, i, hits);
+          for (size_t k = before; k < hits.size(); ++k) hits[k].instance = instance;
+        }
       } else {
         shapeCrossings(p, i, ray, hits);
       }
@@ -173,6 +207,7 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
     std::sort(hits.begin(), hits.end(), [](const Hit& a, const Hit& b) {
       if (a.t != b.t) return a.t < b.t;
       if (a.primitive != b.primitive) return a.primitive < b.primitive;
+      if (a.instance != b.instance) return a.instance < b.instance;
       if (a.triangle != b.triangle) return a.triangle < b.triangle;
       return a.material < b.material;
     });
@@ -180,7 +215,8 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
     hits.erase(std::unique(hits.begin(), hits.end(),
                            [](const Hit& a, const Hit& b) {
                              return a.t == b.t && a.primitive == b.primitive &&
-                                    a.triangle == b.triangle && a.material == b.material;
+                                    a.instance == b.instance && a.triangle == b.triangle &&
+                                    a.material == b.material;
                            }),
                hits.end());
   }
@@ -233,21 +269,36 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
   bool batched() const { return options_.hierarchy && options_.batch != BvhBatch::kLoop; }
   bool byOctant() const { return options_.batch == BvhBatch::kStream64; }
 
-  bool intersectPrimitive(uint32_t i, const Ray& ray, float& tmax, Hit& hit) const override {
+  bool intersectPrimitive(uint32_t item, const Ray& ray, float& tmax, Hit& hit) const override {
+    const Placed pl = placed(item);
+    if (pl.count > 1) {  // a group of an instance array's instances
+      bool found = false;
+      for (uint32_t instance = pl.instance; instance < pl.instance + pl.count; ++instance)
+        found |= intersectInstance(pl.primitive, instance, ray, tmax, hit);
+      return found;
+    }
+    return intersectInstance(pl.primitive, pl.instance, ray, tmax, hit);
+  }
+
+  /// The closest-hit query of primitive i (instance `instance` of an instance array).
+  bool intersectInstance(uint32_t i, uint32_t instance, const Ray& ray, float& tmax,
+                         Hit& hit) const {
     const Primitive& p = scene_.primitives[i];
     if (p.kind == Primitive::Kind::kMesh) {
       Hit h;
       Ray local;
-      if (!objectRay(p, ray, tmax, local)) return false;
+      if (!objectRay(p, instance, ray, tmax, local)) return false;
       if (alphaTested_[p.mesh]) {
         const AlphaQuery q{scene_, ray, i};
         if (!meshes_[p.mesh]->intersect(local, tmax, h, q.filter())) return false;
         h.primitive = i;
+        h.instance = instance;
         hit = h;
         return true;
       }
       if (!meshes_[p.mesh]->intersect(local, tmax, h)) return false;
       h.primitive = i;
+      h.instance = instance;
       hit = h;
       return true;
     }
@@ -259,11 +310,19 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
     return true;
   }
 
-  bool occludedPrimitive(uint32_t i, const Ray& ray, uint32_t& block) const {
+  bool occludedPrimitive(uint32_t item, const Ray& ray, uint32_t& block) const {
+    const Placed pl = placed(item);
+    for (uint32_t instance = pl.instance; instance < pl.instance + pl.count; ++instance)
+      if (occludedInstance(pl.primitive, instance, ray, block)) return true;
+    return false;
+  }
+
+  bool occludedInstance(uint32_t i, uint32_t instance, const Ray& ray, uint32_t& block) const {
     const Primitive& p = scene_.primitives[i];
     block = 0;
     Ray local;
-    if (p.kind == Primitive::Kind::kMesh && !objectRay(p, ray, ray.tmax, local)) return false;
+    if (p.kind == Primitive::Kind::kMesh && !objectRay(p, instance, ray, ray.tmax, local))
+      return false;
     if (p.kind == Primitive::Kind::kMesh && alphaTested_[p.mesh]) {
       // block stays 0 and occludedBy refuses alpha-tested meshes: the cache never skips the test.
       const AlphaQuery q{scene_, ray, i};
@@ -281,12 +340,19 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
     return true;
   }
 
-  bool occludedBy(uint32_t i, uint32_t block, const Ray& ray) const {
+  bool occludedBy(uint32_t item, uint32_t block, const Ray& ray) const {
+    const auto [i, first, count] = placed(item);
     const Primitive& p = scene_.primitives[i];
     Ray local;
-    if (p.kind == Primitive::Kind::kMesh)
-      return meshes_[p.mesh] && !alphaTested_[p.mesh] && objectRay(p, ray, ray.tmax, local) &&
-             meshes_[p.mesh]->occludedBy(local, block);
+    if (p.kind == Primitive::Kind::kMesh) {
+      if (!meshes_[p.mesh] || alphaTested_[p.mesh]) return false;
+      // A group's blocker is one of its instances: the block is tested in each.
+      for (uint32_t instance = first; instance < first + count; ++instance)
+        if (objectRay(p, instance, ray, ray.tmax, local) &&
+            meshes_[p.mesh]->occludedBy(local, block))
+          return true;
+      return false;
+    }
     Hit h;
     return scene_.intersectShape(i, ray, h);
   }

@@ -88,37 +88,43 @@ class Group {
 
   /// The rays of m in p's object space, into local_; the result leaves out those that cannot
   /// meet p (flat at their time).
-  RayMask enter(const Primitive& p, RayMask m) {
+  RayMask enter(const Primitive& p, uint32_t instance, RayMask m) {
     RayMask entered = 0;
     for (; m; m &= m - 1) {
       const int r = nextRay(m);
       Ray ray;
-      if (!objectRay(p, rays_[r], tmax_[r], ray)) continue;
+      if (!objectRay(p, instance, rays_[r], tmax_[r], ray)) continue;
       local_.set(r, ray);
       entered |= m & -m;
     }
     return entered;
   }
 
-  RayMask intersectPrimitive(uint32_t i, RayMask m, Hit* hits) {
+  RayMask intersectPrimitive(uint32_t item, RayMask m, Hit* hits) {
+    const auto [i, first, count] = parts_.placed(item);
     const Primitive& p = parts_.scene->primitives[i];
     RayMask found = 0;
     if (const MeshBvh* mesh = packetMesh(p)) {
       const PacketAlpha alpha{*parts_.scene, rays_, i};
       const PacketTriangleFilter filter = alpha.filter();
-      found = mesh->intersectPacket(local_, enter(p, m), tmax_, hits,
-                                    (*parts_.alphaTested)[p.mesh] ? &filter : nullptr);
-      for (RayMask f = found; f; f &= f - 1) hits[nextRay(f)].primitive = i;
+      for (uint32_t instance = first; instance < first + count; ++instance) {
+        const RayMask f = mesh->intersectPacket(local_, enter(p, instance, m), tmax_, hits,
+                                                (*parts_.alphaTested)[p.mesh] ? &filter : nullptr);
+        for (RayMask r = f; r; r &= r - 1)
+          hits[nextRay(r)].primitive = i, hits[nextRay(r)].instance = instance;
+        found |= f;
+      }
       return found;
     }
     for (; m; m &= m - 1) {
       const int r = nextRay(m);
-      if (parts_.intersectPrimitive(i, rays_[r], tmax_[r], hits[r])) found |= m & -m;
+      if (parts_.intersectPrimitive(item, rays_[r], tmax_[r], hits[r])) found |= m & -m;
     }
     return found;
   }
 
-  void occludedPrimitive(uint32_t i, RayMask m, RayMask& alive) {
+  void occludedPrimitive(uint32_t item, RayMask m, RayMask& alive) {
+    const auto [i, first, count] = parts_.placed(item);
     const Primitive& p = parts_.scene->primitives[i];
     if (const MeshBvh* mesh = packetMesh(p)) {
       const PacketAlpha alpha{*parts_.scene, rays_, i};
@@ -126,20 +132,21 @@ class Group {
       const bool alphaTested = (*parts_.alphaTested)[p.mesh];
       const RayMask before = alive;
       uint32_t block = 0;
-      mesh->occludedPacket(local_, enter(p, m), alive, tmax_, block,
-                           alphaTested ? &filter : nullptr);
+      for (uint32_t instance = first; instance < first + count && (m & alive); ++instance)
+        mesh->occludedPacket(local_, enter(p, instance, m & alive), alive, tmax_, block,
+                             alphaTested ? &filter : nullptr);
       // The blocker of the group's highest-numbered blocked ray is cached: the next group's
       // first rays are its neighbours. As in the single-ray query, an alpha-tested mesh's
       // block is not (block 0 there: occludedBy refuses alpha-tested meshes).
       const RayMask newlyBlocked = before & ~alive;
       if (newlyBlocked && highestBit(newlyBlocked) >= lastBlocked_) {
         lastBlocked_ = highestBit(newlyBlocked);
-        parts_.cacheOccluder(i, alphaTested ? 0 : block);
+        parts_.cacheOccluder(item, alphaTested ? 0 : block);
       }
       return;
     }
     for (; m; m &= m - 1)
-      if (parts_.occludedPrimitive(i, rays_[nextRay(m)])) {  // caches its blocker
+      if (parts_.occludedPrimitive(item, rays_[nextRay(m)])) {  // caches its blocker
         alive &= ~(m & -m);
         lastBlocked_ = std::max(lastBlocked_, nextRay(m));
       }

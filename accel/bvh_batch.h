@@ -3,6 +3,7 @@
 // rays of the batch traverse the top tree and each mesh tree together
 // (accel/bvh4_packet.h). What packets do not cover, analytic shapes, unbounded shapes and
 // deforming meshes, each ray of the group queries on its own.
+#include <algorithm>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -21,7 +22,8 @@ namespace tray {
 class TwoLevelParts {
  public:
   virtual ~TwoLevelParts() = default;
-  /// As the single-ray closest-hit query does for primitive i: lowers tmax and sets hit.
+  /// As the single-ray closest-hit query does for item i (a primitive or an instance of an
+  /// instance array, see placed()): lowers tmax and sets hit.
   virtual bool intersectPrimitive(uint32_t i, const Ray& ray, float& tmax, Hit& hit) const = 0;
   /// As the single-ray any-hit query does for primitive i, remembering a blocker in the
   /// last-occluder cache.
@@ -30,6 +32,29 @@ class TwoLevelParts {
   /// primitive and block that blocked this thread's last shadow ray block `ray`.
   virtual bool occludedByCached(const Ray& ray) const = 0;
   virtual void cacheOccluder(uint32_t primitive, uint32_t block) const = 0;
+
+  /// Top-tree leaves are items: items 0..primitives-1 are the primitives (an instance array's
+  /// own stays out of the tree), then each instance array's instances in groups of
+  /// kArrayGroup consecutive ones, array a's group g at item arrayFirst[a] + g. A group is one
+  /// leaf: the top tree over 10^6 instances has a quarter of the nodes to build and hold
+  /// (bench/instancing_bench: the binary tree was the peak), and glTF's instances of one set
+  /// are laid out in order (rows of a grid, strokes of a scatter tool), so a group's box is
+  /// about its instances' own. A ray entering it tests each of its instances.
+  static constexpr uint32_t kArrayGroup = 4;
+  struct Placed {
+    uint32_t primitive, instance, count;  ///< instances instance..instance+count-1 of primitive
+  };
+  Placed placed(uint32_t item) const {
+    if (item < itemsBase) return {item, 0, 1};
+    size_t a = arrayFirst.size() - 1;
+    while (arrayFirst[a] > item) --a;  // a few arrays at most
+    const uint32_t first = (item - arrayFirst[a]) * kArrayGroup;
+    return {arrayPrimitive[a], first, std::min(kArrayGroup, arraySize[a] - first)};
+  }
+  uint32_t itemsBase = 0;  ///< the number of primitives
+  uint32_t itemCount = 0;
+  /// Per instance array, ascending: its first item, primitive and instance count.
+  std::vector<uint32_t> arrayFirst, arrayPrimitive, arraySize;
 
   const Scene* scene = nullptr;
   const Bvh4* top = nullptr;

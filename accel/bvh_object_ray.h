@@ -23,4 +23,19 @@ inline bool objectRay(const Primitive& p, const Ray& ray, float tmax, Ray& local
   return true;
 }
 
+/// The ray in instance `instance`'s object space of an instance array p (core/instance_array.h),
+/// moved by its stored world-to-object matrix, t unchanged.
+inline void arrayObjectRay(const Primitive& p, uint32_t instance, const Ray& ray, float tmax,
+                           Ray& local) {
+  const Affine3& w = p.instances->worldToObject[instance];
+  local = Ray{affinePoint(w, ray.o), affineVector(w, ray.d), ray.tmin, tmax, ray.blend, ray.time};
+}
+
+/// objectRay for instance `instance` of p: an instance array's, else p's own placement.
+inline bool objectRay(const Primitive& p, uint32_t instance, const Ray& ray, float tmax,
+                      Ray& local) {
+  if (p.instances) return arrayObjectRay(p, instance, ray, tmax, local), true;
+  return objectRay(p, ray, tmax, local);
+}
+
 }  // namespace tray

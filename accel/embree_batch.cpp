@@ -40,12 +40,15 @@ void laneMask(size_t b, size_t n, int valid[kLanes]) {
 
 /// A batch's mesh hit from lane l of a traced packet, field by field into its slot (building a
 /// Hit and copying it in stalls on store forwarding, core/ray.h). Packets are only used on
-/// scenes without user geometry (EmbreeAccelerator::streamable), so every hit is a mesh's:
-/// hitFromEmbree's look-up of the primitive's kind is not needed.
+/// scenes without user geometry (EmbreeAccelerator::streamable) but instance arrays, so every
+/// hit is a mesh's: hitFromEmbree's look-up of the primitive's kind is not needed. An instance
+/// array's hit carries its instance as geomID (accel/embree_instance_array.h), any other
+/// instance's inner geometry id is 0.
 void meshHitFromLane(const RTCRayHit8& p, int l, Hit& hit) {
   const uint32_t inst = p.hit.instID[0][l];
   hit.t = p.ray.tfar[l];
   hit.primitive = inst == RTC_INVALID_GEOMETRY_ID ? p.hit.geomID[l] : inst;
+  hit.instance = inst == RTC_INVALID_GEOMETRY_ID ? 0 : p.hit.geomID[l];
   hit.triangle = p.hit.primID[l];
   hit.b1 = p.hit.u[l], hit.b2 = p.hit.v[l];
   hit.normal = Vec3(), hit.uv = Vec2(), hit.material = -1;

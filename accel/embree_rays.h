@@ -79,6 +79,9 @@ inline Hit hitFromEmbree(const RTCHit& h, float t, const Scene& scene) {
     hit.triangle = h.primID;
     hit.b1 = h.u;
     hit.b2 = h.v;
+    // An instance array's hit carries its instance as geomID (accel/embree_instance_array.h);
+    // any other instance's inner geometry id is 0.
+    hit.instance = inTop ? 0 : h.geomID;
     // Embree's own curves and subdivision surfaces (accel/embree_native.h, instanced like
     // meshes) are shapes: their shade() reads Ng and u, v.
     if (!inTop && scene.primitives[hit.primitive].kind == Primitive::Kind::kShape) {

@@ -4,6 +4,7 @@
 // phase's wall and CPU seconds, and sizeof(Primitive) (what each instance costs in the Scene).
 // bench/instancing_bench.py runs it and tray-render under /usr/bin/time -v for 10^3 and 10^6
 // instances. Usage: instancing_bench scene.gltf [embree|bvh] [WxH] [spp] [integrator]
+// [instance-array-min] (LoadOptions::instanceArrayMin, tray-render --instance-arrays; 0: none)
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -53,7 +54,8 @@ struct Phase {
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: %s scene.gltf [embree|bvh] [WxH] [spp] [integrator]\n", argv[0]);
+    std::fprintf(stderr, "usage: %s scene.gltf [embree|bvh] [WxH] [spp] [integrator] [array-min]\n",
+                 argv[0]);
     return 2;
   }
   const std::string accel = argc > 2 ? argv[2] : "embree";
@@ -71,6 +73,7 @@ int main(int argc, char** argv) {
     Phase p{"load"};
     LoadOptions o;
     o.allowAnyPath = true;
+    if (argc > 6) o.instanceArrayMin = size_t(std::atoll(argv[6]));
     scene = loadGltf(argv[1], o);
   }
   size_t triangles = 0, vertices = 0;

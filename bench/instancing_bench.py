@@ -29,13 +29,15 @@ def run(cmd):
 def peak_rss(a, scene, accel):
     r = run(["/usr/bin/time", "-v", a.render, scene, "--allow-any-path", "--accel", accel,
              "--resolution", a.resolution, "--spp", str(a.spp), "--integrator", a.integrator,
-             "--threads", str(a.threads), "-q", "-o", os.path.join(a.dir, "out.exr")])
+             "--threads", str(a.threads), "-q", "-o", os.path.join(a.dir, "out.exr")] +
+            (["--instance-arrays", str(a.instance_arrays)] if a.instance_arrays >= 0 else []))
     kb = int(re.search(r"Maximum resident set size \(kbytes\): (\d+)", r.stderr).group(1))
     return kb / 1024.0
 
 
 def phases(a, scene, accel):
-    r = run([a.bench, scene, accel, a.resolution, str(a.spp), a.integrator])
+    r = run([a.bench, scene, accel, a.resolution, str(a.spp), a.integrator] +
+            ([str(a.instance_arrays)] if a.instance_arrays >= 0 else []))
     out = {}
     for line in r.stdout.splitlines():
         m = re.match(r"(\w+)\s+wall\s+([\d.]+) s\s+cpu\s+([\d.]+) s\s+rss\s+([\d.]+) MiB", line)
@@ -57,6 +59,10 @@ def main():
     ap.add_argument("--integrator", default="path")
     ap.add_argument("--threads", type=int, default=0)
     ap.add_argument("--segments", type=int, default=32)
+    ap.add_argument("--instance-arrays", type=int, default=-1,
+                    help="tray-render --instance-arrays: sets of this many instances or more load "
+                         "as instance arrays; 0: one primitive per instance; -1 (default): not "
+                         "passed (the binaries' default; builds before the option)")
     a = ap.parse_args()
     os.makedirs(a.dir, exist_ok=True)
     scenes = {}

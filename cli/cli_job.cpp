@@ -35,6 +35,7 @@ RenderJob jobOf(const CliOptions& o) {
   job.scene.index = o.scene;
   job.scene.allowAnyPath = o.allowAnyPath;
   job.scene.ignoreRequiredExtensions = o.ignoreRequiredExtensions;
+  job.scene.instanceArrayMin = o.instanceArrayMin;
   job.scene.maxMemoryBytes =
       o.maxMemoryMB ? uint64_t(*o.maxMemoryMB * 1048576.0) : defaultMaxMemoryBytes();
   job.scene.textureMemoryMB = o.textureMemoryMB;

@@ -109,6 +109,10 @@ void addCliOptions(CLI::App& app, CliOptions& o) {
   app.add_flag("--allow-any-path", o.allowAnyPath, "let scene URIs leave the scene's folder");
   app.add_flag("--ignore-required-extensions", o.ignoreRequiredExtensions,
                "render a glTF whose required extensions TRay lacks (with a warning)");
+  app.add_option("--instance-arrays", o.instanceArrayMin,
+                 "EXT_mesh_gpu_instancing sets of at least this many instances load as one "
+                 "instance array each (docs/instancing.md); 0: one object per instance")
+      ->capture_default_str();
   app.add_option("--aov", o.aovs,
                  "extra EXR layers: comma-separated from " + joined(tray::AovSet::known()) +
                      ", cryptomatte (= crypto_object,crypto_material), lightpaths (the path "

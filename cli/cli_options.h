@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cli/progress.h"
+#include "core/instance_array.h"
 #include "core/render_options.h"
 
 struct CliOptions {
@@ -23,6 +24,9 @@ struct CliOptions {
   std::string display, view;
   bool allowAnyPath = false;
   bool ignoreRequiredExtensions = false;
+  /// --instance-arrays: EXT_mesh_gpu_instancing sets of this many instances or more load as
+  /// instance arrays (docs/instancing.md); 0: never.
+  size_t instanceArrayMin = tray::kInstanceArrayMinInstances;
   bool quiet = false;
   std::string progress = "bar";  ///< --progress bar|plain|none
   tray::ProgressSettings progressSettings;

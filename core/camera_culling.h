@@ -24,8 +24,11 @@ inline bool cameraCulls(const Scene& scene, const Ray& ray, const Hit& hit) {
   const TriangleMesh& m = scene.meshes[p.mesh];
   if (scene.material(m.material).doubleSided) return false;
   const uint32_t* v = &m.indices[3 * size_t(hit.triangle)];
+  Transform scratch;  // an instance array's instance (Scene::placement)
+  const Transform& toWorld =
+      p.instances ? scene.placement(hit.primitive, hit.instance, scratch) : p.toWorld;
   const Vec3 front =
-      triangleFrontNormal(p.toWorld, m.positions[v[0]], m.positions[v[1]], m.positions[v[2]]);
+      triangleFrontNormal(toWorld, m.positions[v[0]], m.positions[v[1]], m.positions[v[2]]);
   return dot(front, ray.d) > 0;
 }
 

@@ -17,6 +17,7 @@ struct Hit {
   Vec3 normal;                        ///< object-space geometric normal (analytic shapes only)
   Vec2 uv;                            ///< surface parameterisation (analytic shapes only)
   int material = -1;                  ///< overrides the primitive's material when >= 0 (CSG)
+  uint32_t instance = 0;              ///< instance arrays: the instance hit (core/instance_array.h)
   bool valid() const { return primitive != kNoPrimitive; }
 };
 
@@ -28,6 +29,7 @@ struct SurfacePoint {
   Vec2 uv;                  ///< texture coordinates
   int material = 0;         ///< index into Scene::materials
   uint32_t primitive = kNoPrimitive;
+  uint32_t instance = 0;    ///< instance arrays: the instance (Hit::instance); else 0
   Vec3 front;               ///< unit front-face normal (core/front_face.h: the winding, not
                             ///< vertex normals): the side one-sided emitters emit from
   bool frontFace = true;    ///< the ray arrived from the side ng points to

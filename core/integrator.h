@@ -60,6 +60,7 @@ struct PrimaryHit {
   Color albedo;
   int objectId = -1, materialId = -1;
   uint32_t primitive = kNoPrimitive;  ///< Scene::primitives index (motion vectors)
+  uint32_t instance = 0;              ///< its instance (SurfacePoint::instance)
   float time = 0;                     ///< the sample's shutter time (Ray::time)
   /// Light-path AOVs: when not null, Li also adds each contribution to its path's category
   /// there (core/light_paths.h). Set by accumulate for the duration of one sample.

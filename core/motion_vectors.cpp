@@ -26,13 +26,14 @@ Vec2 MotionVectors::at(const PrimaryHit& hit) const {
   const Primitive& prim = scene_.primitives[hit.primitive];
   // The hit point on the object, found at the sample's shutter time, placed as the frame
   // shows it and as the previous frame did.
-  Transform moved;
-  const Transform* atHit = placementAt(prim, hit.time, moved);
+  Transform moved, scratch;
+  const Transform& frame = scene_.placement(hit.primitive, hit.instance, scratch);
+  const Transform* atHit = prim.motion.empty() ? &frame : placementAt(prim, hit.time, moved);
   if (!atHit) return {0, 0};
   const Vec3 local = atHit->inversePoint(hit.position);
-  const Vec3 now = prim.toWorld.point(local);
-  Transform before = prim.toWorld;
-  if (hit.primitive < scene_.previousToWorld.size())
+  const Vec3 now = frame.point(local);
+  Transform before = frame;  // an instance array is static: no previous placement of its own
+  if (hit.primitive < scene_.previousToWorld.size() && !prim.instances)
     before.m = scene_.previousToWorld[hit.primitive];  // point() reads m only
   Vec2 a, b;
   if (!project(now_, now, a) || !project(before_, before.point(local), b)) return {0, 0};

@@ -26,6 +26,17 @@ void Scene::finalize() {
     if (p.kind == Primitive::Kind::kShape && !p.shape)
       throw Error("primitive '" + p.name + "' has no shape");
     if (p.kind == Primitive::Kind::kShape) check(p.material, "shape '" + p.name + "'");
+    if (p.instances && (p.kind != Primitive::Kind::kMesh || !p.motion.empty() ||
+                        !meshes[p.mesh].positionSteps.empty()))
+      throw Error("primitive '" + p.name + "': an instance array places a static mesh only");
+    // Lights and alpha filters name a placed primitive, not an instance: such meshes stay one
+    // Primitive per instance (gltf/gltf_scene_graph.cpp, asArray).
+    if (p.instances) {
+      const Material& m = materials[size_t(meshes[p.mesh].material)];
+      if (m.alphaMode != AlphaMode::kOpaque || !isBlack(m.emissive) || m.emissiveTexture.valid())
+        throw Error("primitive '" + p.name +
+                    "': an instance array's mesh must be opaque and not emissive");
+    }
   }
 }
 
@@ -41,9 +52,23 @@ Bounds3 Scene::bounds() const {
   Bounds3 b;
   for (const auto& p : primitives) {
     Bounds3 local = p.kind == Primitive::Kind::kMesh ? meshes[p.mesh].bounds() : p.shape->bounds();
-    if (local.finite()) b.extend(motionBounds(p, local));  // over the whole shutter
+    if (!local.finite()) continue;
+    if (p.instances)
+      for (uint32_t j = 0; j < p.instances->size(); ++j)
+        b.extend(p.instances->placement(j).bounds(local));
+    else
+      b.extend(motionBounds(p, local));  // over the whole shutter
   }
   return b;
+}
+
+std::string Scene::objectName(uint32_t i, uint32_t instance) const {
+  const Primitive& p = primitives[i];
+  if (!p.instances) return p.name.empty() ? "node" + std::to_string(p.objectId) : p.name;
+  std::string name = p.instances->name;
+  name += '#';
+  name += std::to_string(p.instances->index(instance));
+  return name;
 }
 
 bool Scene::intersectShape(uint32_t i, const Ray& r, Hit& hit) const {
@@ -132,6 +157,15 @@ void shapeSurface(const Primitive& prim, const Transform& toWorld, const Ray& ra
   placedSurface(scene, prim, placed ? *placed : moved, ray, hit, s);
 }
 
+// An instance array's instance, placed by the matrix derived from its stored inverse
+// (Scene::placement). Out of line, as movingSurface.
+[[gnu::noinline]] void arraySurface(const Scene& scene, const Primitive& prim, const Ray& ray,
+                                    const Hit& hit, SurfacePoint& s) {
+  Transform scratch;
+  placedSurface(scene, prim, scene.placement(hit.primitive, hit.instance, scratch), ray, hit, s);
+  s.instance = hit.instance;
+}
+
 }  // namespace
 
 SurfacePoint Scene::surface(const Ray& ray, const Hit& hit) const {
@@ -141,6 +175,8 @@ SurfacePoint Scene::surface(const Ray& ray, const Hit& hit) const {
   s.time = ray.time;
   if (!prim.motion.empty())
     movingSurface(*this, prim, ray, hit, s);
+  else if (prim.instances)
+    arraySurface(*this, prim, ray, hit, s);
   else
     placedSurface(*this, prim, prim.toWorld, ray, hit, s);
   s.frontFace = dot(ray.d, s.ng) < 0;  // after the stores above retire: no stall measured

@@ -6,6 +6,7 @@
 
 #include "core/camera.h"
 #include "core/hit.h"
+#include "core/instance_array.h"
 #include "core/light_desc.h"
 #include "core/material.h"
 #include "core/transform.h"
@@ -15,7 +16,9 @@
 
 namespace tray {
 
-/// One placed object: a mesh instance or an analytic shape, with its object-to-world transform.
+/// One placed object: a mesh instance or an analytic shape, with its object-to-world transform;
+/// or an instance array (`instances` set): a static mesh placed many times, toWorld unused
+/// (identity), each instance's placement read through Scene::placement.
 struct Primitive {
   enum class Kind { kMesh, kShape };
   Kind kind = Kind::kMesh;
@@ -28,6 +31,11 @@ struct Primitive {
   int material = 0;  ///< kShape: its material (meshes carry their own)
   int objectId = 0;  ///< glTF node index, for AOVs and mattes
   std::string name;
+  /// kMesh only: an instance array (core/instance_array.h); shared by the arrays of one node's
+  /// mesh primitives. Null: one placement, toWorld.
+  std::shared_ptr<const InstanceArray> instances;
+  /// How many placements this primitive stands for (Hit::instance runs over 0..count-1).
+  size_t instanceCount() const { return instances ? instances->size() : 1; }
 };
 
 /// What a layer above core makes once for a scene and keeps with it, type-erased (core does
@@ -83,6 +91,22 @@ struct Scene {
   Bounds3 bounds() const;
   /// Intersects primitive i (an analytic shape) with a world-space ray: hit.t, normal, uv.
   bool intersectShape(uint32_t i, const Ray& worldRay, Hit& hit) const;
+  /// The one place that knows instance arrays: primitive i's object-to-world placement for
+  /// instance `instance` (Hit::instance; 0 but for arrays), static. &toWorld, or for an array
+  /// `scratch` filled with the instance's (InstanceArray::placement).
+  const Transform& placement(uint32_t i, uint32_t instance, Transform& scratch) const {
+    const Primitive& p = primitives[i];
+    if (!p.instances) return p.toWorld;
+    scratch = p.instances->placement(instance);
+    return scratch;
+  }
+  /// Object id (objectid AOV, Cryptomatte) and name of instance `instance` of primitive i.
+  int objectId(uint32_t i, uint32_t instance) const {
+    const Primitive& p = primitives[i];
+    return p.instances ? p.instances->firstObjectId + int(p.instances->index(instance))
+                       : p.objectId;
+  }
+  std::string objectName(uint32_t i, uint32_t instance) const;
   /// The surface at a hit found by an accelerator.
   SurfacePoint surface(const Ray& ray, const Hit& hit) const;
   const Material& material(int i) const { return materials[size_t(i)]; }

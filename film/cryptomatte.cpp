@@ -65,7 +65,7 @@ float cryptomatteId(uint32_t hash) {
 }
 
 std::string cryptomatteObjectName(const Primitive& p) {
-  return p.name.empty() ? "node" + std::to_string(p.objectId) : p.name;
+  return p.name.empty() ? "node" + std::to_string(p.objectId) : p.name;  // as Scene::objectName
 }
 
 std::string cryptomatteMaterialName(const Scene& scene, int material) {
@@ -97,8 +97,9 @@ Cryptomatte::Cryptomatte(Film& film, const Scene& scene, const std::vector<std::
     // id -> name; the manifest is keyed by name (sorted, so files are reproducible).
     std::map<int, std::string> names;
     if (isObjects)
-      for (const Primitive& p : scene.primitives)
-        names.emplace(p.objectId, cryptomatteObjectName(p));
+      for (uint32_t i = 0; i < scene.primitives.size(); ++i)
+        for (uint32_t k = 0; k < scene.primitives[i].instanceCount(); ++k)  // arrays: each
+          names.emplace(scene.objectId(i, k), scene.objectName(i, k));
     else
       for (size_t m = 0; m < scene.materials.size(); ++m)
         names.emplace(int(m), cryptomatteMaterialName(scene, int(m)));

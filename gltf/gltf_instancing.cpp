@@ -110,4 +110,43 @@ Mat4 instanceMatrix(const GltfContext& ctx, const float* t, const float* r, cons
   return tm * rm * sm;
 }
 
+void composeInstanceMatrices(const GltfContext& ctx, const InstanceAttributes& a,
+                             const std::string& where, std::vector<Affine3>& out) {
+  out.assign(a.count, affineOf(Mat4()));
+  // S, then R * S, then T * R * S: each attribute read, applied to every instance and freed.
+  if (a.scale >= 0) {
+    const std::vector<float> s = readFloats(ctx, a.scale);
+    for (size_t k = 0; k < a.count; ++k) {
+      const float* v = &s[3 * k];
+      for (int i = 0; i < 3; ++i)
+        if (!std::isfinite(v[i])) failInstance(ctx, where, k, "SCALE is not finite");
+      out[k] = affineOf(Mat4::scale({v[0], v[1], v[2]}));
+    }
+  }
+  if (a.rotation >= 0) {
+    const std::vector<float> r = readFloats(ctx, a.rotation);
+    for (size_t k = 0; k < a.count; ++k) {
+      const float* q = &r[4 * k];
+      for (int i = 0; i < 4; ++i)
+        if (!std::isfinite(q[i])) failInstance(ctx, where, k, "ROTATION is not finite");
+      // As instanceMatrix: renormalised in double.
+      const double len = std::sqrt(double(q[0]) * q[0] + double(q[1]) * q[1] + double(q[2]) * q[2] +
+                                   double(q[3]) * q[3]);
+      if (!(len > 0)) failInstance(ctx, where, k, "ROTATION is not a unit quaternion");
+      const Mat4 rm =
+          Mat4::rotate(float(q[0] / len), float(q[1] / len), float(q[2] / len), float(q[3] / len));
+      out[k] = affineOf(rm * mat4Of(out[k]));
+    }
+  }
+  if (a.translation >= 0) {
+    const std::vector<float> t = readFloats(ctx, a.translation);
+    for (size_t k = 0; k < a.count; ++k) {
+      const float* v = &t[3 * k];
+      for (int i = 0; i < 3; ++i)
+        if (!std::isfinite(v[i])) failInstance(ctx, where, k, "TRANSLATION is not finite");
+      out[k] = affineOf(Mat4::translate({v[0], v[1], v[2]}) * mat4Of(out[k]));
+    }
+  }
+}
+
 }  // namespace tray

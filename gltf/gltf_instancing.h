@@ -2,11 +2,13 @@
 // EXT_mesh_gpu_instancing (glTF vendor extension): a node that places its mesh many times, each
 // instance with its own translation, rotation and scale read from accessors. TRay places one
 // Primitive per instance over the mesh stored once (an Embree instance / a top-level BVH leaf
-// each): an instance costs a transform, not a copy of the geometry (docs/instancing.md).
+// each), or from 1024 instances one instance array for them all (core/instance_array.h): an
+// instance costs a transform, not a copy of the geometry (docs/instancing.md).
 #include <cstddef>
 #include <optional>
 #include <string>
 
+#include "core/instance_array.h"
 #include "core/transform.h"
 #include "gltf/gltf_context.h"
 
@@ -35,6 +37,13 @@ void forEachInstance(const GltfContext& ctx, const InstanceAttributes& a, const 
 /// rotation and scale.
 Mat4 instanceMatrix(const GltfContext& ctx, const float* t, const float* r, const float* s,
                     const std::string& where, size_t k);
+
+/// Instance arrays (core/instance_array.h): every instance's local matrix T * R * S into `out`
+/// (a.count of them), composed one attribute at a time, each read, applied and freed before
+/// the next: at most 16 bytes per instance held besides `out`, where forEachInstance holds
+/// all three attributes' floats (40). The checks and messages of instanceMatrix.
+void composeInstanceMatrices(const GltfContext& ctx, const InstanceAttributes& a,
+                             const std::string& where, std::vector<Affine3>& out);
 
 /// Reads the attributes' floats (normalized integers mapped per glTF 2.0 §3.11): one vector
 /// per attribute, empty when absent.

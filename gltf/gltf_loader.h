@@ -43,6 +43,9 @@ struct LoadOptions {
   /// Geometry, cameras and lights only: no texture or environment image is bound (for bounds,
   /// e.g. the automatic camera's sweep over an animation, render/auto_framing.h).
   bool geometryOnly = false;
+  /// EXT_mesh_gpu_instancing sets of at least this many instances load as instance arrays
+  /// (gltf/gltf_scene_graph.h, kInstanceArrayMinInstances); 0: never (one Primitive each).
+  size_t instanceArrayMin = kInstanceArrayMinInstances;
 };
 
 struct LoadReport {

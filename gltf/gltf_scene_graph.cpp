@@ -85,7 +85,9 @@ struct Walker {
   const std::vector<Deformer>* stepDeformers;
   std::vector<int>* instanceNodes;
   int nextInstanceId;
+  size_t instanceArrayMin;
   size_t hiddenNodes = 0, hiddenInstances = 0;
+  size_t arrayPlacements = 0;  ///< instances placed by instance arrays (the cap counts them)
 
   /// Motion blur: the vertices of primitive `primitive` of node `node`'s mesh (as read, in `m`)
   /// deformed at each motion step, kept when they differ between steps.
@@ -163,7 +165,7 @@ struct Walker {
   }
 
   void addPrimitive(int node, const Transform& toWorld, Primitive& p, const Instance& instance) {
-    if (scene.primitives.size() >= kMaxPrimitives)
+    if (scene.primitives.size() + arrayPlacements >= kMaxPrimitives)
       ctx.fail("the scene places more than " + std::to_string(kMaxPrimitives) +
                " objects (node and mesh primitive instances)");
     p.toWorld = toWorld;
@@ -204,6 +206,72 @@ struct Walker {
     });
   }
 
+  /// Whether node `index`'s instances are placed as instance arrays: enough of them, the load
+  /// poses no motion (instanceNodes is asked for then), and every mesh primitive is opaque
+  /// (alpha filters name a placed primitive) and not emissive (lights are per instance).
+  bool asArray(const InstanceAttributes& instances, const TrayShape* shape,
+               const std::vector<uint32_t>& placed) const {
+    if (shape || instanceNodes || stepDeformers || instanceArrayMin == 0 ||
+        instances.count < instanceArrayMin)
+      return false;
+    for (uint32_t m : placed) {
+      const int mat = scene.meshes[m].material;
+      // The default material (appended after the walk) is opaque and black.
+      if (mat < 0 || size_t(mat) >= scene.materials.size()) continue;
+      const Material& material = scene.materials[size_t(mat)];
+      if (material.alphaMode != AlphaMode::kOpaque || !isBlack(material.emissive) ||
+          material.emissiveTexture.valid())
+        return false;
+    }
+    return true;
+  }
+
+  /// Every instance of node `index` as one instance array shared by its mesh's primitives: ids
+  /// and names as placeInstances gives them, a zero-scale instance skipped (its id unused).
+  void placeArray(int index, const Mat4& world, const InstanceAttributes& instances,
+                  const std::vector<uint32_t>& placed) {
+    const auto& node = ctx.model.nodes[size_t(index)];
+    const std::string where = nameOf("node", index, node.name);
+    auto array = std::make_shared<InstanceArray>();
+    array->firstObjectId = nextInstanceId;
+    nextInstanceId += int(instances.count);
+    array->name = node.name.empty() ? "node" + std::to_string(index) : node.name;
+    // The local matrices first, in place of the world-to-object ones (no second array).
+    std::vector<Affine3>& slots = array->worldToObject;
+    composeInstanceMatrices(ctx, instances, where, slots);
+    size_t kept = 0;
+    for (size_t k = 0; k < slots.size(); ++k) {
+      if (scene.primitives.size() + arrayPlacements + placed.size() > kMaxPrimitives)
+        ctx.fail("the scene places more than " + std::to_string(kMaxPrimitives) +
+                 " objects (node and mesh primitive instances)");
+      const Mat4 m = world * mat4Of(slots[k]);
+      if (!m.isFinite())
+        ctx.fail(where + " instance " + std::to_string(k) + " world transform overflows");
+      Mat4 inv;  // as Transform(m) inverts (core/transform.cpp)
+      if (!invert(m, inv)) {
+        ++hiddenInstances;  // a zero scale hides the instance
+        continue;
+      }
+      if (kept != k && array->indexInNode.empty())  // the first skipped: note every index
+        for (uint32_t j = 0; j < kept; ++j) array->indexInNode.push_back(j);
+      if (!array->indexInNode.empty()) array->indexInNode.push_back(uint32_t(k));
+      slots[kept++] = affineOf(inv);
+      arrayPlacements += placed.size();
+    }
+    if (kept == 0) return;
+    if (kept < slots.size()) slots.resize(kept), slots.shrink_to_fit();
+    for (uint32_t m : placed) {
+      Primitive p;
+      p.kind = Primitive::Kind::kMesh;
+      p.mesh = m;
+      p.material = scene.meshes[m].material;
+      p.objectId = index;
+      p.name = node.name;
+      p.instances = array;
+      scene.primitives.push_back(std::move(p));
+    }
+  }
+
   void visit(int index, const Mat4& world) {
     const auto& node = ctx.model.nodes[size_t(index)];
     const std::string where = nameOf("node", index, node.name);
@@ -237,8 +305,11 @@ struct Walker {
     const std::optional<InstanceAttributes>& instances = objects.instancing[size_t(index)];
     if (instances && skinned)
       ctx.fail(where + " EXT_mesh_gpu_instancing on a skinned mesh is not supported");
-    if (instances)
-      return placeInstances(index, world, *instances, s, s ? none : nodeMeshes(index, node.mesh));
+    if (instances) {
+      const std::vector<uint32_t>& placed = s ? none : nodeMeshes(index, node.mesh);
+      if (asArray(*instances, s, placed)) return placeArray(index, world, *instances, placed);
+      return placeInstances(index, world, *instances, s, placed);
+    }
     if (!invertible && !skinned) return void(++hiddenNodes);
     // A skinned mesh converted for this node alone is in world space already.
     const bool worldSpace = skinned && deformsOverShutter(index);
@@ -307,10 +378,19 @@ ObjectTable convertObjects(const GltfContext& ctx) {
 void addSceneNodes(const GltfContext& ctx, const ObjectTable& objects, int sceneIndex,
                    int defaultMaterial, MeshTable& meshes, const Deformer& deformer,
                    MeshStats& stats, Scene& scene, const std::vector<Deformer>* stepDeformers,
-                   std::vector<int>* instanceNodes) {
+                   std::vector<int>* instanceNodes, size_t instanceArrayMin) {
   if (instanceNodes) instanceNodes->clear();
-  Walker walker{ctx,   objects, defaultMaterial, meshes,        deformer,
-                stats, scene,   stepDeformers,   instanceNodes, int(ctx.model.nodes.size())};
+  Walker walker{ctx,
+                objects,
+                defaultMaterial,
+                meshes,
+                deformer,
+                stats,
+                scene,
+                stepDeformers,
+                instanceNodes,
+                int(ctx.model.nodes.size()),
+                instanceArrayMin};
   scene.environment = objects.environments[size_t(sceneIndex)];
   // Explicit stack of (node, parent's world matrix); children pushed in reverse so nodes are
   // visited in the order a recursive pre-order walk would (cameras keep the file's order).

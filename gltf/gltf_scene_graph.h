@@ -56,6 +56,7 @@ void addSceneNodes(const GltfContext& ctx, const ObjectTable& objects, int scene
                    int defaultMaterial, MeshTable& meshes, const Deformer& deformer,
                    MeshStats& stats, Scene& scene,
                    const std::vector<Deformer>* stepDeformers = nullptr,
-                   std::vector<int>* instanceNodes = nullptr);
+                   std::vector<int>* instanceNodes = nullptr,
+                   size_t instanceArrayMin = kInstanceArrayMinInstances);  // 0: never
 
 }  // namespace tray

@@ -78,9 +78,9 @@ Color SppmIntegrator::traceCamera(int x, int y, int k, VisiblePoint& vp, SppmPix
       seen.position = s.p;
       seen.normal = v.sm.n;
       seen.albedo = v.sm.baseColor;
-      seen.objectId = ctx_.scene.primitives[s.primitive].objectId;
+      seen.objectId = ctx_.scene.objectId(s.primitive, s.instance);
       seen.materialId = s.material;
-      seen.primitive = s.primitive, seen.time = s.time;
+      seen.primitive = s.primitive, seen.instance = s.instance, seen.time = s.time;
     }
     if (v.sm.unlit) {  // KHR_materials_unlit: the base colour leaves as is
       L += beta * v.sm.baseColor;

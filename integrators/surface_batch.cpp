@@ -128,7 +128,9 @@ SurfaceBatch::SurfaceBatch(const Scene& scene) : scene_(scene) {
   const bool simd = hasSimdTarget();
   for (size_t i = 0; i < scene.primitives.size() && simd; ++i) {
     const Primitive& prim = scene.primitives[i];
-    if (prim.kind != Primitive::Kind::kMesh || !prim.motion.empty()) continue;
+    // Instance arrays go to Scene::surface, which places each hit by its own instance (the
+    // kernel takes one transform per group of hits).
+    if (prim.kind != Primitive::Kind::kMesh || !prim.motion.empty() || prim.instances) continue;
     const TriangleMesh& mesh = scene.meshes[prim.mesh];
     // Indices past 2^31 / 3 would overflow the kernel's 32-bit gather offsets.
     if (!mesh.positionSteps.empty() || mesh.positions.size() >= (1u << 29) ||

@@ -36,10 +36,10 @@ inline void recordPrimaryHit(PrimaryHit& primary, const Scene& scene, const Surf
   primary.hit = true;
   primary.depth = length(s.p - cameraOrigin);
   primary.position = s.p;
-  primary.primitive = s.primitive, primary.time = s.time;
+  primary.primitive = s.primitive, primary.instance = s.instance, primary.time = s.time;
   primary.normal = shadingN;
   primary.albedo = albedo;
-  primary.objectId = scene.primitives[s.primitive].objectId;
+  primary.objectId = scene.objectId(s.primitive, s.instance);
   primary.materialId = s.material;
 }
 

@@ -103,10 +103,10 @@ class WhittedIntegrator final : public Integrator {
       primary->hit = true;
       primary->depth = hit.t * length(ray.d);
       primary->position = s.p;
-      primary->primitive = s.primitive, primary->time = s.time;
+      primary->primitive = s.primitive, primary->instance = s.instance, primary->time = s.time;
       primary->normal = sm.n;
       primary->albedo = ph.diffuse;
-      primary->objectId = scene.primitives[s.primitive].objectId;
+      primary->objectId = scene.objectId(s.primitive, s.instance);
       primary->materialId = s.material;
     }
     if (sm.unlit) return sm.baseColor;  // KHR_materials_unlit: no lighting, no bounces

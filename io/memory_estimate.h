@@ -25,6 +25,9 @@ constexpr uint64_t kGeometryBytesPerTriangle = 160;
 /// Primitive (216 bytes), its Embree instance geometry (~400) and the integrators' tables; 10^6
 /// instances measured 683 bytes each with Embree (docs/bench/instancing-2026-12-06.md).
 constexpr uint64_t kBytesPerPlacement = 700;
+/// Per instance of an instance array (core/instance_array.h): its 48-byte matrix and its share
+/// of the accelerator's top tree (docs/bench/instancing-arrays-2026-12-06.md).
+constexpr uint64_t kBytesPerArrayInstance = 160;
 
 /// Throws tray::Error (input) "SCENE: needs about N MB (buffers a MB, textures b MB, geometry
 /// c MB[, environment d MB]), more than --max-memory M MB" when e.total() > limitBytes;

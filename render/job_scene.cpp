@@ -83,7 +83,9 @@ void checkAcceleratorMemory(const RenderJob& job, const Scene& scene, MemoryEsti
   for (const auto& m : scene.meshes)
     need.geometry += m.triangleCount() * std::max<size_t>(1, m.positionSteps.size());
   need.geometry *= kGeometryBytesPerTriangle;
-  need.geometry += scene.primitives.size() * kBytesPerPlacement;  // instances cost too
+  for (const Primitive& p : scene.primitives)  // instances cost too
+    need.geometry +=
+        p.instances ? p.instances->size() * kBytesPerArrayInstance : kBytesPerPlacement;
   checkMemory(job.scene.path, need, limitBytes);
 }
 

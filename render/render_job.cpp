@@ -160,6 +160,7 @@ LoadOptions loadOptionsOf(const RenderJob& job) {
   load.maxMemoryBytes = job.scene.maxMemoryBytes;
   load.textureCacheMB = job.scene.textureMemoryMB;
   load.ignoreRequiredExtensions = job.scene.ignoreRequiredExtensions;
+  load.instanceArrayMin = job.scene.instanceArrayMin;
   return load;
 }
 

@@ -27,6 +27,7 @@ struct JobScene {
   std::optional<int> index;  ///< the glTF scene; none: the file's default
   bool allowAnyPath = false;
   bool ignoreRequiredExtensions = false;
+  size_t instanceArrayMin = kInstanceArrayMinInstances;  ///< LoadOptions::instanceArrayMin
   /// sceneContentHash of the file and the --env map, when known (--frames hashes it once).
   std::optional<std::string> contentHash;
   uint64_t maxMemoryBytes = 0;  ///< refuse a scene that needs more (0: no limit)

@@ -108,6 +108,21 @@ bool brighterThanCoreGltf(const Material& m) {
   return maxComponent(m.emissive) > 1.0f;
 }
 
+/// Adds the world area of mesh's triangles placed by toWorld (non-finite ones left out), and
+/// `power` per unit of it.
+void addPlacedArea(const TriangleMesh& mesh, const Transform& toWorld, double power,
+                   EmissionSummary& e) {
+  for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+    const uint32_t* idx = &mesh.indices[3 * t];
+    const Vec3 a = toWorld.point(mesh.positions[idx[0]]);
+    const float area = 0.5f * length(cross(toWorld.point(mesh.positions[idx[1]]) - a,
+                                           toWorld.point(mesh.positions[idx[2]]) - a));
+    if (!std::isfinite(area)) continue;
+    e.surfaceArea += area;
+    e.meshPower += double(area) * power;
+  }
+}
+
 }  // namespace
 
 EmissionSummary summarizeEmission(const Scene& scene) {
@@ -129,18 +144,21 @@ EmissionSummary summarizeEmission(const Scene& scene) {
     }
     // Meshes of core glTF glow (radiance <= 1) add area, not power. Decided here, not in the
     // cache: a shape may share the material, and any emissive shape counts.
+    // Instance arrays (never emissive, Scene::finalize) add area only: below.
+    if (prim.instances) continue;
     const double power = brighterThanCoreGltf(m) ? double(M) : 0.0;
-    const TriangleMesh& mesh = scene.meshes[prim.mesh];
-    for (size_t t = 0; t < mesh.triangleCount(); ++t) {
-      const uint32_t* idx = &mesh.indices[3 * t];
-      const Vec3 a = prim.toWorld.point(mesh.positions[idx[0]]);
-      const float area = 0.5f * length(cross(prim.toWorld.point(mesh.positions[idx[1]]) - a,
-                                             prim.toWorld.point(mesh.positions[idx[2]]) - a));
-      if (!std::isfinite(area)) continue;
-      e.surfaceArea += area;
-      e.meshPower += double(area) * power;
-    }
+    addPlacedArea(scene.meshes[prim.mesh], prim.toWorld, power, e);
   }
+  // Their area only matters against some emitted power: 10^6 instances of a 10^3-triangle mesh
+  // are 10^9 triangles to place, spent only then.
+  if (e.meshPower > 0 && !e.emissiveShapes)
+    for (uint32_t i = 0; i < scene.primitives.size(); ++i)
+      for (uint32_t k = 0; scene.primitives[i].instances && k < scene.primitives[i].instanceCount();
+           ++k) {
+        Transform scratch;
+        addPlacedArea(scene.meshes[scene.primitives[i].mesh], scene.placement(i, k, scratch), 0.0,
+                      e);
+      }
   return e;
 }
 

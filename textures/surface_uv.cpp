@@ -16,7 +16,8 @@ UvFrame surfaceUvFrame(const Scene& scene, const Hit& hit, const SurfacePoint& s
   UvFrame f;
   const Primitive& prim = scene.primitives[s.primitive];
   Transform moved;  // a moving primitive: where the ray found it (core/motion.h)
-  const Transform* placed = placementAt(prim, s.time, moved);
+  const Transform* placed = prim.instances ? &scene.placement(s.primitive, s.instance, moved)
+                                           : placementAt(prim, s.time, moved);
   const Transform& toWorld = placed ? *placed : moved;
   if (prim.kind == Primitive::Kind::kShape) {
     f.uv = s.uv;
