@@ -14,8 +14,8 @@ namespace tray {
 /// front face of an emitter (both faces when doubleSided; core/front_face.h owns the rule),
 /// over one emissive mesh triangle, a rectangle that two mesh triangles form
 /// (lights/quad_lights.h) or any analytic shape that can be sampled
-/// (Shape::area > 0). Triangles and rectangles are sampled uniformly by area or by solid angle, per receiver
-/// as TriangleSampling says (kept inline: meshes bring many); shapes through
+/// (Shape::area > 0). Triangles and rectangles are sampled uniformly by area or by solid angle, per
+/// receiver as TriangleSampling says (kept inline: meshes bring many); shapes through
 /// Shape::sample(ctx, u), e.g. a sphere's cone of directions.
 class AreaLight final : public Light {
  public:
@@ -84,17 +84,13 @@ class AreaLight final : public Light {
  private:
   AreaLight() = default;
   LightSample sampleTriangle(const Vec3& ref, const Vec3& n, Vec2 u) const {
-    const TriangleLightSampleOf<Vec3> t =
-        sampleTriangleLight(triangleLight(), ref, n, u, sampling_);
-    LightSample s;
-    if (!t.valid) return s;
-    s.p = t.p, s.wi = t.wi, s.pdf = t.pdf;
-    s.L = Le_;
-    return s;
+    return emitted(sampleTriangleLight(triangleLight(), ref, n, u, sampling_));
   }
   LightSample sampleRectangle(const Vec3& ref, const Vec3& n, Vec2 u) const {
-    const TriangleLightSampleOf<Vec3> t =
-        sampleRectangleLight(triangleLight(), ref, n, u, sampling_);
+    return emitted(sampleRectangleLight(triangleLight(), ref, n, u, sampling_));
+  }
+  /// A triangle's or rectangle's point as a LightSample carrying this light's radiance.
+  LightSample emitted(const TriangleLightSampleOf<Vec3>& t) const {
     LightSample s;
     if (!t.valid) return s;
     s.p = t.p, s.wi = t.wi, s.pdf = t.pdf;

@@ -90,7 +90,6 @@ TRAY_LANE TriangleLightSampleOf<V3> sampleRectangleLight(const TriangleLightOf<V
                                                          const V3& ref, const V3& n, const V2& u,
                                                          TriangleSampling mode) {
   using F = decltype(V3::x);
-  TriangleLightSampleOf<V3> s;
   F a = u.x, b = u.y, solidAnglePdf(0.0f);
   MaskOf<F> spherical(false);
   if (mode != TriangleSampling::kArea &&  // the same for every lane: a plain branch
@@ -110,14 +109,7 @@ TRAY_LANE TriangleLightSampleOf<V3> sampleRectangleLight(const TriangleLightOf<V
       solidAnglePdf = bilinearPdf(uw, warp) / r.area;
     }
   }
-  s.p = t.p0 + a * t.e1 + b * t.e2;
-  const V3 d = s.p - ref;
-  const F dist2 = lengthSquared(d);
-  s.wi = d / sqrtOf(dist2);
-  const F cosL = -dot(t.n, s.wi);
-  s.pdf = select(spherical, solidAnglePdf, triangleSolidAnglePdf(dist2, cosL, t.area));
-  s.valid = dist2 > F(0.0f) && (t.doubleSided || cosL > F(0.0f));
-  return s;
+  return emitterSampleAt(t, ref, a, b, spherical, solidAnglePdf);
 }
 
 /// The solid-angle pdf with which sampleRectangleLight from ref (shading normal n) returns the

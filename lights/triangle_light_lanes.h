@@ -73,10 +73,10 @@ TRAY_LANE MaskOf<decltype(V3::x)> surelyByArea(const TriangleLightOf<V3>& t, con
   const V3 c = t.p0 + third * s - ref;
   // From the centroid to the vertices: -(e1 + e2)/3, (2 e1 - e2)/3, (2 e2 - e1)/3.
   const V3 v1 = t.e1 + t.e1 - t.e2, v2 = t.e2 + t.e2 - t.e1;
-  const F r2 = maxOf(lengthSquared(s), maxOf(lengthSquared(v1), lengthSquared(v2))) * F(1.0f / 9.0f);
+  const F r2 =
+      maxOf(lengthSquared(s), maxOf(lengthSquared(v1), lengthSquared(v2))) * F(1.0f / 9.0f);
   const F d2 = lengthSquared(c);
-  return d2 > r2 &&
-         F(2.0f * kPi) * r2 < F(0.5f * kMinSphericalSolidAngle) * (F(2.0f) * d2 - r2);
+  return d2 > r2 && F(2.0f * kPi) * r2 < F(0.5f * kMinSphericalSolidAngle) * (F(2.0f) * d2 - r2);
 }
 
 /// The triangle seen from ref (its solid angle), for the modes that need it.
@@ -125,12 +125,34 @@ struct TriangleLightSampleOf {
   decltype(V3::x) pdf;
   MaskOf<decltype(V3::x)> valid;
 };
+/// The sample at the point p = p0 + a e1 + b e2 of the emitter t (a triangle, or a rectangle:
+/// lights/rectangle_light_lanes.h) seen from ref: the unit direction, the pdf (solidAnglePdf
+/// where the spherical construction was taken, else the area pdf converted to solid angle) and
+/// whether it counts.
+template <class V3>
+TRAY_LANE TriangleLightSampleOf<V3> emitterSampleAt(const TriangleLightOf<V3>& t, const V3& ref,
+                                                    decltype(V3::x) a, decltype(V3::x) b,
+                                                    MaskOf<decltype(V3::x)> spherical,
+                                                    decltype(V3::x) solidAnglePdf) {
+  using F = decltype(V3::x);
+  TriangleLightSampleOf<V3> s;
+  s.p = t.p0 + a * t.e1 + b * t.e2;
+  const V3 d = s.p - ref;
+  const F dist2 = lengthSquared(d);
+  s.wi = d / sqrtOf(dist2);
+  // Whether the light faces the receiver, on the cosine the pdf needs anyway: dot(n, -wi) and
+  // -dot(n, wi) are equal but for the sign of a zero, which neither test sees.
+  const F cosL = -dot(t.n, s.wi);
+  s.pdf = select(spherical, solidAnglePdf, triangleSolidAnglePdf(dist2, cosL, t.area));
+  s.valid = dist2 > F(0.0f) && (t.doubleSided || cosL > F(0.0f));
+  return s;
+}
+
 template <class V3, class V2>
 TRAY_LANE TriangleLightSampleOf<V3> sampleTriangleLight(const TriangleLightOf<V3>& t, const V3& ref,
                                                         const V3& n, const V2& u,
                                                         TriangleSampling mode) {
   using F = decltype(V3::x);
-  TriangleLightSampleOf<V3> s;
   const V3 b = sampleUniformTriangle(u);
   F b1 = b.y, b2 = b.z, solidAnglePdf(0.0f);
   MaskOf<F> spherical(false);
@@ -147,16 +169,7 @@ TRAY_LANE TriangleLightSampleOf<V3> sampleTriangleLight(const TriangleLightOf<V3
       solidAnglePdf = bilinearPdf(uw, warp) / st.area;
     }
   }
-  s.p = t.p0 + b1 * t.e1 + b2 * t.e2;
-  const V3 d = s.p - ref;
-  const F dist2 = lengthSquared(d);
-  s.wi = d / sqrtOf(dist2);
-  // Whether the light faces the receiver, on the cosine the pdf needs anyway: dot(n, -wi) and
-  // -dot(n, wi) are equal but for the sign of a zero, which neither test sees.
-  const F cosL = -dot(t.n, s.wi);
-  s.pdf = select(spherical, solidAnglePdf, triangleSolidAnglePdf(dist2, cosL, t.area));
-  s.valid = dist2 > F(0.0f) && (t.doubleSided || cosL > F(0.0f));
-  return s;
+  return emitterSampleAt(t, ref, b1, b2, spherical, solidAnglePdf);
 }
 
 /// The solid-angle pdf with which sampleTriangleLight from ref (shading normal n) returns the

@@ -25,6 +25,7 @@
 #include "tests/base64.h"
 #include "tests/cli/cli_run.h"
 #include "tests/exr_read.h"
+#include "tests/render_film.h"
 #include "tests/temp_dir.h"
 
 namespace tray {
@@ -143,16 +144,10 @@ TEST(InstanceArray, RaysHitTheInstanceTheyAimAt) {
 }
 
 Film render(const Scene& scene, const std::string& accel, const char* integrator) {
-  const CameraDesc cam = chooseCamera(scene, -1);
-  const PreparedScene prepared(scene, cam, {96, 64}, accel);
   RenderSettings settings;
   settings.set("integrator", integrator);
   settings.set("spp", 4);
-  const RenderContext ctx = prepared.context(settings);
-  auto integrator_ = makeIntegrator(ctx);
-  Film film(96, 64);
-  renderImage(*integrator_, film);
-  return film;
+  return test::renderFilm(scene, chooseCamera(scene, -1), 96, 64, settings, nullptr, {}, accel);
 }
 
 struct Difference {

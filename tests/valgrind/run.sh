@@ -47,4 +47,9 @@ check delta-stage "$shared/gltf-samples/TransmissionTest.glb" --integrator path 
 # The hair BSDF on Embree's curves (scalar code): a member the merge of two lobes left unset on
 # the hair path was read uninitialised (1202 errors) until it was set.
 check hair "$src/scenes/curves/fur_patch.gltf" --integrator path --spp 1
+# Instance arrays (docs/instancing.md): forced on the small sample by a threshold of 1, through
+# Embree's user-geometry callbacks and the in-house BVH's array leaves.
+check instance-array "$src/scenes/instancing.gltf" --integrator path --spp 1 --instance-arrays 1
+check instance-array-bvh "$src/scenes/instancing.gltf" --integrator path --spp 1 \
+  --instance-arrays 1 --accel bvh
 exit $status
