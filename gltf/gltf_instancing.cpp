@@ -90,22 +90,34 @@ InstanceData readInstanceData(const GltfContext& ctx, const InstanceAttributes& 
   return d;
 }
 
+namespace {
+
+/// Instance k's attribute `name` (size floats at v) must be finite.
+void checkFinite(const GltfContext& ctx, const float* v, int size, const char* name,
+                 const std::string& where, size_t k) {
+  for (int i = 0; i < size; ++i)
+    if (!std::isfinite(v[i])) failInstance(ctx, where, k, std::string(name) + " is not finite");
+}
+
+/// Instance k's ROTATION as a matrix. Quantized rotations are unit only to the quantization
+/// step: renormalised in double, as node rotations are (gltf/gltf_scene_graph.cpp).
+Mat4 instanceRotation(const GltfContext& ctx, const float* r, const std::string& where, size_t k) {
+  const double len = std::sqrt(double(r[0]) * r[0] + double(r[1]) * r[1] + double(r[2]) * r[2] +
+                               double(r[3]) * r[3]);
+  if (!(len > 0)) failInstance(ctx, where, k, "ROTATION is not a unit quaternion");
+  return Mat4::rotate(float(r[0] / len), float(r[1] / len), float(r[2] / len), float(r[3] / len));
+}
+
+}  // namespace
+
 Mat4 instanceMatrix(const GltfContext& ctx, const float* t, const float* r, const float* s,
                     const std::string& where, size_t k) {
-  for (auto [v, size, name] :
-       {std::tuple{t, 3, "TRANSLATION"}, std::tuple{r, 4, "ROTATION"}, std::tuple{s, 3, "SCALE"}})
-    for (int i = 0; v && i < size; ++i)
-      if (!std::isfinite(v[i])) failInstance(ctx, where, k, std::string(name) + " is not finite");
+  if (t) checkFinite(ctx, t, 3, "TRANSLATION", where, k);
+  if (r) checkFinite(ctx, r, 4, "ROTATION", where, k);
+  if (s) checkFinite(ctx, s, 3, "SCALE", where, k);
   Mat4 tm, rm, sm;
   if (t) tm = Mat4::translate({t[0], t[1], t[2]});
-  if (r) {
-    const double len = std::sqrt(double(r[0]) * r[0] + double(r[1]) * r[1] + double(r[2]) * r[2] +
-                                 double(r[3]) * r[3]);
-    if (!(len > 0)) failInstance(ctx, where, k, "ROTATION is not a unit quaternion");
-    // Quantized rotations are unit only to the quantization step: renormalise, as node
-    // rotations are (gltf/gltf_scene_graph.cpp).
-    rm = Mat4::rotate(float(r[0] / len), float(r[1] / len), float(r[2] / len), float(r[3] / len));
-  }
+  if (r) rm = instanceRotation(ctx, r, where, k);
   if (s) sm = Mat4::scale({s[0], s[1], s[2]});
   return tm * rm * sm;
 }
@@ -118,8 +130,7 @@ void composeInstanceMatrices(const GltfContext& ctx, const InstanceAttributes& a
     const std::vector<float> s = readFloats(ctx, a.scale);
     for (size_t k = 0; k < a.count; ++k) {
       const float* v = &s[3 * k];
-      for (int i = 0; i < 3; ++i)
-        if (!std::isfinite(v[i])) failInstance(ctx, where, k, "SCALE is not finite");
+      checkFinite(ctx, v, 3, "SCALE", where, k);
       out[k] = affineOf(Mat4::scale({v[0], v[1], v[2]}));
     }
   }
@@ -127,23 +138,15 @@ void composeInstanceMatrices(const GltfContext& ctx, const InstanceAttributes& a
     const std::vector<float> r = readFloats(ctx, a.rotation);
     for (size_t k = 0; k < a.count; ++k) {
       const float* q = &r[4 * k];
-      for (int i = 0; i < 4; ++i)
-        if (!std::isfinite(q[i])) failInstance(ctx, where, k, "ROTATION is not finite");
-      // As instanceMatrix: renormalised in double.
-      const double len = std::sqrt(double(q[0]) * q[0] + double(q[1]) * q[1] + double(q[2]) * q[2] +
-                                   double(q[3]) * q[3]);
-      if (!(len > 0)) failInstance(ctx, where, k, "ROTATION is not a unit quaternion");
-      const Mat4 rm =
-          Mat4::rotate(float(q[0] / len), float(q[1] / len), float(q[2] / len), float(q[3] / len));
-      out[k] = affineOf(rm * mat4Of(out[k]));
+      checkFinite(ctx, q, 4, "ROTATION", where, k);
+      out[k] = affineOf(instanceRotation(ctx, q, where, k) * mat4Of(out[k]));
     }
   }
   if (a.translation >= 0) {
     const std::vector<float> t = readFloats(ctx, a.translation);
     for (size_t k = 0; k < a.count; ++k) {
       const float* v = &t[3 * k];
-      for (int i = 0; i < 3; ++i)
-        if (!std::isfinite(v[i])) failInstance(ctx, where, k, "TRANSLATION is not finite");
+      checkFinite(ctx, v, 3, "TRANSLATION", where, k);
       out[k] = affineOf(Mat4::translate({v[0], v[1], v[2]}) * mat4Of(out[k]));
     }
   }

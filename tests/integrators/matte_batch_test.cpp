@@ -1,10 +1,10 @@
 // The SIMD matte stage (integrators/matte_batch.h) on every SIMD target the CPU has:
 // - its kernel against the scalar pieces PathEstimator::step runs for a lone Lambert lobe and
 //   a triangle or rectangle light (sampled by area, by solid angle or either: every
-//   --triangle-sampling mode) or the constant environment (AreaLight::sample, EnvironmentLight::sample,
-//   Bsdf::eval and sample, powerHeuristic, spawnRayTo, spawnRay), bit for bit, on random vertices
-//   including the edge cases (no light chosen, lights facing away, receivers below the light's
-//   plane, the disk map's centre, black channels);
+//   --triangle-sampling mode) or the constant environment (AreaLight::sample,
+//   EnvironmentLight::sample, Bsdf::eval and sample, powerHeuristic, spawnRayTo, spawnRay), bit for
+//   bit, on random vertices including the edge cases (no light chosen, lights facing away,
+//   receivers below the light's plane, the disk map's centre, black channels);
 // - whole renders of random scenes through `path` (the wavefront, which defers its matte
 //   vertices to the stage) against `path-scalar`, bit for bit, with other lights and
 //   materials mixed in that the stage leaves to the scalar code.
@@ -91,6 +91,28 @@ int compareVertex(const LightSet& lights, const ShadingLanes& m, size_t q, int& 
   return lit;
 }
 
+/// What compareWaves compared: vertices, and those lit by any light, the sky, a punctual light.
+struct WaveCounts {
+  int compared = 0, lit = 0, environmentLit = 0, punctualLit = 0;
+};
+
+/// 40 waves of random vertices (1 to 100 each: partial vectors) through the stage, each vertex
+/// compared with the scalar step (compareVertex); stops at the first failure.
+WaveCounts compareWaves(std::mt19937_64& rng, const LightSet& lights, const MatteBatch& batch) {
+  WaveCounts n;
+  ShadingLanes m;
+  for (int wave = 0; wave < 40 && !testing::Test::HasFailure(); ++wave) {
+    const size_t count = std::uniform_int_distribution<size_t>(1, 100)(rng);
+    m.reset(count);
+    for (m.count = 0; m.count < count; ++m.count)
+      randomVertex(rng, batch, lights.size(), m, m.count);
+    batch.compute(m);
+    for (size_t q = 0; q < count; ++q)
+      n.lit += compareVertex(lights, m, q, n.environmentLit, n.punctualLit), ++n.compared;
+  }
+  return n;
+}
+
 /// Every way of sampling the triangles (--triangle-sampling): the random receivers see them
 /// under solid angles on both sides of auto's bounds.
 class MatteBatchModes : public testing::TestWithParam<TriangleSampling> {};
@@ -104,17 +126,9 @@ TEST_P(MatteBatchModes, KernelIsTheScalarStepBitForBit) {
   if (!hasSimdTarget()) GTEST_SKIP() << "no SIMD target: the wavefront keeps to scalar code";
   ASSERT_TRUE(batch.useful());
   test::onEverySimdTarget(1000, [&] {
-    int compared = 0, lit = 0, environmentLit = 0, punctualLit = 0;
-    ShadingLanes m;
-    for (int wave = 0; wave < 40 && !testing::Test::HasFailure(); ++wave) {
-      const size_t count = std::uniform_int_distribution<size_t>(1, 100)(rng);  // partial vectors
-      m.reset(count);
-      for (m.count = 0; m.count < count; ++m.count)
-        randomVertex(rng, batch, lights.size(), m, m.count);
-      batch.compute(m);
-      for (size_t q = 0; q < count; ++q)
-        lit += compareVertex(lights, m, q, environmentLit, punctualLit), ++compared;
-    }
+    const WaveCounts n = compareWaves(rng, lights, batch);
+    const int compared = n.compared, lit = n.lit, environmentLit = n.environmentLit,
+              punctualLit = n.punctualLit;
     EXPECT_GT(lit, compared / 5);  // the light sample's arithmetic is compared, not only skipped
     EXPECT_LT(lit, compared);      // and so are the unlit cases
     EXPECT_GT(environmentLit, compared / 40);  // and the sky's samples (1 light of 9)
@@ -151,17 +165,8 @@ TEST_P(MatteBatchModes, RectanglesAreTheScalarStepBitForBit) {
   if (!hasSimdTarget()) GTEST_SKIP() << "no SIMD target: the wavefront keeps to scalar code";
   ASSERT_TRUE(batch.useful());
   test::onEverySimdTarget(1000, [&] {
-    int compared = 0, lit = 0, environmentLit = 0, punctualLit = 0;
-    ShadingLanes m;
-    for (int wave = 0; wave < 40 && !testing::Test::HasFailure(); ++wave) {
-      const size_t count = std::uniform_int_distribution<size_t>(1, 100)(rng);
-      m.reset(count);
-      for (m.count = 0; m.count < count; ++m.count)
-        randomVertex(rng, batch, lights.size(), m, m.count);
-      batch.compute(m);
-      for (size_t q = 0; q < count; ++q)
-        lit += compareVertex(lights, m, q, environmentLit, punctualLit), ++compared;
-    }
+    const WaveCounts n = compareWaves(rng, lights, batch);
+    const int compared = n.compared, lit = n.lit;
     EXPECT_GT(lit, compared / 5);
     return compared;
   });
