@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Uniform against noise-driven adaptive sampling at equal CPU time (issue 37), from the CSVs of
 `tray-bench sweep --threads 1 --methods "path sobol,path sobol adaptive,path sobol adaptive
-even"` (one per scene): the default rule (mse) and equal error (even) against uniform.
+even,path sobol adaptive absolute"` (one per scene): the default rule (mse), equal error (even)
+and the default rule on absolute error (--noise-metric absolute) against uniform.
 
 For each adaptive run (one --noise-threshold), the uniform error at the same CPU time is read off
 the uniform runs' error-against-time line (piecewise linear in log-log, between the two uniform
@@ -23,12 +24,13 @@ def load(path):
     with open(path) as f:
         rows = list(csv.DictReader(f))
     for r in rows:
-        for k in ("cpu_seconds", "rmse", "relmse", "relmse_trimmed", "spp", "rays"):
+        for k in ("cpu_seconds", "rmse", "relmse", "relmse_trimmed", "spp", "rays", "bias"):
             r[k] = float(r[k])
     return rows
 
 
-ADAPTIVE = (("path sobol adaptive", "mse"), ("path sobol adaptive even", "even"))
+ADAPTIVE = (("path sobol adaptive", "mse"), ("path sobol adaptive even", "even"),
+            ("path sobol adaptive absolute", "mse, --noise-metric absolute"))
 
 
 def compare(rows, metric, method):
@@ -39,7 +41,8 @@ def compare(rows, metric, method):
         if r["method"] != method:
             continue
         u = loglog_crossing(uniform, r["cpu_seconds"])
-        out.append((r["setting"], r["cpu_seconds"], r[metric], u, u / r[metric] if u else None))
+        out.append((r["setting"], r["cpu_seconds"], r[metric], u, u / r[metric] if u else None,
+                    r["bias"]))
     return out
 
 
@@ -47,22 +50,28 @@ def chart(tables, path):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(1, len(tables), figsize=(5 * len(tables), 4.2), squeeze=False)
-    for ax, (scene, rows) in zip(axes[0], tables):
-        for method, style, label in (
-                ("path sobol", "o-", "uniform (spp 1..1024)"),
-                ("path sobol adaptive", "s-", "adaptive, mse rule (threshold 0.1..0.01)"),
-                ("path sobol adaptive even", "^--", "adaptive, even rule (threshold 0.1..0.01)")):
-            rs = sorted((r for r in rows if r["method"] == method), key=lambda r: r["cpu_seconds"])
-            ax.plot([r["cpu_seconds"] for r in rs], [r["relmse_trimmed"] for r in rs], style,
-                    label=label)
-        ax.set_xscale("log")
-        ax.set_yscale("log")
-        ax.set_title(scene)
-        ax.set_xlabel("CPU seconds (1 thread)")
-        ax.set_ylabel("relMSE (0.1% worst pixels left out)")
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=8)
+    metrics = (("relmse_trimmed", "relMSE (0.1% worst pixels left out)"), ("rmse", "RMSE"))
+    fig, axes = plt.subplots(len(metrics), len(tables), figsize=(5 * len(tables), 8.4),
+                             squeeze=False)
+    for row, (metric, ylabel) in enumerate(metrics):
+        for ax, (scene, rows) in zip(axes[row], tables):
+            for method, style, label in (
+                    ("path sobol", "o-", "uniform (spp 1..1024)"),
+                    ("path sobol adaptive", "s-", "adaptive, mse rule (threshold 0.1..0.01)"),
+                    ("path sobol adaptive even", "^--", "adaptive, even rule (0.1..0.01)"),
+                    ("path sobol adaptive absolute", "d-.",
+                     "adaptive, mse, absolute error (0.02..0.003)")):
+                rs = sorted((r for r in rows if r["method"] == method),
+                            key=lambda r: r["cpu_seconds"])
+                ax.plot([r["cpu_seconds"] for r in rs], [r[metric] for r in rs], style,
+                        label=label)
+            ax.set_xscale("log")
+            ax.set_yscale("log")
+            ax.set_title(scene)
+            ax.set_xlabel("CPU seconds (1 thread)")
+            ax.set_ylabel(ylabel)
+            ax.grid(True, which="both", alpha=0.3)
+            ax.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
 
@@ -81,12 +90,14 @@ def main():
             for method, rule in ADAPTIVE:
                 print(f"\n{scene}, {metric}, rule {rule}: adaptive against uniform at equal CPU "
                       "time\n")
-                print(f"| threshold | CPU s | adaptive | uniform at that time | uniform / adaptive |")
-                print("|---|---|---|---|---|")
-                for setting, t, e, u, ratio in compare(rows, metric, method):
+                print("| threshold | CPU s | adaptive | uniform at that time | uniform / adaptive "
+                      "| mean bias |")
+                print("|---|---|---|---|---|---|")
+                for setting, t, e, u, ratio, bias in compare(rows, metric, method):
                     us = f"{u:.3e}" if u else "outside the uniform runs"
                     rs = f"{ratio:.2f}" if ratio else "-"
-                    print(f"| {setting.split('=')[1]} | {t:.2f} | {e:.3e} | {us} | {rs} |")
+                    print(f"| {setting.split('=')[1]} | {t:.2f} | {e:.3e} | {us} | {rs} "
+                          f"| {bias:+.2e} |")
     if a.chart:
         chart(tables, a.chart)
         print(f"\nwrote {a.chart}")

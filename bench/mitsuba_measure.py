@@ -125,6 +125,9 @@ def equal_error_lines(mi_speed, mi_err, tray_speeds, tray_err):
 # TRay's noise-driven adaptive sampling (docs/adaptive-sampling.md) at these thresholds, at most
 # 4x the error spp: whole renders, timed as such (issue 37).
 ADAPTIVE_THRESHOLDS = ("0.1", "0.05", "0.03")
+# --noise-metric absolute (RMSE's own measure: the rule then minimises RMSE for the samples
+# spent), thresholds in radiance units for images of mean radiance about 0.1-0.5.
+ABSOLUTE_THRESHOLDS = ("0.01", "0.007", "0.005")
 
 
 def cpu_of(cmd):
@@ -149,6 +152,10 @@ def whole_render_runs(render, error_of, error_spp):
     for t in ADAPTIVE_THRESHOLDS:
         img, cpu = render(["--spp", str(4 * error_spp), "--noise-threshold", t])
         runs.append((f"adaptive {t}", max(cpu - setup, 1e-3), error_of(img)))
+    for t in ABSOLUTE_THRESHOLDS:
+        img, cpu = render(["--spp", str(4 * error_spp), "--noise-threshold", t,
+                           "--noise-metric", "absolute"])
+        runs.append((f"adaptive abs {t}", max(cpu - setup, 1e-3), error_of(img)))
     for label, cpu, e in runs:
         say(f"  TRay path {label:18s} RMSE {e:.5f}  {cpu:7.2f} CPU-s (whole run less setup)")
     return runs

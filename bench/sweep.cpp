@@ -70,6 +70,13 @@ std::vector<SweepConfig> standardSweep(const std::vector<std::string>& accels,
             std::string("threshold=") + t, p);
       }
     }
+    // The error in radiance units (--noise-metric absolute: the rule then aims at RMSE).
+    p.set("noise-rule", std::string("mse"));
+    p.set("noise-metric", std::string("absolute"));
+    for (const char* t : {"0.02", "0.01", "0.007", "0.005", "0.003"}) {
+      p.set("noise-threshold", std::stof(t));
+      add("path sobol adaptive absolute", std::string("threshold=") + t, p);
+    }
   }
   // Every method on every accelerator and thread count: separate lines.
   std::vector<SweepConfig> out;

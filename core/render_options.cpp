@@ -21,6 +21,10 @@ const std::vector<OptionSpec>& renderOptions() {
                    "adaptive sampling: mse stops a pixel of n samples below threshold x "
                    "sqrt(n / min-spp), the least image error for the samples spent; even stops "
                    "every pixel below the threshold (equal error, as Cycles)"),
+      choiceOption("noise-metric", "relative", {"relative", "absolute"},
+                   "adaptive sampling: relative measures a pixel's error against its value "
+                   "(relMSE, what the eye sees after tone mapping); absolute in radiance units "
+                   "(RMSE: spends more on bright pixels; --noise-threshold is then a radiance)"),
       intOption("min-spp", 16, 1, 1 << 20,
                 "adaptive sampling: samples every pixel takes before it may stop (at most --spp)"),
       floatOption("time-limit", 0.0f, 0.0f, 1e9f,

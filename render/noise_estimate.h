@@ -5,7 +5,8 @@
 // the mean of its first half), the two-buffer idea of Dammertz et al. 2010 ("A hierarchical
 // automatic stopping condition for Monte Carlo global illumination", §2.1, as Cycles and
 // Arnold use it) with the earlier samples as the second buffer, so that a step is traced in
-// one go; the error is relative to the pixel's value, as relMSE measures it. Decisions are
+// one go; the error is relative to the pixel's value, as relMSE measures it (or absolute, as
+// RMSE measures it: --noise-metric). Decisions are
 // taken per 8x8 block of image pixels from that block's pixels alone, so that a region whose
 // edges are multiples of 8 renders the pixels of the whole image's render, bit for bit.
 #include <cstdint>
@@ -29,6 +30,9 @@ struct SamplingPasses {
   /// --noise-rule even: every pixel stops below `threshold`; else (mse) the rule that spends
   /// samples where they lower the image's relMSE most (stoppingError).
   bool evenError = false;
+  /// --noise-metric absolute: the error in radiance units (what RMSE measures, the
+  /// allocation that minimises it under `mse`); else relative to the pixel's value (relMSE).
+  bool absoluteError = false;
 };
 
 /// The floor of relMSE's denominator (value^2 + 0.01, bench/image_error.cpp): below a value
@@ -42,9 +46,11 @@ std::optional<SamplingPasses> samplingPassesOf(const RenderSettings& settings);
 /// The estimated relative error of `all`, the mean of a pixel's n samples, from `earlier`, the
 /// mean of its first m (0 < m < n): for independent samples the difference of the two has
 /// standard deviation sqrt((n - m) / m) times that of `all`, so the difference is scaled by
-/// sqrt(m / (n - m)); each channel relative to sqrt(mean^2 + kRelativeFloor), and the RMS over
-/// R, G, B. Infinite without an estimate (m or n - m not positive, a weight of zero).
-float pixelError(const PixelSums& all, const PixelSums& earlier, int n, int m);
+/// sqrt(m / (n - m)); each channel relative to sqrt(mean^2 + kRelativeFloor) (`absolute`: as
+/// it is), and the RMS over R, G, B. Infinite without an estimate (m or n - m not positive, a
+/// weight of zero).
+float pixelError(const PixelSums& all, const PixelSums& earlier, int n, int m,
+                 bool absolute = false);
 
 /// How many of a pixel's `count` samples its earlier mean holds: half of the first step,
 /// afterwards the count of the look before (counts follow one fixed sequence).
@@ -66,10 +72,12 @@ float stoppingError(int count, const SamplingPasses& passes);
 
 /// One block's decision: which of its pixels take another step. `error` and `count` hold the
 /// block's w x h pixels row by row. A pixel goes on while it has fewer than minSamples, or
-/// (threshold > 0) its own error or the mean error of its 3x3 neighbourhood inside the block
-/// is at least its stoppingError (an isolated pixel whose two means agree by chance does not
-/// stop while its neighbours are noisy; a single noisy pixel does not keep its quiet
-/// neighbours going), or (threshold 0) until maxSamples. `more` receives 1 for those.
+/// (threshold > 0) the mean error of its neighbours inside the block (the 3x3 neighbourhood
+/// less itself) is at least its stoppingError, or (threshold 0) until maxSamples. Its own
+/// error is not read: a decision from its own samples biases its mean (Kirk & Arvo 1991);
+/// its neighbours' samples are independent of them, and a noisy pixel keeps its neighbours
+/// going. A pixel with no neighbour in the block goes on to maxSamples. `more` receives 1
+/// for those that go on.
 void decideBlock(std::span<const float> error, std::span<const uint32_t> count, int w, int h,
                  const SamplingPasses& passes, std::span<uint8_t> more);
 

@@ -152,7 +152,8 @@ class PassRenderer {
         const size_t p = size_t(fy0 + j) * film_.width() + fx0 + i;
         const PixelProgress& g = state_.progress[p];
         const int n = int(g.count);
-        b.error[j * w + i] = pixelError(state_.sums[p], g.half, n, earlierCount(n, passes_));
+        b.error[j * w + i] =
+            pixelError(state_.sums[p], g.half, n, earlierCount(n, passes_), passes_.absoluteError);
         b.count[j * w + i] = g.count;
       }
     decideBlock(b.error, b.count, w, h, passes_, b.more);

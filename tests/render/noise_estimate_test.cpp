@@ -31,6 +31,11 @@ TEST(NoiseEstimate, ErrorIsTheDifferenceWithTheEarlierMeanRelativeToTheValue) {
   EXPECT_NEAR(pixelError(sums(10, 10, 20, 16), sums(15, 5, 20, 8), 16, 8),
               std::sqrt((25 / 100.01 + 25 / 100.01) / 3), 1e-6);
   EXPECT_NEAR(pixelError(sums(0, 0, 0, 4), sums(0.001, 0, 0, 2), 4, 2), std::sqrt(1e-4 / 3), 1e-7);
+  // --noise-metric absolute: the difference in radiance units, whatever the value.
+  EXPECT_NEAR(pixelError(sums(10, 10, 20, 16), sums(15, 5, 20, 8), 16, 8, true),
+              std::sqrt((25.0 + 25.0) / 3), 1e-5);
+  EXPECT_NEAR(pixelError(sums(1, 1, 2, 16), sums(1.5, 0.5, 2, 8), 16, 8, true),
+              std::sqrt((0.25 + 0.25) / 3), 1e-6);
   // No estimate: no earlier samples, no new ones, or no weight.
   EXPECT_TRUE(std::isinf(pixelError(sums(1, 1, 1, 4), sums(1, 1, 1, 4), 1, 0)));
   EXPECT_TRUE(std::isinf(pixelError(sums(1, 1, 1, 4), sums(1, 1, 1, 4), 4, 4)));
@@ -92,42 +97,49 @@ TEST(NoiseEstimate, StepsDoubleInTwoLooksAndStopAtTheMaximum) {
   EXPECT_EQ(nextStep(8, p), 0);
 }
 
-// A 4x3 block, threshold 0.1, 32 samples (mse: stopping error 0.1 sqrt(2)): the pixel at
-// (3, 2) is noisy and goes on, its quiet neighbours stop (their neighbourhood's mean error is
-// below the limit); a quiet pixel amid noisy ones goes on (the mean is not); a pixel below
-// the minimum goes on whatever its error, one at the maximum stops whatever its error; a pixel
-// without an estimate (NaN, infinite) goes on with its neighbours; threshold 0: only the
-// maximum stops.
-TEST(NoiseEstimate, ABlockDecidesOverEachPixelsNeighbourhood) {
+// A 4x3 block, threshold 0.1, 32 samples (mse: stopping error 0.1 sqrt(2) = 0.141). A pixel's
+// own error is not read (tests/render/adaptive_bias_test.cpp says why): the noisy pixel at
+// (3, 2) stops among quiet neighbours, and keeps going those of its neighbours whose mean
+// neighbour error it lifts past the limit, (3, 1) and (2, 2) (mean 0.208 over 5), not (2, 1)
+// (0.134 over 8); a quiet pixel amid noisy ones goes on. A pixel below the minimum goes on
+// whatever the errors, one at the maximum stops; a neighbour without an estimate (NaN,
+// infinite) keeps a pixel going; a pixel with no neighbour goes on to the maximum; threshold
+// 0: only the maximum stops.
+TEST(NoiseEstimate, ABlockDecidesFromEachPixelsNeighbours) {
   SamplingPasses p;
   p.threshold = 0.1f, p.minSamples = 16, p.maxSamples = 256;
   const int w = 4, h = 3;
   std::vector<float> error(w * h, 0.01f);
   std::vector<uint32_t> count(w * h, 32);
   std::vector<uint8_t> more(w * h);
-  error[2 * w + 3] = 0.5f;
+  error[2 * w + 3] = 1.0f;
   decideBlock(error, count, w, h, p, more);
-  for (int i = 0; i < w * h; ++i) EXPECT_EQ(more[i], i == 2 * w + 3 ? 1 : 0) << i;
+  for (int i = 0; i < w * h; ++i) EXPECT_EQ(more[i], i == 1 * w + 3 || i == 2 * w + 2) << i;
   std::vector<float> noisy(w * h, 0.5f);
   noisy[1 * w + 1] = 0.0f;  // halves that agree by chance
   decideBlock(noisy, count, w, h, p, more);
   EXPECT_EQ(more[1 * w + 1], 1);
   count[0] = 8;            // below the minimum
-  count[2 * w + 3] = 256;  // at the maximum: it stops
+  count[1 * w + 3] = 256;  // at the maximum: it stops
   error[0] = 0.0f;
   decideBlock(error, count, w, h, p, more);
   EXPECT_EQ(more[0], 1);
-  EXPECT_EQ(more[2 * w + 3], 0);
-  error[5] = std::nanf("");  // no estimate: it and its neighbours go on
+  EXPECT_EQ(more[1 * w + 3], 0);
+  error[5] = std::nanf("");  // no estimate: its neighbours go on
   decideBlock(error, count, w, h, p, more);
-  EXPECT_EQ(more[5], 1);
   EXPECT_EQ(more[4], 1);
+  EXPECT_EQ(more[6], 1);
+  EXPECT_EQ(more[5], 0);
   error[5] = std::numeric_limits<float>::infinity();
   decideBlock(error, count, w, h, p, more);
-  EXPECT_EQ(more[6], 1);
+  EXPECT_EQ(more[10], 1);
   p.threshold = 0;
   decideBlock(error, count, w, h, p, more);
-  for (int i = 0; i < w * h; ++i) EXPECT_EQ(more[i], i == 2 * w + 3 ? 0 : 1) << i;
+  for (int i = 0; i < w * h; ++i) EXPECT_EQ(more[i], i == 1 * w + 3 ? 0 : 1) << i;
+  // A block of one pixel has no neighbour to decide from: it goes on.
+  p.threshold = 0.1f;
+  decideBlock(std::vector<float>{0.0f}, std::vector<uint32_t>{32}, 1, 1, p, more);
+  EXPECT_EQ(more[0], 1);
 }
 
 }  // namespace
