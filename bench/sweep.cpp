@@ -70,8 +70,15 @@ std::vector<SweepConfig> standardSweep(const std::vector<std::string>& accels,
             std::string("threshold=") + t, p);
       }
     }
-    // The error in radiance units (--noise-metric absolute: the rule then aims at RMSE).
+    // The pixel's own error deciding too (--noise-decision pixel: Cycles' way, biased).
     p.set("noise-rule", std::string("mse"));
+    p.set("noise-decision", std::string("pixel"));
+    for (const char* t : {"0.1", "0.05", "0.03", "0.02", "0.01"}) {
+      p.set("noise-threshold", std::stof(t));
+      add("path sobol adaptive pixel", std::string("threshold=") + t, p);
+    }
+    // The error in radiance units (--noise-metric absolute: the rule then aims at RMSE).
+    p.set("noise-decision", std::string("neighbours"));
     p.set("noise-metric", std::string("absolute"));
     for (const char* t : {"0.02", "0.01", "0.007", "0.005", "0.003"}) {
       p.set("noise-threshold", std::stof(t));

@@ -14,6 +14,7 @@ std::optional<SamplingPasses> samplingPassesOf(const RenderSettings& settings) {
   passes.minSamples = int(settings.getInt("min-spp"));
   passes.evenError = settings.getString("noise-rule") == "even";
   passes.absoluteError = settings.getString("noise-metric") == "absolute";
+  passes.pixelDecides = settings.getString("noise-decision") == "pixel";
   return passes;
 }
 
@@ -52,6 +53,10 @@ float stoppingError(int count, const SamplingPasses& passes) {
   return passes.threshold * std::sqrt(float(count) / float(std::max(passes.minSamples, 1)));
 }
 
+namespace {
+constexpr float kNoEstimate = std::numeric_limits<float>::infinity();
+}  // namespace
+
 void decideBlock(std::span<const float> error, std::span<const uint32_t> count, int w, int h,
                  const SamplingPasses& passes, std::span<uint8_t> more) {
   for (int y = 0; y < h; ++y)
@@ -75,12 +80,19 @@ void decideBlock(std::span<const float> error, std::span<const uint32_t> count, 
           const int nx = x + dx, ny = y + dy;
           if ((dx == 0 && dy == 0) || nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
           const float e = error[ny * w + nx];
-          sum += std::isfinite(e) ? double(e) : std::numeric_limits<double>::infinity();
+          sum += std::isfinite(e) ? double(e) : kNoEstimate;
           ++n;
         }
+      const float limit = stoppingError(int(count[p]), passes);
+      if (passes.pixelDecides) {
+        // Cycles' and Arnold's way: the pixel's own error, and the 3x3 mean with itself.
+        const float own = std::isfinite(error[p]) ? error[p] : kNoEstimate;
+        more[p] = !(own < limit) || !((sum + own) / (n + 1) < limit);
+        continue;
+      }
       // No neighbours (a block one pixel wide and high): nothing unbiased to decide from, so
       // the pixel takes every sample.
-      more[p] = n == 0 || !(sum / n < stoppingError(int(count[p]), passes));
+      more[p] = n == 0 || !(sum / n < limit);
     }
 }
 

@@ -142,5 +142,31 @@ TEST(NoiseEstimate, ABlockDecidesFromEachPixelsNeighbours) {
   EXPECT_EQ(more[0], 1);
 }
 
+// --noise-decision pixel: the pixel's own error also decides, and the 3x3 mean with itself.
+// The noisy pixel of the block above goes on, as do those of its neighbours whose mean with
+// it passes the limit ((3, 1) and (2, 2): (0.05 + 1) / 6 = 0.175; (2, 1): 1.08 / 9 = 0.12, no);
+// a quiet pixel amid noisy ones goes on; a pixel with no estimate goes on.
+TEST(NoiseEstimate, PixelDecisionAlsoReadsThePixelsOwnError) {
+  SamplingPasses p;
+  p.threshold = 0.1f, p.minSamples = 16, p.maxSamples = 256, p.pixelDecides = true;
+  const int w = 4, h = 3;
+  std::vector<float> error(w * h, 0.01f);
+  std::vector<uint32_t> count(w * h, 32);
+  std::vector<uint8_t> more(w * h);
+  error[2 * w + 3] = 1.0f;
+  decideBlock(error, count, w, h, p, more);
+  for (int i = 0; i < w * h; ++i)
+    EXPECT_EQ(more[i], i == 2 * w + 3 || i == 1 * w + 3 || i == 2 * w + 2) << i;
+  std::vector<float> noisy(w * h, 0.5f);
+  noisy[1 * w + 1] = 0.0f;
+  decideBlock(noisy, count, w, h, p, more);
+  EXPECT_EQ(more[1 * w + 1], 1);
+  error[5] = std::nanf("");
+  decideBlock(error, count, w, h, p, more);
+  EXPECT_EQ(more[5], 1);
+  decideBlock(std::vector<float>{0.0f}, std::vector<uint32_t>{32}, 1, 1, p, more);
+  EXPECT_EQ(more[0], 0);
+}
+
 }  // namespace
 }  // namespace tray
