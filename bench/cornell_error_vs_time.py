@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """TRay, Mitsuba 3 and Blender Cycles 5.2 on the same axes: RMSE against CPU seconds on the
-Cornell box, one thread each, measured in this run (issue 37's charts).
+Cornell box, measured in this run (issue 37's charts): TRay and Cycles on one thread, Mitsuba's
+Dr.Jit on every core (one thread deadlocks it), all by process CPU seconds.
 
 - TRay: `tray-render --integrator path` uniform (--spp), adaptive with its default relative
   error (--noise-threshold) and with --noise-metric absolute; CPU seconds of the whole run
@@ -97,7 +98,7 @@ def mitsuba_points(args):
     env = dict(os.environ, DRJIT_LIBLLVM_PATH="/usr/lib/x86_64-linux-gnu/libLLVM.so.19.1")
     r = subprocess.run([args.mitsuba_python, os.path.join(HERE, "mitsuba_cornell_curve.py"),
                         "--size", str(args.size), "--spp", args.spp, "--max-depth",
-                        str(args.max_depth), "--threads", "1"],
+                        str(args.max_depth)],
                        capture_output=True, text=True, env=env)
     if r.returncode != 0:
         sys.exit(f"mitsuba_cornell_curve.py failed: {r.stderr.strip()}")
@@ -189,7 +190,7 @@ def main():
     ref = read_exr(os.path.join(REF_DIR, "cornell-box.ref.exr"))
     args.size = ref.shape[1]
     say(f"TRay, Mitsuba 3 and Cycles {bpy.app.version_string} on the Cornell box, "
-        f"{args.size}x{args.size}, one thread each, measured "
+        f"{args.size}x{args.size}, CPU seconds (TRay and Cycles 1 thread), measured "
         f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())} (load {os.getloadavg()[0]:.2f})")
     rows = []
     with tempfile.TemporaryDirectory() as tmp:

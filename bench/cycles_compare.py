@@ -151,8 +151,9 @@ def build_scene(asset, merged, sun):
 
 def diffuse_for_rough_dielectrics():
     """Materials with metallic 0 and roughness 1 and no texture on either become a Diffuse BSDF
-    (the convention that makes Cycles' Cornell box match Mitsuba's): TRay's glTF material at
-    roughness 1 is Lambertian, Principled keeps a specular layer."""
+    (the convention that makes Cycles' Cornell box match Mitsuba's), plus an Emission shader
+    where they emit: TRay's glTF material at roughness 1 is Lambertian, Principled keeps a
+    specular layer."""
     for mat in bpy.data.materials:
         if not mat.use_nodes:
             continue
@@ -168,8 +169,26 @@ def diffuse_for_rough_dielectrics():
                 links.new(base.links[0].from_socket, d.inputs["Color"])
             else:
                 d.inputs["Color"].default_value = base.default_value
+            out = d.outputs["BSDF"]
+            # Keep the Principled node's emission (the Cornell box's light is such a material).
+            strength = p.inputs["Emission Strength"]
+            if strength.is_linked or strength.default_value > 0:
+                e = nodes.new("ShaderNodeEmission")
+                color = p.inputs["Emission Color"]
+                if color.is_linked:
+                    links.new(color.links[0].from_socket, e.inputs["Color"])
+                else:
+                    e.inputs["Color"].default_value = color.default_value
+                if strength.is_linked:
+                    links.new(strength.links[0].from_socket, e.inputs["Strength"])
+                else:
+                    e.inputs["Strength"].default_value = strength.default_value
+                add = nodes.new("ShaderNodeAddShader")
+                links.new(d.outputs["BSDF"], add.inputs[0])
+                links.new(e.outputs["Emission"], add.inputs[1])
+                out = add.outputs["Shader"]
             for link in list(p.outputs["BSDF"].links):
-                links.new(d.outputs["BSDF"], link.to_socket)
+                links.new(out, link.to_socket)
 
 
 def setup_cycles(merged, env, env_intensity, size, spp, depth, seed=0, clamp=0.0):

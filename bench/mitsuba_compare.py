@@ -167,10 +167,9 @@ def parse_args():
     p.add_argument("--size", type=int, default=512)
     p.add_argument("--spp", type=int, default=64)
     p.add_argument("--max-depth", type=int, default=8)
-    p.add_argument("--threads", type=int, default=2, help="TRay's threads")
-    p.add_argument("--mitsuba-threads", type=int, default=0,
-                   help="Dr.Jit's threads (0: its default, every core); --threads 1 "
-                        "--mitsuba-threads 1 is issue 37's one-thread comparison")
+    p.add_argument("--threads", type=int, default=2,
+                   help="TRay's threads (Mitsuba uses every core: Dr.Jit 1.5 set to one "
+                        "thread deadlocks in scene loading; compare per CPU-second)")
     p.add_argument("--repeats", type=int, default=3)
     p.add_argument("--paired-rounds", type=int, default=5,
                    help="rounds of Mitsuba llvm_ad_rgb and TRay back to back, for the per-sample "
@@ -197,8 +196,6 @@ def parse_args():
 
 def main():
     a = parse_args()
-    if a.mitsuba_threads > 0:
-        dr.set_thread_count(a.mitsuba_threads)
     say(f"TRay vs Mitsuba {mi.__version__} (drjit {dr.__version__}), measured "
         f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())} on {os.cpu_count()} cores "
         f"(load {os.getloadavg()[0]:.2f}){', --quick' if a.quick else ''}; TRay {a.threads} "

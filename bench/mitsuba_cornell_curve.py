@@ -1,19 +1,19 @@
 #!/usr/bin/env python3
-"""Mitsuba 3's error against time on the Cornell box, one thread (issue 37's charts): for each
-sampler and spp, one warm-up render (the llvm variant's JIT compilation excluded), then one
-timed render (process CPU seconds), its RMSE against the converged reference. One line per
+"""Mitsuba 3's error against CPU time on the Cornell box (issue 37's charts): for each sampler
+and spp, one warm-up render (the llvm variant's JIT compilation excluded), then one timed
+render (process CPU seconds, Dr.Jit's threads on every core: set to one thread, Dr.Jit 1.5
+deadlocks while loading the scene), its RMSE against the converged reference. One line per
 render on standard output: `mitsuba <sampler> <spp> <cpu seconds> <rmse>`.
 bench/cornell_error_vs_time.py runs it and puts its points beside TRay's and Cycles'.
 
 Usage (tools/setup-mitsuba.sh's venv, DRJIT_LIBLLVM_PATH as tools/compare-mitsuba.sh sets it):
   build/mitsuba-venv/bin/python bench/mitsuba_cornell_curve.py [--size 256] [--spp 16,64,256]
-      [--samplers independent,ldsampler] [--max-depth 8] [--threads 1]
+      [--samplers independent,ldsampler] [--max-depth 8]
 """
 import argparse
 import os
 import time
 
-import drjit as dr
 import mitsuba as mi
 import numpy as np
 
@@ -27,10 +27,8 @@ def main():
     p.add_argument("--spp", default="16,64,256")
     p.add_argument("--samplers", default="independent,ldsampler")
     p.add_argument("--max-depth", type=int, default=8)
-    p.add_argument("--threads", type=int, default=1)
     p.add_argument("--reference", default=os.path.join(SHARED, "cornell-box.ref.exr"))
     a = p.parse_args()
-    dr.set_thread_count(a.threads)
     mi.set_variant("llvm_ad_rgb")
     ref = read_rgb(a.reference)
     for sampler in a.samplers.split(","):
