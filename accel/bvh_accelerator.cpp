@@ -87,11 +87,10 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
         items += (prims[i].instances->size() + kArrayGroup - 1) / kArrayGroup;
       }
     itemCount = uint32_t(items);
-    static_assert(kArrayGroup == 4, "one InstanceBoxes4 per group");
     arrayBoxes_.resize(arrayFirst.size());
     for (size_t a = 0; a < arrayFirst.size(); ++a) {
       const uint32_t groups = (arraySize[a] + kArrayGroup - 1) / kArrayGroup;
-      arrayBoxes_[a].assign(groups, emptyInstanceBoxes4());
+      arrayBoxes_[a].assign(size_t(groups) * kGroupBoxNodes, emptyInstanceBoxes4());
       arrayBoxes.push_back(arrayBoxes_[a].data());
     }
     std::vector<Bounds3> boxes(items);
@@ -105,7 +104,9 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
         Bounds3& box = boxes[arrayFirst[a] + g];
         for (uint32_t k = group.instance; k < group.instance + group.count; ++k) {
           const Bounds3 own = p.instances->placement(k).bounds(b);
-          setInstanceBox(arrayBoxes_[a][g], int(k - group.instance), own);
+          const uint32_t member = k - group.instance;
+          setInstanceBox(arrayBoxes_[a][size_t(g) * kGroupBoxNodes + member / 4], int(member % 4),
+                         own);
           box.extend(own);
         }
       });
@@ -286,7 +287,8 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
     if (pl.boxes) {  // a group of an instance array's instances: those whose box the ray enters
       bool found = false;
       const Bvh4Ray r = prepareBvh4Ray(ray.o, ray.d);
-      for (int in = hitInstanceBoxes(*pl.boxes, r, ray.tmin, tmax); in; in &= in - 1)
+      for (unsigned in = hitGroupBoxes(pl.boxes, kGroupBoxNodes, r, ray.tmin, tmax); in;
+           in &= in - 1)
         found |= intersectInstance(
             pl.primitive, pl.instance + uint32_t(__builtin_ctz(unsigned(in))), ray, tmax, hit);
       return found;
@@ -330,7 +332,8 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
     member = 0;
     if (pl.boxes) {
       const Bvh4Ray r = prepareBvh4Ray(ray.o, ray.d);
-      for (int in = hitInstanceBoxes(*pl.boxes, r, ray.tmin, ray.tmax); in; in &= in - 1) {
+      for (unsigned in = hitGroupBoxes(pl.boxes, kGroupBoxNodes, r, ray.tmin, ray.tmax); in;
+           in &= in - 1) {
         member = uint32_t(__builtin_ctz(unsigned(in)));
         if (occludedInstance(pl.primitive, pl.instance + member, ray, block)) return true;
       }

@@ -100,19 +100,19 @@ class Group {
 
   /// The rays of m that enter each instance's box of a group (accel/bvh_instance_boxes.h),
   /// tested on the world-space rays of the top tree; a primitive's item: all of m.
-  void splitByInstance(const TwoLevelParts::Placed& pl, RayMask m, RayMask rays[4]) const {
-    rays[0] = rays[1] = rays[2] = rays[3] = 0;
+  void splitByInstance(const TwoLevelParts::Placed& pl, RayMask m, RayMask* rays) const {
+    for (uint32_t k = 0; k < kGroup; ++k) rays[k] = 0;
     if (!pl.boxes) return void(rays[0] = m);
     for (; m; m &= m - 1) {
       const int r = nextRay(m);
-      const int in =
-          hitInstanceBoxes(*pl.boxes, bvh4Ray(box_[r].o, box_[r].invD), tmin_[r], tmax_[r]);
-      for (int k = 0; k < 4; ++k) rays[k] |= (m & -m) & -RayMask((in >> k) & 1);
+      const unsigned in = hitGroupBoxes(pl.boxes, TwoLevelParts::kGroupBoxNodes,
+                                        bvh4Ray(box_[r].o, box_[r].invD), tmin_[r], tmax_[r]);
+      for (uint32_t k = 0; k < kGroup; ++k) rays[k] |= (m & -m) & -RayMask((in >> k) & 1);
     }
     // The entered instances' matrices, 48 MB at 10^6 instances, are read one after the other
     // below: their cache misses overlap when all are requested first.
     const Affine3* w = parts_.scene->primitives[pl.primitive].instances->worldToObject.data();
-    for (int k = 0; k < 4; ++k)
+    for (uint32_t k = 0; k < pl.count; ++k)
       if (rays[k]) {
         const char* at = reinterpret_cast<const char*>(w + pl.instance + k);
         __builtin_prefetch(at), __builtin_prefetch(at + sizeof(Affine3) - 1);
@@ -127,7 +127,7 @@ class Group {
     if (const MeshBvh* mesh = packetMesh(p)) {
       const PacketAlpha alpha{*parts_.scene, rays_, i};
       const PacketTriangleFilter filter = alpha.filter();
-      RayMask byInstance[4];
+      RayMask byInstance[kGroup];
       splitByInstance(pl, m, byInstance);
       for (uint32_t instance = first; instance < first + count; ++instance) {
         const RayMask entered = enter(p, instance, byInstance[instance - first]);
@@ -157,7 +157,7 @@ class Group {
       const bool alphaTested = (*parts_.alphaTested)[p.mesh];
       const RayMask before = alive;
       uint32_t block = 0, member = 0;
-      RayMask byInstance[4];
+      RayMask byInstance[kGroup];
       splitByInstance(pl, m, byInstance);
       for (uint32_t instance = first; instance < first + count && (m & alive); ++instance) {
         const RayMask entered = enter(p, instance, byInstance[instance - first] & alive);
@@ -184,6 +184,7 @@ class Group {
   }
 
   static int highestBit(RayMask m) { return 63 - __builtin_clzll(m); }
+  static constexpr uint32_t kGroup = TwoLevelParts::kArrayGroup;
 
   const TwoLevelParts& parts_;
   PacketRays& local_;  ///< object-space rays of the mesh being entered

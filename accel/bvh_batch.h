@@ -43,7 +43,8 @@ class TwoLevelParts {
   /// are laid out in order (rows of a grid, strokes of a scatter tool), so a group's box is
   /// about its instances' own. A ray entering it tests the boxes of its instances.
   /// The instances' own boxes are tested first (accel/bvh_instance_boxes.h).
-  static constexpr uint32_t kArrayGroup = 4;
+  static constexpr uint32_t kArrayGroup = 8;
+  static constexpr int kGroupBoxNodes = int(kArrayGroup / 4);  ///< InstanceBoxes4 per group
   struct Placed {
     uint32_t primitive, instance, count;  ///< instances instance..instance+count-1 of primitive
     const InstanceBoxes4* boxes;          ///< a group's instances' boxes; null for a primitive
@@ -55,13 +56,14 @@ class TwoLevelParts {
     const uint32_t group = item - arrayFirst[a];
     const uint32_t first = group * kArrayGroup;
     return {arrayPrimitive[a], first, std::min(kArrayGroup, arraySize[a] - first),
-            &arrayBoxes[a][group]};
+            &arrayBoxes[a][size_t(group) * kGroupBoxNodes]};
   }
   uint32_t itemsBase = 0;  ///< the number of primitives
   uint32_t itemCount = 0;
   /// Per instance array, ascending: its first item, primitive and instance count.
   std::vector<uint32_t> arrayFirst, arrayPrimitive, arraySize;
-  /// Per instance array: its groups' instance boxes, group g at arrayBoxes[a][g].
+  /// Per instance array: its groups' instance boxes, group g's kGroupBoxNodes from
+  /// arrayBoxes[a][g * kGroupBoxNodes].
   std::vector<const InstanceBoxes4*> arrayBoxes;
 
   const Scene* scene = nullptr;

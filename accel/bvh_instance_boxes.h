@@ -38,4 +38,13 @@ inline int hitInstanceBoxes(const InstanceBoxes4& b, const Bvh4Ray& r, float tmi
   return simd::bits(hitBoxes4Mask(b.lo, b.hi, r, simd::set1(tmin), simd::set1(tmax), entry));
 }
 
+/// The same over a group's `nodes` consecutive InstanceBoxes4 (4 instances each): bit k for the
+/// group's instance k.
+inline unsigned hitGroupBoxes(const InstanceBoxes4* b, int nodes, const Bvh4Ray& r, float tmin,
+                              float tmax) {
+  unsigned in = 0;
+  for (int j = 0; j < nodes; ++j) in |= unsigned(hitInstanceBoxes(b[j], r, tmin, tmax)) << (4 * j);
+  return in;
+}
+
 }  // namespace tray
