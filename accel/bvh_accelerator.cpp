@@ -371,7 +371,13 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
     Ray local;
     if (p.kind == Primitive::Kind::kMesh) {
       if (!meshes_[p.mesh] || alphaTested_[p.mesh] || member >= count) return false;
-      // A group's blocker is the instance `member` of it.
+      // A group's blocker is the instance `member` of it; its box culls first (sub-pixel
+      // instances rarely block a neighbouring shading point's shadow ray).
+      if (boxes && !((hitGroupBoxes(boxes, kGroupBoxNodes, prepareBvh4Ray(ray.o, ray.d), ray.tmin,
+                                    ray.tmax) >>
+                      member) &
+                     1))
+        return false;
       return objectRay(p, first + member, ray, ray.tmax, local) &&
              meshes_[p.mesh]->occludedBy(local, block);
     }
