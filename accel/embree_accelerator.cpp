@@ -369,11 +369,9 @@ class EmbreeAccelerator final : public Accelerator {
     userData_.resize(scene_.primitives.size());
     for (const Primitive& p : scene_.primitives)
       if (p.instances) arrays_.resize(scene_.primitives.size());
-    // Instance arrays: a compact top tree (RTC_SCENE_FLAG_COMPACT: 21 MiB less at 10^6
-    // instances, as fast; bench/instancing_bench).
-    if (!arrays_.empty())
-      rtcSetSceneFlags(top_, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION |
-                                 RTC_SCENE_FLAG_COMPACT);
+    // Instance arrays: no RTC_SCENE_FLAG_COMPACT. Over single instances it saved 21 MiB at
+    // 10^6 at the same speed; over groups of kEmbreeArrayGroup it saves 1.5 MiB and costs 5% of
+    // the render time (docs/bench/instancing-arrays-time-2026-12-07.md).
     const std::vector<uint8_t> flat = embreeFlattenedMeshes(scene_);
     // Two levels (rtcSetSceneBuildQuality(3): the low quality builds a tree per geometry and
     // one over them) for small meshes, one tree when a big one is flattened
