@@ -38,11 +38,12 @@ class TwoLevelParts {
   /// Top-tree leaves are items: items 0..primitives-1 are the primitives (an instance array's
   /// own stays out of the tree), then each instance array's instances in groups of
   /// kArrayGroup consecutive ones, array a's group g at item arrayFirst[a] + g. A group is one
-  /// leaf: the top tree over 10^6 instances has a quarter of the nodes to build and hold
+  /// leaf: the top tree over 10^6 instances has an eighth of the nodes to build and hold
   /// (bench/instancing_bench: the binary tree was the peak), and glTF's instances of one set
   /// are laid out in order (rows of a grid, strokes of a scatter tool), so a group's box is
-  /// about its instances' own. A ray entering it tests the boxes of its instances.
-  /// The instances' own boxes are tested first (accel/bvh_instance_boxes.h).
+  /// about its instances' own. A ray entering it tests its instances' own boxes
+  /// (accel/bvh_instance_boxes.h) and enters only those. Groups of 4 rendered as fast, of 16
+  /// slower (docs/bench/instancing-arrays-time-2026-12-07.md).
   static constexpr uint32_t kArrayGroup = 8;
   static constexpr int kGroupBoxNodes = int(kArrayGroup / 4);  ///< InstanceBoxes4 per group
   struct Placed {

@@ -1,12 +1,13 @@
 #pragma once
 // The world boxes of an instance array's instances inside one top-tree leaf of the two-level BVH
-// (accel/bvh_batch.h, TwoLevelParts::placed): a leaf holds a group of kArrayGroup consecutive
-// instances, so that the top tree over 10^6 instances is a quarter of the size to build and
-// hold, and a ray entering the group's box tests the four instances' own boxes at once, as a
-// Bvh4Node's four children (accel/bvh4_traversal.h, the same slab test), before it is moved into
-// any instance's object space. Without them a ray entered every instance of the group: 13.1 M
-// ray-instance entries where 2.3 M reached the mesh's root boxes, at 10^6 instances
-// (docs/bench/instancing-arrays-time-2026-12-07.md). 96 bytes per group: 24 per instance.
+// (accel/bvh_batch.h, TwoLevelParts::placed) and inside one Embree user primitive
+// (accel/embree_instance_array.h): a leaf holds a group of consecutive instances, so that the
+// top tree over 10^6 instances is a fraction of the size to build and hold, and a ray entering
+// the group's box tests its instances' own boxes four at once, as a Bvh4Node's four children
+// (accel/bvh4_traversal.h, the same slab test), before it is moved into any instance's object
+// space. Without them a ray entered every instance of the group: at 10^6 instances in groups of
+// 4, 13.1 M ray-instance entries where 2.3 M reached the mesh's root boxes
+// (docs/bench/instancing-arrays-time-2026-12-07.md). 96 bytes per four instances: 24 each.
 #include <cmath>
 
 #include "accel/bvh4_traversal.h"
