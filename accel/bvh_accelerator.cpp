@@ -87,29 +87,16 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
         items += (prims[i].instances->size() + kArrayGroup - 1) / kArrayGroup;
       }
     itemCount = uint32_t(items);
-    arrayBoxes_.resize(arrayFirst.size());
-    for (size_t a = 0; a < arrayFirst.size(); ++a) {
-      const uint32_t groups = (arraySize[a] + kArrayGroup - 1) / kArrayGroup;
-      arrayBoxes_[a].assign(size_t(groups) * kGroupBoxNodes, emptyInstanceBoxes4());
-      arrayBoxes.push_back(arrayBoxes_[a].data());
-    }
     std::vector<Bounds3> boxes(items);
     for (size_t a = 0; a < arrayFirst.size(); ++a) {
       const Primitive& p = prims[arrayPrimitive[a]];
-      const Bounds3 b = meshes_[p.mesh]->bounds();
-      if (b.empty()) continue;
+      arrayBoxes_.push_back(instanceBoxes(*p.instances, meshes_[p.mesh]->bounds(), kArrayGroup));
+      arrayBoxes.push_back(arrayBoxes_[a].data());
       const uint32_t groups = (arraySize[a] + kArrayGroup - 1) / kArrayGroup;
       tbb::parallel_for(uint32_t(0), groups, [&](uint32_t g) {
-        const Placed group = placed(arrayFirst[a] + g);
-        Bounds3& box = boxes[arrayFirst[a] + g];
-        for (uint32_t k = group.instance; k < group.instance + group.count; ++k) {
-          const Bounds3 own = p.instances->placement(k).bounds(b);
-          const uint32_t member = k - group.instance;
-          setInstanceBox(arrayBoxes_[a][size_t(g) * kGroupBoxNodes + member / 4], int(member % 4),
-                         own);
-          box.extend(own);
-        }
+        boxes[arrayFirst[a] + g] = groupBounds(placed(arrayFirst[a] + g).boxes, kGroupBoxNodes);
       });
+      if (meshes_[p.mesh]->bounds().empty()) continue;
       if (!options.hierarchy)
         for (uint32_t g = 0; g < groups; ++g) flat_.push_back(arrayFirst[a] + g);
     }

@@ -9,9 +9,12 @@
 // 4, 13.1 M ray-instance entries where 2.3 M reached the mesh's root boxes
 // (docs/bench/instancing-arrays-time-2026-12-07.md). 96 bytes per four instances: 24 each.
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 #include "accel/bvh4_traversal.h"
 #include "core/bounds.h"
+#include "core/instance_array.h"
 
 namespace tray {
 
@@ -47,5 +50,15 @@ inline unsigned hitGroupBoxes(const InstanceBoxes4* b, int nodes, const Bvh4Ray&
   for (int j = 0; j < nodes; ++j) in |= unsigned(hitInstanceBoxes(b[j], r, tmin, tmax)) << (4 * j);
   return in;
 }
+
+/// Every instance's world box (the mesh's object-space box placed by it), instance k in slot
+/// k % 4 of node k / 4, for groups of `group` instances (a multiple of 4): the nodes of the last
+/// group are all there, their unused slots empty. Computed in parallel; an empty mesh box
+/// leaves every slot empty.
+std::vector<InstanceBoxes4> instanceBoxes(const InstanceArray& array, const Bounds3& meshBounds,
+                                          uint32_t group);
+
+/// The box of a group: the union of its `nodes` InstanceBoxes4 (empty slots add nothing).
+Bounds3 groupBounds(const InstanceBoxes4* boxes, int nodes);
 
 }  // namespace tray

@@ -1,10 +1,5 @@
 #include "accel/embree_instance_array.h"
 
-#include <tbb/parallel_for.h>
-
-#include <algorithm>
-#include <cmath>
-
 namespace tray {
 namespace {
 
@@ -26,15 +21,11 @@ void toObject(const Affine3& w, R& ray) {
 
 void arrayBounds(const RTCBoundsFunctionArguments* args) {
   auto* d = static_cast<const EmbreeArrayData*>(args->geometryUserPtr);
-  const InstanceBoxes4* b = &d->boxes[size_t(args->primID) * kEmbreeArrayBoxNodes];
+  const Bounds3 b =
+      groupBounds(&d->boxes[size_t(args->primID) * kEmbreeArrayBoxNodes], kEmbreeArrayBoxNodes);
   RTCBounds* o = args->bounds_o;
-  float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
-  for (int j = 0; j < kEmbreeArrayBoxNodes; ++j)
-    for (int a = 0; a < 3; ++a)
-      for (int k = 0; k < 4; ++k)  // empty slots (+inf, -inf) change nothing
-        lo[a] = std::min(lo[a], b[j].lo[a][k]), hi[a] = std::max(hi[a], b[j].hi[a][k]);
-  o->lower_x = lo[0], o->lower_y = lo[1], o->lower_z = lo[2];
-  o->upper_x = hi[0], o->upper_y = hi[1], o->upper_z = hi[2];
+  o->lower_x = b.lo.x, o->lower_y = b.lo.y, o->lower_z = b.lo.z;
+  o->upper_x = b.hi.x, o->upper_y = b.hi.y, o->upper_z = b.hi.z;
 }
 
 /// Bit k: the world-space ray enters the box of group g's instance k within [tnear, tfar].
@@ -104,14 +95,9 @@ void arrayOccluded(const RTCOccludedFunctionNArguments* args) {
 }  // namespace
 
 RTCGeometry embreeInstanceArray(RTCDevice device, EmbreeArrayData& data) {
-  const uint32_t n = uint32_t(data.array->size());
-  const uint32_t groups = (n + kEmbreeArrayGroup - 1) / kEmbreeArrayGroup;
-  data.boxes.assign(size_t(groups) * kEmbreeArrayBoxNodes, emptyInstanceBoxes4());
-  if (!data.meshBounds.empty())
-    tbb::parallel_for(uint32_t(0), n, [&](uint32_t k) {
-      setInstanceBox(data.boxes[k / 4], int(k % 4),
-                     data.array->placement(k).bounds(data.meshBounds));
-    });
+  const uint32_t groups =
+      uint32_t((data.array->size() + kEmbreeArrayGroup - 1) / kEmbreeArrayGroup);
+  data.boxes = instanceBoxes(*data.array, data.meshBounds, kEmbreeArrayGroup);
   RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
   rtcSetGeometryUserPrimitiveCount(g, groups);
   rtcSetGeometryUserData(g, &data);
