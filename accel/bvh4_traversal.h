@@ -47,21 +47,26 @@ inline Bvh4Ray prepareBvh4Ray(const Vec3& o, const Vec3& d) {
 /// when the ray enters child c within [tmin, tmax], and entry receives the entry distances. The
 /// far distance is enlarged by 2 gamma(3) (pbrt-v3, section 3.9.2) so rounding never culls a box
 /// that a watertight triangle test inside it would hit.
-inline simd::M4 hitBoxes4Mask(const Bvh4Node& n, const Bvh4Ray& r, simd::F4 tmin, simd::F4 tmax,
-                              simd::F4& entry) {
+/// The boxes are lo/hi [axis][child] (a Bvh4Node's, or any four boxes laid out as one).
+inline simd::M4 hitBoxes4Mask(const float (&lo)[3][4], const float (&hi)[3][4], const Bvh4Ray& r,
+                              simd::F4 tmin, simd::F4 tmax, simd::F4& entry) {
   using namespace simd;
   constexpr float kEps = std::numeric_limits<float>::epsilon() * 0.5f;
   constexpr float kRobust = 1.0f + 2.0f * (3 * kEps) / (1 - 3 * kEps);
   F4 tNear = tmin, tFar = set1(kInfinity);
   for (int a = 0; a < 3; ++a) {
-    const float* nearPlane = r.negative[a] ? n.hi[a] : n.lo[a];
-    const float* farPlane = r.negative[a] ? n.lo[a] : n.hi[a];
+    const float* nearPlane = r.negative[a] ? hi[a] : lo[a];
+    const float* farPlane = r.negative[a] ? lo[a] : hi[a];
     tNear = max(tNear, (load(nearPlane) - r.o[a]) * r.invD[a]);
     tFar = min(tFar, (load(farPlane) - r.o[a]) * r.invD[a]);
   }
   tFar = min(tFar * set1(kRobust), tmax);
   entry = tNear;
   return tNear <= tFar;
+}
+inline simd::M4 hitBoxes4Mask(const Bvh4Node& n, const Bvh4Ray& r, simd::F4 tmin, simd::F4 tmax,
+                              simd::F4& entry) {
+  return hitBoxes4Mask(n.lo, n.hi, r, tmin, tmax, entry);
 }
 inline int hitBoxes4(const Bvh4Node& n, const Bvh4Ray& r, simd::F4 tmin, simd::F4 tmax,
                      simd::F4& entry) {

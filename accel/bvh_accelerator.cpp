@@ -30,8 +30,9 @@ std::atomic<uint64_t> gNextAcceleratorId{1};
 /// occluder. Keyed by accelerator id so a stale entry of another accelerator is never used.
 struct LastOccluder {
   uint64_t accelerator = 0;
-  uint32_t primitive = kNoPrimitive;
-  uint32_t block = 0;  ///< MeshBvh block index (meshes only)
+  uint32_t primitive = kNoPrimitive;  ///< the item (TwoLevelParts::placed)
+  uint32_t member = 0;  ///< which instance of an instance array's group: the first is 0
+  uint32_t block = 0;   ///< MeshBvh block index (meshes only)
 };
 thread_local LastOccluder tLastOccluder;
 
@@ -89,15 +90,13 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
     std::vector<Bounds3> boxes(items);
     for (size_t a = 0; a < arrayFirst.size(); ++a) {
       const Primitive& p = prims[arrayPrimitive[a]];
-      const Bounds3 b = meshes_[p.mesh]->bounds();
-      if (b.empty()) continue;
+      arrayBoxes_.push_back(instanceBoxes(*p.instances, meshes_[p.mesh]->bounds(), kArrayGroup));
+      arrayBoxes.push_back(arrayBoxes_[a].data());
       const uint32_t groups = (arraySize[a] + kArrayGroup - 1) / kArrayGroup;
       tbb::parallel_for(uint32_t(0), groups, [&](uint32_t g) {
-        const Placed group = placed(arrayFirst[a] + g);
-        Bounds3& box = boxes[arrayFirst[a] + g];
-        for (uint32_t k = group.instance; k < group.instance + group.count; ++k)
-          box.extend(p.instances->placement(k).bounds(b));
+        boxes[arrayFirst[a] + g] = groupBounds(placed(arrayFirst[a] + g).boxes, kGroupBoxNodes);
       });
+      if (meshes_[p.mesh]->bounds().empty()) continue;
       if (!options.hierarchy)
         for (uint32_t g = 0; g < groups; ++g) flat_.push_back(arrayFirst[a] + g);
     }
@@ -154,11 +153,11 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
 
   bool occluded(const Ray& ray) const override {
     if (occludedByCached(ray)) return true;
-    uint32_t block = 0;
+    uint32_t block = 0, member = 0;
     const float tmax = ray.tmax;
     return forEachPrimitive<false>(ray, tmax, [&](uint32_t i) {
-      if (!occludedPrimitive(i, ray, block)) return false;
-      cacheOccluder(i, block);
+      if (!occludedPrimitive(i, ray, member, block)) return false;
+      cacheOccluder(i, member, block);
       return true;
     });
   }
@@ -166,11 +165,11 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
   bool occludedByCached(const Ray& ray) const override {
     const LastOccluder& cache = tLastOccluder;
     return options_.occluderCache && cache.accelerator == id_ && cache.primitive < itemCount &&
-           occludedBy(cache.primitive, cache.block, ray);
+           occludedBy(cache.primitive, cache.member, cache.block, ray);
   }
 
-  void cacheOccluder(uint32_t i, uint32_t block) const override {
-    if (options_.occluderCache) tLastOccluder = {id_, i, block};
+  void cacheOccluder(uint32_t i, uint32_t member, uint32_t block) const override {
+    if (options_.occluderCache) tLastOccluder = {id_, i, member, block};
   }
 
   void intersectBatch(std::span<const Ray> rays, std::span<Hit> hits,
@@ -188,7 +187,7 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
     hits.clear();
     const float tmax = ray.tmax;
     forEachPrimitive(ray, tmax, [&](uint32_t item) {
-      const auto [i, first, count] = placed(item);
+      const auto [i, first, count, boxes] = placed(item);
       const Primitive& p = scene_.primitives[i];
       if (p.kind == Primitive::Kind::kMesh) {
         for (uint32_t instance = first; instance < first + count; ++instance) {
@@ -224,6 +223,7 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
   size_t memoryBytes() const override {
     size_t bytes =
         top_.memoryBytes() + (unbounded_.capacity() + flat_.capacity()) * sizeof(uint32_t);
+    for (const auto& b : arrayBoxes_) bytes += b.capacity() * sizeof(InstanceBoxes4);
     for (const auto& m : meshes_)
       if (m) bytes += m->memoryBytes();
     return bytes;
@@ -271,10 +271,13 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
 
   bool intersectPrimitive(uint32_t item, const Ray& ray, float& tmax, Hit& hit) const override {
     const Placed pl = placed(item);
-    if (pl.count > 1) {  // a group of an instance array's instances
+    if (pl.boxes) {  // a group of an instance array's instances: those whose box the ray enters
       bool found = false;
-      for (uint32_t instance = pl.instance; instance < pl.instance + pl.count; ++instance)
-        found |= intersectInstance(pl.primitive, instance, ray, tmax, hit);
+      const Bvh4Ray r = prepareBvh4Ray(ray.o, ray.d);
+      for (unsigned in = hitGroupBoxes(pl.boxes, kGroupBoxNodes, r, ray.tmin, tmax); in;
+           in &= in - 1)
+        found |= intersectInstance(
+            pl.primitive, pl.instance + uint32_t(__builtin_ctz(unsigned(in))), ray, tmax, hit);
       return found;
     }
     return intersectInstance(pl.primitive, pl.instance, ray, tmax, hit);
@@ -310,11 +313,20 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
     return true;
   }
 
-  bool occludedPrimitive(uint32_t item, const Ray& ray, uint32_t& block) const {
+  /// Any hit of item's primitive or group; `member` receives which instance of the group.
+  bool occludedPrimitive(uint32_t item, const Ray& ray, uint32_t& member, uint32_t& block) const {
     const Placed pl = placed(item);
-    for (uint32_t instance = pl.instance; instance < pl.instance + pl.count; ++instance)
-      if (occludedInstance(pl.primitive, instance, ray, block)) return true;
-    return false;
+    member = 0;
+    if (pl.boxes) {
+      const Bvh4Ray r = prepareBvh4Ray(ray.o, ray.d);
+      for (unsigned in = hitGroupBoxes(pl.boxes, kGroupBoxNodes, r, ray.tmin, ray.tmax); in;
+           in &= in - 1) {
+        member = uint32_t(__builtin_ctz(unsigned(in)));
+        if (occludedInstance(pl.primitive, pl.instance + member, ray, block)) return true;
+      }
+      return false;
+    }
+    return occludedInstance(pl.primitive, pl.instance, ray, block);
   }
 
   bool occludedInstance(uint32_t i, uint32_t instance, const Ray& ray, uint32_t& block) const {
@@ -334,24 +346,27 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
   }
 
   bool occludedPrimitive(uint32_t i, const Ray& ray) const override {
-    uint32_t block;
-    if (!occludedPrimitive(i, ray, block)) return false;
-    cacheOccluder(i, block);
+    uint32_t block, member;
+    if (!occludedPrimitive(i, ray, member, block)) return false;
+    cacheOccluder(i, member, block);
     return true;
   }
 
-  bool occludedBy(uint32_t item, uint32_t block, const Ray& ray) const {
-    const auto [i, first, count] = placed(item);
+  bool occludedBy(uint32_t item, uint32_t member, uint32_t block, const Ray& ray) const {
+    const auto [i, first, count, boxes] = placed(item);
     const Primitive& p = scene_.primitives[i];
     Ray local;
     if (p.kind == Primitive::Kind::kMesh) {
-      if (!meshes_[p.mesh] || alphaTested_[p.mesh]) return false;
-      // A group's blocker is one of its instances: the block is tested in each.
-      for (uint32_t instance = first; instance < first + count; ++instance)
-        if (objectRay(p, instance, ray, ray.tmax, local) &&
-            meshes_[p.mesh]->occludedBy(local, block))
-          return true;
-      return false;
+      if (!meshes_[p.mesh] || alphaTested_[p.mesh] || member >= count) return false;
+      // A group's blocker is the instance `member` of it; its box culls first (sub-pixel
+      // instances rarely block a neighbouring shading point's shadow ray).
+      if (boxes && !((hitGroupBoxes(boxes, kGroupBoxNodes, prepareBvh4Ray(ray.o, ray.d), ray.tmin,
+                                    ray.tmax) >>
+                      member) &
+                     1))
+        return false;
+      return objectRay(p, first + member, ray, ray.tmax, local) &&
+             meshes_[p.mesh]->occludedBy(local, block);
     }
     Hit h;
     return scene_.intersectShape(i, ray, h);
@@ -376,6 +391,7 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
   uint64_t id_;
   std::vector<std::unique_ptr<MeshBvh>> meshes_;  ///< by mesh index; null when not placed
   Bvh4 top_;
+  std::vector<std::vector<InstanceBoxes4>> arrayBoxes_;  ///< per instance array, per group
   uint32_t single_ = kNoPrimitive;  ///< the only primitive in top_, which is then skipped
   double topSahCost_ = 0;
   size_t topBinaryNodes_ = 0;
@@ -387,9 +403,12 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
 
 int bvhBatchRays(BvhBatch batch) {
   switch (batch) {
-    case BvhBatch::kLoop: return 1;
-    case BvhBatch::kPacket8: return 8;
-    case BvhBatch::kStream64: return 64;
+    case BvhBatch::kLoop:
+      return 1;
+    case BvhBatch::kPacket8:
+      return 8;
+    case BvhBatch::kStream64:
+      return 64;
   }
   return 1;
 }

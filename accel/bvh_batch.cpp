@@ -41,9 +41,8 @@ class Group {
       for (RayMask m = all_; m; m &= m - 1)
         if (parts_.intersectPrimitive(i, rays_[nextRay(m)], tmax_[nextRay(m)], hits[nextRay(m)]))
           found |= m & -m;
-    forEachPrimitive<true>(all_, all_, [&](uint32_t i, RayMask m) {
-      found |= intersectPrimitive(i, m, hits);
-    });
+    forEachPrimitive<true>(all_, all_,
+                           [&](uint32_t i, RayMask m) { found |= intersectPrimitive(i, m, hits); });
     return found;
   }
 
@@ -55,9 +54,8 @@ class Group {
     for (uint32_t i : *parts_.unbounded)
       for (RayMask m = alive; m; m &= m - 1)
         if (parts_.occludedPrimitive(i, rays_[nextRay(m)])) alive &= ~(m & -m);
-    forEachPrimitive<false>(alive, alive, [&](uint32_t i, RayMask m) {
-      occludedPrimitive(i, m & alive, alive);
-    });
+    forEachPrimitive<false>(alive, alive,
+                            [&](uint32_t i, RayMask m) { occludedPrimitive(i, m & alive, alive); });
     return all_ & ~alive;
   }
 
@@ -100,15 +98,41 @@ class Group {
     return entered;
   }
 
+  /// The rays of m that enter each instance's box of a group (accel/bvh_instance_boxes.h),
+  /// tested on the world-space rays of the top tree; a primitive's item: all of m.
+  void splitByInstance(const TwoLevelParts::Placed& pl, RayMask m, RayMask* rays) const {
+    for (uint32_t k = 0; k < kGroup; ++k) rays[k] = 0;
+    if (!pl.boxes) return void(rays[0] = m);
+    for (; m; m &= m - 1) {
+      const int r = nextRay(m);
+      const unsigned in = hitGroupBoxes(pl.boxes, TwoLevelParts::kGroupBoxNodes,
+                                        bvh4Ray(box_[r].o, box_[r].invD), tmin_[r], tmax_[r]);
+      for (uint32_t k = 0; k < kGroup; ++k) rays[k] |= (m & -m) & -RayMask((in >> k) & 1);
+    }
+    // The entered instances' matrices, 48 MB at 10^6 instances, are read one after the other
+    // below: their cache misses overlap when all are requested first.
+    const Affine3* w = parts_.scene->primitives[pl.primitive].instances->worldToObject.data();
+    for (uint32_t k = 0; k < pl.count; ++k)
+      if (rays[k]) {
+        const char* at = reinterpret_cast<const char*>(w + pl.instance + k);
+        __builtin_prefetch(at), __builtin_prefetch(at + sizeof(Affine3) - 1);
+      }
+  }
+
   RayMask intersectPrimitive(uint32_t item, RayMask m, Hit* hits) {
-    const auto [i, first, count] = parts_.placed(item);
+    const TwoLevelParts::Placed pl = parts_.placed(item);
+    const auto [i, first, count, boxes] = pl;
     const Primitive& p = parts_.scene->primitives[i];
     RayMask found = 0;
     if (const MeshBvh* mesh = packetMesh(p)) {
       const PacketAlpha alpha{*parts_.scene, rays_, i};
       const PacketTriangleFilter filter = alpha.filter();
+      RayMask byInstance[kGroup];
+      splitByInstance(pl, m, byInstance);
       for (uint32_t instance = first; instance < first + count; ++instance) {
-        const RayMask f = mesh->intersectPacket(local_, enter(p, instance, m), tmax_, hits,
+        const RayMask entered = enter(p, instance, byInstance[instance - first]);
+        if (!entered) continue;  // the packet traversal needs a ray
+        const RayMask f = mesh->intersectPacket(local_, entered, tmax_, hits,
                                                 (*parts_.alphaTested)[p.mesh] ? &filter : nullptr);
         for (RayMask r = f; r; r &= r - 1)
           hits[nextRay(r)].primitive = i, hits[nextRay(r)].instance = instance;
@@ -124,24 +148,31 @@ class Group {
   }
 
   void occludedPrimitive(uint32_t item, RayMask m, RayMask& alive) {
-    const auto [i, first, count] = parts_.placed(item);
+    const TwoLevelParts::Placed pl = parts_.placed(item);
+    const auto [i, first, count, boxes] = pl;
     const Primitive& p = parts_.scene->primitives[i];
     if (const MeshBvh* mesh = packetMesh(p)) {
       const PacketAlpha alpha{*parts_.scene, rays_, i};
       const PacketTriangleFilter filter = alpha.filter();
       const bool alphaTested = (*parts_.alphaTested)[p.mesh];
       const RayMask before = alive;
-      uint32_t block = 0;
-      for (uint32_t instance = first; instance < first + count && (m & alive); ++instance)
-        mesh->occludedPacket(local_, enter(p, instance, m & alive), alive, tmax_, block,
-                             alphaTested ? &filter : nullptr);
+      uint32_t block = 0, member = 0;
+      RayMask byInstance[kGroup];
+      splitByInstance(pl, m, byInstance);
+      for (uint32_t instance = first; instance < first + count && (m & alive); ++instance) {
+        const RayMask entered = enter(p, instance, byInstance[instance - first] & alive);
+        if (!entered) continue;
+        const RayMask wasAlive = alive;
+        mesh->occludedPacket(local_, entered, alive, tmax_, block, alphaTested ? &filter : nullptr);
+        if (alive != wasAlive) member = instance - first;  // block is this instance's
+      }
       // The blocker of the group's highest-numbered blocked ray is cached: the next group's
       // first rays are its neighbours. As in the single-ray query, an alpha-tested mesh's
       // block is not (block 0 there: occludedBy refuses alpha-tested meshes).
       const RayMask newlyBlocked = before & ~alive;
       if (newlyBlocked && highestBit(newlyBlocked) >= lastBlocked_) {
         lastBlocked_ = highestBit(newlyBlocked);
-        parts_.cacheOccluder(item, alphaTested ? 0 : block);
+        parts_.cacheOccluder(item, member, alphaTested ? 0 : block);
       }
       return;
     }
@@ -153,6 +184,7 @@ class Group {
   }
 
   static int highestBit(RayMask m) { return 63 - __builtin_clzll(m); }
+  static constexpr uint32_t kGroup = TwoLevelParts::kArrayGroup;
 
   const TwoLevelParts& parts_;
   PacketRays& local_;  ///< object-space rays of the mesh being entered

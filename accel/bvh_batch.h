@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "accel/bvh4.h"
+#include "accel/bvh_instance_boxes.h"
 #include "accel/bvh_mesh.h"
 #include "core/hit.h"
 #include "core/ray.h"
@@ -31,36 +32,46 @@ class TwoLevelParts {
   /// The last-occluder cache of the single-ray query (accel/bvh_accelerator.cpp): true if the
   /// primitive and block that blocked this thread's last shadow ray block `ray`.
   virtual bool occludedByCached(const Ray& ray) const = 0;
-  virtual void cacheOccluder(uint32_t primitive, uint32_t block) const = 0;
+  /// `member`: which instance of a group (placed(item).instance + member), 0 for a primitive.
+  virtual void cacheOccluder(uint32_t item, uint32_t member, uint32_t block) const = 0;
 
   /// Top-tree leaves are items: items 0..primitives-1 are the primitives (an instance array's
   /// own stays out of the tree), then each instance array's instances in groups of
   /// kArrayGroup consecutive ones, array a's group g at item arrayFirst[a] + g. A group is one
-  /// leaf: the top tree over 10^6 instances has a quarter of the nodes to build and hold
+  /// leaf: the top tree over 10^6 instances has an eighth of the nodes to build and hold
   /// (bench/instancing_bench: the binary tree was the peak), and glTF's instances of one set
   /// are laid out in order (rows of a grid, strokes of a scatter tool), so a group's box is
-  /// about its instances' own. A ray entering it tests each of its instances.
-  static constexpr uint32_t kArrayGroup = 4;
+  /// about its instances' own. A ray entering it tests its instances' own boxes
+  /// (accel/bvh_instance_boxes.h) and enters only those. Groups of 4 rendered as fast, of 16
+  /// slower (docs/bench/instancing-arrays-time-2026-12-07.md).
+  static constexpr uint32_t kArrayGroup = 8;
+  static constexpr int kGroupBoxNodes = int(kArrayGroup / 4);  ///< InstanceBoxes4 per group
   struct Placed {
     uint32_t primitive, instance, count;  ///< instances instance..instance+count-1 of primitive
+    const InstanceBoxes4* boxes;          ///< a group's instances' boxes; null for a primitive
   };
   Placed placed(uint32_t item) const {
-    if (item < itemsBase) return {item, 0, 1};
+    if (item < itemsBase) return {item, 0, 1, nullptr};
     size_t a = arrayFirst.size() - 1;
     while (arrayFirst[a] > item) --a;  // a few arrays at most
-    const uint32_t first = (item - arrayFirst[a]) * kArrayGroup;
-    return {arrayPrimitive[a], first, std::min(kArrayGroup, arraySize[a] - first)};
+    const uint32_t group = item - arrayFirst[a];
+    const uint32_t first = group * kArrayGroup;
+    return {arrayPrimitive[a], first, std::min(kArrayGroup, arraySize[a] - first),
+            &arrayBoxes[a][size_t(group) * kGroupBoxNodes]};
   }
   uint32_t itemsBase = 0;  ///< the number of primitives
   uint32_t itemCount = 0;
   /// Per instance array, ascending: its first item, primitive and instance count.
   std::vector<uint32_t> arrayFirst, arrayPrimitive, arraySize;
+  /// Per instance array: its groups' instance boxes, group g's kGroupBoxNodes from
+  /// arrayBoxes[a][g * kGroupBoxNodes].
+  std::vector<const InstanceBoxes4*> arrayBoxes;
 
   const Scene* scene = nullptr;
   const Bvh4* top = nullptr;
   const std::vector<std::unique_ptr<MeshBvh>>* meshes = nullptr;  ///< by mesh index
   const std::vector<char>* alphaTested = nullptr;                 ///< by mesh index
-  const std::vector<uint32_t>* unbounded = nullptr;  ///< primitives every ray tests
+  const std::vector<uint32_t>* unbounded = nullptr;               ///< primitives every ray tests
   uint32_t single = kNoPrimitive;  ///< the only primitive of the top tree, which is skipped
 };
 

@@ -359,7 +359,7 @@ class EmbreeAccelerator final : public Accelerator {
     // cost 1.38x the render time at 10^6 instances (0.764 against 1.056 CPU s, bench/
     // instancing_bench, docs/bench/instancing-arrays-2026-12-06.md).
     hasUserGeometry_ = true;
-    arrays_[i] = {p.instances.get(), meshScene(p.mesh), scene_.meshes[p.mesh].bounds()};
+    arrays_[i] = {p.instances.get(), meshScene(p.mesh), scene_.meshes[p.mesh].bounds(), {}};
     return embreeInstanceArray(device_, arrays_[i]);
   }
 
@@ -369,22 +369,22 @@ class EmbreeAccelerator final : public Accelerator {
     userData_.resize(scene_.primitives.size());
     for (const Primitive& p : scene_.primitives)
       if (p.instances) arrays_.resize(scene_.primitives.size());
-    // Instance arrays: a compact top tree (RTC_SCENE_FLAG_COMPACT: 21 MiB less at 10^6
-    // instances, as fast; bench/instancing_bench).
-    if (!arrays_.empty())
-      rtcSetSceneFlags(top_, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION |
-                                 RTC_SCENE_FLAG_COMPACT);
+    // Instance arrays: no RTC_SCENE_FLAG_COMPACT. Over single instances it saved 21 MiB at
+    // 10^6 at the same speed; over groups of kEmbreeArrayGroup it saves 1.5 MiB and costs 5% of
+    // the render time (docs/bench/instancing-arrays-time-2026-12-07.md).
     const std::vector<uint8_t> flat = embreeFlattenedMeshes(scene_);
     // Two levels (rtcSetSceneBuildQuality(3): the low quality builds a tree per geometry and
     // one over them) for small meshes, one tree when a big one is flattened
     // (kEmbreeOneTreeTriangles).
     rtcSetSceneBuildQuality(
         top_, embreeTwoLevelTop(scene_, flat) ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_MEDIUM);
-    // Instance arrays: Embree's low-quality (Morton) build of the top tree over their
-    // instances. At 10^6 instances it holds 25 MiB where the medium (SAH) one holds 71 and
-    // peaks 32 MiB above that, for 1.22x the render time (docs/bench/
-    // instancing-arrays-2026-12-06.md): the memory target is met only so.
-    if (!arrays_.empty()) rtcSetSceneBuildQuality(top_, RTC_BUILD_QUALITY_LOW);
+    // Instance arrays: the medium (SAH) quality over their groups of kEmbreeArrayGroup
+    // instances. Over single instances it held 71 MiB at 10^6 and peaked 32 above that, over
+    // the memory budget, and the low (Morton) quality was kept, for 1.22x the render time
+    // (docs/bench/instancing-arrays-2026-12-06.md); over groups of 8 it holds an eighth and
+    // renders in 0.84x the low one's time over single instances
+    // (docs/bench/instancing-arrays-time-2026-12-07.md).
+    if (!arrays_.empty()) rtcSetSceneBuildQuality(top_, RTC_BUILD_QUALITY_MEDIUM);
     for (uint32_t i = 0; i < scene_.primitives.size(); ++i) {
       const Primitive& p = scene_.primitives[i];
       RTCGeometry g;

@@ -10,20 +10,32 @@
 #include <embree3/rtcore.h>
 
 #include <cstdint>
+#include <vector>
 
+#include "accel/bvh_instance_boxes.h"
 #include "core/scene.h"
 
 namespace tray {
+
+/// Instances per user primitive: the primitive's box is its group's, and its callbacks test
+/// the group's instances' own boxes (accel/bvh_instance_boxes.h, as the in-house BVH's leaves)
+/// before moving the ray into any of them. An eighth of the primitives lets Embree build its
+/// medium (SAH) quality top tree within the memory budget.
+constexpr uint32_t kEmbreeArrayGroup = 8;
+constexpr int kEmbreeArrayBoxNodes = int(kEmbreeArrayGroup / 4);
 
 /// What the callbacks of one array's user geometry read.
 struct EmbreeArrayData {
   const InstanceArray* array = nullptr;
   RTCScene meshScene = nullptr;  ///< the mesh's own scene (geometry id 0)
   Bounds3 meshBounds;            ///< in object space
+  /// Group g's instance boxes (world space): kEmbreeArrayBoxNodes from g * kEmbreeArrayBoxNodes.
+  std::vector<InstanceBoxes4> boxes;
 };
 
-/// The user geometry of `data` (which must outlive it), not committed.
-RTCGeometry embreeInstanceArray(RTCDevice device, const EmbreeArrayData& data);
+/// Fills data.boxes and makes the user geometry of `data` (which must outlive it), not
+/// committed: primitive g is instances g * kEmbreeArrayGroup onwards.
+RTCGeometry embreeInstanceArray(RTCDevice device, EmbreeArrayData& data);
 
 /// A hit inside an array reports the instance in RTCHit::geomID (the mesh scene's own geometry
 /// id is always 0, so it carries nothing there); hitFromEmbree reads it as Hit::instance. Inner
