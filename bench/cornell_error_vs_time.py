@@ -55,7 +55,7 @@ def parse_args():
     p.add_argument("--spp", default="16,64,256", help="uniform spp counts, every renderer")
     p.add_argument("--tray-relative", default="0.1,0.05,0.03,0.02")
     p.add_argument("--tray-absolute", default="0.014,0.01,0.007,0.005,0.0035")
-    p.add_argument("--cycles-thresholds", default="0.05,0.02,0.01,0.005")
+    p.add_argument("--cycles-thresholds", default="0.1,0.05,0.02")
     p.add_argument("--chart", default=os.path.join(HERE, "..", "docs", "bench",
                                                    "cornell-three-renderers.png"))
     p.add_argument("--report", help="also write the report here")

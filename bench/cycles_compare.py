@@ -183,6 +183,22 @@ def diffuse_for_rough_dielectrics():
                     links.new(strength.links[0].from_socket, e.inputs["Strength"])
                 else:
                     e.inputs["Strength"].default_value = strength.default_value
+                if mat.use_backface_culling:
+                    # A single-sided glTF material emits from its front only, as in TRay
+                    # (Cycles' emission is two-sided): strength x (1 - backfacing).
+                    front = nodes.new("ShaderNodeMath")
+                    front.operation = "SUBTRACT"
+                    front.inputs[0].default_value = 1.0
+                    links.new(nodes.new("ShaderNodeNewGeometry").outputs["Backfacing"],
+                              front.inputs[1])
+                    scaled = nodes.new("ShaderNodeMath")
+                    scaled.operation = "MULTIPLY"
+                    links.new(front.outputs["Value"], scaled.inputs[0])
+                    if strength.is_linked:
+                        links.new(strength.links[0].from_socket, scaled.inputs[1])
+                    else:
+                        scaled.inputs[1].default_value = strength.default_value
+                    links.new(scaled.outputs["Value"], e.inputs["Strength"])
                 add = nodes.new("ShaderNodeAddShader")
                 links.new(d.outputs["BSDF"], add.inputs[0])
                 links.new(e.outputs["Emission"], add.inputs[1])
