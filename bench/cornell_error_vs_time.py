@@ -176,7 +176,7 @@ def chart(rows, path):
             ax.plot([p[0] for p in pts], [p[1] for p in pts], style, label=method)
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlabel("CPU seconds, 1 thread (set-up and JIT excluded)")
+    ax.set_xlabel("CPU seconds (TRay, Cycles: 1 thread; Mitsuba: Dr.Jit's threads); set-up, JIT excluded")
     ax.set_ylabel("RMSE against Mitsuba's 4096-spp reference")
     ax.set_title("Cornell box, 256x256, max depth 8")
     ax.grid(True, which="both", alpha=0.3)
