@@ -1,0 +1,113 @@
+// The light BVH's importance (core/light_bounds.cpp, LightBounds::importance) measured where it
+// matters: RMSE at equal CPU time (1 render thread, CPU seconds) against a converged reference,
+// on the shared Cornell box and on the many-light scenes of tests/light_scenes.h, and the cost
+// of one choice (LightSet::choose, the BVH walk) at random receivers. RMSE^2 x seconds is
+// constant for an unbiased estimator: its inverse is the figure of merit (higher is better).
+// Usage: light_bvh_importance_bench [--size WxH] [--ref-spp N] [--spp N] [--ref-threads N]
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include "bench/cpu_time.h"
+#include "bench/image_error.h"
+#include "gltf/gltf_loader.h"
+#include "lights/light_set.h"
+#include "tests/light_scenes.h"
+#include "tests/render_film.h"
+
+using namespace tray;
+
+namespace {
+
+struct Setup {
+  int width = 96, height = 72, refSpp = 2048, spp = 32, refThreads = 2;
+};
+
+struct Run {
+  Film film{1, 1};
+  double seconds = 0;
+};
+
+Run render(const Scene& scene, const Setup& setup, int spp, int seed, int threads) {
+  RenderSettings settings;
+  settings.set("integrator", "path");
+  settings.set("spp", spp);
+  settings.set("seed", seed);
+  settings.set("light-sampler", std::string("bvh"));
+  Run r;
+  const double t0 = cpuSeconds();
+  r.film = test::renderFilm(scene, scene.cameras.at(0), setup.width, setup.height, settings,
+                            nullptr, {}, "embree", threads);
+  r.seconds = cpuSeconds() - t0;
+  return r;
+}
+
+/// Nanoseconds per LightSet::choose at receivers spread over the scene's box, random normals.
+double chooseNanoseconds(const Scene& scene) {
+  const LightSet lights(scene, LightSamplerKind::kBvh);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<float> u01(0.0f, 1.0f);
+  const Bounds3 b = scene.bounds();
+  std::vector<LightSampleContext> ctxs;
+  for (int i = 0; i < 4096; ++i) {
+    const Vec3 p = b.lo + Vec3(u01(rng), u01(rng), u01(rng)) * b.diagonal();
+    const float z = 2 * u01(rng) - 1, phi = 2 * kPi * u01(rng), r = std::sqrt(1 - z * z);
+    ctxs.push_back({p, Vec3(r * std::cos(phi), z, r * std::sin(phi)), false, false});
+  }
+  const int rounds = 100;
+  double sink = 0;
+  const double t0 = cpuSeconds();
+  for (int k = 0; k < rounds; ++k)
+    for (size_t i = 0; i < ctxs.size(); ++i) {
+      float pmf;
+      sink += lights.choose(ctxs[i], float(i) / float(ctxs.size()), pmf) + pmf;
+    }
+  const double t = cpuSeconds() - t0;
+  if (sink == 0.5) std::printf(" ");  // keep the loop
+  return 1e9 * t / (double(rounds) * double(ctxs.size()));
+}
+
+struct Variant { int v; float f, fl; };
+std::vector<Variant> g_variants;
+
+void measure(const char* name, const Scene& scene, const Setup& setup) {
+  std::printf("\n%s (%dx%d, reference %d spp)\n", name, setup.width, setup.height, setup.refSpp);
+  setLightBvhExperiment(0, 1, 1e-3f);
+  const Film reference = render(scene, setup, setup.refSpp, 99, setup.refThreads).film;
+  std::printf("| variant | spp | RMSE | CPU s | 1/(RMSE^2 s) | choose ns |\n|---|---|---|---|---|---|\n");
+  for (const Variant& v : g_variants) {
+    setLightBvhExperiment(v.v, v.f, v.fl);
+    const Run r = render(scene, setup, setup.spp, 1, 1);
+    const double e = compareBeauty(r.film, reference).rmse;
+    std::printf("| %d/%g/%g | %d | %.5f | %.2f | %.1f | %.1f |\n", v.v, v.f, v.fl, setup.spp, e, r.seconds,
+                1.0 / (e * e * r.seconds), chooseNanoseconds(scene));
+    std::fflush(stdout);
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"light_bvh_importance_bench: the light BVH's RMSE at equal time, cost per choice"};
+  Setup setup;
+  std::string size = "96x72";
+  std::vector<std::string> variants;
+  app.add_option("--size", size, "image size WxH");
+  app.add_option("--ref-spp", setup.refSpp, "samples per pixel of the references");
+  app.add_option("--ref-threads", setup.refThreads, "threads of the references");
+  app.add_option("--spp", setup.spp, "spp of the measured render (1 thread)");
+  app.add_option("--variant", variants);
+  CLI11_PARSE(app, argc, argv);
+  for (const std::string& s : variants) {
+    Variant v{};
+    if (std::sscanf(s.c_str(), "%d:%f:%f", &v.v, &v.f, &v.fl) == 3) g_variants.push_back(v);
+  }
+  if (std::sscanf(size.c_str(), "%dx%d", &setup.width, &setup.height) != 2) return 2;
+  measure("Cornell box (../shared/reference/cornell-box.gltf)",
+          loadGltf(std::string(TRAY_SOURCE_DIR) + "/../shared/reference/cornell-box.gltf"),
+          setup);
+  measure("many lights (tests/light_scenes.h manyLightsScene)", test::manyLightsScene(), setup);
+  measure("many quad lights (manyLightsScene(true))", test::manyLightsScene(true), setup);
+  return 0;
+}
