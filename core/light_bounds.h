@@ -57,11 +57,7 @@ struct LightBounds {
   /// kDirectional: phi cos(theta_i); kAmbient: phi.
   /// The receiver's horizon culls only when !ctx.belowMatters.
   float importance(const LightSampleContext& ctx) const;
-  void importanceRange(const LightSampleContext& ctx, float& hi, float& lo) const;
 };
-
-int lightBvhVariant();
-void setLightBvhExperiment(int v, float f, float fl);
 
 /// The bounds of two lights together (Conty Estevez & Kulla sec. 4.1: the union of the boxes
 /// and the smallest cone holding both cones). Both kFinite; a bound with phi 0 is ignored.

@@ -175,17 +175,6 @@ float BvhLightSampler::topTotal(const LightSampleContext& ctx, float& root) cons
 }
 
 float BvhLightSampler::leftByImportance(uint32_t node, const LightSampleContext& ctx) const {
-  if (lightBvhVariant() & 1) {
-    float lHi, lLo, rHi, rLo;
-    nodes_[node + 1].bounds.importanceRange(ctx, lHi, lLo);
-    nodes_[nodes_[node].index].bounds.importanceRange(ctx, rHi, rLo);
-    const float sHi = lHi + rHi, sLo = lLo + rLo;
-    if (!(sHi > 0) || !std::isfinite(sHi)) return 0.5f;
-    const float pHi = lHi / sHi;
-    const float pLo = sLo > 0 && std::isfinite(sLo) ? lLo / sLo
-                                                   : 0.5f * (float(lHi > 0) + float(rHi == 0));
-    return 0.5f * (pHi + pLo);
-  }
   const float left = nodes_[node + 1].bounds.importance(ctx);
   const float right = nodes_[nodes_[node].index].bounds.importance(ctx);
   const float sum = left + right;
