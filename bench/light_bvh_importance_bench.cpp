@@ -100,8 +100,7 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   if (std::sscanf(size.c_str(), "%dx%d", &setup.width, &setup.height) != 2) return 2;
   measure("Cornell box (../shared/reference/cornell-box.gltf)",
-          loadGltf(std::string(TRAY_SOURCE_DIR) + "/../shared/reference/cornell-box.gltf"),
-          setup);
+          loadGltf(std::string(TRAY_SOURCE_DIR) + "/../shared/reference/cornell-box.gltf"), setup);
   measure("many lights (tests/light_scenes.h manyLightsScene)", test::manyLightsScene(), setup);
   measure("many quad lights (manyLightsScene(true))", test::manyLightsScene(true), setup);
   return 0;
