@@ -5,6 +5,7 @@
 // constant for an unbiased estimator: its inverse is the figure of merit (higher is better).
 // Unbiasedness: the reference's mean against a render that chooses lights by power alone.
 // Usage: light_bvh_importance_bench [--size WxH] [--ref-spp N] [--spp N] [--ref-threads N]
+//        [--cache DIR] [--only cornell|many|quads] [--no-bias-check]
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
@@ -23,6 +24,8 @@ namespace {
 
 struct Setup {
   int width = 128, height = 96, refSpp = 4096, spp = 64, refThreads = 2;
+  bool checkBias = true;
+  std::string cacheDir, only;
 };
 
 struct Run {
@@ -70,9 +73,45 @@ double chooseNanoseconds(const Scene& scene) {
   return 1e9 * t / (double(rounds) * double(ctxs.size()));
 }
 
-void measure(const char* name, const Scene& scene, const Setup& setup) {
+/// The reference, kept in `cache` (raw floats) when it names a file: read when it exists.
+Film reference(const Scene& scene, const Setup& setup, const std::string& cache) {
+  const size_t n = size_t(setup.width) * size_t(setup.height) * 3;
+  std::vector<float> rgb(n);
+  if (FILE* f = cache.empty() ? nullptr : std::fopen(cache.c_str(), "rb")) {
+    const size_t got = std::fread(rgb.data(), sizeof(float), n, f);
+    std::fclose(f);
+    if (got == n) {
+      Film film(setup.width, setup.height);
+      for (int y = 0; y < setup.height; ++y)
+        for (int x = 0; x < setup.width; ++x)
+          for (int c = 0; c < 3; ++c)
+            film.pixel(Film::kBeauty, x, y)[c] =
+                rgb[(size_t(y) * size_t(setup.width) + size_t(x)) * 3 + size_t(c)];
+      return film;
+    }
+  }
+  Film film = render(scene, setup, setup.refSpp, 99, setup.refThreads).film;
+  if (FILE* f = cache.empty() ? nullptr : std::fopen(cache.c_str(), "wb")) {
+    for (int y = 0; y < setup.height; ++y)
+      for (int x = 0; x < setup.width; ++x)
+        for (int c = 0; c < 3; ++c)
+          rgb[(size_t(y) * size_t(setup.width) + size_t(x)) * 3 + size_t(c)] =
+              film.pixel(Film::kBeauty, x, y)[c];
+    std::fwrite(rgb.data(), sizeof(float), n, f);
+    std::fclose(f);
+  }
+  return film;
+}
+
+void measure(const char* name, const std::string& key, const Scene& scene, const Setup& setup) {
+  if (!setup.only.empty() && setup.only != key) return;
   std::printf("\n%s (%dx%d, reference %d spp)\n", name, setup.width, setup.height, setup.refSpp);
-  const Film reference = render(scene, setup, setup.refSpp, 99, setup.refThreads).film;
+  const std::string cache = setup.cacheDir.empty()
+                                ? std::string()
+                                : setup.cacheDir + "/" + key + "-" + std::to_string(setup.width) +
+                                      "x" + std::to_string(setup.height) + "-" +
+                                      std::to_string(setup.refSpp) + ".raw";
+  const Film reference = ::reference(scene, setup, cache);
   std::printf("| spp | RMSE | CPU s | 1/(RMSE^2 s) | choose ns |\n|---|---|---|---|---|\n");
   const Run r = render(scene, setup, setup.spp, 1, 1);
   const double e = compareBeauty(r.film, reference).rmse;
@@ -80,6 +119,7 @@ void measure(const char* name, const Scene& scene, const Setup& setup) {
               1.0 / (e * e * r.seconds), chooseNanoseconds(scene));
   // Unbiased: the channel means of the BVH's reference against a render that chooses by power
   // alone (pbrt-v4's PowerLightSampler, no importance at all), a quarter of its samples.
+  if (!setup.checkBias) return;
   const Film power = render(scene, setup, setup.refSpp / 4, 7, setup.refThreads, "power").film;
   const ImageError b = compareBeauty(reference, power);
   std::printf("reference (bvh) - power render (%d spp): mean difference %.6f (RMSE %.5f)\n",
@@ -92,16 +132,22 @@ void measure(const char* name, const Scene& scene, const Setup& setup) {
 int main(int argc, char** argv) {
   CLI::App app{"light_bvh_importance_bench: the light BVH's RMSE at equal time, cost per choice"};
   Setup setup;
-  std::string size = "96x72";
+  std::string size = "128x96";
   app.add_option("--size", size, "image size WxH");
   app.add_option("--ref-spp", setup.refSpp, "samples per pixel of the references");
   app.add_option("--ref-threads", setup.refThreads, "threads of the references");
   app.add_option("--spp", setup.spp, "spp of the measured render (1 thread)");
+  app.add_option("--cache", setup.cacheDir, "folder that keeps the references between runs");
+  app.add_option("--only", setup.only, "one scene: cornell, many, quads");
+  bool noBias = false;
+  app.add_flag("--no-bias-check", noBias, "skip the power-sampler render (unbiasedness)");
   CLI11_PARSE(app, argc, argv);
+  setup.checkBias = !noBias;
   if (std::sscanf(size.c_str(), "%dx%d", &setup.width, &setup.height) != 2) return 2;
-  measure("Cornell box (../shared/reference/cornell-box.gltf)",
+  measure("Cornell box (../shared/reference/cornell-box.gltf)", "cornell",
           loadGltf(std::string(TRAY_SOURCE_DIR) + "/../shared/reference/cornell-box.gltf"), setup);
-  measure("many lights (tests/light_scenes.h manyLightsScene)", test::manyLightsScene(), setup);
-  measure("many quad lights (manyLightsScene(true))", test::manyLightsScene(true), setup);
+  measure("many lights (tests/light_scenes.h manyLightsScene)", "many", test::manyLightsScene(),
+          setup);
+  measure("many quad lights (manyLightsScene(true))", "quads", test::manyLightsScene(true), setup);
   return 0;
 }

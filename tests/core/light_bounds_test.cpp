@@ -124,5 +124,20 @@ TEST(LightBounds, ASpotIsCulledOutsideItsOuterConeAndAPointNowhere) {
   EXPECT_GT(point.importance(aside), 0.0f);
 }
 
+TEST(LightBounds, ANearClusterIsSeenFromItsCentreDownToHalfItsRadius) {
+  // A flat box 2 x 0.2 x 2 emitting up (r^2 = 2.01), a receiver above its centre facing it:
+  // every orientation term is 1 and the importance is phi / max(d^2, r^2 / 4) (Cycles' light
+  // tree). pbrt-v4's clamp to the whole radius gave phi / 2.01 at both points.
+  Bounds3 box;
+  box.extend(Vec3(-1, -0.1f, -1));
+  box.extend(Vec3(1, 0.1f, 1));
+  const LightBounds b = LightBounds::finite(box, {0, 1, 0}, 3.0f, 1.0f, 0.0f, false);
+  const LightSampleContext at09{{0, 0.9f, 0}, {0, -1, 0}}, at05{{0, 0.5f, 0}, {0, -1, 0}};
+  EXPECT_NEAR(b.importance(at09), 3.0f / 0.81f, 1e-4f);
+  EXPECT_NEAR(b.importance(at05), 3.0f / (2.01f / 4), 1e-4f);
+  const LightSampleContext inside{{0.5f, 0, 0.5f}, {0, 1, 0}};  // inside: phi / r^2
+  EXPECT_NEAR(b.importance(inside), 3.0f / 2.01f, 1e-4f);
+}
+
 }  // namespace
 }  // namespace tray
