@@ -121,9 +121,26 @@ void measure(const char* name, const std::string& key, const Scene& scene, const
   // alone (pbrt-v4's PowerLightSampler, no importance at all), a quarter of its samples.
   if (!setup.checkBias) return;
   const Film power = render(scene, setup, setup.refSpp / 4, 7, setup.refThreads, "power").film;
-  const ImageError b = compareBeauty(reference, power);
-  std::printf("reference (bvh) - power render (%d spp): mean difference %.6f (RMSE %.5f)\n",
-              setup.refSpp / 4, b.bias, b.rmse);
+  // Per channel: the mean of (reference - power) over pixels and its standard error (the
+  // pixels' spread over sqrt(count)); unbiased when within a few standard errors.
+  const char* names[3] = {"R", "G", "B"};
+  std::printf(
+      "reference (bvh) - power render (%d spp), per channel mean (standard error), "
+      "relative to the mean:",
+      setup.refSpp / 4);
+  for (int c = 0; c < 3; ++c) {
+    double sum = 0, sum2 = 0, level = 0;
+    for (int y = 0; y < setup.height; ++y)
+      for (int x = 0; x < setup.width; ++x) {
+        const double d = double(reference.pixel(Film::kBeauty, x, y)[c]) -
+                         double(power.pixel(Film::kBeauty, x, y)[c]);
+        sum += d, sum2 += d * d, level += reference.pixel(Film::kBeauty, x, y)[c];
+      }
+    const double n = double(setup.width) * double(setup.height), mean = sum / n;
+    const double se = std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n);
+    std::printf(" %s %+.6f (%.6f) %+.2f%%", names[c], mean, se, 100 * mean / (level / n));
+  }
+  std::printf("\n");
   std::fflush(stdout);
 }
 
