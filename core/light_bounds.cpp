@@ -60,8 +60,8 @@ float finiteImportance(const LightBounds& l, const LightSampleContext& ctx) {
   // tree, after Conty Estevez & Kulla 2018). pbrt-v4 12.6.3 clamps to the whole radius: every
   // receiver within a radius of the centre then sees the cluster as if from its sphere, and a
   // cluster holding the receiver's near lamp loses to a far one of more power (issue 37: the
-  // many-light scenes' chooser efficiency 0.28 -> 0.41, RMSE at equal time 2-3x better;
-  // docs/bench/light-bvh-importance-2026-12-07.md). Inside the box it stays phi / r^2.
+  // many-light scenes' chooser efficiency 0.28 -> 0.41, squared error x CPU time 1.8-3x
+  // lower; docs/bench/light-bvh-importance-2026-12-07.md). Inside the box it stays phi / r^2.
   const float dist2 = std::max(d2, 0.25f * r2);
   if (bound.cos < 0) return l.phi / dist2;
   const float cosW = dot(l.w, wi);

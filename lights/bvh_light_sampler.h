@@ -13,13 +13,13 @@ namespace tray {
 /// the splitting). Finite lights (emissive triangles and shapes, point and spot lights) are
 /// the tree's leaves, one light each; descending, a child is taken in proportion to
 /// LightBounds::importance at the receiver (near it, the sum of its own children's: weight()),
-/// so a choice costs O(depth). Infinite lights (suns,
-/// environments) stand beside the tree's root, each weighed by its own importance (a sun by
-/// its irradiance on the receiver's plane, an environment by pi x its mean radiance), where
-/// pbrt gives them fixed shares: a sun behind the receiver is then never chosen, and one in
-/// front gets the share its light deserves. Lights whose bounds have no strength are never
-/// chosen. Built once, binned over 12 buckets per axis by the paper's cost (power x
-/// orientation measure x surface area x the split axis' aspect); queries allocate nothing.
+/// so a choice costs O(depth). Infinite lights (suns, environments) stand beside the tree's
+/// root, each weighed by its own importance (a sun by its irradiance on the receiver's plane,
+/// an environment by pi x its mean radiance), where pbrt gives them fixed shares: a sun behind
+/// the receiver is then never chosen, and one in front gets the share its light deserves.
+/// Lights whose bounds have no strength are never chosen. Built once, binned over 12 buckets
+/// per axis by the paper's cost (power x orientation measure x surface area x the split axis'
+/// aspect); queries allocate nothing.
 class BvhLightSampler final : public LightSampler {
  public:
   explicit BvhLightSampler(const std::vector<LightBounds>& bounds);
@@ -139,7 +139,7 @@ class BvhLightSampler final : public LightSampler {
   /// from inside or beside it, all of its strength at its centre, whatever its lights face);
   /// its halves' boxes are tighter. One level finer only, and only near: two importances more
   /// per level where it applies (issue 37: chooser efficiency on the many-light scenes 0.41
-  /// -> 0.52-0.54, error per CPU second 1.5x better; docs/bench/light-bvh-importance-
+  /// -> 0.52-0.55, squared error x CPU time 1.4-1.6x lower; docs/bench/light-bvh-importance-
   /// 2026-12-07.md). Conservative as importance() is: 0 only where both halves are.
   float weight(uint32_t node, const LightSampleContext& ctx) const;
 
