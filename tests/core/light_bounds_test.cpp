@@ -139,5 +139,25 @@ TEST(LightBounds, ANearClusterIsSeenFromItsCentreDownToHalfItsRadius) {
   EXPECT_NEAR(b.importance(inside), 3.0f / 2.01f, 1e-4f);
 }
 
+TEST(LightBounds, ANearBoxWhollyBehindItsEmissionOrBelowTheHorizonIsCulled) {
+  // A flat box 2 x 0.1 x 2 and a receiver just above one end of it: seen from there the box
+  // spans more than a hemisphere, so no cone bounds it; still, lamps facing down that all lie
+  // below the receiver cannot light it, nor can lamps facing up below its horizon.
+  Bounds3 box;
+  box.extend(Vec3(-1, 0, -1));
+  box.extend(Vec3(1, 0.1f, 1));
+  const LightBounds down = LightBounds::finite(box, {0, -1, 0}, 3.0f, 1.0f, 0.0f, false);
+  const LightBounds up = LightBounds::finite(box, {0, 1, 0}, 3.0f, 1.0f, 0.0f, false);
+  const LightSampleContext above{{0.9f, 0.12f, 0}, {0, 1, 0}}, below{{0.9f, -0.02f, 0}, {0, 1, 0}};
+  const LightSampleContext facingDown{{0.9f, 0.12f, 0}, {0, -1, 0}};
+  EXPECT_EQ(down.importance(above), 0.0f);
+  EXPECT_EQ(up.importance(above), 0.0f);  // below the horizon
+  EXPECT_GT(up.importance(facingDown), 0.0f);
+  EXPECT_GT(down.importance(below), 0.0f);
+  LightSampleContext transmits = above;
+  transmits.belowMatters = true;
+  EXPECT_GT(up.importance(transmits), 0.0f);
+}
+
 }  // namespace
 }  // namespace tray
