@@ -52,8 +52,10 @@ struct LightBounds {
   /// light can contribute: the chooser gives a light of importance 0 probability 0. Kinds:
   /// kFinite: phi cos(theta') cos(theta_i') / d^2, where theta' and theta_i' are the smallest
   ///   angles, over the box as seen from ctx.p, between emission and the cone and between
-  ///   the receiver's normal and the light (Conty Estevez & Kulla, eq. 3); 0 when no point
-  ///   of the box can emit towards ctx.p or lies above the receiver's horizon.
+  ///   the receiver's normal and the light (Conty Estevez & Kulla, eq. 3), and d the distance
+  ///   to the box's centre, at least half its bounding radius r (Cycles; inside the box:
+  ///   phi / r^2); 0 when no point of the box can emit towards ctx.p or lies above the
+  ///   receiver's horizon.
   /// kDirectional: phi cos(theta_i); kAmbient: phi.
   /// The receiver's horizon culls only when !ctx.belowMatters.
   float importance(const LightSampleContext& ctx) const;

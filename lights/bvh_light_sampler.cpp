@@ -174,9 +174,20 @@ float BvhLightSampler::topTotal(const LightSampleContext& ctx, float& root) cons
   return total + root;
 }
 
+float BvhLightSampler::weight(uint32_t n, const LightSampleContext& ctx) const {
+  const Node& node = nodes_[n];
+  if (!node.leaf) {
+    // Within twice the bounding radius r of the centre: d^2 < 4 r^2, the diagonal squared.
+    const Bounds3& box = node.bounds.box;
+    if (lengthSquared(ctx.p - box.center()) < lengthSquared(box.diagonal()))
+      return nodes_[n + 1].bounds.importance(ctx) + nodes_[node.index].bounds.importance(ctx);
+  }
+  return node.bounds.importance(ctx);
+}
+
 float BvhLightSampler::leftByImportance(uint32_t node, const LightSampleContext& ctx) const {
-  const float left = nodes_[node + 1].bounds.importance(ctx);
-  const float right = nodes_[nodes_[node].index].bounds.importance(ctx);
+  const float left = weight(node + 1, ctx);
+  const float right = weight(nodes_[node].index, ctx);
   const float sum = left + right;
   // Neither child can light the receiver though their parent's looser bounds said it might:
   // either way the sample is lost, but halves keep the pmfs a distribution.

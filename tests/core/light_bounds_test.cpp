@@ -124,5 +124,40 @@ TEST(LightBounds, ASpotIsCulledOutsideItsOuterConeAndAPointNowhere) {
   EXPECT_GT(point.importance(aside), 0.0f);
 }
 
+TEST(LightBounds, ANearClusterIsSeenFromItsCentreDownToHalfItsRadius) {
+  // A flat box 2 x 0.2 x 2 emitting up (r^2 = 2.01), a receiver above its centre facing it:
+  // every orientation term is 1 and the importance is phi / max(d^2, r^2 / 4) (Cycles' light
+  // tree). pbrt-v4's clamp to the whole radius gave phi / 2.01 at both points.
+  Bounds3 box;
+  box.extend(Vec3(-1, -0.1f, -1));
+  box.extend(Vec3(1, 0.1f, 1));
+  const LightBounds b = LightBounds::finite(box, {0, 1, 0}, 3.0f, 1.0f, 0.0f, false);
+  const LightSampleContext at09{{0, 0.9f, 0}, {0, -1, 0}}, at05{{0, 0.5f, 0}, {0, -1, 0}};
+  EXPECT_NEAR(b.importance(at09), 3.0f / 0.81f, 1e-4f);
+  EXPECT_NEAR(b.importance(at05), 3.0f / (2.01f / 4), 1e-4f);
+  const LightSampleContext inside{{0.5f, 0, 0.5f}, {0, 1, 0}};  // inside: phi / r^2
+  EXPECT_NEAR(b.importance(inside), 3.0f / 2.01f, 1e-4f);
+}
+
+TEST(LightBounds, ANearBoxWhollyBehindItsEmissionOrBelowTheHorizonIsCulled) {
+  // A flat box 2 x 0.1 x 2 and a receiver just above one end of it: seen from there the box
+  // spans more than a hemisphere, so no cone bounds it; still, lamps facing down that all lie
+  // below the receiver cannot light it, nor can lamps facing up below its horizon.
+  Bounds3 box;
+  box.extend(Vec3(-1, 0, -1));
+  box.extend(Vec3(1, 0.1f, 1));
+  const LightBounds down = LightBounds::finite(box, {0, -1, 0}, 3.0f, 1.0f, 0.0f, false);
+  const LightBounds up = LightBounds::finite(box, {0, 1, 0}, 3.0f, 1.0f, 0.0f, false);
+  const LightSampleContext above{{0.9f, 0.12f, 0}, {0, 1, 0}}, below{{0.9f, -0.02f, 0}, {0, 1, 0}};
+  const LightSampleContext facingDown{{0.9f, 0.12f, 0}, {0, -1, 0}};
+  EXPECT_EQ(down.importance(above), 0.0f);
+  EXPECT_EQ(up.importance(above), 0.0f);  // below the horizon
+  EXPECT_GT(up.importance(facingDown), 0.0f);
+  EXPECT_GT(down.importance(below), 0.0f);
+  LightSampleContext transmits = above;
+  transmits.belowMatters = true;
+  EXPECT_GT(up.importance(transmits), 0.0f);
+}
+
 }  // namespace
 }  // namespace tray

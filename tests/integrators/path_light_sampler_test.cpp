@@ -92,8 +92,9 @@ TEST(PathLightSampler, BvhIsClearlyLessNoisyThanPowerUnderASunAndSky) {
 }
 
 TEST(PathLightSampler, BvhIsClearlyLessNoisyThanPowerAmongManyLights) {
-  // Measured 2.62x (6.9x the MSE).
-  EXPECT_GT(noiseRatio(manyLightsScene(), 48, 36, 1024), 2.2);
+  // Measured 4.74x (22x the MSE); 2.62x with pbrt-v4's importance, before the distance clamp
+  // and the near children (docs/bench/light-bvh-importance-2026-12-07.md).
+  EXPECT_GT(noiseRatio(manyLightsScene(), 48, 36, 1024), 4.0);
 }
 
 }  // namespace

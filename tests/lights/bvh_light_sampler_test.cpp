@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "accel/registry.h"
@@ -172,6 +173,33 @@ TEST(BvhLightSampler, ABsdfRayThatHitsAnEmitterGetsTheNextEventPdf) {
     EXPECT_NEAR(lights.pdf(light, ctx, ls.wi, sp.p, sp.ng), ls.pdf, 2e-3f * ls.pdf) << i;
   }
   EXPECT_GT(hits, 300);
+}
+
+TEST(BvhLightSampler, AChildNearTheReceiverIsWeighedByItsHalves) {
+  // Two clusters of two lamps, the receiver beside cluster A (within twice its bounding
+  // radius): A's near lamp faces it, A's far lamp faces away, B's two face it from 3 away.
+  // A's one box would weigh its strength as if at its centre, whatever its lamps face; its
+  // halves give the near lamp alone. The pmf of A's near lamp is then its importance over the
+  // sum of its importance and B's (far: B's one box), and A's other lamp gets nothing.
+  auto lamp = [](Vec3 c, Vec3 w) {
+    Bounds3 box;
+    box.extend(c - Vec3(0.05f, 0, 0.05f));
+    box.extend(c + Vec3(0.05f, 0, 0.05f));
+    return LightBounds::finite(box, w, 1.0f, 1.0f, 0.0f, false);
+  };
+  const std::vector<LightBounds> bounds = {
+      lamp({0, 0.5f, 0}, {0, -1, 0}), lamp({1.5f, 0.3f, 0}, {0, 1, 0}),    // A
+      lamp({3, 0.5f, 0}, {0, -1, 0}), lamp({3.2f, 0.5f, 0.2f}, {0, -1, 0})};  // B
+  const BvhLightSampler tree(bounds);
+  ASSERT_EQ(tree.depth(), 2);
+  const LightSampleContext ctx{{0.2f, 0, 0}, {0, 1, 0}};
+  const float near = bounds[0].importance(ctx), b = unite(bounds[2], bounds[3]).importance(ctx);
+  const float a = unite(bounds[0], bounds[1]).importance(ctx);  // A's box: whole sphere
+  EXPECT_EQ(bounds[1].importance(ctx), 0.0f);
+  EXPECT_NEAR(tree.pmf(ctx, 0), near / (near + b), 1e-6f);
+  EXPECT_GT(std::fabs(tree.pmf(ctx, 0) - a / (a + b)), 1e-3f);  // not A's box
+  EXPECT_EQ(tree.pmf(ctx, 1), 0.0f);
+  EXPECT_NEAR(tree.pmf(ctx, 0) + tree.pmf(ctx, 2) + tree.pmf(ctx, 3), 1.0f, 1e-5f);
 }
 
 TEST(BvhLightSampler, OneLightIsChosenWithProbabilityOneAndNoLightNever) {
