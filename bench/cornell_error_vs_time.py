@@ -110,31 +110,14 @@ def mitsuba_points(args):
 
 
 def cycles_setup(args, spp):
-    cc.reset()
-    bpy.ops.import_scene.gltf(filepath=os.path.join(REF_DIR, "cornell-box.gltf"),
-                              **cc.lighting(bpy.ops.import_scene.gltf))
-    scene = bpy.context.scene
-    scene.camera = [o for o in scene.objects if o.type == "CAMERA"][0]
-    cc.diffuse_for_rough_dielectrics()
+    """The Cornell box in Cycles: bench/cycles_compare.py's import and settings, a black world,
+    seed 1."""
+    scene = cc.import_merged(os.path.join(REF_DIR, "cornell-box.gltf"))
     world = bpy.data.worlds.new("black")
     world.use_nodes = True
     world.node_tree.nodes["Background"].inputs["Strength"].default_value = 0.0
     scene.world = world
-    scene.render.engine = "CYCLES"
-    c = scene.cycles
-    c.device, c.samples, c.use_denoising, c.seed = "CPU", spp, False, 1
-    c.max_bounces = args.max_depth - 2
-    c.diffuse_bounces = c.glossy_bounces = c.transmission_bounces = c.max_bounces
-    c.sample_clamp_direct = c.sample_clamp_indirect = 0.0
-    c.blur_glossy, c.light_sampling_threshold = 0.0, 0.0
-    c.pixel_filter_type, c.filter_width = "BOX", 1.0
-    c.use_adaptive_sampling = False
-    scene.render.threads_mode, scene.render.threads = "FIXED", 1
-    scene.render.resolution_x = scene.render.resolution_y = args.size
-    scene.render.resolution_percentage = 100
-    scene.view_settings.view_transform, scene.view_settings.look = "Standard", "None"
-    scene.render.image_settings.file_format = "OPEN_EXR"
-    scene.render.image_settings.color_depth = "32"
+    cc.cycles_settings(scene, args.size, spp, args.max_depth, seed=1)
 
 
 def cycles_cpu(path):

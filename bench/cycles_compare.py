@@ -207,7 +207,9 @@ def diffuse_for_rough_dielectrics():
                 links.new(out, link.to_socket)
 
 
-def setup_cycles(merged, env, env_intensity, size, spp, depth, seed=0, clamp=0.0):
+def import_merged(merged):
+    """A fresh Blender scene holding the glTF file (the comparison's conventions: its first
+    camera, suns of angle 0, Lambertian materials as Diffuse BSDFs)."""
     reset()
     if merged:
         bpy.ops.import_scene.gltf(filepath=merged, **lighting(bpy.ops.import_scene.gltf))
@@ -219,21 +221,12 @@ def setup_cycles(merged, env, env_intensity, size, spp, depth, seed=0, clamp=0.0
         if o.type == "LIGHT" and o.data.type == "SUN":
             o.data.angle = 0.0
     diffuse_for_rough_dielectrics()
-    world = bpy.data.worlds.new("world")
-    scene.world = world
-    world.use_nodes = True
-    nt = world.node_tree
-    tex = nt.nodes.new("ShaderNodeTexEnvironment")
-    tex.image = bpy.data.images.load(env)
-    tex.interpolation = "Linear"
-    coord = nt.nodes.new("ShaderNodeTexCoord")
-    mapping = nt.nodes.new("ShaderNodeMapping")
-    mapping.inputs["Rotation"].default_value = (0, 0, math.radians(90))
-    nt.links.new(coord.outputs["Generated"], mapping.inputs["Vector"])
-    nt.links.new(mapping.outputs["Vector"], tex.inputs["Vector"])
-    bg = nt.nodes["Background"]
-    bg.inputs["Strength"].default_value = env_intensity
-    nt.links.new(tex.outputs["Color"], bg.inputs["Color"])
+    return scene
+
+
+def cycles_settings(scene, size, spp, depth, seed=0, clamp=0.0):
+    """Cycles set as the comparison runs it: CPU, one thread, no adaptive sampling, no
+    denoising, max_bounces = depth - 2, box filter of width 1, EXR out in scene-linear."""
     scene.render.engine = "CYCLES"
     c = scene.cycles
     c.device = "CPU"
@@ -254,7 +247,6 @@ def setup_cycles(merged, env, env_intensity, size, spp, depth, seed=0, clamp=0.0
     c.light_sampling_threshold = 0.0
     c.pixel_filter_type = "BOX"
     c.filter_width = 1.0
-    world.cycles.sampling_method = "AUTOMATIC"
     scene.render.threads_mode = "FIXED"
     scene.render.threads = 1
     scene.render.resolution_x = scene.render.resolution_y = size
@@ -264,6 +256,27 @@ def setup_cycles(merged, env, env_intensity, size, spp, depth, seed=0, clamp=0.0
     scene.view_settings.look = "None"
     scene.render.image_settings.file_format = "OPEN_EXR"
     scene.render.image_settings.color_depth = "32"
+
+
+def setup_cycles(merged, env, env_intensity, size, spp, depth, seed=0, clamp=0.0):
+    scene = import_merged(merged)
+    world = bpy.data.worlds.new("world")
+    scene.world = world
+    world.use_nodes = True
+    nt = world.node_tree
+    tex = nt.nodes.new("ShaderNodeTexEnvironment")
+    tex.image = bpy.data.images.load(env)
+    tex.interpolation = "Linear"
+    coord = nt.nodes.new("ShaderNodeTexCoord")
+    mapping = nt.nodes.new("ShaderNodeMapping")
+    mapping.inputs["Rotation"].default_value = (0, 0, math.radians(90))
+    nt.links.new(coord.outputs["Generated"], mapping.inputs["Vector"])
+    nt.links.new(mapping.outputs["Vector"], tex.inputs["Vector"])
+    bg = nt.nodes["Background"]
+    bg.inputs["Strength"].default_value = env_intensity
+    nt.links.new(tex.outputs["Color"], bg.inputs["Color"])
+    world.cycles.sampling_method = "AUTOMATIC"
+    cycles_settings(scene, size, spp, depth, seed, clamp)
 
 
 def render_cycles(path):
