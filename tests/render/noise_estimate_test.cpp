@@ -42,6 +42,31 @@ TEST(NoiseEstimate, ErrorIsTheDifferenceWithTheEarlierMeanRelativeToTheValue) {
   EXPECT_TRUE(std::isinf(pixelError(sums(1, 1, 1, 4), PixelSums{}, 4, 2)));
 }
 
+// The options reach the passes: none without --noise-threshold or --time-limit; the
+// threshold, the minimum and each rule otherwise (defaults: mse, relative, neighbours).
+TEST(NoiseEstimate, SettingsGiveThePasses) {
+  RenderSettings settings;
+  EXPECT_FALSE(samplingPassesOf(settings).has_value());
+  settings.set("noise-threshold", 0.02f);
+  std::optional<SamplingPasses> p = samplingPassesOf(settings);
+  ASSERT_TRUE(p.has_value());
+  EXPECT_FLOAT_EQ(p->threshold, 0.02f);
+  EXPECT_EQ(p->minSamples, 16);
+  EXPECT_FALSE(p->evenError);
+  EXPECT_FALSE(p->absoluteError);
+  EXPECT_FALSE(p->pixelDecides);
+  settings.set("noise-metric", std::string("absolute"));
+  settings.set("noise-decision", std::string("pixel"));
+  settings.set("noise-rule", std::string("even"));
+  settings.set("min-spp", 8);
+  p = samplingPassesOf(settings);
+  ASSERT_TRUE(p.has_value());
+  EXPECT_TRUE(p->absoluteError);
+  EXPECT_TRUE(p->pixelDecides);
+  EXPECT_TRUE(p->evenError);
+  EXPECT_EQ(p->minSamples, 8);
+}
+
 // The earlier look of each count in the sequence: half of the first step, then the look before.
 TEST(NoiseEstimate, EarlierCountIsTheLookBefore) {
   SamplingPasses p;
