@@ -152,6 +152,10 @@ def whole_render_runs(render, error_of, error_spp):
     for t in ADAPTIVE_THRESHOLDS:
         img, cpu = render(["--spp", str(4 * error_spp), "--noise-threshold", t])
         runs.append((f"adaptive {t}", max(cpu - setup, 1e-3), error_of(img)))
+    for t in ADAPTIVE_THRESHOLDS:
+        img, cpu = render(["--spp", str(4 * error_spp), "--noise-threshold", t,
+                           "--noise-decision", "pixel"])
+        runs.append((f"adaptive pixel {t}", max(cpu - setup, 1e-3), error_of(img)))
     for t in ABSOLUTE_THRESHOLDS:
         img, cpu = render(["--spp", str(4 * error_spp), "--noise-threshold", t,
                            "--noise-metric", "absolute"])
