@@ -5,6 +5,10 @@
 #include <limits>
 
 namespace tray {
+namespace {
+/// A pixel's error where there is no estimate yet: it never lets a decision stop.
+constexpr float kNoEstimate = std::numeric_limits<float>::infinity();
+}  // namespace
 
 std::optional<SamplingPasses> samplingPassesOf(const RenderSettings& settings) {
   if (!rendersInPasses(settings)) return std::nullopt;
@@ -19,10 +23,9 @@ std::optional<SamplingPasses> samplingPassesOf(const RenderSettings& settings) {
 }
 
 float pixelError(const PixelSums& all, const PixelSums& earlier, int n, int m, bool absolute) {
-  constexpr float kNone = std::numeric_limits<float>::infinity();
   // Mitchell's negative lobes can make a weight sum cross zero: no estimate then.
   if (m <= 0 || n <= m || !(std::abs(all.weight) > 0) || !(std::abs(earlier.weight) > 0))
-    return kNone;
+    return kNoEstimate;
   double squared = 0;
   for (int c = 0; c < 3; ++c) {
     const double mean = all.rgb[c] / all.weight, d = mean - earlier.rgb[c] / earlier.weight;
@@ -52,10 +55,6 @@ float stoppingError(int count, const SamplingPasses& passes) {
   if (passes.evenError) return passes.threshold;
   return passes.threshold * std::sqrt(float(count) / float(std::max(passes.minSamples, 1)));
 }
-
-namespace {
-constexpr float kNoEstimate = std::numeric_limits<float>::infinity();
-}  // namespace
 
 void decideBlock(std::span<const float> error, std::span<const uint32_t> count, int w, int h,
                  const SamplingPasses& passes, std::span<uint8_t> more) {

@@ -122,75 +122,83 @@ TEST(NoiseEstimate, StepsDoubleInTwoLooksAndStopAtTheMaximum) {
   EXPECT_EQ(nextStep(8, p), 0);
 }
 
-// A 4x3 block, threshold 0.1, 32 samples (mse: stopping error 0.1 sqrt(2) = 0.141). A pixel's
-// own error is not read (tests/render/adaptive_bias_test.cpp says why): the noisy pixel at
-// (3, 2) stops among quiet neighbours, and keeps going those of its neighbours whose mean
-// neighbour error it lifts past the limit, (3, 1) and (2, 2) (mean 0.208 over 5), not (2, 1)
-// (0.134 over 8); a quiet pixel amid noisy ones goes on. A pixel below the minimum goes on
-// whatever the errors, one at the maximum stops; a neighbour without an estimate (NaN,
+/// The 4x3 block of the two tests below: threshold 0.1, minimum 16, maximum 256, every pixel
+/// at 32 samples (mse: stopping error 0.1 sqrt(2) = 0.141) and error 0.01 but (3, 2) at 1.0.
+struct Block {
+  static constexpr int w = 4, h = 3;
+  SamplingPasses passes;
+  std::vector<float> error = std::vector<float>(w * h, 0.01f);
+  std::vector<uint32_t> count = std::vector<uint32_t>(w * h, 32);
+  std::vector<uint8_t> more = std::vector<uint8_t>(w * h);
+
+  explicit Block(bool pixelDecides) {
+    passes.threshold = 0.1f, passes.minSamples = 16, passes.maxSamples = 256;
+    passes.pixelDecides = pixelDecides;
+    error[2 * w + 3] = 1.0f;
+  }
+  /// decideBlock over the block's errors (or `errors`) and counts, into `more`.
+  void decide() { decide(error); }
+  void decide(const std::vector<float>& errors) { decideBlock(errors, count, w, h, passes, more); }
+};
+
+// A pixel's own error is not read (tests/render/adaptive_bias_test.cpp says why): the noisy
+// pixel at (3, 2) stops among quiet neighbours, and keeps going those of its neighbours whose
+// mean neighbour error it lifts past the limit, (3, 1) and (2, 2) (mean 0.208 over 5), not
+// (2, 1) (0.134 over 8); a quiet pixel amid noisy ones goes on. A pixel below the minimum goes
+// on whatever the errors, one at the maximum stops; a neighbour without an estimate (NaN,
 // infinite) keeps a pixel going; a pixel with no neighbour goes on to the maximum; threshold
 // 0: only the maximum stops.
 TEST(NoiseEstimate, ABlockDecidesFromEachPixelsNeighbours) {
-  SamplingPasses p;
-  p.threshold = 0.1f, p.minSamples = 16, p.maxSamples = 256;
-  const int w = 4, h = 3;
-  std::vector<float> error(w * h, 0.01f);
-  std::vector<uint32_t> count(w * h, 32);
-  std::vector<uint8_t> more(w * h);
-  error[2 * w + 3] = 1.0f;
-  decideBlock(error, count, w, h, p, more);
-  for (int i = 0; i < w * h; ++i) EXPECT_EQ(more[i], i == 1 * w + 3 || i == 2 * w + 2) << i;
+  Block b(false);
+  const int w = Block::w, h = Block::h;
+  b.decide();
+  for (int i = 0; i < w * h; ++i) EXPECT_EQ(b.more[i], i == 1 * w + 3 || i == 2 * w + 2) << i;
   std::vector<float> noisy(w * h, 0.5f);
   noisy[1 * w + 1] = 0.0f;  // halves that agree by chance
-  decideBlock(noisy, count, w, h, p, more);
-  EXPECT_EQ(more[1 * w + 1], 1);
-  count[0] = 8;            // below the minimum
-  count[1 * w + 3] = 256;  // at the maximum: it stops
-  error[0] = 0.0f;
-  decideBlock(error, count, w, h, p, more);
-  EXPECT_EQ(more[0], 1);
-  EXPECT_EQ(more[1 * w + 3], 0);
-  error[5] = std::nanf("");  // no estimate: its neighbours go on
-  decideBlock(error, count, w, h, p, more);
-  EXPECT_EQ(more[4], 1);
-  EXPECT_EQ(more[6], 1);
-  EXPECT_EQ(more[5], 0);
-  error[5] = std::numeric_limits<float>::infinity();
-  decideBlock(error, count, w, h, p, more);
-  EXPECT_EQ(more[10], 1);
-  p.threshold = 0;
-  decideBlock(error, count, w, h, p, more);
-  for (int i = 0; i < w * h; ++i) EXPECT_EQ(more[i], i == 1 * w + 3 ? 0 : 1) << i;
+  b.decide(noisy);
+  EXPECT_EQ(b.more[1 * w + 1], 1);
+  b.count[0] = 8;            // below the minimum
+  b.count[1 * w + 3] = 256;  // at the maximum: it stops
+  b.error[0] = 0.0f;
+  b.decide();
+  EXPECT_EQ(b.more[0], 1);
+  EXPECT_EQ(b.more[1 * w + 3], 0);
+  b.error[5] = std::nanf("");  // no estimate: its neighbours go on
+  b.decide();
+  EXPECT_EQ(b.more[4], 1);
+  EXPECT_EQ(b.more[6], 1);
+  EXPECT_EQ(b.more[5], 0);
+  b.error[5] = std::numeric_limits<float>::infinity();
+  b.decide();
+  EXPECT_EQ(b.more[10], 1);
+  b.passes.threshold = 0;
+  b.decide();
+  for (int i = 0; i < w * h; ++i) EXPECT_EQ(b.more[i], i == 1 * w + 3 ? 0 : 1) << i;
   // A block of one pixel has no neighbour to decide from: it goes on.
-  p.threshold = 0.1f;
-  decideBlock(std::vector<float>{0.0f}, std::vector<uint32_t>{32}, 1, 1, p, more);
-  EXPECT_EQ(more[0], 1);
+  b.passes.threshold = 0.1f;
+  decideBlock(std::vector<float>{0.0f}, std::vector<uint32_t>{32}, 1, 1, b.passes, b.more);
+  EXPECT_EQ(b.more[0], 1);
 }
 
 // --noise-decision pixel: the pixel's own error also decides, and the 3x3 mean with itself.
-// The noisy pixel of the block above goes on, as do those of its neighbours whose mean with
-// it passes the limit ((3, 1) and (2, 2): (0.05 + 1) / 6 = 0.175; (2, 1): 1.08 / 9 = 0.12, no);
+// The noisy pixel of the block goes on, as do those of its neighbours whose mean with it
+// passes the limit ((3, 1) and (2, 2): (0.05 + 1) / 6 = 0.175; (2, 1): 1.08 / 9 = 0.12, no);
 // a quiet pixel amid noisy ones goes on; a pixel with no estimate goes on.
 TEST(NoiseEstimate, PixelDecisionAlsoReadsThePixelsOwnError) {
-  SamplingPasses p;
-  p.threshold = 0.1f, p.minSamples = 16, p.maxSamples = 256, p.pixelDecides = true;
-  const int w = 4, h = 3;
-  std::vector<float> error(w * h, 0.01f);
-  std::vector<uint32_t> count(w * h, 32);
-  std::vector<uint8_t> more(w * h);
-  error[2 * w + 3] = 1.0f;
-  decideBlock(error, count, w, h, p, more);
+  Block b(true);
+  const int w = Block::w, h = Block::h;
+  b.decide();
   for (int i = 0; i < w * h; ++i)
-    EXPECT_EQ(more[i], i == 2 * w + 3 || i == 1 * w + 3 || i == 2 * w + 2) << i;
+    EXPECT_EQ(b.more[i], i == 2 * w + 3 || i == 1 * w + 3 || i == 2 * w + 2) << i;
   std::vector<float> noisy(w * h, 0.5f);
   noisy[1 * w + 1] = 0.0f;
-  decideBlock(noisy, count, w, h, p, more);
-  EXPECT_EQ(more[1 * w + 1], 1);
-  error[5] = std::nanf("");
-  decideBlock(error, count, w, h, p, more);
-  EXPECT_EQ(more[5], 1);
-  decideBlock(std::vector<float>{0.0f}, std::vector<uint32_t>{32}, 1, 1, p, more);
-  EXPECT_EQ(more[0], 0);
+  b.decide(noisy);
+  EXPECT_EQ(b.more[1 * w + 1], 1);
+  b.error[5] = std::nanf("");
+  b.decide();
+  EXPECT_EQ(b.more[5], 1);
+  decideBlock(std::vector<float>{0.0f}, std::vector<uint32_t>{32}, 1, 1, b.passes, b.more);
+  EXPECT_EQ(b.more[0], 0);
 }
 
 }  // namespace
