@@ -1,7 +1,10 @@
 """What bench/mitsuba_compare.py and bench/mitsuba_heavy.py share: the report they print and
-write, failing with one line, and image statistics; and the log-log reading of error against
-time that bench/adaptive_report.py and bench/cycles_adaptive.py share."""
+write, failing with one line, a command's CPU seconds, and image statistics; and the log-log
+reading of error against time that bench/adaptive_report.py, bench/cycles_adaptive.py and
+bench/cornell_error_vs_time.py share. Plain Python and numpy: it runs in any of the venvs."""
 import math
+import resource
+import subprocess
 import sys
 
 import numpy as np
@@ -17,6 +20,17 @@ def say(text=""):
 def fail(text):
     print(f"mitsuba_compare: {text}", file=sys.stderr)
     sys.exit(1)
+
+
+def cpu_of(cmd, env=None):
+    """Runs a command (in `env`, else this process's environment); returns its CPU seconds
+    (every thread's, user + system)."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    r = subprocess.run(cmd, capture_output=True, text=True, env=env)
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    if r.returncode != 0:
+        fail(f"{' '.join(cmd)} failed (exit {r.returncode}): {r.stderr.strip()}")
+    return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
 def check_image(name, img, shape):

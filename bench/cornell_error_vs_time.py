@@ -24,26 +24,18 @@ Usage (the bpy venv of ../shared/notes/cycles5.md; the Mitsuba venv of tools/set
 """
 import argparse
 import os
-import resource
 import subprocess
 import sys
 import tempfile
 import time
 
-import numpy as np
 
 import cycles_compare as cc
-from compare_report import loglog_crossing
+from compare_report import LINES, cpu_of, loglog_crossing, rmse, say
 import bpy  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REF_DIR = os.path.join(cc.SHARED, "reference")
-LINES = []
-
-
-def say(text=""):
-    print(text, flush=True)
-    LINES.append(text)
 
 
 def parse_args():
@@ -62,23 +54,16 @@ def parse_args():
     return p.parse_args()
 
 
-def read_exr(path):
-    return cc.read_rgb(path)
-
-
 def tray_cpu(args, extra, out):
     """CPU seconds (user + system) of one single-threaded tray-render of the Cornell box."""
     cmd = [os.path.join(args.build, "tray-render"), os.path.join(REF_DIR, "cornell-box.gltf"),
            "-q", "--allow-any-path", "--integrator", "path", "--max-depth", str(args.max_depth),
            "--threads", "1", "--resolution", f"{args.size}x{args.size}", "--float", "-o", out,
            *extra]
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    subprocess.run(cmd, check=True, env=cc.TRAY_ENV)
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    return cpu_of(cmd, env=cc.TRAY_ENV)
 
 
-def tray_points(args, ref, tmp):
+def tray_points(args, tmp):
     out = os.path.join(tmp, "tray.exr")
     setup = tray_cpu(args, ["--spp", "1"], out)
     runs = [("uniform", f"{s} spp", ["--spp", s]) for s in args.spp.split(",")]
@@ -90,7 +75,7 @@ def tray_points(args, ref, tmp):
     points = []
     for method, setting, extra in runs:
         cpu = max(tray_cpu(args, extra, out) - setup, 1e-3)
-        points.append((f"TRay {method}", setting, cpu, read_exr(out)))
+        points.append((f"TRay {method}", setting, cpu, cc.read_rgb(out)))
     return points
 
 
@@ -104,6 +89,8 @@ def mitsuba_points(args):
         sys.exit(f"mitsuba_cornell_curve.py failed: {r.stderr.strip()}")
     points = []
     for line in r.stdout.splitlines():
+        if not line.startswith("mitsuba "):  # Mitsuba's own warnings share standard output
+            continue
         _, sampler, spp, cpu, err = line.split()
         points.append((f"Mitsuba {sampler}", f"{spp} spp", float(cpu), float(err)))
     return points
@@ -135,13 +122,13 @@ def cycles_points(args, tmp):
     for s in args.spp.split(","):
         cycles_setup(args, int(s))
         points.append(("Cycles uniform", f"{s} spp", max(cycles_cpu(out) - setup, 1e-3),
-                       read_exr(out)))
+                       cc.read_rgb(out)))
     for t in args.cycles_thresholds.split(","):
         cycles_setup(args, 1024)
         c = bpy.context.scene.cycles
         c.use_adaptive_sampling, c.adaptive_threshold, c.adaptive_min_samples = True, float(t), 0
         points.append(("Cycles adaptive", f"T {t}", max(cycles_cpu(out) - setup, 1e-3),
-                       read_exr(out)))
+                       cc.read_rgb(out)))
     return points
 
 
@@ -170,15 +157,15 @@ def chart(rows, path):
 
 def main():
     args = parse_args()
-    ref = read_exr(os.path.join(REF_DIR, "cornell-box.ref.exr"))
+    ref = cc.read_rgb(os.path.join(REF_DIR, "cornell-box.ref.exr"))
     args.size = ref.shape[1]
     say(f"TRay, Mitsuba 3 and Cycles {bpy.app.version_string} on the Cornell box, "
         f"{args.size}x{args.size}, CPU seconds (TRay and Cycles 1 thread), measured "
         f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())} (load {os.getloadavg()[0]:.2f})")
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
-        for method, setting, cpu, img in cycles_points(args, tmp) + tray_points(args, ref, tmp):
-            err = float(np.sqrt(np.mean((img - ref) ** 2)))
+        for method, setting, cpu, img in cycles_points(args, tmp) + tray_points(args, tmp):
+            err = rmse(img, ref)
             rows.append((method, setting, cpu, err, img.mean() / ref.mean() - 1))
     for method, setting, cpu, err in mitsuba_points(args):
         rows.append((method, setting, cpu, err, float("nan")))

@@ -30,8 +30,8 @@ except ImportError as e:
     sys.exit(2)
 
 import mitsuba_heavy
-from compare_report import LINES, check_image, fail, rmse, say
-from mitsuba_measure import (MITSUBA_STRATIFIED, cpu_of, equal_error_lines, mitsuba_render,
+from compare_report import LINES, check_image, cpu_of, fail, rmse, say
+from mitsuba_measure import (MITSUBA_STRATIFIED, equal_error_lines, mitsuba_render,
                              mitsuba_speed, paired_per_sample, tray_speed,
                              whole_render_equal_error, whole_render_runs)
 

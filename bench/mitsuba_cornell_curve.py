@@ -17,6 +17,7 @@ import time
 import mitsuba as mi
 import numpy as np
 
+from compare_report import rmse
 from mitsuba_compare import SHARED, mitsuba_scene, read_rgb
 from mitsuba_measure import mitsuba_render
 
@@ -39,7 +40,7 @@ def main():
             img = mitsuba_render(scene, spp, 1)
             cpu = time.process_time() - start
             img = np.array(img, dtype=np.float64)[:, :, :3]
-            err = float(np.sqrt(np.mean((img - ref) ** 2)))
+            err = rmse(img, ref)
             print(f"mitsuba {sampler} {spp} {cpu:.4f} {err:.6f}", flush=True)
 
 

@@ -23,8 +23,8 @@ import mitsuba as mi
 import numpy as np
 
 import gltf_to_mitsuba as g2m
-from compare_report import channel_means, check_image, fail, rmse, say
-from mitsuba_measure import (MITSUBA_STRATIFIED, cpu_of, equal_error_lines, mitsuba_render,
+from compare_report import channel_means, check_image, cpu_of, fail, rmse, say
+from mitsuba_measure import (MITSUBA_STRATIFIED, equal_error_lines, mitsuba_render,
                              mitsuba_speed, whole_render_equal_error, whole_render_runs,
                              paired_per_sample, tray_speed)
 

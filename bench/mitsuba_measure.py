@@ -1,7 +1,6 @@
 """Speed measurements and the equal-error arithmetic of bench/mitsuba_compare.py, shared by its
 Cornell box and heavier-scene sections (bench/mitsuba_heavy.py)."""
 import re
-import resource
 import subprocess
 import time
 
@@ -128,16 +127,6 @@ ADAPTIVE_THRESHOLDS = ("0.1", "0.05", "0.03")
 # --noise-metric absolute (RMSE's own measure: the rule then minimises RMSE for the samples
 # spent), thresholds in radiance units for images of mean radiance about 0.1-0.5.
 ABSOLUTE_THRESHOLDS = ("0.01", "0.007", "0.005")
-
-
-def cpu_of(cmd):
-    """Runs a command; returns its CPU seconds (every thread's, user + system)."""
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    r = subprocess.run(cmd, capture_output=True, text=True)
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    if r.returncode != 0:
-        fail(f"{' '.join(cmd)} failed (exit {r.returncode}): {r.stderr.strip()}")
-    return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
 def whole_render_runs(render, error_of, error_spp):
