@@ -149,6 +149,39 @@ def build_scene(asset, merged, sun):
                               export_lights=True, **lighting(bpy.ops.export_scene.gltf))
 
 
+def feed(source, target, links):
+    """Gives node input `target` what input `source` has: its link, or its constant."""
+    if source.is_linked:
+        links.new(source.links[0].from_socket, target)
+    else:
+        target.default_value = source.default_value
+
+
+def principled_emission(mat, p):
+    """An Emission shader with Principled node p's emission colour and strength, or None when
+    it does not emit. A single-sided glTF material emits from its front only, as in TRay
+    (Cycles' emission is two-sided): its strength is scaled by 1 - backfacing."""
+    strength = p.inputs["Emission Strength"]
+    if not strength.is_linked and strength.default_value <= 0:
+        return None
+    nodes, links = mat.node_tree.nodes, mat.node_tree.links
+    e = nodes.new("ShaderNodeEmission")
+    feed(p.inputs["Emission Color"], e.inputs["Color"], links)
+    if not mat.use_backface_culling:
+        feed(strength, e.inputs["Strength"], links)
+        return e.outputs["Emission"]
+    front = nodes.new("ShaderNodeMath")
+    front.operation = "SUBTRACT"
+    front.inputs[0].default_value = 1.0
+    links.new(nodes.new("ShaderNodeNewGeometry").outputs["Backfacing"], front.inputs[1])
+    scaled = nodes.new("ShaderNodeMath")
+    scaled.operation = "MULTIPLY"
+    links.new(front.outputs["Value"], scaled.inputs[0])
+    feed(strength, scaled.inputs[1], links)
+    links.new(scaled.outputs["Value"], e.inputs["Strength"])
+    return e.outputs["Emission"]
+
+
 def diffuse_for_rough_dielectrics():
     """Materials with metallic 0 and roughness 1 and no texture on either become a Diffuse BSDF
     (the convention that makes Cycles' Cornell box match Mitsuba's), plus an Emission shader
@@ -164,44 +197,14 @@ def diffuse_for_rough_dielectrics():
                     rough.default_value != 1:
                 continue
             d = nodes.new("ShaderNodeBsdfDiffuse")
-            base = p.inputs["Base Color"]
-            if base.is_linked:
-                links.new(base.links[0].from_socket, d.inputs["Color"])
-            else:
-                d.inputs["Color"].default_value = base.default_value
+            feed(p.inputs["Base Color"], d.inputs["Color"], links)
             out = d.outputs["BSDF"]
             # Keep the Principled node's emission (the Cornell box's light is such a material).
-            strength = p.inputs["Emission Strength"]
-            if strength.is_linked or strength.default_value > 0:
-                e = nodes.new("ShaderNodeEmission")
-                color = p.inputs["Emission Color"]
-                if color.is_linked:
-                    links.new(color.links[0].from_socket, e.inputs["Color"])
-                else:
-                    e.inputs["Color"].default_value = color.default_value
-                if strength.is_linked:
-                    links.new(strength.links[0].from_socket, e.inputs["Strength"])
-                else:
-                    e.inputs["Strength"].default_value = strength.default_value
-                if mat.use_backface_culling:
-                    # A single-sided glTF material emits from its front only, as in TRay
-                    # (Cycles' emission is two-sided): strength x (1 - backfacing).
-                    front = nodes.new("ShaderNodeMath")
-                    front.operation = "SUBTRACT"
-                    front.inputs[0].default_value = 1.0
-                    links.new(nodes.new("ShaderNodeNewGeometry").outputs["Backfacing"],
-                              front.inputs[1])
-                    scaled = nodes.new("ShaderNodeMath")
-                    scaled.operation = "MULTIPLY"
-                    links.new(front.outputs["Value"], scaled.inputs[0])
-                    if strength.is_linked:
-                        links.new(strength.links[0].from_socket, scaled.inputs[1])
-                    else:
-                        scaled.inputs[1].default_value = strength.default_value
-                    links.new(scaled.outputs["Value"], e.inputs["Strength"])
+            emission = principled_emission(mat, p)
+            if emission is not None:
                 add = nodes.new("ShaderNodeAddShader")
-                links.new(d.outputs["BSDF"], add.inputs[0])
-                links.new(e.outputs["Emission"], add.inputs[1])
+                links.new(out, add.inputs[0])
+                links.new(emission, add.inputs[1])
                 out = add.outputs["Shader"]
             for link in list(p.outputs["BSDF"].links):
                 links.new(out, link.to_socket)
