@@ -13,10 +13,10 @@
 
 #include "bench/cpu_time.h"
 #include "bench/image_error.h"
+#include "bench/timed_render.h"
 #include "gltf/gltf_loader.h"
 #include "lights/light_set.h"
 #include "tests/light_scenes.h"
-#include "tests/render_film.h"
 
 using namespace tray;
 
@@ -29,24 +29,14 @@ struct Setup {
   std::string cacheDir, only;
 };
 
-struct Run {
-  Film film{1, 1};
-  double seconds = 0;
-};
-
-Run render(const Scene& scene, const Setup& setup, int spp, int seed, int threads,
-           const char* chooser = "bvh") {
+TimedFilm render(const Scene& scene, const Setup& setup, int spp, int seed, int threads,
+                 const char* chooser = "bvh") {
   RenderSettings settings;
   settings.set("integrator", "path");
   settings.set("spp", spp);
   settings.set("seed", seed);
   settings.set("light-sampler", std::string(chooser));
-  Run r;
-  const double t0 = cpuSeconds();
-  r.film = test::renderFilm(scene, scene.cameras.at(0), setup.width, setup.height, settings,
-                            nullptr, {}, "embree", threads);
-  r.seconds = cpuSeconds() - t0;
-  return r;
+  return timedRender(scene, setup.width, setup.height, settings, threads);
 }
 
 /// Nanoseconds per LightSet::choose at receivers spread over the scene's box, random normals.
@@ -120,7 +110,7 @@ void measure(const char* name, const std::string& key, const Scene& scene, const
   // RMSE at 64 spp among hundreds of small lamps depends on a few fireflies).
   double mse = 0, seconds = 0;
   for (int seed = 1; seed <= setup.seeds; ++seed) {
-    const Run r = render(scene, setup, setup.spp, seed, 1);
+    const TimedFilm r = render(scene, setup, setup.spp, seed, 1);
     const double e = compareBeauty(r.film, reference).rmse;
     mse += e * e / setup.seeds;
     seconds += r.seconds / setup.seeds;

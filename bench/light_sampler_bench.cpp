@@ -11,13 +11,12 @@
 #include <cmath>
 #include <cstdio>
 
-#include "bench/cpu_time.h"
 #include "bench/image_error.h"
+#include "bench/timed_render.h"
 #include "gltf/gltf_loader.h"
 #include "lights/bvh_light_sampler.h"
 #include "lights/light_set.h"
 #include "tests/light_scenes.h"
-#include "tests/render_film.h"
 
 using namespace tray;
 
@@ -27,23 +26,13 @@ struct Setup {
   int width = 96, height = 72, threads = 2, refSpp = 4096, spp = 64;
 };
 
-struct Run {
-  Film film{1, 1};
-  double seconds = 0;
-};
-
-Run render(const Scene& scene, const Setup& setup, int spp, const char* chooser, int seed) {
+TimedFilm render(const Scene& scene, const Setup& setup, int spp, const char* chooser, int seed) {
   RenderSettings settings;
   settings.set("integrator", "path");
   settings.set("spp", spp);
   settings.set("seed", seed);
   settings.set("light-sampler", std::string(chooser));
-  Run r;
-  const double t0 = cpuSeconds();
-  r.film = test::renderFilm(scene, scene.cameras.at(0), setup.width, setup.height, settings,
-                            nullptr, {}, "embree", setup.threads);
-  r.seconds = cpuSeconds() - t0;
-  return r;
+  return timedRender(scene, setup.width, setup.height, settings, setup.threads);
 }
 
 void measure(const char* name, const Scene& scene, const Setup& setup) {
@@ -64,7 +53,7 @@ void measure(const char* name, const Scene& scene, const Setup& setup) {
   for (int spp = std::max(1, setup.spp / 16); spp <= setup.spp; spp *= 4) {
     const char* choosers[2] = {"power", "bvh"};
     for (int k = 0; k < 2; ++k) {
-      const Run r = render(scene, setup, spp, choosers[k], 1);
+      const TimedFilm r = render(scene, setup, spp, choosers[k], 1);
       errors[k] = compareBeauty(r.film, reference).rmse;
       seconds[k] = r.seconds;
     }
@@ -74,9 +63,10 @@ void measure(const char* name, const Scene& scene, const Setup& setup) {
   // Time to the power sampler's error at the largest spp: the BVH's time scaled by
   // (its RMSE / that error)^2.
   const double bvhTime = seconds[1] * (errors[1] / errors[0]) * (errors[1] / errors[0]);
-  std::printf("time to RMSE %.5f: power %.3f s, bvh %.3f s: **%.2fx less time** with bvh; "
-              "per sample bvh costs %.2fx power\n",
-              errors[0], seconds[0], bvhTime, seconds[0] / bvhTime, seconds[1] / seconds[0]);
+  std::printf(
+      "time to RMSE %.5f: power %.3f s, bvh %.3f s: **%.2fx less time** with bvh; "
+      "per sample bvh costs %.2fx power\n",
+      errors[0], seconds[0], bvhTime, seconds[0] / bvhTime, seconds[1] / seconds[0]);
 }
 
 }  // namespace
@@ -92,8 +82,7 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   if (std::sscanf(size.c_str(), "%dx%d", &setup.width, &setup.height) != 2) return 2;
   measure("Cornell box (../shared/reference/cornell-box.gltf)",
-          loadGltf(std::string(TRAY_SOURCE_DIR) + "/../shared/reference/cornell-box.gltf"),
-          setup);
+          loadGltf(std::string(TRAY_SOURCE_DIR) + "/../shared/reference/cornell-box.gltf"), setup);
   measure("sun and sky (tests/light_scenes.h sunAndSkyScene)", test::sunAndSkyScene(), setup);
   measure("many lights (tests/light_scenes.h manyLightsScene)", test::manyLightsScene(), setup);
   return 0;

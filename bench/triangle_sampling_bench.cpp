@@ -11,12 +11,11 @@
 #include <cmath>
 #include <cstdio>
 
-#include "bench/cpu_time.h"
 #include "bench/image_error.h"
+#include "bench/timed_render.h"
 #include "gltf/gltf_loader.h"
 #include "lights/light_set.h"
 #include "tests/light_scenes.h"
-#include "tests/render_film.h"
 
 using namespace tray;
 
@@ -27,25 +26,15 @@ struct Setup {
   std::string integrator = "path";
 };
 
-struct Run {
-  Film film{1, 1};
-  double seconds = 0;
-};
-
-Run render(const Scene& scene, int w, int h, const Setup& setup, int spp, const char* mode,
-           int seed) {
+TimedFilm render(const Scene& scene, int w, int h, const Setup& setup, int spp, const char* mode,
+                 int seed) {
   RenderSettings settings;
   settings.set("integrator", setup.integrator);
   settings.set("spp", spp);
   settings.set("seed", seed);
   settings.set("max-depth", setup.maxDepth);
   settings.set("triangle-sampling", std::string(mode));
-  Run r;
-  const double t0 = cpuSeconds();
-  r.film = test::renderFilm(scene, scene.cameras.at(0), w, h, settings, nullptr, {}, "embree",
-                            setup.threads);
-  r.seconds = cpuSeconds() - t0;
-  return r;
+  return timedRender(scene, w, h, settings, setup.threads);
 }
 
 /// RMSE over the pixels whose reference is at most 1 in every channel and that have no such
@@ -73,8 +62,8 @@ double offLightRmse(const Film& im, const Film& ref) {
 
 void measure(const char* name, const Scene& scene, int w, int h, const Film& reference,
              const Setup& setup) {
-  std::printf("\n%s (%dx%d, %d thread(s), %s; %zu rectangle(s) found)\n", name, w, h,
-              setup.threads, setup.integrator.c_str(),
+  std::printf("\n%s (%dx%d, %d thread(s), %s; %zu rectangle(s) found)\n", name, w, h, setup.threads,
+              setup.integrator.c_str(),
               LightSet(scene, LightSamplerKind::kBvh, TriangleSampling::kAuto).rectangleCount());
   const char* modes[3] = {"area", "solid-angle", "auto"};
   std::printf("| spp | mode | RMSE | RMSE off the light | CPU s | Msamples/s |\n");
@@ -82,7 +71,7 @@ void measure(const char* name, const Scene& scene, int w, int h, const Film& ref
   double error[3] = {0, 0, 0}, offLight[3] = {0, 0, 0}, seconds[3] = {0, 0, 0};
   for (int spp = std::max(1, setup.spp / 4); spp <= setup.spp; spp *= 4)
     for (int k = 0; k < 3; ++k) {
-      const Run r = render(scene, w, h, setup, spp, modes[k], 1);
+      const TimedFilm r = render(scene, w, h, setup, spp, modes[k], 1);
       error[k] = compareBeauty(r.film, reference).rmse;
       offLight[k] = offLightRmse(r.film, reference);
       seconds[k] = r.seconds;
