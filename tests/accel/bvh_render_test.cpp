@@ -13,6 +13,7 @@
 #include "render/prepared_scene.h"
 #include "render/render_setup.h"
 #include "render/renderer.h"
+#include "tests/film_difference.h"
 #include "tests/scene_builder.h"
 
 namespace tray {
@@ -37,7 +38,8 @@ std::vector<std::string> sceneFiles() {
   add(fs::path(TRAY_SOURCE_DIR) / "scenes", false);
   add(fs::path(TRAY_SHARED_DIR) / "gltf-samples", true);
   // alphaMode MASK and BLEND (issue 15): Embree's filter callbacks against the BVH's own test.
-  files.push_back((fs::path(TRAY_SHARED_DIR) / "gltf-features" / "AlphaBlendModeTest.glb").string());
+  files.push_back(
+      (fs::path(TRAY_SHARED_DIR) / "gltf-features" / "AlphaBlendModeTest.glb").string());
   std::sort(files.begin(), files.end());
   return files;
 }
@@ -71,30 +73,6 @@ void withoutTextures(Scene& scene) {
     m.baseColorTexture = m.metallicRoughnessTexture = m.emissiveTexture = m.normalTexture = {};
 }
 
-struct Difference {
-  double rmse = 0, maxAbs = 0, meanA = 0, meanB = 0;
-};
-
-Difference compare(const Film& a, const Film& b) {
-  Difference d;
-  double sum = 0;
-  size_t n = 0;
-  for (int y = 0; y < a.height(); ++y)
-    for (int x = 0; x < a.width(); ++x)
-      for (int c = 0; c < 3; ++c) {
-        double va = a.pixel(Film::kBeauty, x, y)[c], vb = b.pixel(Film::kBeauty, x, y)[c];
-        sum += (va - vb) * (va - vb);
-        d.maxAbs = std::max(d.maxAbs, std::fabs(va - vb));
-        d.meanA += va;
-        d.meanB += vb;
-        ++n;
-      }
-  d.rmse = std::sqrt(sum / double(n));
-  d.meanA /= double(n);
-  d.meanB /= double(n);
-  return d;
-}
-
 TEST(BvhRender, WhittedImagesMatchEmbreeOnEveryScene) {
   auto files = sceneFiles();
   ASSERT_GE(files.size(), 20u);
@@ -109,7 +87,7 @@ TEST(BvhRender, WhittedImagesMatchEmbreeOnEveryScene) {
     s.set("integrator", "whitted");
     Film ref = render(scene, "embree", s, 96, 72);
     for (const char* accel : {"bvh", "bvh-gs"}) {
-      Difference d = compare(render(scene, accel, s, 96, 72), ref);
+      test::FilmDifference d = test::filmDifference(render(scene, accel, s, 96, 72), ref);
       EXPECT_LE(d.rmse, 1e-5) << file << " " << accel;
       EXPECT_LE(d.maxAbs, 1e-3) << file << " " << accel;
       worstRmse = std::max(worstRmse, d.rmse);
@@ -134,7 +112,8 @@ TEST(BvhRender, PathImagesMatchEmbreeInMean) {
     s.set("integrator", "path");
     s.set("spp", 4);
     s.set("seed", 7);
-    Difference d = compare(render(scene, "bvh", s, 48, 36), render(scene, "embree", s, 48, 36));
+    test::FilmDifference d =
+        test::filmDifference(render(scene, "bvh", s, 48, 36), render(scene, "embree", s, 48, 36));
     EXPECT_LE(std::fabs(d.meanA - d.meanB), 1e-3 * std::max(d.meanB, 1e-6)) << file;
     worst = std::max(worst, std::fabs(d.meanA - d.meanB) / std::max(d.meanB, 1e-6));
   }

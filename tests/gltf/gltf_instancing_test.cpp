@@ -26,6 +26,7 @@
 #include "render/renderer.h"
 #include "tests/base64.h"
 #include "tests/cli/cli_run.h"
+#include "tests/film_difference.h"
 #include "tests/temp_dir.h"
 
 namespace tray {
@@ -350,22 +351,13 @@ TEST(GltfInstancing, EmbreeAndBvhGiveTheSameImages) {
   const Scene scene = loadGltf(kScene.string());
   for (const char* integrator : {"whitted", "path"}) {
     const Film a = render(scene, "embree", integrator), b = render(scene, "bvh", integrator);
-    double sum = 0, maxAbs = 0, meanA = 0, meanB = 0;
-    size_t n = 0;
-    for (int y = 0; y < a.height(); ++y)
-      for (int x = 0; x < a.width(); ++x)
-        for (int c = 0; c < 3; ++c, ++n) {
-          const double va = a.pixel(Film::kBeauty, x, y)[c], vb = b.pixel(Film::kBeauty, x, y)[c];
-          sum += (va - vb) * (va - vb), maxAbs = std::max(maxAbs, std::fabs(va - vb));
-          meanA += va, meanB += vb;
-        }
-    meanA /= double(n), meanB /= double(n);
-    EXPECT_GT(meanA, 1e-3) << integrator;  // not black
+    const test::FilmDifference d = test::filmDifference(a, b);
+    EXPECT_GT(d.meanA, 1e-3) << integrator;  // not black
     if (std::string(integrator) == "whitted") {
-      EXPECT_LE(std::sqrt(sum / double(n)), 1e-5) << integrator;
-      EXPECT_LE(maxAbs, 1e-3) << integrator;
+      EXPECT_LE(d.rmse, 1e-5) << integrator;
+      EXPECT_LE(d.maxAbs, 1e-3) << integrator;
     } else {
-      EXPECT_LE(std::fabs(meanA - meanB), 1e-3 * meanB) << integrator;
+      EXPECT_LE(std::fabs(d.meanA - d.meanB), 1e-3 * d.meanB) << integrator;
     }
   }
 }

@@ -25,6 +25,7 @@
 #include "tests/base64.h"
 #include "tests/cli/cli_run.h"
 #include "tests/exr_read.h"
+#include "tests/film_difference.h"
 #include "tests/render_film.h"
 #include "tests/temp_dir.h"
 
@@ -150,23 +151,6 @@ Film render(const Scene& scene, const std::string& accel, const char* integrator
   return test::renderFilm(scene, chooseCamera(scene, -1), 96, 64, settings, nullptr, {}, accel);
 }
 
-struct Difference {
-  double rmse = 0, meanA = 0, meanB = 0;
-};
-Difference compare(const Film& a, const Film& b) {
-  Difference d;
-  double sum = 0;
-  size_t n = 0;
-  for (int y = 0; y < a.height(); ++y)
-    for (int x = 0; x < a.width(); ++x)
-      for (int c = 0; c < 3; ++c, ++n) {
-        const double va = a.pixel(Film::kBeauty, x, y)[c], vb = b.pixel(Film::kBeauty, x, y)[c];
-        sum += (va - vb) * (va - vb), d.meanA += va, d.meanB += vb;
-      }
-  d.rmse = std::sqrt(sum / double(n)), d.meanA /= double(n), d.meanB /= double(n);
-  return d;
-}
-
 /// The array renders as the per-instance primitives do, with either accelerator, and the two
 /// accelerators agree on the array: whitted within RMSE 2e-4 (object-space rays from the stored
 /// inverse, not Embree's own, differ in the last bits, as tests/accel/bvh_render_test.cpp's
@@ -178,7 +162,8 @@ TEST(InstanceArray, RendersAsThePerInstancePrimitives) {
     for (const char* accel : {"embree", "bvh"}) {
       const Film old = render(perInstance, accel, integrator);
       const Film array = render(arrays, accel, integrator);
-      for (const Difference& d : {compare(array, old), compare(array, bvhArray)}) {
+      for (const test::FilmDifference& d :
+           {test::filmDifference(array, old), test::filmDifference(array, bvhArray)}) {
         EXPECT_GT(d.meanA, 1e-3) << accel << " " << integrator;
         if (std::string(integrator) == "whitted")
           EXPECT_LE(d.rmse, 2e-4) << accel << " " << integrator;
