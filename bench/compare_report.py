@@ -1,7 +1,7 @@
 """What bench/mitsuba_compare.py and bench/mitsuba_heavy.py share: the report they print and
 write, failing with one line, a command's CPU seconds, and image statistics; and the log-log
 reading of error against time that bench/adaptive_report.py, bench/cycles_adaptive.py and
-bench/cornell_error_vs_time.py share. Plain Python and numpy: it runs in any of the venvs."""
+bench/error_vs_time.py share. Plain Python and numpy: it runs in any of the venvs."""
 import math
 import resource
 import subprocess

@@ -8,8 +8,8 @@ B and G channels split into separate bitmaps, alpha = roughness^2 in both), unde
 when it has a normal texture, wrapped in `twosided` (TRay shades both faces of every surface);
 full transmission as `dielectric` with the same ior; emission (factor x texture x
 KHR_materials_emissive_strength) as an `area` emitter on the mesh; TRAY_environment's
-background as a `constant` emitter; the camera with the same pose and vertical field of view,
-box filter. Textures are decoded to linear float (sRGB decoding for base colour and emission
+background as a `constant` emitter; a KHR_lights_punctual directional light as `directional`;
+the camera with the same pose and vertical field of view, box filter. Textures are decoded to linear float (sRGB decoding for base colour and emission
 done here) and passed raw, bilinear, with the sampler's wrap mode.
 
 Anything else raises ConversionError naming it, rather than rendering something else: the
@@ -260,18 +260,34 @@ def sensor(doc, world, cam, size, spp, sampler):
             "sampler": {"type": sampler, "sample_count": spp}}
 
 
+def punctual_light(doc, node, world):
+    """A KHR_lights_punctual light as a Mitsuba emitter: directional only (what the bench
+    scenes use), irradiance colour x intensity (TRay's convention, no photometric units),
+    shining along the node's -Z."""
+    lights = doc.get("extensions", {}).get("KHR_lights_punctual", {}).get("lights", [])
+    light = lights[node["extensions"]["KHR_lights_punctual"]["light"]]
+    if light.get("type") != "directional":
+        raise ConversionError(f"light '{light.get('name')}': only directional lights")
+    d = world[:3, :3] @ np.array([0.0, 0.0, -1.0])
+    value = np.array(light.get("color", [1, 1, 1]), np.float64) * light.get("intensity", 1.0)
+    return {"type": "directional", "direction": (d / np.linalg.norm(d)).tolist(),
+            "irradiance": {"type": "rgb", "value": value.tolist()}}
+
+
 def scene_dict(gltf, size, spp, max_depth, sampler="independent"):
     """The Mitsuba scene dict of a Gltf (load it with mi.load_dict under the chosen variant)."""
     doc = gltf.doc
     unknown = set(doc.get("extensionsUsed", [])) - {
         "KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_emissive_strength",
-        "TRAY_environment"}
+        "TRAY_environment", "KHR_lights_punctual"}
     if unknown:
         raise ConversionError(f"extensions {sorted(unknown)}")
     out = {"type": "scene", "integrator": {"type": "path", "max_depth": max_depth}}
     camera = None
     for n, world in placed_nodes(doc):
         node = doc["nodes"][n]
+        if "KHR_lights_punctual" in node.get("extensions", {}):
+            out[f"light{n}"] = punctual_light(doc, node, world)
         if "camera" in node and camera is None:
             camera = sensor(doc, world, doc["cameras"][node["camera"]], size, spp, sampler)
         for k, prim in enumerate(doc["meshes"][node["mesh"]]["primitives"] if "mesh" in node
