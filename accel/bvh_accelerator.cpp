@@ -219,6 +219,7 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
     const Placed pl = placed(item);
     if (pl.boxes) {  // a group of an instance array's instances: those whose box the ray enters
       bool found = false;
+      prefetchGroupMatrices(*scene_.primitives[pl.primitive].instances, pl.instance, pl.count);
       const Bvh4Ray r = prepareBvh4Ray(ray.o, ray.d);
       for (unsigned in = hitGroupBoxes(pl.boxes, kGroupBoxNodes, r, ray.tmin, tmax); in;
            in &= in - 1)
@@ -264,6 +265,7 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
     const Placed pl = placed(item);
     member = 0;
     if (pl.boxes) {
+      prefetchGroupMatrices(*scene_.primitives[pl.primitive].instances, pl.instance, pl.count);
       const Bvh4Ray r = prepareBvh4Ray(ray.o, ray.d);
       for (unsigned in = hitGroupBoxes(pl.boxes, kGroupBoxNodes, r, ray.tmin, ray.tmax); in;
            in &= in - 1) {
