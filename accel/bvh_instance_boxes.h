@@ -54,8 +54,8 @@ inline unsigned hitGroupBoxes(const InstanceBoxes4* b, int nodes, const Bvh4Ray&
 /// Requests the world-to-object matrices of instances first..first+count-1 into the cache.
 /// Called on entering a group, before its box tests: at 10^6 instances the matrices (48 MB)
 /// are mostly out of the cache, and their misses then overlap the boxes' and the tests instead
-/// of following them (requested only once a box was entered, the 10^6 render took 7% (BVH) and
-/// 9% (Embree) longer: docs/bench/instancing-arrays-time-2026-12-07b.md).
+/// of following them (requested only once a box was entered, or not at all, the 10^6 render
+/// took 1-6% (BVH) and 0-9% (Embree) longer: docs/bench/instancing-arrays-time-2026-12-07b.md).
 inline void prefetchGroupMatrices(const InstanceArray& array, uint32_t first, uint32_t count) {
   const char* from = reinterpret_cast<const char*>(array.worldToObject.data() + first);
   const char* to = reinterpret_cast<const char*>(array.worldToObject.data() + first + count);
