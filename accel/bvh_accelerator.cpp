@@ -14,6 +14,7 @@
 #include "accel/bvh_batch.h"
 #include "accel/bvh_mesh.h"
 #include "accel/bvh_object_ray.h"
+#include "accel/bvh_top_level.h"
 #include "accel/embree_only.h"
 #include "core/motion.h"
 #include "core/scene.h"
@@ -37,7 +38,7 @@ struct LastOccluder {
 thread_local LastOccluder tLastOccluder;
 
 /// Every crossing of a shape's boundary inside the ray's range, as the Embree accelerator reports
-/// them for all-hits queries (accel/embree_accelerator.cpp, shapeIntersect).
+/// them for all-hits queries (accel/embree_shape_geometry.cpp, shapeIntersect).
 void shapeCrossings(const Primitive& p, uint32_t i, const Ray& ray, std::vector<Hit>& hits) {
   Transform moved;
   const Transform* toWorld = placementAt(p, ray.time, moved);
@@ -76,69 +77,14 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
       uint32_t m = used[k];
       meshes_[m] = std::make_unique<MeshBvh>(scene.meshes[m], options.build, options.hierarchy);
     });
-    // Items (TwoLevelParts::placed): the primitives, then every instance array's instances.
-    itemsBase = uint32_t(prims.size());
-    size_t items = prims.size();
-    for (uint32_t i = 0; i < prims.size(); ++i)
-      if (prims[i].instances) {
-        arrayFirst.push_back(uint32_t(items));
-        arrayPrimitive.push_back(i);
-        arraySize.push_back(uint32_t(prims[i].instances->size()));
-        items += (prims[i].instances->size() + kArrayGroup - 1) / kArrayGroup;
-      }
-    itemCount = uint32_t(items);
-    std::vector<Bounds3> boxes(items);
-    for (size_t a = 0; a < arrayFirst.size(); ++a) {
-      const Primitive& p = prims[arrayPrimitive[a]];
-      arrayBoxes_.push_back(instanceBoxes(*p.instances, meshes_[p.mesh]->bounds(), kArrayGroup));
-      arrayBoxes.push_back(arrayBoxes_[a].data());
-      const uint32_t groups = (arraySize[a] + kArrayGroup - 1) / kArrayGroup;
-      tbb::parallel_for(uint32_t(0), groups, [&](uint32_t g) {
-        boxes[arrayFirst[a] + g] = groupBounds(placed(arrayFirst[a] + g).boxes, kGroupBoxNodes);
-      });
-      if (meshes_[p.mesh]->bounds().empty()) continue;
-      if (!options.hierarchy)
-        for (uint32_t g = 0; g < groups; ++g) flat_.push_back(arrayFirst[a] + g);
-    }
-    for (uint32_t i = 0; i < prims.size(); ++i) {
-      const Primitive& p = prims[i];
-      if (p.instances) continue;  // its instances are items of their own
-      if (p.kind == Primitive::Kind::kMesh) {
-        Bounds3 b = meshes_[p.mesh]->bounds();
-        if (!b.empty()) boxes[i] = motionBounds(p, b);  // over the shutter when it moves
-      } else {
-        Bounds3 b = motionBounds(p, p.shape->bounds());
-        if (b.empty()) continue;
-        if (!b.finite()) {
-          unbounded_.push_back(i);
-        } else {
-          boxes[i] = b;
-        }
-      }
-      if (!options.hierarchy && !boxes[i].empty()) flat_.push_back(i);
-    }
-    if (options.hierarchy) {
-      // One primitive per top leaf: entering an instance costs a transform and a ray set-up,
-      // so each is culled by its own box first.
-      BvhBuildOptions topOptions = options.build;
-      topOptions.maxLeafSize = 1;
-      Bvh top = topOptions.builder == BvhBuilder::kBinnedSah
-                    ? buildBvhBinnedSah(std::move(boxes), topOptions)
-                    : buildBvh(boxes, topOptions);
-      std::vector<Bounds3>().swap(boxes);
-      topSahCost_ = sahCost(top, options.build);
-      topBinaryNodes_ = top.nodes.size();
-      top_ = collapseToBvh4(std::move(top));
-      // One placed primitive (a single mesh, say): its own tree culls, the top tree adds nothing.
-      if (top_.primitives.size() == 1) single_ = top_.primitives[0];
-    }
+    top_ = buildTopLevel(scene, meshes_, options, *this);
     // What the batched queries read (accel/bvh_batch.h).
     TwoLevelParts::scene = &scene_;
-    top = &top_;
+    top = &top_.tree;
     meshes = &meshes_;
     alphaTested = &alphaTested_;
-    unbounded = &unbounded_;
-    single = single_;
+    unbounded = &top_.unbounded;
+    single = top_.single;
   }
 
   bool intersect(const Ray& ray, Hit& hit) const override {
@@ -221,9 +167,9 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
   }
 
   size_t memoryBytes() const override {
-    size_t bytes =
-        top_.memoryBytes() + (unbounded_.capacity() + flat_.capacity()) * sizeof(uint32_t);
-    for (const auto& b : arrayBoxes_) bytes += b.capacity() * sizeof(InstanceBoxes4);
+    size_t bytes = top_.tree.memoryBytes() +
+                   (top_.unbounded.capacity() + top_.flat.capacity()) * sizeof(uint32_t);
+    for (const auto& b : top_.arrayBoxes) bytes += b.capacity() * sizeof(InstanceBoxes4);
     for (const auto& m : meshes_)
       if (m) bytes += m->memoryBytes();
     return bytes;
@@ -240,9 +186,9 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
         q.wideNodes += m->tree().nodes.size();
       }
     if (weight > 0) q.meshSahCost /= weight;
-    q.topSahCost = topSahCost_;
-    q.nodes += topBinaryNodes_;
-    q.wideNodes += top_.nodes.size();
+    q.topSahCost = top_.sahCost;
+    q.nodes += top_.binaryNodes;
+    q.wideNodes += top_.tree.nodes.size();
     return q;
   }
 
@@ -250,18 +196,18 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
   /// Calls visit(i) for every primitive the ray may hit before tmax; stops when it returns true.
   template <bool kOrdered = true, class Visit>
   bool forEachPrimitive(const Ray& ray, const float& tmax, Visit&& visit) const {
-    for (uint32_t i : unbounded_)
+    for (uint32_t i : top_.unbounded)
       if (visit(i)) return true;
     if (!options_.hierarchy) {
-      for (uint32_t i : flat_)
+      for (uint32_t i : top_.flat)
         if (visit(i)) return true;
       return false;
     }
-    if (single_ != kNoPrimitive) return visit(single_);
-    return traverseBvh4<kOrdered>(top_, prepareBvh4Ray(ray.o, ray.d), ray.tmin, tmax,
+    if (top_.single != kNoPrimitive) return visit(top_.single);
+    return traverseBvh4<kOrdered>(top_.tree, prepareBvh4Ray(ray.o, ray.d), ray.tmin, tmax,
                                   [&](uint32_t first, uint32_t count) {
                                     for (uint32_t k = first; k < first + count; ++k)
-                                      if (visit(top_.primitives[k])) return true;
+                                      if (visit(top_.tree.primitives[k])) return true;
                                     return false;
                                   });
   }
@@ -273,6 +219,7 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
     const Placed pl = placed(item);
     if (pl.boxes) {  // a group of an instance array's instances: those whose box the ray enters
       bool found = false;
+      prefetchGroupMatrices(*scene_.primitives[pl.primitive].instances, pl.instance, pl.count);
       const Bvh4Ray r = prepareBvh4Ray(ray.o, ray.d);
       for (unsigned in = hitGroupBoxes(pl.boxes, kGroupBoxNodes, r, ray.tmin, tmax); in;
            in &= in - 1)
@@ -318,6 +265,7 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
     const Placed pl = placed(item);
     member = 0;
     if (pl.boxes) {
+      prefetchGroupMatrices(*scene_.primitives[pl.primitive].instances, pl.instance, pl.count);
       const Bvh4Ray r = prepareBvh4Ray(ray.o, ray.d);
       for (unsigned in = hitGroupBoxes(pl.boxes, kGroupBoxNodes, r, ray.tmin, ray.tmax); in;
            in &= in - 1) {
@@ -390,13 +338,7 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
   TwoLevelOptions options_;
   uint64_t id_;
   std::vector<std::unique_ptr<MeshBvh>> meshes_;  ///< by mesh index; null when not placed
-  Bvh4 top_;
-  std::vector<std::vector<InstanceBoxes4>> arrayBoxes_;  ///< per instance array, per group
-  uint32_t single_ = kNoPrimitive;  ///< the only primitive in top_, which is then skipped
-  double topSahCost_ = 0;
-  size_t topBinaryNodes_ = 0;
-  std::vector<uint32_t> unbounded_;  ///< shapes with infinite bounds, tested by every ray
-  std::vector<uint32_t> flat_;       ///< without hierarchy: every bounded primitive
+  TopLevel top_;  ///< accel/bvh_top_level.h
 };
 
 }  // namespace

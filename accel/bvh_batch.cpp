@@ -103,20 +103,13 @@ class Group {
   void splitByInstance(const TwoLevelParts::Placed& pl, RayMask m, RayMask* rays) const {
     for (uint32_t k = 0; k < kGroup; ++k) rays[k] = 0;
     if (!pl.boxes) return void(rays[0] = m);
+    prefetchGroupMatrices(*parts_.scene->primitives[pl.primitive].instances, pl.instance, pl.count);
     for (; m; m &= m - 1) {
       const int r = nextRay(m);
       const unsigned in = hitGroupBoxes(pl.boxes, TwoLevelParts::kGroupBoxNodes,
                                         bvh4Ray(box_[r].o, box_[r].invD), tmin_[r], tmax_[r]);
       for (uint32_t k = 0; k < kGroup; ++k) rays[k] |= (m & -m) & -RayMask((in >> k) & 1);
     }
-    // The entered instances' matrices, 48 MB at 10^6 instances, are read one after the other
-    // below: their cache misses overlap when all are requested first.
-    const Affine3* w = parts_.scene->primitives[pl.primitive].instances->worldToObject.data();
-    for (uint32_t k = 0; k < pl.count; ++k)
-      if (rays[k]) {
-        const char* at = reinterpret_cast<const char*>(w + pl.instance + k);
-        __builtin_prefetch(at), __builtin_prefetch(at + sizeof(Affine3) - 1);
-      }
   }
 
   RayMask intersectPrimitive(uint32_t item, RayMask m, Hit* hits) {

@@ -1,5 +1,7 @@
 #include "accel/embree_instance_array.h"
 
+#include <algorithm>
+
 namespace tray {
 namespace {
 
@@ -31,6 +33,9 @@ void arrayBounds(const RTCBoundsFunctionArguments* args) {
 /// Bit k: the world-space ray enters the box of group g's instance k within [tnear, tfar].
 template <class R>
 unsigned enteredInstances(const EmbreeArrayData& d, unsigned g, const R& ray) {
+  const uint32_t first = g * kEmbreeArrayGroup;
+  prefetchGroupMatrices(*d.array, first,
+                        std::min(kEmbreeArrayGroup, uint32_t(d.array->size()) - first));
   const float o[3] = {ray.org_x, ray.org_y, ray.org_z};
   const float inv[3] = {safeInverse(ray.dir_x), safeInverse(ray.dir_y), safeInverse(ray.dir_z)};
   return hitGroupBoxes(&d.boxes[size_t(g) * kEmbreeArrayBoxNodes], kEmbreeArrayBoxNodes,

@@ -90,7 +90,7 @@ inline Hit hitFromEmbree(const RTCHit& h, float t, const Scene& scene) {
     }
   } else {
     // User geometry: primID carries the material override + 1 (0: none), Ng the object-space
-    // normal and u, v the shape's uv (see shapeIntersect).
+    // normal and u, v the shape's uv (see accel/embree_shape_geometry.cpp, shapeIntersect).
     hit.primitive = h.geomID;
     hit.normal = {h.Ng_x, h.Ng_y, h.Ng_z};
     hit.uv = {h.u, h.v};
