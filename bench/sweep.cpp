@@ -77,6 +77,12 @@ std::vector<SweepConfig> standardSweep(const std::vector<std::string>& accels,
       p.set("noise-threshold", std::stof(t));
       add("path sobol adaptive pixel", std::string("threshold=") + t, p);
     }
+    // The neighbours' largest error deciding (--noise-decision max: unbiased, like the default).
+    p.set("noise-decision", std::string("max"));
+    for (const char* t : {"0.1", "0.05", "0.03", "0.02", "0.01"}) {
+      p.set("noise-threshold", std::stof(t));
+      add("path sobol adaptive max", std::string("threshold=") + t, p);
+    }
     // The error in radiance units (--noise-metric absolute: the rule then aims at RMSE).
     p.set("noise-decision", std::string("neighbours"));
     p.set("noise-metric", std::string("absolute"));

@@ -19,6 +19,7 @@ std::optional<SamplingPasses> samplingPassesOf(const RenderSettings& settings) {
   passes.evenError = settings.getString("noise-rule") == "even";
   passes.absoluteError = settings.getString("noise-metric") == "absolute";
   passes.pixelDecides = settings.getString("noise-decision") == "pixel";
+  passes.neighbourMax = settings.getString("noise-decision") == "max";
   return passes;
 }
 
@@ -72,7 +73,7 @@ void decideBlock(std::span<const float> error, std::span<const uint32_t> count, 
       // out low (a rare bright path not yet found) and bias the image dark (Kirk & Arvo 1991,
       // "Unbiased sampling techniques for image synthesis"; measured: the Cornell box 0.3-0.5%
       // dark, docs/adaptive-sampling.md). Its neighbours' samples are independent of its own.
-      double sum = 0;
+      double sum = 0, largest = 0;
       int n = 0;
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
@@ -80,6 +81,7 @@ void decideBlock(std::span<const float> error, std::span<const uint32_t> count, 
           if ((dx == 0 && dy == 0) || nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
           const float e = error[ny * w + nx];
           sum += std::isfinite(e) ? double(e) : kNoEstimate;
+          largest = std::max(largest, std::isfinite(e) ? double(e) : double(kNoEstimate));
           ++n;
         }
       const float limit = stoppingError(int(count[p]), passes);
@@ -91,7 +93,7 @@ void decideBlock(std::span<const float> error, std::span<const uint32_t> count, 
       }
       // No neighbours (a block one pixel wide and high): nothing unbiased to decide from, so
       // the pixel takes every sample.
-      more[p] = n == 0 || !(sum / n < limit);
+      more[p] = n == 0 || !((passes.neighbourMax ? largest : sum / n) < limit);
     }
 }
 

@@ -36,6 +36,10 @@ struct SamplingPasses {
   /// --noise-decision pixel: a pixel's own error also decides (as Cycles and Arnold): lower
   /// error where noise is local to pixels, biased dark; else its neighbours' errors alone.
   bool pixelDecides = false;
+  /// --noise-decision max: the largest of the neighbours' errors decides instead of their
+  /// mean (still unbiased: none of the pixel's own samples is read); a pixel goes on while
+  /// any neighbour is noisy.
+  bool neighbourMax = false;
 };
 
 /// The floor of relMSE's denominator (value^2 + 0.01, bench/image_error.cpp): below a value
@@ -79,7 +83,8 @@ float stoppingError(int count, const SamplingPasses& passes);
 /// less itself) is at least its stoppingError, or (threshold 0) until maxSamples. Its own
 /// error is not read: a decision from its own samples biases its mean (Kirk & Arvo 1991);
 /// its neighbours' samples are independent of them, and a noisy pixel keeps its neighbours
-/// going. A pixel with no neighbour in the block goes on to maxSamples. With pixelDecides a
+/// going (neighbourMax: the largest of their errors instead of the mean). A pixel with no
+/// neighbour in the block goes on to maxSamples. With pixelDecides a
 /// pixel also goes on while its own error, or the 3x3 mean with itself, is at least the limit
 /// (biased: docs/adaptive-sampling.md). `more` receives 1 for those that go on.
 void decideBlock(std::span<const float> error, std::span<const uint32_t> count, int w, int h,

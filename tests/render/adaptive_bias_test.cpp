@@ -28,11 +28,12 @@ struct Outcome {
 
 /// The image's mean after adaptive passes: each pixel draws from its own random stream, in
 /// steps, and each 8x8 block decides from its pixels' errors, as the pass renderer does;
-/// `pixelDecides` as --noise-decision pixel.
-Outcome simulate(bool pixelDecides, uint64_t seed) {
+/// `pixelDecides` as --noise-decision pixel, `neighbourMax` as --noise-decision max.
+Outcome simulate(bool pixelDecides, uint64_t seed, bool neighbourMax = false) {
   SamplingPasses passes;
   passes.threshold = 0.3f, passes.minSamples = 16, passes.maxSamples = 256;
   passes.pixelDecides = pixelDecides;
+  passes.neighbourMax = neighbourMax;
   const int pixels = kSide * kSide;
   std::vector<std::mt19937_64> rng;
   for (int p = 0; p < pixels; ++p) rng.emplace_back(seed * 1000003u + uint64_t(p));
@@ -101,6 +102,24 @@ TEST(AdaptiveBias, PixelDecisionDarkensNeighbourDecisionDoesNot) {
   EXPECT_LT(before, 1.0 - 6 * std::sqrt(errorBefore));
   // The fix: within 4 standard errors of the truth.
   EXPECT_NEAR(after, 1.0, 4 * std::sqrt(errorAfter));
+}
+
+// --noise-decision max reads the neighbours' largest error: still none of the pixel's own
+// samples, so its mean is as unbiased as the default's, and it spends more samples.
+TEST(AdaptiveBias, NeighbourMaxDecisionIsUnbiased) {
+  double mean = 0, variance = 0, spp = 0, defaultSpp = 0;
+  const int runs = 4;
+  for (uint64_t seed = 1; seed <= runs; ++seed) {
+    const Outcome o = simulate(false, seed, true);
+    std::printf("seed %d: neighbours' max %.4f (%.1f spp), +-%.4f\n", int(seed), o.mean,
+                o.samplesPerPixel, o.standardError);
+    mean += o.mean / runs, spp += o.samplesPerPixel / runs;
+    variance += o.standardError * o.standardError / (runs * runs);
+    defaultSpp += simulate(false, seed).samplesPerPixel / runs;
+  }
+  EXPECT_NEAR(mean, 1.0, 4 * std::sqrt(variance));
+  EXPECT_GT(spp, defaultSpp);       // the largest error is above the mean: more samples
+  EXPECT_LT(spp, 0.9 * 256);        // and still adaptive
 }
 
 }  // namespace

@@ -64,7 +64,12 @@ TEST(NoiseEstimate, SettingsGiveThePasses) {
   EXPECT_TRUE(p->absoluteError);
   EXPECT_TRUE(p->pixelDecides);
   EXPECT_TRUE(p->evenError);
+  EXPECT_FALSE(p->neighbourMax);
   EXPECT_EQ(p->minSamples, 8);
+  settings.set("noise-decision", std::string("max"));
+  p = samplingPassesOf(settings);
+  EXPECT_TRUE(p->neighbourMax);
+  EXPECT_FALSE(p->pixelDecides);
 }
 
 // The earlier look of each count in the sequence: half of the first step, then the look before.
@@ -199,6 +204,22 @@ TEST(NoiseEstimate, PixelDecisionAlsoReadsThePixelsOwnError) {
   EXPECT_EQ(b.more[5], 1);
   decideBlock(std::vector<float>{0.0f}, std::vector<uint32_t>{32}, 1, 1, b.passes, b.more);
   EXPECT_EQ(b.more[0], 0);
+}
+
+// --noise-decision max: the largest of the neighbours' errors decides. Every neighbour of the
+// noisy pixel at (3, 2) goes on, (2, 1) too (its mean, 0.134, is below the limit; its largest
+// 1.0 is not); the noisy pixel itself stops among quiet neighbours, as with the mean.
+TEST(NoiseEstimate, MaxDecisionReadsTheLargestNeighbourError) {
+  Block b(false);
+  b.passes.neighbourMax = true;
+  const int w = Block::w, h = Block::h;
+  b.decide();
+  for (int i = 0; i < w * h; ++i)
+    EXPECT_EQ(b.more[i], i == 1 * w + 3 || i == 2 * w + 2 || i == 1 * w + 2) << i;
+  b.error[5] = std::numeric_limits<float>::infinity();  // no estimate: its neighbours go on
+  b.decide();
+  EXPECT_EQ(b.more[0], 1);
+  EXPECT_EQ(b.more[5], 0);
 }
 
 }  // namespace
