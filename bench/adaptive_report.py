@@ -1,11 +1,11 @@
 #!/usr/bin/env python3
 """Uniform against noise-driven adaptive sampling at equal CPU time (issue 37), from the CSVs of
 `tray-bench sweep --threads 1 --methods "path sobol,path sobol adaptive,path sobol adaptive
-even,path sobol adaptive absolute,path sobol adaptive pixel,path sobol adaptive max"` (one per
-scene): the default rule (mse), equal error (even), the default rule on absolute error
-(--noise-metric absolute), with the pixel's own error deciding (--noise-decision pixel) and with
-the neighbours' largest error deciding (--noise-decision max) against uniform. A method missing
-from a CSV gives an empty table.
+even,path sobol adaptive absolute,path sobol adaptive pixel,path sobol adaptive max,path sobol
+adaptive wide"` (one per scene): the default rule (mse), equal error (even), the default rule on
+absolute error (--noise-metric absolute), with the pixel's own error deciding (--noise-decision
+pixel), the neighbours' largest error (max) or the RMS error of the 5x5 (wide) against
+uniform. A method missing from a CSV gives an empty table.
 
 For each adaptive run (one --noise-threshold), the uniform error at the same CPU time is read off
 the uniform runs' error-against-time line (piecewise linear in log-log, between the two uniform
@@ -35,7 +35,8 @@ def load(path):
 ADAPTIVE = (("path sobol adaptive", "mse"), ("path sobol adaptive even", "even"),
             ("path sobol adaptive absolute", "mse, --noise-metric absolute"),
             ("path sobol adaptive pixel", "mse, --noise-decision pixel (biased)"),
-            ("path sobol adaptive max", "mse, --noise-decision max"))
+            ("path sobol adaptive max", "mse, --noise-decision max"),
+            ("path sobol adaptive wide", "mse, --noise-decision wide"))
 
 
 def compare(rows, metric, method):
@@ -69,7 +70,9 @@ def chart(tables, path):
                     ("path sobol adaptive pixel", "x:",
                      "adaptive, mse, pixel decides (biased; 0.1..0.01)"),
                     ("path sobol adaptive max", "v-",
-                     "adaptive, mse, neighbours' max decides (0.1..0.01)")):
+                     "adaptive, mse, neighbours' max decides (0.1..0.01)"),
+                    ("path sobol adaptive wide", "*-",
+                     "adaptive, mse, 5x5 RMS decides (0.1..0.01)")):
                 rs = sorted((r for r in rows if r["method"] == method),
                             key=lambda r: r["cpu_seconds"])
                 ax.plot([r["cpu_seconds"] for r in rs], [r[metric] for r in rs], style,
