@@ -19,6 +19,8 @@
 //   pilot P 3x3   the pilot's a_i averaged over the 3x3 neighbourhood first (5x5: over 5x5)
 //   oracle of the 8 neighbours   pool A's a averaged over the 8 neighbours, the pixel left
 //                 out: the best a rule that decides from its neighbours (TRay's default) can do
+//   one-shot ...  every pixel takes P steps (kept), then its count in one go from the a_i of
+//                 its neighbours' P steps (3x3 or 5x5 less itself): unbiased and implementable
 //
 // Usage: adaptive_oracle SCENE [--resolution 320x240] [--seeds 128] [--spp 16]
 //            [--budgets 32,64,128,256] [--max-spp 1024] [--pilot 2] [--out bench-out]
@@ -163,6 +165,12 @@ int run(const Setup& o) {
   const std::vector<double> aPilot3 = boxAverage(aPilot, w, h, 1, true);
   const std::vector<double> aPilot5 = boxAverage(aPilot, w, h, 2, true);
   const std::vector<double> aNeighbours = boxAverage(aA, w, h, 1, false);
+  // What an implementable one-shot rule sees: every pixel's first P renders of pool B (kept in
+  // its mean), and its count from its neighbours' estimates only.
+  const std::vector<double> aKept =
+      relativeVariance(means, pixels, half, half + o.pilot, o.spp, ref);
+  const std::vector<double> aKept3 = boxAverage(aKept, w, h, 1, false);
+  const std::vector<double> aKept5 = boxAverage(aKept, w, h, 2, false);
   std::vector<double> aTrim = aA;  // the 0.1% largest held at one step
   {
     const size_t cut = std::max<size_t>(1, pixels / 1000);
@@ -195,15 +203,21 @@ int run(const Setup& o) {
       std::string name;
       const std::vector<double>* a;
       double spent;  // samples thrown away per pixel (a pilot)
+      int minSteps;  // steps every pixel takes
     };
-    const std::string pilot = "pilot " + std::to_string(o.pilot * o.spp) + " spp";
-    for (const Rule& r : {Rule{"oracle", &aA, 0}, Rule{"oracle-trim", &aTrim, 0},
-                          Rule{"oracle of the 8 neighbours", &aNeighbours, 0},
-                          Rule{pilot, &aPilot, double(o.pilot * o.spp)},
-                          Rule{pilot + " 3x3", &aPilot3, double(o.pilot * o.spp)},
-                          Rule{pilot + " 5x5", &aPilot5, double(o.pilot * o.spp)}}) {
-      if (budget - r.spent < o.spp) continue;
-      const std::vector<double> n = oracleAllocation(*r.a, budget - r.spent, o.spp, cap);
+    const double pilotSpp = o.pilot * o.spp;
+    const std::string pilot = "pilot " + std::to_string(int(pilotSpp)) + " spp";
+    const std::string oneShot =
+        "one-shot from the neighbours' first " + std::to_string(int(pilotSpp)) + " spp, ";
+    for (const Rule& r :
+         {Rule{"oracle", &aA, 0, 1}, Rule{"oracle-trim", &aTrim, 0, 1},
+          Rule{"oracle of the 8 neighbours", &aNeighbours, 0, 1},
+          Rule{pilot, &aPilot, pilotSpp, 1}, Rule{pilot + " 3x3", &aPilot3, pilotSpp, 1},
+          Rule{pilot + " 5x5", &aPilot5, pilotSpp, 1}, Rule{oneShot + "3x3", &aKept3, 0, o.pilot},
+          Rule{oneShot + "5x5", &aKept5, 0, o.pilot}}) {
+      if (budget - r.spent < r.minSteps * o.spp) continue;
+      const std::vector<double> n =
+          oracleAllocation(*r.a, budget - r.spent, r.minSteps * o.spp, cap);
       const std::vector<int> steps = wholeSteps(n, o.spp, stepsB);
       std::vector<double> kept(pixels);
       double spp = 0;

@@ -39,15 +39,15 @@ ADAPTIVE = (("path sobol adaptive", "mse"), ("path sobol adaptive even", "even")
             ("path sobol adaptive wide", "mse, --noise-decision wide"))
 
 
-def compare(rows, metric, method):
-    uniform = [(r["cpu_seconds"], r[metric]) for r in rows
+def compare(rows, metric, method, cost="cpu_seconds"):
+    uniform = [(r[cost], r[metric]) for r in rows
                if r["method"] == "path sobol" and r["spp"] >= 16]
     out = []
     for r in rows:
         if r["method"] != method:
             continue
-        u = loglog_crossing(uniform, r["cpu_seconds"])
-        out.append((r["setting"], r["cpu_seconds"], r[metric], u, u / r[metric] if u else None,
+        u = loglog_crossing(uniform, r[cost])
+        out.append((r["setting"], r[cost], r[metric], u, u / r[metric] if u else None,
                     r["bias"]))
     return out
 
@@ -92,6 +92,9 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("csv", nargs="+")
     ap.add_argument("--chart", help="write the relMSE-against-time chart here")
+    ap.add_argument("--cost", choices=("cpu_seconds", "rays"), default="cpu_seconds",
+                    help="equal cost in CPU seconds (default) or in rays traced (the work, "
+                    "without the passes' overhead; steady when other jobs share the host)")
     a = ap.parse_args()
     tables = []
     for path in a.csv:
@@ -100,15 +103,15 @@ def main():
         tables.append((scene, rows))
         for metric in ("relmse_trimmed", "relmse", "rmse"):
             for method, rule in ADAPTIVE:
-                print(f"\n{scene}, {metric}, rule {rule}: adaptive against uniform at equal CPU "
-                      "time\n")
-                print("| threshold | CPU s | adaptive | uniform at that time | uniform / adaptive "
-                      "| mean bias |")
+                print(f"\n{scene}, {metric}, rule {rule}: adaptive against uniform at equal "
+                      f"{a.cost}\n")
+                print(f"| threshold | {a.cost} | adaptive | uniform at that cost | uniform / "
+                      "adaptive | mean bias |")
                 print("|---|---|---|---|---|---|")
-                for setting, t, e, u, ratio, bias in compare(rows, metric, method):
+                for setting, t, e, u, ratio, bias in compare(rows, metric, method, a.cost):
                     us = f"{u:.3e}" if u else "outside the uniform runs"
                     rs = f"{ratio:.2f}" if ratio else "-"
-                    print(f"| {setting.split('=')[1]} | {t:.2f} | {e:.3e} | {us} | {rs} "
+                    print(f"| {setting.split('=')[1]} | {t:.3g} | {e:.3e} | {us} | {rs} "
                           f"| {bias:+.2e} |")
     if a.chart:
         chart(tables, a.chart)
