@@ -21,6 +21,8 @@
 //                 out: the best a rule that decides from its neighbours (TRay's default) can do
 //   one-shot ...  every pixel takes P steps (kept), then its count in one go from the a_i of
 //                 its neighbours' P steps (3x3 or 5x5 less itself): unbiased and implementable
+// and then TRay's own threshold rules (--noise-decision neighbours, wide, pixel) replayed on
+// pool B with one render as one sample (printReplays), against uniform at equal samples.
 //
 // Usage: adaptive_oracle SCENE [--resolution 320x240] [--seeds 128] [--spp 16]
 //            [--budgets 32,64,128,256] [--max-spp 1024] [--pilot 2] [--out bench-out]
@@ -43,6 +45,7 @@
 #include "io/image_output.h"
 #include "render/prepared_scene.h"
 #include "render/render_setup.h"
+#include "render/noise_estimate.h"
 #include "render/renderer.h"
 
 namespace fs = std::filesystem;
@@ -118,46 +121,120 @@ std::vector<double> boxAverage(const std::vector<double>& a, int w, int h, int r
   return out;
 }
 
-int run(const Setup& o) {
-  LoadOptions load;
-  load.allowAnyPath = true;  // the benchmark scenes take their assets from ../shared
-  Scene scene = loadGltf(o.scene, load);
-  scene.sourcePath = o.scene;
-  const CameraDesc camera = chooseCamera(scene, -1);
-  const ImageSize size = resolveImageSize(o.resolution, camera);
-  const PreparedScene prepared(scene, camera, size, "embree");
-  const int w = size.width, h = size.height;
+/// TRay's own block decisions (render/noise_estimate.h: its steps, error estimate and
+/// decideBlock over 8x8 blocks) replayed on `available` renders from `first`, one render
+/// counting as one sample: each pixel's number of renders when every block has stopped.
+std::vector<int> replay(const std::vector<float>& means, int first, int available, int w, int h,
+                        SamplingPasses passes) {
   const size_t pixels = size_t(w) * h;
-  fs::create_directories(o.out);
-  const std::string stem = fs::path(o.scene).stem().string();
-  std::string refPath = o.reference.empty() ? o.out + "/reference-" + stem + "-path-" +
-                                                  std::to_string(w) + "x" + std::to_string(h) +
-                                                  ".exr"
-                                            : o.reference;
-  if (!fs::exists(refPath)) {
-    std::fprintf(stderr, "adaptive_oracle: rendering the reference to %s\n", refPath.c_str());
-    ImageOutputOptions io;
-    io.halfFloat = false;
-    writeImage(renderWith(prepared, size, referenceSettings("path", o.referenceSpp), o.threads),
-               refPath, io);
+  passes.maxSamples = available;
+  std::vector<int> count(pixels, 0);
+  std::vector<uint8_t> pending(pixels, 1);
+  auto sums = [&](size_t p, int n) {  // the pixel's sums over its first n renders
+    PixelSums s;
+    for (int j = first; j < first + n; ++j)
+      for (int c = 0; c < 3; ++c) s.rgb[c] += means[(size_t(j) * pixels + p) * 3 + c];
+    s.weight = n;
+    return s;
+  };
+  for (bool any = true; any;) {
+    for (size_t p = 0; p < pixels; ++p)
+      if (pending[p]) count[p] += nextStep(count[p], passes);
+    any = false;
+    for (int by = 0; by < h; by += kNoiseBlock)
+      for (int bx = 0; bx < w; bx += kNoiseBlock) {
+        const int bw = std::min(kNoiseBlock, w - bx), bh = std::min(kNoiseBlock, h - by);
+        std::vector<float> error;
+        std::vector<uint32_t> n;
+        std::vector<uint8_t> more(size_t(bw) * bh);
+        for (int y = by; y < by + bh; ++y)
+          for (int x = bx; x < bx + bw; ++x) {
+            const size_t p = size_t(y) * w + x;
+            const int m = earlierCount(count[p], passes);
+            error.push_back(pixelError(sums(p, count[p]), sums(p, m), count[p], m,
+                                       passes.absoluteError));
+            n.push_back(uint32_t(count[p]));
+          }
+        decideBlock(error, n, bw, bh, passes, more);
+        for (int i = 0; i < bw * bh; ++i) {
+          pending[size_t(by + i / bw) * w + bx + i % bw] = more[i];
+          any = any || more[i];
+        }
+      }
   }
-  const Film ref = readReference(refPath);
-  if (ref.width() != w || ref.height() != h) throw Error(refPath + ": not the render's size");
+  return count;
+}
 
+/// Uniform sampling's trimmed relMSE at `spp` (log-log between the whole-render counts in
+/// `uniform`: pairs of spp and error, increasing).
+double uniformAt(const std::vector<std::pair<double, double>>& uniform, double spp) {
+  for (size_t i = 1; i < uniform.size(); ++i)
+    if (spp <= uniform[i].first || i + 1 == uniform.size()) {
+      const auto [x0, y0] = uniform[i - 1];
+      const auto [x1, y1] = uniform[i];
+      const double t = std::log(spp / x0) / std::log(x1 / x0);
+      return std::exp(std::log(y0) + t * std::log(y1 / y0));
+    }
+  return 0;
+}
+
+/// The replayed threshold rules against uniform at equal samples (trimmed relMSE), with their
+/// image means against uniform's at 64 renders.
+void printReplays(const std::vector<float>& means, int first, int available, int spp,
+                  const Film& ref) {
+  const int w = ref.width(), h = ref.height();
+  const size_t pixels = size_t(w) * h;
+  std::vector<std::pair<double, double>> uniform;
+  for (int k : {2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64})
+    if (k <= available)
+      uniform.emplace_back(double(k) * spp,
+                           compareBeauty(imageOf(means, std::vector<int>(pixels, k), first, w, h),
+                                         ref).relMseTrimmed);
+  std::printf("\nTRay's threshold rules replayed (a step of one render = %d spp, --min-spp %d):"
+              "\n\n| decision | threshold | mean spp | trimmed relMSE | uniform at that spp | "
+              "gain | bias |\n|---|---|---|---|---|---|---|\n",
+              spp, 2 * spp);
+  using D = SamplingPasses::Decision;
+  const std::pair<const char*, D> decisions[] = {
+      {"neighbours", D::kNeighbours}, {"wide", D::kWide}, {"pixel (biased)", D::kPixel}};
+  for (const auto& [name, decision] : decisions)
+    for (float t : {0.1f, 0.05f, 0.03f, 0.02f, 0.01f}) {
+      SamplingPasses passes;
+      passes.threshold = t, passes.minSamples = 2, passes.decision = decision;
+      const std::vector<int> steps = replay(means, first, available, w, h, passes);
+      double mean = 0;
+      for (int k : steps) mean += double(k) * spp / double(pixels);
+      const ImageError e = compareBeauty(imageOf(means, steps, first, w, h), ref);
+      const double u = uniformAt(uniform, mean);
+      std::printf("| %s | %.2f | %.1f | %.3e | %.3e | %.3f | %+.2e |\n", name, t, mean,
+                  e.relMseTrimmed, u, u / e.relMseTrimmed, e.bias);
+    }
+}
+
+/// `o.seeds` renders of `o.spp` samples, seeds 1000 on (neither the sweep's 0 nor the
+/// reference's): render-major, RGB per pixel.
+std::vector<float> renderSeeds(const PreparedScene& prepared, ImageSize size, const Setup& o) {
+  const int w = size.width;
+  const size_t pixels = size_t(w) * size.height;
   RenderSettings s;
   s.set("integrator", "path"), s.set("sampler", "sobol"), s.set("pixel-sampler", "sequence");
   s.set("spp", o.spp);
   std::vector<float> means(size_t(o.seeds) * pixels * 3);
-  const double cpu0 = cpuSeconds();
   for (int j = 0; j < o.seeds; ++j) {
-    s.set("seed", 1000 + j);  // neither the sweep's (0) nor the reference's
+    s.set("seed", 1000 + j);
     const Film f = renderWith(prepared, size, s, o.threads);
     for (size_t p = 0; p < pixels; ++p)
       for (int c = 0; c < 3; ++c)
         means[(size_t(j) * pixels + p) * 3 + c] =
             f.pixel(Film::kBeauty, int(p % w), int(p / w))[c];
   }
-  const double cpu = cpuSeconds() - cpu0;
+  return means;
+}
+
+/// The allocations of the header comment against uniform at each budget, as a table.
+void printAllocations(const std::vector<float>& means, const Setup& o, const Film& ref) {
+  const int w = ref.width(), h = ref.height();
+  const size_t pixels = size_t(w) * h;
   const int half = o.seeds / 2, poolB = half, stepsB = o.seeds - half;
   const std::vector<double> aA = relativeVariance(means, pixels, 0, half, o.spp, ref);
   const std::vector<double> aB = relativeVariance(means, pixels, half, o.seeds, o.spp, ref);
@@ -180,9 +257,6 @@ int run(const Setup& o) {
     for (double& v : aTrim)
       if (v >= limit) v = 0;
   }
-  std::printf("%s, %dx%d: %d renders of %d spp (%.1f CPU s each); pool A (variances) renders "
-              "0..%d, pool B (samples) %d..%d\n",
-              stem.c_str(), w, h, o.seeds, o.spp, cpu / o.seeds, half - 1, half, o.seeds - 1);
   std::printf("unbounded gain mean(a)/mean(sqrt a)^2: pool A %.3f, pool B %.3f\n\n",
               unboundedGain(aA), unboundedGain(aB));
   std::printf("| budget spp | allocation | mean spp | expected relMSE gain (pool B's a) | "
@@ -228,6 +302,41 @@ int run(const Setup& o) {
                   u.relMse / e.relMse, e.relMseTrimmed, u.relMseTrimmed / e.relMseTrimmed);
     }
   }
+}
+
+int run(const Setup& o) {
+  LoadOptions load;
+  load.allowAnyPath = true;  // the benchmark scenes take their assets from ../shared
+  Scene scene = loadGltf(o.scene, load);
+  scene.sourcePath = o.scene;
+  const CameraDesc camera = chooseCamera(scene, -1);
+  const ImageSize size = resolveImageSize(o.resolution, camera);
+  const PreparedScene prepared(scene, camera, size, "embree");
+  const int w = size.width, h = size.height;
+  fs::create_directories(o.out);
+  const std::string stem = fs::path(o.scene).stem().string();
+  std::string refPath = o.reference.empty() ? o.out + "/reference-" + stem + "-path-" +
+                                                  std::to_string(w) + "x" + std::to_string(h) +
+                                                  ".exr"
+                                            : o.reference;
+  if (!fs::exists(refPath)) {
+    std::fprintf(stderr, "adaptive_oracle: rendering the reference to %s\n", refPath.c_str());
+    ImageOutputOptions io;
+    io.halfFloat = false;
+    writeImage(renderWith(prepared, size, referenceSettings("path", o.referenceSpp), o.threads),
+               refPath, io);
+  }
+  const Film ref = readReference(refPath);
+  if (ref.width() != w || ref.height() != h) throw Error(refPath + ": not the render's size");
+
+  const double cpu0 = cpuSeconds();
+  const std::vector<float> means = renderSeeds(prepared, size, o);
+  std::printf("%s, %dx%d: %d renders of %d spp (%.1f CPU s each); pool A (variances) renders "
+              "0..%d, pool B (samples) %d..%d\n",
+              stem.c_str(), w, h, o.seeds, o.spp, (cpuSeconds() - cpu0) / o.seeds,
+              o.seeds / 2 - 1, o.seeds / 2, o.seeds - 1);
+  printAllocations(means, o, ref);
+  printReplays(means, o.seeds / 2, o.seeds - o.seeds / 2, o.spp, ref);
   return 0;
 }
 
