@@ -1,9 +1,11 @@
 #!/usr/bin/env python3
 """Uniform against noise-driven adaptive sampling at equal CPU time (issue 37), from the CSVs of
 `tray-bench sweep --threads 1 --methods "path sobol,path sobol adaptive,path sobol adaptive
-even,path sobol adaptive absolute,path sobol adaptive pixel"` (one per scene): the default rule
-(mse), equal error (even), the default rule on absolute error (--noise-metric absolute) and with
-the pixel's own error deciding (--noise-decision pixel) against uniform.
+even,path sobol adaptive absolute,path sobol adaptive pixel,path sobol adaptive max,path sobol
+adaptive wide"` (one per scene): the default rule (mse), equal error (even), the default rule on
+absolute error (--noise-metric absolute), with the pixel's own error deciding (--noise-decision
+pixel), the neighbours' largest error (max) or the RMS error of the 5x5 (wide) against
+uniform. A method missing from a CSV gives an empty table.
 
 For each adaptive run (one --noise-threshold), the uniform error at the same CPU time is read off
 the uniform runs' error-against-time line (piecewise linear in log-log, between the two uniform
@@ -32,18 +34,20 @@ def load(path):
 
 ADAPTIVE = (("path sobol adaptive", "mse"), ("path sobol adaptive even", "even"),
             ("path sobol adaptive absolute", "mse, --noise-metric absolute"),
-            ("path sobol adaptive pixel", "mse, --noise-decision pixel (biased)"))
+            ("path sobol adaptive pixel", "mse, --noise-decision pixel (biased)"),
+            ("path sobol adaptive max", "mse, --noise-decision max"),
+            ("path sobol adaptive wide", "mse, --noise-decision wide"))
 
 
-def compare(rows, metric, method):
-    uniform = [(r["cpu_seconds"], r[metric]) for r in rows
+def compare(rows, metric, method, cost="cpu_seconds"):
+    uniform = [(r[cost], r[metric]) for r in rows
                if r["method"] == "path sobol" and r["spp"] >= 16]
     out = []
     for r in rows:
         if r["method"] != method:
             continue
-        u = loglog_crossing(uniform, r["cpu_seconds"])
-        out.append((r["setting"], r["cpu_seconds"], r[metric], u, u / r[metric] if u else None,
+        u = loglog_crossing(uniform, r[cost])
+        out.append((r["setting"], r[cost], r[metric], u, u / r[metric] if u else None,
                     r["bias"]))
     return out
 
@@ -64,7 +68,11 @@ def chart(tables, path):
                     ("path sobol adaptive absolute", "d-.",
                      "adaptive, mse, absolute error (0.02..0.003)"),
                     ("path sobol adaptive pixel", "x:",
-                     "adaptive, mse, pixel decides (biased; 0.1..0.01)")):
+                     "adaptive, mse, pixel decides (biased; 0.1..0.01)"),
+                    ("path sobol adaptive max", "v-",
+                     "adaptive, mse, neighbours' max decides (0.1..0.01)"),
+                    ("path sobol adaptive wide", "*-",
+                     "adaptive, mse, 5x5 RMS decides (0.1..0.01)")):
                 rs = sorted((r for r in rows if r["method"] == method),
                             key=lambda r: r["cpu_seconds"])
                 ax.plot([r["cpu_seconds"] for r in rs], [r[metric] for r in rs], style,
@@ -84,6 +92,9 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("csv", nargs="+")
     ap.add_argument("--chart", help="write the relMSE-against-time chart here")
+    ap.add_argument("--cost", choices=("cpu_seconds", "rays"), default="cpu_seconds",
+                    help="equal cost in CPU seconds (default) or in rays traced (the work, "
+                    "without the passes' overhead; steady when other jobs share the host)")
     a = ap.parse_args()
     tables = []
     for path in a.csv:
@@ -92,15 +103,15 @@ def main():
         tables.append((scene, rows))
         for metric in ("relmse_trimmed", "relmse", "rmse"):
             for method, rule in ADAPTIVE:
-                print(f"\n{scene}, {metric}, rule {rule}: adaptive against uniform at equal CPU "
-                      "time\n")
-                print("| threshold | CPU s | adaptive | uniform at that time | uniform / adaptive "
-                      "| mean bias |")
+                print(f"\n{scene}, {metric}, rule {rule}: adaptive against uniform at equal "
+                      f"{a.cost}\n")
+                print(f"| threshold | {a.cost} | adaptive | uniform at that cost | uniform / "
+                      "adaptive | mean bias |")
                 print("|---|---|---|---|---|---|")
-                for setting, t, e, u, ratio, bias in compare(rows, metric, method):
+                for setting, t, e, u, ratio, bias in compare(rows, metric, method, a.cost):
                     us = f"{u:.3e}" if u else "outside the uniform runs"
                     rs = f"{ratio:.2f}" if ratio else "-"
-                    print(f"| {setting.split('=')[1]} | {t:.2f} | {e:.3e} | {us} | {rs} "
+                    print(f"| {setting.split('=')[1]} | {t:.3g} | {e:.3e} | {us} | {rs} "
                           f"| {bias:+.2e} |")
     if a.chart:
         chart(tables, a.chart)

@@ -77,6 +77,15 @@ std::vector<SweepConfig> standardSweep(const std::vector<std::string>& accels,
       p.set("noise-threshold", std::stof(t));
       add("path sobol adaptive pixel", std::string("threshold=") + t, p);
     }
+    // Other unbiased decisions: the neighbours' largest error (--noise-decision max), the RMS
+    // error of the 24 others of the 5x5 (wide).
+    for (const char* decision : {"max", "wide"}) {
+      p.set("noise-decision", std::string(decision));
+      for (const char* t : {"0.1", "0.05", "0.03", "0.02", "0.01"}) {
+        p.set("noise-threshold", std::stof(t));
+        add(std::string("path sobol adaptive ") + decision, std::string("threshold=") + t, p);
+      }
+    }
     // The error in radiance units (--noise-metric absolute: the rule then aims at RMSE).
     p.set("noise-decision", std::string("neighbours"));
     p.set("noise-metric", std::string("absolute"));

@@ -92,7 +92,9 @@ int sweep(const std::string& scenePath, const std::string& resolution, const std
           const std::string& referencePath, int referenceSpp, int maxSpp,
           const std::string& accelList, const std::string& threadList, const std::string& denoiser,
           const std::string& methodList) {
-  Scene scene = loadGltf(scenePath);
+  LoadOptions load;
+  load.allowAnyPath = true;  // scenes/bench/ take their assets from ../shared
+  Scene scene = loadGltf(scenePath, load);
   scene.sourcePath = scenePath;
   CameraDesc cd = chooseCamera(scene, -1);
   ImageSize size = resolveImageSize(resolution, cd);

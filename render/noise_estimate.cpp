@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 namespace tray {
 namespace {
@@ -18,7 +19,12 @@ std::optional<SamplingPasses> samplingPassesOf(const RenderSettings& settings) {
   passes.minSamples = int(settings.getInt("min-spp"));
   passes.evenError = settings.getString("noise-rule") == "even";
   passes.absoluteError = settings.getString("noise-metric") == "absolute";
-  passes.pixelDecides = settings.getString("noise-decision") == "pixel";
+  const std::string decision = settings.getString("noise-decision");
+  using D = SamplingPasses::Decision;
+  passes.decision = decision == "pixel" ? D::kPixel
+                    : decision == "max" ? D::kMax
+                    : decision == "wide" ? D::kWide
+                                         : D::kNeighbours;
   return passes;
 }
 
@@ -72,18 +78,21 @@ void decideBlock(std::span<const float> error, std::span<const uint32_t> count, 
       // out low (a rare bright path not yet found) and bias the image dark (Kirk & Arvo 1991,
       // "Unbiased sampling techniques for image synthesis"; measured: the Cornell box 0.3-0.5%
       // dark, docs/adaptive-sampling.md). Its neighbours' samples are independent of its own.
-      double sum = 0;
+      using D = SamplingPasses::Decision;
+      const int radius = passes.decision == D::kWide ? 2 : 1;
+      double sum = 0, squares = 0, largest = 0;
       int n = 0;
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
+      for (int dy = -radius; dy <= radius; ++dy)
+        for (int dx = -radius; dx <= radius; ++dx) {
           const int nx = x + dx, ny = y + dy;
           if ((dx == 0 && dy == 0) || nx < 0 || ny < 0 || nx >= w || ny >= h) continue;
           const float e = error[ny * w + nx];
-          sum += std::isfinite(e) ? double(e) : kNoEstimate;
+          const double v = std::isfinite(e) ? double(e) : double(kNoEstimate);
+          sum += v, squares += v * v, largest = std::max(largest, v);
           ++n;
         }
       const float limit = stoppingError(int(count[p]), passes);
-      if (passes.pixelDecides) {
+      if (passes.decision == D::kPixel) {
         // Cycles' and Arnold's way: the pixel's own error, and the 3x3 mean with itself.
         const float own = std::isfinite(error[p]) ? error[p] : kNoEstimate;
         more[p] = !(own < limit) || !((sum + own) / (n + 1) < limit);
@@ -91,7 +100,10 @@ void decideBlock(std::span<const float> error, std::span<const uint32_t> count, 
       }
       // No neighbours (a block one pixel wide and high): nothing unbiased to decide from, so
       // the pixel takes every sample.
-      more[p] = n == 0 || !(sum / n < limit);
+      const double neighbours = passes.decision == D::kMax    ? largest
+                                : passes.decision == D::kWide ? std::sqrt(squares / n)
+                                                              : sum / n;
+      more[p] = n == 0 || !(neighbours < limit);
     }
 }
 

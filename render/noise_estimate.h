@@ -33,9 +33,14 @@ struct SamplingPasses {
   /// --noise-metric absolute: the error in radiance units (what RMSE measures, the
   /// allocation that minimises it under `mse`); else relative to the pixel's value (relMSE).
   bool absoluteError = false;
-  /// --noise-decision pixel: a pixel's own error also decides (as Cycles and Arnold): lower
-  /// error where noise is local to pixels, biased dark; else its neighbours' errors alone.
-  bool pixelDecides = false;
+  /// --noise-decision: what a pixel's stop is decided from (decideBlock).
+  enum class Decision {
+    kNeighbours,  ///< neighbours: the mean error of its 8 neighbours (unbiased)
+    kMax,         ///< max: the largest of their errors (unbiased; goes on near any noise)
+    kWide,        ///< wide: the RMS error of the 24 others of its 5x5 (unbiased; steadier)
+    kPixel,       ///< pixel: its own error too, as Cycles and Arnold (biased dark)
+  };
+  Decision decision = Decision::kNeighbours;
 };
 
 /// The floor of relMSE's denominator (value^2 + 0.01, bench/image_error.cpp): below a value
@@ -79,9 +84,12 @@ float stoppingError(int count, const SamplingPasses& passes);
 /// less itself) is at least its stoppingError, or (threshold 0) until maxSamples. Its own
 /// error is not read: a decision from its own samples biases its mean (Kirk & Arvo 1991);
 /// its neighbours' samples are independent of them, and a noisy pixel keeps its neighbours
-/// going. A pixel with no neighbour in the block goes on to maxSamples. With pixelDecides a
-/// pixel also goes on while its own error, or the 3x3 mean with itself, is at least the limit
-/// (biased: docs/adaptive-sampling.md). `more` receives 1 for those that go on.
+/// going. Decision::kMax reads the largest of the 8 errors instead of their mean, kWide the
+/// RMS of the 24 other errors of the 5x5 neighbourhood (more samples behind each estimate, and
+/// a rare bright path weighs as its squared error does in the variance). A pixel with no
+/// neighbour in the block goes on to maxSamples. With kPixel a pixel also goes on while its
+/// own error, or the 3x3 mean with itself, is at least the limit (biased:
+/// docs/adaptive-sampling.md). `more` receives 1 for those that go on.
 void decideBlock(std::span<const float> error, std::span<const uint32_t> count, int w, int h,
                  const SamplingPasses& passes, std::span<uint8_t> more);
 

@@ -28,11 +28,11 @@ struct Outcome {
 
 /// The image's mean after adaptive passes: each pixel draws from its own random stream, in
 /// steps, and each 8x8 block decides from its pixels' errors, as the pass renderer does;
-/// `pixelDecides` as --noise-decision pixel.
-Outcome simulate(bool pixelDecides, uint64_t seed) {
+/// `decision` as --noise-decision.
+Outcome simulate(SamplingPasses::Decision decision, uint64_t seed) {
   SamplingPasses passes;
   passes.threshold = 0.3f, passes.minSamples = 16, passes.maxSamples = 256;
-  passes.pixelDecides = pixelDecides;
+  passes.decision = decision;
   const int pixels = kSide * kSide;
   std::vector<std::mt19937_64> rng;
   for (int p = 0; p < pixels; ++p) rng.emplace_back(seed * 1000003u + uint64_t(p));
@@ -86,8 +86,8 @@ TEST(AdaptiveBias, PixelDecisionDarkensNeighbourDecisionDoesNot) {
   double before = 0, after = 0, errorBefore = 0, errorAfter = 0;
   const int runs = 4;
   for (uint64_t seed = 1; seed <= runs; ++seed) {
-    const Outcome old = simulate(true, seed);
-    const Outcome now = simulate(false, seed);
+    const Outcome old = simulate(SamplingPasses::Decision::kPixel, seed);
+    const Outcome now = simulate(SamplingPasses::Decision::kNeighbours, seed);
     std::printf("seed %d: own error mean %.4f (%.1f spp), neighbours %.4f (%.1f spp), +-%.4f\n",
                 int(seed), old.mean, old.samplesPerPixel, now.mean, now.samplesPerPixel,
                 now.standardError);
@@ -101,6 +101,32 @@ TEST(AdaptiveBias, PixelDecisionDarkensNeighbourDecisionDoesNot) {
   EXPECT_LT(before, 1.0 - 6 * std::sqrt(errorBefore));
   // The fix: within 4 standard errors of the truth.
   EXPECT_NEAR(after, 1.0, 4 * std::sqrt(errorAfter));
+}
+
+// The other unbiased decisions read only neighbours' errors too: --noise-decision max (their
+// largest: more samples than the default) and wide (the RMS over the 24 others of the 5x5).
+// Their means are as unbiased as the default's.
+TEST(AdaptiveBias, MaxAndWideDecisionsAreUnbiased) {
+  using D = SamplingPasses::Decision;
+  const int runs = 4;
+  double defaultSpp = 0;
+  for (uint64_t seed = 1; seed <= runs; ++seed)
+    defaultSpp += simulate(D::kNeighbours, seed).samplesPerPixel / runs;
+  for (D decision : {D::kMax, D::kWide}) {
+    double mean = 0, variance = 0, spp = 0;
+    for (uint64_t seed = 1; seed <= runs; ++seed) {
+      const Outcome o = simulate(decision, seed);
+      std::printf("%s, seed %d: %.4f (%.1f spp), +-%.4f\n",
+                  decision == D::kMax ? "max" : "wide", int(seed), o.mean, o.samplesPerPixel,
+                  o.standardError);
+      mean += o.mean / runs, spp += o.samplesPerPixel / runs;
+      variance += o.standardError * o.standardError / (runs * runs);
+    }
+    EXPECT_NEAR(mean, 1.0, 4 * std::sqrt(variance));
+    EXPECT_LT(spp, 0.9 * 256);  // still adaptive
+    // The largest error is above the mean, and so is the RMS: more samples than the default.
+    EXPECT_GT(spp, defaultSpp);
+  }
 }
 
 }  // namespace

@@ -54,7 +54,7 @@ TEST(NoiseEstimate, SettingsGiveThePasses) {
   EXPECT_EQ(p->minSamples, 16);
   EXPECT_FALSE(p->evenError);
   EXPECT_FALSE(p->absoluteError);
-  EXPECT_FALSE(p->pixelDecides);
+  EXPECT_EQ(p->decision, SamplingPasses::Decision::kNeighbours);
   settings.set("noise-metric", std::string("absolute"));
   settings.set("noise-decision", std::string("pixel"));
   settings.set("noise-rule", std::string("even"));
@@ -62,9 +62,13 @@ TEST(NoiseEstimate, SettingsGiveThePasses) {
   p = samplingPassesOf(settings);
   ASSERT_TRUE(p.has_value());
   EXPECT_TRUE(p->absoluteError);
-  EXPECT_TRUE(p->pixelDecides);
+  EXPECT_EQ(p->decision, SamplingPasses::Decision::kPixel);
   EXPECT_TRUE(p->evenError);
   EXPECT_EQ(p->minSamples, 8);
+  settings.set("noise-decision", std::string("max"));
+  EXPECT_EQ(samplingPassesOf(settings)->decision, SamplingPasses::Decision::kMax);
+  settings.set("noise-decision", std::string("wide"));
+  EXPECT_EQ(samplingPassesOf(settings)->decision, SamplingPasses::Decision::kWide);
 }
 
 // The earlier look of each count in the sequence: half of the first step, then the look before.
@@ -131,9 +135,9 @@ struct Block {
   std::vector<uint32_t> count = std::vector<uint32_t>(w * h, 32);
   std::vector<uint8_t> more = std::vector<uint8_t>(w * h);
 
-  explicit Block(bool pixelDecides) {
+  explicit Block(SamplingPasses::Decision decision) {
     passes.threshold = 0.1f, passes.minSamples = 16, passes.maxSamples = 256;
-    passes.pixelDecides = pixelDecides;
+    passes.decision = decision;
     error[2 * w + 3] = 1.0f;
   }
   /// decideBlock over the block's errors (or `errors`) and counts, into `more`.
@@ -149,7 +153,7 @@ struct Block {
 // infinite) keeps a pixel going; a pixel with no neighbour goes on to the maximum; threshold
 // 0: only the maximum stops.
 TEST(NoiseEstimate, ABlockDecidesFromEachPixelsNeighbours) {
-  Block b(false);
+  Block b(SamplingPasses::Decision::kNeighbours);
   const int w = Block::w, h = Block::h;
   b.decide();
   for (int i = 0; i < w * h; ++i) EXPECT_EQ(b.more[i], i == 1 * w + 3 || i == 2 * w + 2) << i;
@@ -185,7 +189,7 @@ TEST(NoiseEstimate, ABlockDecidesFromEachPixelsNeighbours) {
 // passes the limit ((3, 1) and (2, 2): (0.05 + 1) / 6 = 0.175; (2, 1): 1.08 / 9 = 0.12, no);
 // a quiet pixel amid noisy ones goes on; a pixel with no estimate goes on.
 TEST(NoiseEstimate, PixelDecisionAlsoReadsThePixelsOwnError) {
-  Block b(true);
+  Block b(SamplingPasses::Decision::kPixel);
   const int w = Block::w, h = Block::h;
   b.decide();
   for (int i = 0; i < w * h; ++i)
@@ -199,6 +203,32 @@ TEST(NoiseEstimate, PixelDecisionAlsoReadsThePixelsOwnError) {
   EXPECT_EQ(b.more[5], 1);
   decideBlock(std::vector<float>{0.0f}, std::vector<uint32_t>{32}, 1, 1, b.passes, b.more);
   EXPECT_EQ(b.more[0], 0);
+}
+
+// --noise-decision max: the largest of the neighbours' errors decides. Every neighbour of the
+// noisy pixel at (3, 2) goes on, (2, 1) too (its mean, 0.134, is below the limit; its largest
+// 1.0 is not); the noisy pixel itself stops among quiet neighbours, as with the mean.
+TEST(NoiseEstimate, MaxDecisionReadsTheLargestNeighbourError) {
+  Block b(SamplingPasses::Decision::kMax);
+  const int w = Block::w, h = Block::h;
+  b.decide();
+  for (int i = 0; i < w * h; ++i)
+    EXPECT_EQ(b.more[i], i == 1 * w + 3 || i == 2 * w + 2 || i == 1 * w + 2) << i;
+  b.error[5] = std::numeric_limits<float>::infinity();  // no estimate: its neighbours go on
+  b.decide();
+  EXPECT_EQ(b.more[0], 1);
+  EXPECT_EQ(b.more[5], 0);
+}
+
+// --noise-decision wide: the RMS error of the 24 others of the 5x5 (inside the block). The
+// noisy pixel at (3, 2) keeps every pixel within two of it going whose RMS passes the limit:
+// (1, 0) sees 1.0 among 11 others (RMS 0.30), (0, 0) does not see it (0.01); the noisy pixel
+// itself stops among quiet ones.
+TEST(NoiseEstimate, WideDecisionReadsTheRmsOfThe5x5) {
+  Block b(SamplingPasses::Decision::kWide);
+  const int w = Block::w, h = Block::h;
+  b.decide();
+  for (int i = 0; i < w * h; ++i) EXPECT_EQ(b.more[i], i % w >= 1 && i != 2 * w + 3) << i;
 }
 
 }  // namespace

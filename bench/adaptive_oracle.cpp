@@ -1,0 +1,373 @@
+// adaptive_oracle: how much lower relMSE than uniform sampling any UNBIASED per-pixel sample
+// allocation can reach on a scene (issue 37; docs/bench/adaptive-oracle-2026-12-07.md).
+//
+// Renders the scene K times at `--spp` samples (TRay's default path tracer, Owen-scrambled
+// Sobol', the sequence's pixel positions: what the sweep's "path sobol" renders), each with its
+// own seed, so that every pixel has K independent means. The first half of the seeds (pool A)
+// gives each pixel's relative variance a_i (bench/oracle_allocation.h) and from it the oracle
+// allocation; the second half (pool B) is the samples the allocations spend: a pixel given k
+// steps is the mean of its first k renders of pool B (each pixel's count is fixed before pool
+// B is looked at, so every image is unbiased). Errors are taken by the sweep's own comparison
+// (bench/image_error.cpp) against the sweep's reference (same settings and file name, so one
+// reference serves both). Printed per budget (mean spp): the expected relMSE (pool B's
+// variances) and the simulated relMSE and trimmed relMSE of uniform sampling and of:
+//   oracle        n_i = clamp(lambda sqrt(a_i), spp, max) from pool A (1 step = --spp)
+//   oracle-trim   the same, but the 0.1% pixels of largest a_i (those relMSE-trimmed drops
+//                 anyway) held at one step
+//   pilot P       a_i from the first P renders of pool A only (a pilot of P x spp samples per
+//                 pixel, thrown away and paid for: the allocation gets P x spp fewer)
+//   pilot P 3x3   the pilot's a_i averaged over the 3x3 neighbourhood first (5x5: over 5x5)
+//   oracle of the 8 neighbours   pool A's a averaged over the 8 neighbours, the pixel left
+//                 out: the best a rule that decides from its neighbours (TRay's default) can do
+//   one-shot ...  every pixel takes P steps (kept), then its count in one go from the a_i of
+//                 its neighbours' P steps (3x3 or 5x5 less itself): unbiased and implementable
+// and then TRay's own threshold rules (--noise-decision neighbours, wide, pixel) replayed on
+// pool B with one render as one sample (printReplays), against uniform at equal samples.
+//
+// Usage: adaptive_oracle SCENE [--resolution 320x240] [--seeds 128] [--spp 16]
+//            [--budgets 32,64,128,256] [--max-spp 1024] [--pilot 2] [--out bench-out]
+//            [--reference EXR] [--reference-spp 4096] [--threads 0]
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "bench/cpu_time.h"
+#include "bench/image_error.h"
+#include "bench/oracle_allocation.h"
+#include "bench/sweep.h"
+#include "core/error.h"
+#include "gltf/gltf_loader.h"
+#include "io/image_output.h"
+#include "render/prepared_scene.h"
+#include "render/render_setup.h"
+#include "render/noise_estimate.h"
+#include "render/renderer.h"
+
+namespace fs = std::filesystem;
+using namespace tray;
+
+namespace {
+
+struct Setup {
+  std::string scene, resolution = "320x240", out = "bench-out", reference,
+                     budgets = "32,64,128,256";
+  int seeds = 128, spp = 16, maxSpp = 1024, pilot = 2, referenceSpp = 4096, threads = 0;
+};
+
+Film renderWith(const PreparedScene& prepared, ImageSize size, const RenderSettings& s,
+                int threads) {
+  auto integrator = prepared.integrator(s);
+  Film film(size.width, size.height);
+  RenderOptions opt;
+  opt.threads = threads;
+  renderImage(*integrator, film, opt);
+  return film;
+}
+
+/// Each pixel's relative variance of one sample, summed over R, G, B, from renders `first` to
+/// `last` (exclusive) of `means` (render-major, RGB per pixel, each a mean of `spp` samples).
+std::vector<double> relativeVariance(const std::vector<float>& means, size_t pixels, int first,
+                                     int last, int spp, const Film& ref) {
+  std::vector<double> a(pixels, 0.0);
+  const int w = ref.width(), k = last - first;
+  for (size_t p = 0; p < pixels; ++p)
+    for (int c = 0; c < 3; ++c) {
+      double sum = 0, squares = 0;
+      for (int j = first; j < last; ++j) {
+        const double v = means[(size_t(j) * pixels + p) * 3 + c];
+        sum += v, squares += v * v;
+      }
+      const double mean = sum / k, var = std::max(0.0, (squares - k * mean * mean) / (k - 1));
+      const double r = ref.pixel(Film::kBeauty, int(p % w), int(p / w))[c];
+      a[p] += var * spp / (r * r + 1e-2);
+    }
+  return a;
+}
+
+/// The image whose pixel p is the mean of renders first .. first + steps[p] - 1 of `means`.
+Film imageOf(const std::vector<float>& means, const std::vector<int>& steps, int first, int w,
+             int h) {
+  Film film(w, h);
+  const size_t pixels = size_t(w) * h;
+  for (size_t p = 0; p < pixels; ++p)
+    for (int c = 0; c < 3; ++c) {
+      double sum = 0;
+      for (int j = first; j < first + steps[p]; ++j)
+        sum += means[(size_t(j) * pixels + p) * 3 + c];
+      film.pixel(Film::kBeauty, int(p % w), int(p / w))[c] = float(sum / steps[p]);
+    }
+  return film;
+}
+
+/// The mean of `a` over each pixel's (2 radius + 1)^2 neighbourhood inside the image, the
+/// pixel itself left out when `self` is false (what a rule deciding from its neighbours sees).
+std::vector<double> boxAverage(const std::vector<double>& a, int w, int h, int radius, bool self) {
+  std::vector<double> out(a.size());
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      double s = 0;
+      int n = 0;
+      for (int dy = -radius; dy <= radius; ++dy)
+        for (int dx = -radius; dx <= radius; ++dx)
+          if (x + dx >= 0 && y + dy >= 0 && x + dx < w && y + dy < h && (self || dx || dy))
+            s += a[size_t(y + dy) * w + x + dx], ++n;
+      out[size_t(y) * w + x] = s / n;
+    }
+  return out;
+}
+
+/// TRay's own block decisions (render/noise_estimate.h: its steps, error estimate and
+/// decideBlock over 8x8 blocks) replayed on `available` renders from `first`, one render
+/// counting as one sample: each pixel's number of renders when every block has stopped.
+std::vector<int> replay(const std::vector<float>& means, int first, int available, int w, int h,
+                        SamplingPasses passes) {
+  const size_t pixels = size_t(w) * h;
+  passes.maxSamples = available;
+  std::vector<int> count(pixels, 0);
+  std::vector<uint8_t> pending(pixels, 1);
+  auto sums = [&](size_t p, int n) {  // the pixel's sums over its first n renders
+    PixelSums s;
+    for (int j = first; j < first + n; ++j)
+      for (int c = 0; c < 3; ++c) s.rgb[c] += means[(size_t(j) * pixels + p) * 3 + c];
+    s.weight = n;
+    return s;
+  };
+  for (bool any = true; any;) {
+    for (size_t p = 0; p < pixels; ++p)
+      if (pending[p]) count[p] += nextStep(count[p], passes);
+    any = false;
+    for (int by = 0; by < h; by += kNoiseBlock)
+      for (int bx = 0; bx < w; bx += kNoiseBlock) {
+        const int bw = std::min(kNoiseBlock, w - bx), bh = std::min(kNoiseBlock, h - by);
+        std::vector<float> error;
+        std::vector<uint32_t> n;
+        std::vector<uint8_t> more(size_t(bw) * bh);
+        for (int y = by; y < by + bh; ++y)
+          for (int x = bx; x < bx + bw; ++x) {
+            const size_t p = size_t(y) * w + x;
+            const int m = earlierCount(count[p], passes);
+            error.push_back(pixelError(sums(p, count[p]), sums(p, m), count[p], m,
+                                       passes.absoluteError));
+            n.push_back(uint32_t(count[p]));
+          }
+        decideBlock(error, n, bw, bh, passes, more);
+        for (int i = 0; i < bw * bh; ++i) {
+          pending[size_t(by + i / bw) * w + bx + i % bw] = more[i];
+          any = any || more[i];
+        }
+      }
+  }
+  return count;
+}
+
+/// Uniform sampling's trimmed relMSE at `spp` (log-log between the whole-render counts in
+/// `uniform`: pairs of spp and error, increasing).
+double uniformAt(const std::vector<std::pair<double, double>>& uniform, double spp) {
+  for (size_t i = 1; i < uniform.size(); ++i)
+    if (spp <= uniform[i].first || i + 1 == uniform.size()) {
+      const auto [x0, y0] = uniform[i - 1];
+      const auto [x1, y1] = uniform[i];
+      const double t = std::log(spp / x0) / std::log(x1 / x0);
+      return std::exp(std::log(y0) + t * std::log(y1 / y0));
+    }
+  return 0;
+}
+
+/// The replayed threshold rules against uniform at equal samples (trimmed relMSE), with their
+/// image means against uniform's at 64 renders.
+void printReplays(const std::vector<float>& means, int first, int available, int spp,
+                  const Film& ref) {
+  const int w = ref.width(), h = ref.height();
+  const size_t pixels = size_t(w) * h;
+  std::vector<std::pair<double, double>> uniform;
+  for (int k : {2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64})
+    if (k <= available)
+      uniform.emplace_back(double(k) * spp,
+                           compareBeauty(imageOf(means, std::vector<int>(pixels, k), first, w, h),
+                                         ref).relMseTrimmed);
+  std::printf("\nTRay's threshold rules replayed (a step of one render = %d spp, --min-spp %d):"
+              "\n\n| decision | threshold | mean spp | trimmed relMSE | uniform at that spp | "
+              "gain | bias |\n|---|---|---|---|---|---|---|\n",
+              spp, 2 * spp);
+  using D = SamplingPasses::Decision;
+  const std::pair<const char*, D> decisions[] = {
+      {"neighbours", D::kNeighbours}, {"wide", D::kWide}, {"pixel (biased)", D::kPixel}};
+  for (const auto& [name, decision] : decisions)
+    for (float t : {0.1f, 0.05f, 0.03f, 0.02f, 0.01f}) {
+      SamplingPasses passes;
+      passes.threshold = t, passes.minSamples = 2, passes.decision = decision;
+      const std::vector<int> steps = replay(means, first, available, w, h, passes);
+      double mean = 0;
+      for (int k : steps) mean += double(k) * spp / double(pixels);
+      const ImageError e = compareBeauty(imageOf(means, steps, first, w, h), ref);
+      const double u = uniformAt(uniform, mean);
+      std::printf("| %s | %.2f | %.1f | %.3e | %.3e | %.3f | %+.2e |\n", name, t, mean,
+                  e.relMseTrimmed, u, u / e.relMseTrimmed, e.bias);
+    }
+}
+
+/// `o.seeds` renders of `o.spp` samples, seeds 1000 on (neither the sweep's 0 nor the
+/// reference's): render-major, RGB per pixel.
+std::vector<float> renderSeeds(const PreparedScene& prepared, ImageSize size, const Setup& o) {
+  const int w = size.width;
+  const size_t pixels = size_t(w) * size.height;
+  RenderSettings s;
+  s.set("integrator", "path"), s.set("sampler", "sobol"), s.set("pixel-sampler", "sequence");
+  s.set("spp", o.spp);
+  std::vector<float> means(size_t(o.seeds) * pixels * 3);
+  for (int j = 0; j < o.seeds; ++j) {
+    s.set("seed", 1000 + j);
+    const Film f = renderWith(prepared, size, s, o.threads);
+    for (size_t p = 0; p < pixels; ++p)
+      for (int c = 0; c < 3; ++c)
+        means[(size_t(j) * pixels + p) * 3 + c] =
+            f.pixel(Film::kBeauty, int(p % w), int(p / w))[c];
+  }
+  return means;
+}
+
+/// The allocations of the header comment against uniform at each budget, as a table.
+void printAllocations(const std::vector<float>& means, const Setup& o, const Film& ref) {
+  const int w = ref.width(), h = ref.height();
+  const size_t pixels = size_t(w) * h;
+  const int half = o.seeds / 2, poolB = half, stepsB = o.seeds - half;
+  const std::vector<double> aA = relativeVariance(means, pixels, 0, half, o.spp, ref);
+  const std::vector<double> aB = relativeVariance(means, pixels, half, o.seeds, o.spp, ref);
+  std::vector<double> aPilot = relativeVariance(means, pixels, 0, o.pilot, o.spp, ref);
+  const std::vector<double> aPilot3 = boxAverage(aPilot, w, h, 1, true);
+  const std::vector<double> aPilot5 = boxAverage(aPilot, w, h, 2, true);
+  const std::vector<double> aNeighbours = boxAverage(aA, w, h, 1, false);
+  // What an implementable one-shot rule sees: every pixel's first P renders of pool B (kept in
+  // its mean), and its count from its neighbours' estimates only.
+  const std::vector<double> aKept =
+      relativeVariance(means, pixels, half, half + o.pilot, o.spp, ref);
+  const std::vector<double> aKept3 = boxAverage(aKept, w, h, 1, false);
+  const std::vector<double> aKept5 = boxAverage(aKept, w, h, 2, false);
+  std::vector<double> aTrim = aA;  // the 0.1% largest held at one step
+  {
+    const size_t cut = std::max<size_t>(1, pixels / 1000);
+    std::vector<double> sorted = aA;
+    std::nth_element(sorted.begin(), sorted.end() - cut, sorted.end());
+    const double limit = sorted[sorted.size() - cut];
+    for (double& v : aTrim)
+      if (v >= limit) v = 0;
+  }
+  std::printf("unbounded gain mean(a)/mean(sqrt a)^2: pool A %.3f, pool B %.3f\n\n",
+              unboundedGain(aA), unboundedGain(aB));
+  std::printf("| budget spp | allocation | mean spp | expected relMSE gain (pool B's a) | "
+              "relMSE | relMSE gain | trimmed relMSE | trimmed gain |\n|---|---|---|---|---|---|"
+              "---|---|\n");
+  const double cap = std::min<double>(o.maxSpp, double(stepsB) * o.spp);
+  std::stringstream list(o.budgets);
+  for (std::string item; std::getline(list, item, ',');) {
+    const int budget = std::stoi(item);
+    if (budget % o.spp || budget / o.spp > stepsB) continue;
+    const std::vector<int> uniformSteps(pixels, budget / o.spp);
+    const std::vector<double> uniformN(pixels, double(budget));
+    const ImageError u = compareBeauty(imageOf(means, uniformSteps, poolB, w, h), ref);
+    const double uExpected = expectedRelMse(aB, uniformN);
+    std::printf("| %d | uniform | %d | 1 | %.3e | 1 | %.3e | 1 |\n", budget, budget, u.relMse,
+                u.relMseTrimmed);
+    struct Rule {
+      std::string name;
+      const std::vector<double>* a;
+      double spent;  // samples thrown away per pixel (a pilot)
+      int minSteps;  // steps every pixel takes
+    };
+    const double pilotSpp = o.pilot * o.spp;
+    const std::string pilot = "pilot " + std::to_string(int(pilotSpp)) + " spp";
+    const std::string oneShot =
+        "one-shot from the neighbours' first " + std::to_string(int(pilotSpp)) + " spp, ";
+    for (const Rule& r :
+         {Rule{"oracle", &aA, 0, 1}, Rule{"oracle-trim", &aTrim, 0, 1},
+          Rule{"oracle of the 8 neighbours", &aNeighbours, 0, 1},
+          Rule{pilot, &aPilot, pilotSpp, 1}, Rule{pilot + " 3x3", &aPilot3, pilotSpp, 1},
+          Rule{pilot + " 5x5", &aPilot5, pilotSpp, 1}, Rule{oneShot + "3x3", &aKept3, 0, o.pilot},
+          Rule{oneShot + "5x5", &aKept5, 0, o.pilot}}) {
+      if (budget - r.spent < r.minSteps * o.spp) continue;
+      const std::vector<double> n =
+          oracleAllocation(*r.a, budget - r.spent, r.minSteps * o.spp, cap);
+      const std::vector<int> steps = wholeSteps(n, o.spp, stepsB);
+      std::vector<double> kept(pixels);
+      double spp = 0;
+      for (size_t p = 0; p < pixels; ++p) kept[p] = steps[p] * o.spp, spp += kept[p] / pixels;
+      const ImageError e = compareBeauty(imageOf(means, steps, poolB, w, h), ref);
+      std::printf("| %d | %s | %.1f | %.3f | %.3e | %.3f | %.3e | %.3f |\n", budget,
+                  r.name.c_str(), spp + r.spent, uExpected / expectedRelMse(aB, kept), e.relMse,
+                  u.relMse / e.relMse, e.relMseTrimmed, u.relMseTrimmed / e.relMseTrimmed);
+    }
+  }
+}
+
+int run(const Setup& o) {
+  LoadOptions load;
+  load.allowAnyPath = true;  // the benchmark scenes take their assets from ../shared
+  Scene scene = loadGltf(o.scene, load);
+  scene.sourcePath = o.scene;
+  const CameraDesc camera = chooseCamera(scene, -1);
+  const ImageSize size = resolveImageSize(o.resolution, camera);
+  const PreparedScene prepared(scene, camera, size, "embree");
+  const int w = size.width, h = size.height;
+  fs::create_directories(o.out);
+  const std::string stem = fs::path(o.scene).stem().string();
+  std::string refPath = o.reference.empty() ? o.out + "/reference-" + stem + "-path-" +
+                                                  std::to_string(w) + "x" + std::to_string(h) +
+                                                  ".exr"
+                                            : o.reference;
+  if (!fs::exists(refPath)) {
+    std::fprintf(stderr, "adaptive_oracle: rendering the reference to %s\n", refPath.c_str());
+    ImageOutputOptions io;
+    io.halfFloat = false;
+    writeImage(renderWith(prepared, size, referenceSettings("path", o.referenceSpp), o.threads),
+               refPath, io);
+  }
+  const Film ref = readReference(refPath);
+  if (ref.width() != w || ref.height() != h) throw Error(refPath + ": not the render's size");
+
+  const double cpu0 = cpuSeconds();
+  const std::vector<float> means = renderSeeds(prepared, size, o);
+  std::printf("%s, %dx%d: %d renders of %d spp (%.1f CPU s each); pool A (variances) renders "
+              "0..%d, pool B (samples) %d..%d\n",
+              stem.c_str(), w, h, o.seeds, o.spp, (cpuSeconds() - cpu0) / o.seeds,
+              o.seeds / 2 - 1, o.seeds / 2, o.seeds - 1);
+  printAllocations(means, o, ref);
+  printReplays(means, o.seeds / 2, o.seeds - o.seeds / 2, o.spp, ref);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"adaptive_oracle: the best unbiased per-pixel allocation against uniform"};
+  Setup o;
+  app.add_option("scene", o.scene, "glTF scene")->required();
+  app.add_option("--resolution", o.resolution, "image size WxH")->capture_default_str();
+  app.add_option("--seeds", o.seeds, "independent renders (half for variances, half spent)")
+      ->capture_default_str();
+  app.add_option("--spp", o.spp, "samples of each render: one step")->capture_default_str();
+  app.add_option("--budgets", o.budgets, "mean spp compared, multiples of --spp")
+      ->capture_default_str();
+  app.add_option("--max-spp", o.maxSpp, "most samples a pixel may take")->capture_default_str();
+  app.add_option("--pilot", o.pilot, "renders of the pilot rules")->capture_default_str();
+  app.add_option("--out", o.out, "folder of the cached reference")->capture_default_str();
+  app.add_option("--reference", o.reference, "converged reference EXR");
+  app.add_option("--reference-spp", o.referenceSpp, "spp of a rendered reference")
+      ->capture_default_str();
+  app.add_option("--threads", o.threads, "threads (0 = all)")->capture_default_str();
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  try {
+    return run(o);
+  } catch (const Error& e) {
+    std::fprintf(stderr, "adaptive_oracle: error: %s\n", e.what());
+    return 1;
+  }
+}
