@@ -76,6 +76,8 @@ def parse_args():
     p.add_argument("--repeats", type=int, default=2,
                    help="timed runs per point, TRay and Cycles: the least CPU time is kept (the "
                         "same seed gives the same image)")
+    p.add_argument("--renderers", default="tray,mitsuba,cycles",
+                   help="which renderers to run (comma-separated)")
     p.add_argument("--chart", help="PNG (default docs/bench/<scene>-three-renderers.png)")
     p.add_argument("--report", help="also write the report here")
     a = p.parse_args()
@@ -267,17 +269,22 @@ def main():
         f"(load {os.getloadavg()[0]:.2f})")
     with tempfile.TemporaryDirectory() as tmp:
         shared = a.scene == "cornell"
+        run = a.renderers.split(",")
         mitsuba, mitsuba_ref = mitsuba_run(
-            a, tmp, reference=not shared and not os.path.exists(cache_path(a, "mitsuba")))
+            a, tmp, reference=not shared and not os.path.exists(cache_path(a, "mitsuba"))) \
+            if "mitsuba" in run else ([], None)
         if shared:
             refs = dict.fromkeys(("TRay", "Mitsuba", "Cycles"),
                                  cc.read_rgb(os.path.join(REF_DIR, "cornell-box.ref.exr")))
         else:
-            refs = {"TRay": cached(a, "tray", lambda: tray_reference(a, tmp)),
-                    "Mitsuba": cached(a, "mitsuba", lambda: mitsuba_ref),
-                    "Cycles": cached(a, "cycles", lambda: cycles_reference(a, tmp))}
+            makers = {"TRay": ("tray", lambda: tray_reference(a, tmp)),
+                      "Mitsuba": ("mitsuba", lambda: mitsuba_ref),
+                      "Cycles": ("cycles", lambda: cycles_reference(a, tmp))}
+            refs = {k: cached(a, *v) for k, v in makers.items() if v[0] in run}
+        points = (cycles_points(a, tmp) if "cycles" in run else []) + \
+            (tray_points(a, tmp) if "tray" in run else []) + mitsuba
         rows = []
-        for method, setting, cpu, img in cycles_points(a, tmp) + tray_points(a, tmp) + mitsuba:
+        for method, setting, cpu, img in points:
             ref = refs[method.split()[0]]
             rows.append({"method": method, "setting": setting, "cpu": cpu,
                          "mean": img.mean() / ref.mean() - 1, **errors(img, ref)})
