@@ -16,6 +16,7 @@
 #include "accel/bvh_object_ray.h"
 #include "accel/bvh_top_level.h"
 #include "accel/embree_only.h"
+#include "accel/shape_crossings.h"
 #include "core/motion.h"
 #include "core/scene.h"
 #include "textures/alpha.h"
@@ -36,28 +37,6 @@ struct LastOccluder {
   uint32_t block = 0;   ///< MeshBvh block index (meshes only)
 };
 thread_local LastOccluder tLastOccluder;
-
-/// Every crossing of a shape's boundary inside the ray's range, as the Embree accelerator reports
-/// them for all-hits queries (accel/embree_shape_geometry.cpp, shapeIntersect).
-void shapeCrossings(const Primitive& p, uint32_t i, const Ray& ray, std::vector<Hit>& hits) {
-  Transform moved;
-  const Transform* toWorld = placementAt(p, ray.time, moved);
-  if (!toWorld) return;
-  Ray local{toWorld->inversePoint(ray.o), toWorld->inverseVector(ray.d), ray.tmin, ray.tmax};
-  std::vector<Interval> spans;
-  p.shape->intervals(local, spans);
-  for (const Interval& s : spans)
-    for (const Crossing& c : {s.enter, s.exit})
-      if (c.t > ray.tmin && c.t < ray.tmax && std::isfinite(c.t)) {
-        Hit h;
-        h.t = c.t;
-        h.primitive = i;
-        h.normal = c.normal;
-        h.uv = c.uv;
-        h.material = c.material;
-        hits.push_back(h);
-      }
-}
 
 class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
  public:
@@ -144,7 +123,10 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
           for (size_t k = before; k < hits.size(); ++k) hits[k].instance = instance;
         }
       } else {
-        shapeCrossings(p, i, ray, hits);
+        forEachShapeCrossing(p, ray, [&](Hit& h) {
+          h.primitive = i;
+          hits.push_back(h);
+        });
       }
       return false;
     });

@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include "accel/shape_crossings.h"
 #include "core/motion.h"
 
 namespace tray {
@@ -70,23 +71,8 @@ void shapeIntersect(const RTCIntersectFunctionNArguments* args) {
           rh->ray.time};
   if (args->context->filter) {
     // All-hits query: report every boundary crossing of the solid within the range.
-    const Primitive& p = data->scene->primitives[data->primitive];
-    Transform moved;
-    const Transform* toWorld = placementAt(p, ray.time, moved);
-    if (!toWorld) return;
-    Ray local{toWorld->inversePoint(ray.o), toWorld->inverseVector(ray.d), ray.tmin, ray.tmax};
-    std::vector<Interval> spans;
-    p.shape->intervals(local, spans);
-    for (const Interval& s : spans)
-      for (const Crossing& c : {s.enter, s.exit})
-        if (c.t > ray.tmin && c.t < ray.tmax && std::isfinite(c.t)) {
-          Hit h;
-          h.t = c.t;
-          h.normal = c.normal;
-          h.uv = c.uv;
-          h.material = c.material;
-          reportShapeHit(args, h, args->geomID);
-        }
+    forEachShapeCrossing(data->scene->primitives[data->primitive], ray,
+                         [&](const Hit& h) { reportShapeHit(args, h, args->geomID); });
     return;
   }
   Hit hit;
