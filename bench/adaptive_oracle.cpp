@@ -315,10 +315,9 @@ int run(const Setup& o) {
   const int w = size.width, h = size.height;
   fs::create_directories(o.out);
   const std::string stem = fs::path(o.scene).stem().string();
-  std::string refPath = o.reference.empty() ? o.out + "/reference-" + stem + "-path-" +
-                                                  std::to_string(w) + "x" + std::to_string(h) +
-                                                  ".exr"
-                                            : o.reference;
+  // The sweep's cached reference, so that one render serves both.
+  const std::string refPath =
+      o.reference.empty() ? referencePath(o.out, o.scene, "path", w, h) : o.reference;
   if (!fs::exists(refPath)) {
     std::fprintf(stderr, "adaptive_oracle: rendering the reference to %s\n", refPath.c_str());
     ImageOutputOptions io;
@@ -326,8 +325,7 @@ int run(const Setup& o) {
     writeImage(renderWith(prepared, size, referenceSettings("path", o.referenceSpp), o.threads),
                refPath, io);
   }
-  const Film ref = readReference(refPath);
-  if (ref.width() != w || ref.height() != h) throw Error(refPath + ": not the render's size");
+  const Film ref = readReferenceOfSize(refPath, w, h);
 
   const double cpu0 = cpuSeconds();
   const std::vector<float> means = renderSeeds(prepared, size, o);

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "core/error.h"
@@ -33,6 +34,15 @@ Film readReference(const std::string& path) {
     for (int x = 0; x < width; ++x)
       for (int c = 0; c < 3; ++c)
         film.pixel(Film::kBeauty, x, y)[c] = rgb[(size_t(y) * width + x) * 3 + c];
+  return film;
+}
+
+Film readReferenceOfSize(const std::string& path, int width, int height) {
+  Film film = readReference(path);
+  if (film.width() != width || film.height() != height)
+    throw Error(path + ": reference is " + std::to_string(film.width()) + "x" +
+                std::to_string(film.height()) + ", the render " + std::to_string(width) + "x" +
+                std::to_string(height) + " (use --resolution)");
   return film;
 }
 

@@ -20,6 +20,9 @@ struct ImageError {
 /// a film of the file's size; throws tray::Error "PATH: problem".
 Film readReference(const std::string& path);
 
+/// readReference, which must have the render's size (throws tray::Error naming both sizes).
+Film readReferenceOfSize(const std::string& path, int width, int height);
+
 /// Compares the beauty RGB of two films of the same size (throws tray::Error otherwise).
 ImageError compareBeauty(const Film& render, const Film& reference);
 

@@ -1,5 +1,7 @@
 #include "bench/sweep.h"
 
+#include <filesystem>
+
 #include "integrators/registry.h"
 
 namespace tray {
@@ -122,6 +124,13 @@ RenderSettings referenceSettings(const std::string& integrator, int referenceSpp
   }
   s.set("seed", 0x5eed);  // a seed no sweep run uses, so reference noise is independent
   return s;
+}
+
+std::string referencePath(const std::string& outDir, const std::string& scenePath,
+                          const std::string& family, int width, int height) {
+  const std::string stem = std::filesystem::path(scenePath).stem().string();
+  return outDir + "/reference-" + stem + "-" + family + "-" + std::to_string(width) + "x" +
+         std::to_string(height) + ".exr";
 }
 
 }  // namespace tray

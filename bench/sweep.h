@@ -24,4 +24,9 @@ std::vector<SweepConfig> standardSweep(const std::vector<std::string>& accels,
 /// The settings that define an integrator's converged reference.
 RenderSettings referenceSettings(const std::string& integrator, int referenceSpp);
 
+/// Where a scene's converged reference of an integrator family ("path" or "whitted") at w x h
+/// is cached in `outDir`: one name, so that every benchmark that renders it finds it.
+std::string referencePath(const std::string& outDir, const std::string& scenePath,
+                          const std::string& family, int width, int height);
+
 }  // namespace tray

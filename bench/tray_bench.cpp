@@ -28,16 +28,6 @@ using namespace tray;
 
 namespace {
 
-/// The reference image, which must have the render's size.
-Film referenceOfSize(const std::string& path, int width, int height) {
-  Film film = readReference(path);
-  if (film.width() != width || film.height() != height)
-    throw Error(path + ": reference is " + std::to_string(film.width()) + "x" +
-                std::to_string(film.height()) + ", the render " + std::to_string(width) + "x" +
-                std::to_string(height) + " (use --resolution)");
-  return film;
-}
-
 /// The scene prepared once per accelerator.
 struct Bench {
   const Scene& scene;
@@ -89,7 +79,7 @@ std::vector<std::string> splitList(const std::string& s) {
 }
 
 int sweep(const std::string& scenePath, const std::string& resolution, const std::string& outDir,
-          const std::string& referencePath, int referenceSpp, int maxSpp,
+          const std::string& referenceFile, int referenceSpp, int maxSpp,
           const std::string& accelList, const std::string& threadList, const std::string& denoiser,
           const std::string& methodList) {
   LoadOptions load;
@@ -108,10 +98,9 @@ int sweep(const std::string& scenePath, const std::string& resolution, const std
     std::string family = integrator == "path" ? "path" : "whitted";
     auto it = references.find(family);
     if (it != references.end()) return it->second;
-    std::string path = !referencePath.empty() ? referencePath
-                                              : outDir + "/reference-" + stem + "-" + family + "-" +
-                                                    std::to_string(size.width) + "x" +
-                                                    std::to_string(size.height) + ".exr";
+    const std::string path =
+        !referenceFile.empty() ? referenceFile
+                               : referencePath(outDir, scenePath, family, size.width, size.height);
     if (!fs::exists(path)) {
       std::fprintf(stderr, "tray-bench: rendering the %s reference to %s\n", family.c_str(),
                    path.c_str());
@@ -120,7 +109,8 @@ int sweep(const std::string& scenePath, const std::string& resolution, const std
       o.halfFloat = false;
       writeImage(film, path, o);
     }
-    return references.emplace(family, referenceOfSize(path, size.width, size.height)).first->second;
+    Film film = readReferenceOfSize(path, size.width, size.height);
+    return references.emplace(family, std::move(film)).first->second;
   };
 
   std::vector<int> threads;
