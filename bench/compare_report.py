@@ -44,6 +44,16 @@ def rmse(img, ref):
     return float(np.sqrt(np.mean((img - ref) ** 2)))
 
 
+def relmse(img, ref, trimmed=False):
+    """bench/image_error.cpp's relMSE: the mean over pixels and RGB of (x - r)^2 / (r^2 + 0.01);
+    `trimmed` leaves out the 0.1% pixels (at least one) of largest error summed over RGB."""
+    rel = ((img - ref) ** 2 / (ref ** 2 + 1e-2))[:, :, :3].sum(axis=2).ravel()
+    if trimmed:
+        cut = max(1, rel.size // 1000)
+        rel = np.partition(rel, rel.size - cut)[:rel.size - cut]
+    return float(rel.mean() / 3)
+
+
 def channel_means(img):
     return img.reshape(-1, img.shape[2])[:, :3].mean(axis=0)
 

@@ -26,7 +26,7 @@ import sys
 import numpy as np
 
 import cycles_compare as cc
-from compare_report import loglog_crossing
+from compare_report import loglog_crossing, relmse
 import bpy  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -49,10 +49,6 @@ def parse_args():
     p.add_argument("--cycles-thresholds", default="0.1,0.05,0.02,0.01")
     p.add_argument("--tray-args", default="")
     return p.parse_args()
-
-
-def relmse(a, ref):
-    return float(np.mean((a - ref) ** 2 / (ref ** 2 + 1e-2)))
 
 
 def runs(args, name, merged, env, renderer):

@@ -43,7 +43,7 @@ import time
 import numpy as np
 
 import cycles_compare as cc
-from compare_report import LINES, cpu_of, loglog_crossing, say
+from compare_report import LINES, cpu_of, loglog_crossing, relmse, rmse, say
 import bpy  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -89,11 +89,8 @@ def parse_args():
 
 def errors(img, ref):
     """RMSE, relMSE and relMSE without the 0.1% worst pixels (bench/image_error.cpp's)."""
-    rel = ((img - ref) ** 2 / (ref ** 2 + 1e-2)).sum(axis=2).ravel()
-    cut = max(1, rel.size // 1000)
-    kept = np.partition(rel, rel.size - cut)[:rel.size - cut]
-    return {"rmse": float(np.sqrt(np.mean((img - ref) ** 2))), "relmse": float(rel.mean() / 3),
-            "relmse_trimmed": float(kept.mean() / 3)}
+    return {"rmse": rmse(img, ref), "relmse": relmse(img, ref),
+            "relmse_trimmed": relmse(img, ref, trimmed=True)}
 
 
 def cache_path(a, renderer):
