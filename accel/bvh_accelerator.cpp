@@ -123,8 +123,10 @@ class TwoLevelAccelerator final : public Accelerator, TwoLevelParts {
           for (size_t k = before; k < hits.size(); ++k) hits[k].instance = instance;
         }
       } else {
+        // A named copy: a structured binding cannot be captured before C++20 P1091 (clang 16).
+        const uint32_t primitive = i;
         forEachShapeCrossing(p, ray, [&](Hit& h) {
-          h.primitive = i;
+          h.primitive = primitive;
           hits.push_back(h);
         });
       }

@@ -62,7 +62,7 @@ TRAY_LANE DeltaSampleOf<V3> sampleSmoothDielectricWith(const V3& wo, F eta, cons
   s.etaScale = F(1.0f);
   s.transmission = MaskOf<F>(false);
   if (anyOf(!reflects)) {  // for one float: only where it refracts
-    F etap;
+    F etap(1.0f);  // read below only where it refracts; set so no lane reads garbage
     V3 wt;
     const auto refracts = !reflects &&
                           refractDirection(wo, V3{F(0.0f), F(0.0f), F(1.0f)}, eta, etap, wt) &&

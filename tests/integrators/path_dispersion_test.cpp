@@ -198,8 +198,6 @@ TEST(PathDispersion, SphereSpectrumAgainstSpectralReference) {
     const Color L = probe.Li(Ray{{-5, float(h), 0}, {1, 0, 0}}, sampler);
     for (int k = 0; k < 3; ++k) sum[k] += L[k];
   }
-  double scale = 0;
-  for (int k = 0; k < 3; ++k) scale += std::fabs(exact[k]);
   std::printf(
       "sphere band: render %.4f %.4f %.4f, clamped ref %.4f %.4f %.4f, exact ref %.4f "
       "%.4f %.4f\n",

@@ -14,7 +14,9 @@
 // GCC 12 reads the toy's `delta` of an unbuilt slot speculatively in anyNonDelta's
 // `on<I>() && !get<I>().isDelta()` (branchless, inlined) and warns; the value is never used
 // there unless the layer was built.
+#if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 
 namespace tray {
 namespace {
