@@ -1,26 +1,31 @@
 // loadGltf on every shared sample (counts checked against an independent reading) and on tiny
-// glTF documents written to a temporary folder, one feature each.
+// glTF documents written to a temporary folder (tests/gltf/tiny_doc.h), one feature each;
+// validation and refusals: gltf_loader_validation_test.cpp; colours, alpha, unlit:
+// gltf_features_test.cpp.
 #include "gltf/gltf_loader.h"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
-#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <functional>
 
 #include "core/error.h"
-#include "tests/base64.h"
 #include "tests/error_of.h"
-#include "tests/temp_dir.h"
+#include "tests/gltf/tiny_doc.h"
 
 namespace tray {
 namespace {
 
 namespace fs = std::filesystem;
+using test::expectNear;
+using test::freshFolder;
+using test::kTriangleMesh;
+using test::TinyDoc;
+using test::triangleDoc;
+
+
 
 const fs::path kSamples = fs::path(TRAY_SHARED_DIR) / "gltf-samples";
 
@@ -147,78 +152,8 @@ TEST(GltfSamples, EmissiveStrengthMultipliesEmission) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Tiny documents. TinyDoc packs data into one base64 buffer and writes the file into a fresh
-// temporary folder (never the source tree).
+// Tiny documents, one feature each.
 
-using tray::test::base64;
-
-fs::path freshFolder() {
-  static std::atomic<int> counter{0};
-  fs::path dir = tray::test::testDir() / ("doc" + std::to_string(counter++));
-  fs::create_directories(dir);
-  return dir;
-}
-
-class TinyDoc {
- public:
-  /// Adds raw bytes as bufferView + accessor; returns the accessor index.
-  template <typename T>
-  int add(const std::vector<T>& values, int componentType, const char* type,
-          bool normalized = false, int components = 1, const std::string& extra = "") {
-    while (bytes_.size() % 4) bytes_ += '\0';
-    size_t offset = bytes_.size();
-    bytes_.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
-    views_ += sep(views_) + "{\"buffer\":0,\"byteOffset\":" + std::to_string(offset) +
-              ",\"byteLength\":" + std::to_string(values.size() * sizeof(T)) + "}";
-    int view = viewCount_++;
-    accessors_ += sep(accessors_) + "{\"bufferView\":" + std::to_string(view) +
-                  ",\"componentType\":" + std::to_string(componentType) + ",\"type\":\"" + type +
-                  "\",\"count\":" + std::to_string(values.size() / size_t(components)) +
-                  (normalized ? ",\"normalized\":true" : "") + extra + "}";
-    return accessorCount_++;
-  }
-  int vec3(const std::vector<float>& v) { return add(v, 5126, "VEC3", false, 3); }
-  int indices(const std::vector<uint16_t>& v) { return add(v, 5123, "SCALAR"); }
-  /// The document with `rest` (scenes, nodes, meshes, ...) appended to the root object.
-  std::string json(const std::string& rest) const {
-    std::string buffer = bytes_.empty()
-                             ? ""
-                             : "\"buffers\":[{\"byteLength\":" + std::to_string(bytes_.size()) +
-                                   ",\"uri\":\"data:application/octet-stream;base64," +
-                                   base64(bytes_) + "\"}],";
-    std::string s = "{\"asset\":{\"version\":\"2.0\"}," + buffer;
-    if (viewCount_) s += "\"bufferViews\":[" + views_ + "],\"accessors\":[" + accessors_ + "],";
-    return s + rest + "}";
-  }
-  /// Writes the document as `name` in a fresh folder and loads it.
-  Scene load(const std::string& rest, const LoadOptions& options = {}, LoadReport* report = nullptr,
-             const std::string& name = "scene.gltf") const {
-    fs::path file = freshFolder() / name;
-    std::ofstream(file) << json(rest);
-    return loadGltf(file.string(), options, report);
-  }
-
- private:
-  static std::string sep(const std::string& s) { return s.empty() ? "" : ","; }
-  std::string bytes_, views_, accessors_;
-  int viewCount_ = 0, accessorCount_ = 0;
-};
-
-/// A document with one triangle mesh (accessor 0 positions, 1 indices) as mesh 0.
-TinyDoc triangleDoc() {
-  TinyDoc d;
-  d.vec3({0, 0, 0, 1, 0, 0, 0, 1, 0});
-  d.indices({0, 1, 2});
-  return d;
-}
-const std::string kTriangleMesh =
-    R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}])";
-
-void expectNear(const Vec3& a, const Vec3& b) {
-  EXPECT_NEAR(a.x, b.x, 1e-5f);
-  EXPECT_NEAR(a.y, b.y, 1e-5f);
-  EXPECT_NEAR(a.z, b.z, 1e-5f);
-}
 
 TEST(GltfTiny, TrsEqualsMatrix) {
   // T(1,2,3) * R(90 deg about Y) * S(2,2,2), column-major.
@@ -482,263 +417,6 @@ TEST(GltfTiny, SceneSelection) {
   missing.scene = 2;
   EXPECT_NE(errorOf([&] { triangleDoc().load(rest, missing); }).find("scene 2 does not exist"),
             std::string::npos);
-}
-
-TEST(GltfTiny, DegenerateTrianglesDroppedAndBadNormalsZeroed) {
-  TinyDoc d;
-  d.vec3({0, 0, 0, 1, 0, 0, 0, 1, 0, 2, 0, 0});
-  d.indices({0, 1, 2, 0, 1, 3, 0, 0, 2});  // the 2nd is collinear, the 3rd repeats a vertex
-  float nan = std::nanf("");
-  d.vec3({0, 0, 1, nan, 0, 1, 0, 0, 1, 0, 0, 1});
-  LoadReport report;
-  Scene s = d.load(R"("scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],"meshes":[{"primitives":[
-      {"attributes":{"POSITION":0,"NORMAL":2},"indices":1}]}])",
-                   {}, &report);
-  ASSERT_EQ(s.meshes.size(), 1u);
-  EXPECT_EQ(s.meshes[0].triangleCount(), 1u);
-  expectNear(s.meshes[0].normals[1], {0, 0, 0});
-  ASSERT_EQ(report.warnings.size(), 2u);
-  EXPECT_NE(report.warnings[0].find("dropped 2 degenerate"), std::string::npos);
-  EXPECT_NE(report.warnings[1].find("replaced 1 non-finite"), std::string::npos);
-}
-
-// glTF-Validator reports data outside an accessor's declared min/max as an error; rendering
-// survives it (TRay uses the data), so it is one warning naming the accessor, not a refusal, and
-// bounds that hold (also unnormalized ones of a normalized accessor, §5.1.7) say nothing.
-TEST(GltfTiny, DataOutsideMinMaxIsOneWarningNamingTheAccessor) {
-  const std::string rest = R"("scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],"meshes":[{
-      "primitives":[{"attributes":{"POSITION":0,"TEXCOORD_0":2},"indices":1}]}])";
-  for (const bool lying : {false, true}) {
-    TinyDoc d;
-    d.add<float>({0, 0, 0, 1, 0, 0, 0, 1, 0}, 5126, "VEC3", false, 3,
-                 lying ? R"(,"min":[0,0,0],"max":[1,0.5,0])" : R"(,"min":[0,0,0],"max":[1,1,0])");
-    d.indices({0, 1, 2});
-    d.add<uint8_t>({0, 0, 255, 0, 0, 255}, 5121, "VEC2", true, 2,
-                   R"(,"min":[0,0],"max":[255,255])");
-    LoadReport report;
-    const Scene s = d.load(rest, {}, &report);
-    ASSERT_EQ(s.meshes.size(), 1u);
-    expectNear(s.meshes[0].positions[2], {0, 1, 0});  // the data, not the declared bound
-    if (!lying) {
-      EXPECT_TRUE(report.warnings.empty()) << report.warnings[0];
-      continue;
-    }
-    ASSERT_EQ(report.warnings.size(), 1u);
-    EXPECT_NE(report.warnings[0].find("accessor 0 has data outside its declared min/max"),
-              std::string::npos)
-        << report.warnings[0];
-    EXPECT_NE(report.warnings[0].find("element 2 component 1"), std::string::npos)
-        << report.warnings[0];
-  }
-}
-
-TEST(GltfTiny, NanPositionNamesTheAccessor) {
-  TinyDoc d;
-  d.vec3({0, 0, 0, std::nanf(""), 0, 0, 0, 1, 0});
-  std::string e =
-      errorOf([&] { d.load(R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}])"); });
-  EXPECT_NE(e.find("scene.gltf: accessor 0 (POSITION) has a NaN"), std::string::npos) << e;
-}
-
-TEST(GltfTiny, UnknownExtensions) {
-  std::string e = errorOf([] {
-    TinyDoc().load(R"("extensionsUsed":["EXT_magic"],"extensionsRequired":["EXT_magic"])");
-  });
-  EXPECT_NE(e.find("required extension 'EXT_magic'"), std::string::npos) << e;
-  LoadOptions ignore;
-  ignore.ignoreRequiredExtensions = true;
-  LoadReport anyway;
-  TinyDoc().load(R"("extensionsUsed":["EXT_magic"],"extensionsRequired":["EXT_magic"])", ignore,
-                 &anyway);
-  ASSERT_EQ(anyway.warnings.size(), 1u);  // one line, not a second "not supported" one
-  EXPECT_NE(anyway.warnings[0].find("required extension 'EXT_magic' is not supported: rendering"),
-            std::string::npos);
-  LoadReport report;
-  TinyDoc().load(R"("extensionsUsed":["EXT_magic","KHR_materials_volume","EXT_other"])", {},
-                 &report);
-  ASSERT_EQ(report.warnings.size(), 2u);
-  EXPECT_NE(report.warnings[0].find("'EXT_magic'"), std::string::npos);
-  EXPECT_NE(report.warnings[1].find("'EXT_other'"), std::string::npos);
-}
-
-TEST(GltfTiny, AKnownButUnsupportedExtensionIsRefusedWithItsReason) {
-  // SpecGlossVsMetalRough of the Khronos samples requires it (docs/gallery/khronos).
-  std::string e = errorOf([] {
-    TinyDoc().load(R"("extensionsUsed":["KHR_materials_pbrSpecularGlossiness"],)"
-                   R"("extensionsRequired":["KHR_materials_pbrSpecularGlossiness"])");
-  });
-  EXPECT_NE(e.find("required extension 'KHR_materials_pbrSpecularGlossiness' is not supported: "
-                   "archived by Khronos"),
-            std::string::npos)
-      << e;
-  EXPECT_EQ(e.find('\n'), std::string::npos) << "one line";
-  LoadReport report;
-  TinyDoc().load(R"("extensionsUsed":["KHR_draco_mesh_compression"])", {}, &report);
-  ASSERT_EQ(report.warnings.size(), 1u);
-  EXPECT_NE(report.warnings[0].find("ignored (TRay decodes no Draco"), std::string::npos)
-      << report.warnings[0];
-}
-
-TEST(GltfTiny, PathTraversalRefusedUnlessAllowed) {
-  fs::path root = freshFolder();
-  fs::create_directories(root / "scene");
-  std::string triangle(36, '\0');
-  float xyz[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
-  std::memcpy(triangle.data(), xyz, 36);
-  std::ofstream(root / "outside.bin", std::ios::binary) << triangle;
-  fs::path file = root / "scene" / "scene.gltf";
-  std::ofstream(file) << R"({"asset":{"version":"2.0"},"buffers":[{"uri":"../outside.bin",
-      "byteLength":36}],"bufferViews":[{"buffer":0,"byteLength":36}],"accessors":[{"bufferView":0,
-      "componentType":5126,"type":"VEC3","count":3}],"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
-      "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}]})";
-  std::string e = errorOf([&] { loadGltf(file.string()); });
-  EXPECT_NE(e.find("'../outside.bin'"), std::string::npos) << e;
-  LoadOptions any;
-  any.allowAnyPath = true;
-  EXPECT_EQ(loadGltf(file.string(), any).meshes.size(), 1u);
-  // Percent-encoded dots are decoded before the check, so they are refused the same way.
-  std::ofstream(root / "scene" / "encoded.gltf") << R"({"asset":{"version":"2.0"},
-      "buffers":[{"uri":"%2e%2e/outside.bin","byteLength":36}]})";
-  e = errorOf([&] { loadGltf((root / "scene" / "encoded.gltf").string()); });
-  EXPECT_NE(e.find("'..'"), std::string::npos) << e;
-}
-
-TEST(GltfTiny, GraphErrors) {
-  auto error = [](const std::string& rest) { return errorOf([&] { TinyDoc().load(rest); }); };
-  EXPECT_NE(error(R"("nodes":[{"children":[2]},{"children":[2]},{}])").find("two parents"),
-            std::string::npos);
-  EXPECT_NE(error(R"("scenes":[{"nodes":[1]}],"nodes":[{"children":[1]},{}])").find("not a root"),
-            std::string::npos);
-  EXPECT_NE(error(R"("nodes":[{"translation":[1e39,0,0]}])").find("NaN or infinity"),
-            std::string::npos);
-  EXPECT_NE(error(R"("cameras":[{"type":"perspective","perspective":{"yfov":0,"znear":1}}])")
-                .find("camera 0 yfov"),
-            std::string::npos);
-}
-
-TEST(GltfTiny, DeepJsonRefusedBeforeParsing) {
-  // Recursive JSON parsers would overflow the stack on this; the loader must refuse it first.
-  const std::string deep = std::string(100000, '[') + std::string(100000, ']');
-  std::string e = errorOf([&] { TinyDoc().load("\"extras\":" + deep); });
-  EXPECT_NE(e.find("nests deeper"), std::string::npos) << e;
-}
-
-TEST(GltfTiny, MisalignedAccessorRefused) {
-  TinyDoc d;
-  d.add(std::vector<uint8_t>(40, 0), 5121, "SCALAR");
-  std::string doc = d.json(R"("scenes":[{}])");
-  // Re-point the accessor as floats at byte 1 of its view: not 4-byte aligned.
-  doc.replace(doc.find("\"componentType\":5121"), 20, "\"componentType\":5126,\"byteOffset\":1");
-  fs::path file = freshFolder() / "scene.gltf";
-  std::ofstream(file) << doc;
-  std::string e = errorOf([&] { loadGltf(file.string()); });
-  EXPECT_NE(e.find("not aligned"), std::string::npos) << e;
-}
-
-}  // namespace
-}  // namespace tray
-
-namespace tray {
-namespace {
-
-// --- Core glTF fidelity: COLOR_0, alphaMode, KHR_materials_unlit, unsupported features -------
-
-const fs::path kFeatures = fs::path(TRAY_SHARED_DIR) / "gltf-features";
-
-/// Three meshes over the one triangle, each with COLOR_0 as accessor 2, 3 and 4.
-TEST(GltfTiny, VertexColorFormats) {
-  TinyDoc d = triangleDoc();
-  d.vec3({1, 0.5f, 0.25f, 0, 0, 0, 1, 1, 1});  // float RGB
-  d.add(std::vector<uint8_t>{255, 0, 51, 255, 0, 0, 0, 0, 0, 0, 0, 128}, 5121, "VEC4", true, 4);
-  d.add(std::vector<uint16_t>{65535, 0, 13107, 65535, 0, 0, 0, 0, 0, 0, 0, 32768}, 5123, "VEC4",
-        true, 4);
-  Scene s = d.load(R"("scenes":[{"nodes":[0,1,2]}],"nodes":[{"mesh":0},{"mesh":1},{"mesh":2}],
-      "meshes":[{"primitives":[{"attributes":{"POSITION":0,"COLOR_0":2},"indices":1}]},
-      {"primitives":[{"attributes":{"POSITION":0,"COLOR_0":3},"indices":1}]},
-      {"primitives":[{"attributes":{"POSITION":0,"COLOR_0":4},"indices":1}]}])");
-  ASSERT_EQ(s.meshes.size(), 3u);
-  ASSERT_EQ(s.meshes[0].colors.size(), 3u);
-  EXPECT_TRUE(s.meshes[0].colorAlphas.empty());  // RGB: alpha 1
-  expectNear(s.meshes[0].colors[0], {1, 0.5f, 0.25f});
-  for (int k : {1, 2}) {  // normalized unsigned byte and short (glTF 2.0 §3.11)
-    const TriangleMesh& m = s.meshes[size_t(k)];
-    ASSERT_EQ(m.colors.size(), 3u);
-    ASSERT_EQ(m.colorAlphas.size(), 3u);
-    expectNear(m.colors[0], {1, 0, 0.2f});
-    EXPECT_FLOAT_EQ(m.colorAlphas[0], 1.0f);
-    EXPECT_FLOAT_EQ(m.colorAlphas[1], 0.0f);
-    EXPECT_NEAR(m.colorAlphas[2], 0.5f, 0.003f);
-  }
-}
-
-TEST(GltfTiny, AlphaModesAndUnlit) {
-  Scene s = TinyDoc().load(R"("extensionsUsed":["KHR_materials_unlit"],"materials":[
-      {"pbrMetallicRoughness":{"baseColorFactor":[1,1,1,0.3]}},
-      {"alphaMode":"MASK","pbrMetallicRoughness":{"baseColorFactor":[1,1,1,0.3]}},
-      {"alphaMode":"MASK","alphaCutoff":0.25},
-      {"alphaMode":"BLEND","pbrMetallicRoughness":{"baseColorFactor":[1,1,1,0.3]}},
-      {"extensions":{"KHR_materials_unlit":{}}}])");
-  ASSERT_EQ(s.materials.size(), 5u);
-  EXPECT_EQ(s.materials[0].alphaMode, AlphaMode::kOpaque);
-  EXPECT_EQ(s.materials[1].alphaMode, AlphaMode::kMask);
-  EXPECT_FLOAT_EQ(s.materials[1].alphaCutoff, 0.5f);
-  EXPECT_FLOAT_EQ(s.materials[1].alpha, 0.3f);
-  EXPECT_FLOAT_EQ(s.materials[2].alphaCutoff, 0.25f);
-  EXPECT_EQ(s.materials[3].alphaMode, AlphaMode::kBlend);
-  EXPECT_TRUE(s.materials[4].unlit);
-  EXPECT_FALSE(s.materials[3].unlit);
-  std::string e = errorOf([] { TinyDoc().load(R"("materials":[{"alphaMode":"CLIP"}])"); });
-  EXPECT_NE(e.find("material 0 alphaMode 'CLIP' is not OPAQUE, MASK or BLEND"), std::string::npos)
-      << e;
-  // Issue 40: 1e40 is finite as a double only; -1 was refused while 1e40 was taken.
-  for (const char* cutoff : {"1e40", "-1"}) {
-    e = errorOf([&] {
-      TinyDoc().load(std::string(R"("materials":[{"alphaMode":"MASK","alphaCutoff":)") + cutoff +
-                     "}]");
-    });
-    EXPECT_NE(e.find("alphaCutoff is negative or not finite"), std::string::npos) << e;
-  }
-}
-
-TEST(GltfFeatures, SampleAssetsKeepColoursAlphaAndUnlit) {
-  Scene vc = loadGltf((kFeatures / "VertexColorTest.glb").string());
-  size_t colored = 0;
-  for (const auto& m : vc.meshes) colored += !m.colors.empty();
-  EXPECT_GT(colored, 0u);
-  Scene ab = loadGltf((kFeatures / "AlphaBlendModeTest.glb").string());
-  int modes[3] = {0, 0, 0};
-  for (const auto& m : ab.materials) ++modes[int(m.alphaMode)];
-  EXPECT_GT(modes[int(AlphaMode::kOpaque)], 0);
-  EXPECT_GT(modes[int(AlphaMode::kMask)], 0);
-  EXPECT_GT(modes[int(AlphaMode::kBlend)], 0);
-  bool alphaTexture = false;  // the alpha-tested base colour textures keep their alpha
-  for (const auto& m : ab.materials)
-    if (m.alphaMode != AlphaMode::kOpaque && m.baseColorTexture.valid())
-      alphaTexture = alphaTexture || ab.textures[size_t(m.baseColorTexture.image)].hasAlpha();
-  EXPECT_TRUE(alphaTexture);
-  Scene unlit = loadGltf((kFeatures / "UnlitTest.glb").string());
-  for (const auto& m : unlit.materials) EXPECT_TRUE(m.unlit) << m.name;
-}
-
-TEST(GltfFeatures, UnsupportedFeaturesAreWarned) {
-  auto warningsOf = [](const char* file) {
-    LoadReport report;
-    loadGltf((kFeatures / file).string(), {}, &report);
-    std::string all;
-    for (const auto& w : report.warnings) all += w + "\n";
-    return all;
-  };
-  // Skins, animations and morph targets are read (tests/gltf/gltf_animation_test.cpp): no word.
-  EXPECT_EQ(warningsOf("SimpleSkin.gltf"), "");
-  EXPECT_EQ(warningsOf("SimpleMorph.gltf"), "");
-  std::string sofa = warningsOf("GlamVelvetSofa.glb");
-  EXPECT_EQ(sofa.find("KHR_materials_variants"), std::string::npos) << sofa;  // read: --variant
-  EXPECT_EQ(sofa.find("sheen"), std::string::npos) << sofa;
-  // Implemented layers are no longer warned about.
-  std::string clearcoat = warningsOf("ClearCoatTest.glb");
-  EXPECT_EQ(clearcoat.find("clearcoat"), std::string::npos) << clearcoat;
-  std::string specular = warningsOf("SpecularTest.glb");
-  EXPECT_EQ(specular.find("specular"), std::string::npos) << specular;
 }
 
 }  // namespace

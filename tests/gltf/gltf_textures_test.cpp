@@ -22,6 +22,7 @@
 #include "render/render_setup.h"
 #include "render/renderer.h"
 #include "tests/base64.h"
+#include "tests/gltf/tiny_doc.h"
 #include "tests/temp_dir.h"
 
 namespace tray {
@@ -31,12 +32,7 @@ namespace fs = std::filesystem;
 
 const fs::path kSamples = fs::path(TRAY_SHARED_DIR) / "gltf-samples";
 
-fs::path freshFolder() {
-  static std::atomic<int> counter{0};
-  fs::path dir = test::testDir() / ("doc" + std::to_string(counter++));
-  fs::create_directories(dir);
-  return dir;
-}
+using test::freshFolder;
 
 void writeText(const fs::path& path, const std::string& text) {
   std::ofstream(path, std::ios::binary) << text;
