@@ -17,11 +17,7 @@ namespace tray {
 namespace {
 
 namespace fs = std::filesystem;
-using test::expectNear;
-using test::freshFolder;
-using test::kTriangleMesh;
-using test::TinyDoc;
-using test::triangleDoc;
+using namespace test;  // TinyDoc and its helpers (tests/gltf/tiny_doc.h)
 
 TEST(GltfTiny, DegenerateTrianglesDroppedAndBadNormalsZeroed) {
   TinyDoc d;
