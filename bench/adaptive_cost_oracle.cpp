@@ -204,41 +204,6 @@ void printAllocations(const Pools& pools, const Setup& o, const Film& ref) {
   }
 }
 
-/// TRay's threshold rules replayed on pool B (one render as one sample, --min-spp two of
-/// them), without and with --noise-cost rays, against uniform at equal rays and CPU seconds.
-void printCostReplays(const Pools& pools, const Setup& o, const Film& ref) {
-  const int w = ref.width(), h = ref.height(), half = o.seeds / 2, stepsB = o.seeds - half;
-  const size_t pixels = size_t(w) * h;
-  const auto raysCurve = uniformCurve(pools, pools.rays, half, stepsB, ref);
-  const auto secondsCurve = uniformCurve(pools, pools.seconds, half, stepsB, ref);
-  std::printf("\n## TRay's threshold rules replayed (a step of one render = %d spp, --min-spp "
-              "%d; uniform: %.2f rays per sample)\n\n| decision | --noise-cost | threshold | mean spp | rays per sample | "
-              "trimmed relMSE | gain at equal rays | gain at equal CPU s | bias |\n"
-              "|---|---|---|---|---|---|---|---|---|\n",
-              o.spp, 2 * o.spp, raysCurve.front().first / (double(pixels) * o.spp));
-  using D = SamplingPasses::Decision;
-  const std::pair<const char*, D> decisions[] = {{"neighbours", D::kNeighbours},
-                                                 {"wide", D::kWide}};
-  for (const auto& [name, decision] : decisions)
-    for (float t : {0.1f, 0.05f, 0.03f, 0.02f, 0.01f})
-      for (bool weigh : {false, true}) {
-        SamplingPasses passes;
-        passes.threshold = t, passes.minSamples = 2, passes.decision = decision;
-        passes.weighCost = weigh;
-        const std::vector<int> steps =
-            replay(pools.means, half, stepsB, w, h, passes, &pools.rays, o.spp);
-        double spp = 0;
-        for (int k : steps) spp += double(k) * o.spp / double(pixels);
-        const double rays = spent(pools.rays, steps, half);
-        const ImageError e = compareBeauty(imageOf(pools.means, steps, half, w, h), ref);
-        std::printf("| %s | %s | %.2f | %.1f | %.2f | %.3e | %.3f | %.3f | %+.2e |\n", name,
-                    weigh ? "rays" : "none", t, spp, rays / (spp * double(pixels)),
-                    e.relMseTrimmed, uniformAt(raysCurve, rays) / e.relMseTrimmed,
-                    uniformAt(secondsCurve, spent(pools.seconds, steps, half)) / e.relMseTrimmed,
-                    e.bias);
-      }
-}
-
 int run(const Setup& o) {
   LoadOptions load;
   load.allowAnyPath = true;  // the benchmark scenes take their assets from ../shared
@@ -259,7 +224,6 @@ int run(const Setup& o) {
               fs::path(o.scene).stem().string().c_str(), size.width, size.height, o.seeds, o.spp,
               (cpuSeconds() - cpu0) / o.seeds, o.seeds / 2 - 1, o.seeds / 2, o.seeds - 1);
   printAllocations(pools, o, ref);
-  printCostReplays(pools, o, ref);
   return 0;
 }
 

@@ -2,12 +2,10 @@
 """Uniform against noise-driven adaptive sampling at equal CPU time (issue 37), from the CSVs of
 `tray-bench sweep --threads 1 --methods "path sobol,path sobol adaptive,path sobol adaptive
 even,path sobol adaptive absolute,path sobol adaptive pixel,path sobol adaptive max,path sobol
-adaptive wide,path sobol adaptive cost,path sobol adaptive wide cost"` (one per scene): the
-default rule (mse), equal error (even), the default rule on absolute error (--noise-metric
-absolute), with the pixel's own error deciding (--noise-decision pixel), the neighbours' largest
-error (max) or the RMS error of the 5x5 (wide), and the default and wide with each pixel's
-stopping error weighed by its neighbours' rays per sample (--noise-cost rays) against uniform.
-A method missing from a CSV gives an empty table.
+adaptive wide"` (one per scene): the default rule (mse), equal error (even), the default rule on
+absolute error (--noise-metric absolute), with the pixel's own error deciding (--noise-decision
+pixel), the neighbours' largest error (max) or the RMS error of the 5x5 (wide) against
+uniform. A method missing from a CSV gives an empty table.
 
 For each adaptive run (one --noise-threshold), the uniform error at the same CPU time is read off
 the uniform runs' error-against-time line (piecewise linear in log-log, between the two uniform
@@ -38,9 +36,7 @@ ADAPTIVE = (("path sobol adaptive", "mse"), ("path sobol adaptive even", "even")
             ("path sobol adaptive absolute", "mse, --noise-metric absolute"),
             ("path sobol adaptive pixel", "mse, --noise-decision pixel (biased)"),
             ("path sobol adaptive max", "mse, --noise-decision max"),
-            ("path sobol adaptive wide", "mse, --noise-decision wide"),
-            ("path sobol adaptive cost", "mse, --noise-cost rays"),
-            ("path sobol adaptive wide cost", "mse, --noise-decision wide --noise-cost rays"))
+            ("path sobol adaptive wide", "mse, --noise-decision wide"))
 
 
 def compare(rows, metric, method, cost="cpu_seconds"):
@@ -76,11 +72,7 @@ def chart(tables, path):
                     ("path sobol adaptive max", "v-",
                      "adaptive, mse, neighbours' max decides (0.1..0.01)"),
                     ("path sobol adaptive wide", "*-",
-                     "adaptive, mse, 5x5 RMS decides (0.1..0.01)"),
-                    ("path sobol adaptive cost", "P-",
-                     "adaptive, mse, --noise-cost rays (0.1..0.01)"),
-                    ("path sobol adaptive wide cost", "h-",
-                     "adaptive, mse, 5x5 RMS, --noise-cost rays (0.1..0.01)")):
+                     "adaptive, mse, 5x5 RMS decides (0.1..0.01)")):
                 rs = sorted((r for r in rows if r["method"] == method),
                             key=lambda r: r["cpu_seconds"])
                 ax.plot([r["cpu_seconds"] for r in rs], [r[metric] for r in rs], style,

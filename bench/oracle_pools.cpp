@@ -56,7 +56,7 @@ std::vector<double> boxAverage(const std::vector<double>& a, int w, int h, int r
 }
 
 std::vector<int> replay(const std::vector<float>& means, int first, int available, int w, int h,
-                        SamplingPasses passes, const std::vector<float>* rays, int spp) {
+                        SamplingPasses passes) {
   const size_t pixels = size_t(w) * h;
   passes.maxSamples = available;
   std::vector<int> count(pixels, 0);
@@ -75,7 +75,7 @@ std::vector<int> replay(const std::vector<float>& means, int first, int availabl
     for (int by = 0; by < h; by += kNoiseBlock)
       for (int bx = 0; bx < w; bx += kNoiseBlock) {
         const int bw = std::min(kNoiseBlock, w - bx), bh = std::min(kNoiseBlock, h - by);
-        std::vector<float> error, cost;
+        std::vector<float> error;
         std::vector<uint32_t> n;
         std::vector<uint8_t> more(size_t(bw) * bh);
         for (int y = by; y < by + bh; ++y)
@@ -85,13 +85,8 @@ std::vector<int> replay(const std::vector<float>& means, int first, int availabl
             error.push_back(pixelError(sums(p, count[p]), sums(p, m), count[p], m,
                                        passes.absoluteError));
             n.push_back(uint32_t(count[p]));
-            if (!rays) continue;
-            double traced = 0;  // the rays of its renders so far, per sample
-            for (int j = first; j < first + count[p]; ++j)
-              traced += (*rays)[size_t(j) * pixels + p];
-            cost.push_back(count[p] > 0 ? float(traced / (double(count[p]) * spp)) : 0.0f);
           }
-        decideBlock(error, n, bw, bh, passes, more, cost);
+        decideBlock(error, n, bw, bh, passes, more);
         for (int i = 0; i < bw * bh; ++i) {
           pending[size_t(by + i / bw) * w + bx + i % bw] = more[i];
           any = any || more[i];

@@ -29,11 +29,8 @@ std::vector<double> boxAverage(const std::vector<double>& a, int w, int h, int r
 /// TRay's own block decisions (render/noise_estimate.h: its steps, error estimate and
 /// decideBlock over 8x8 blocks) replayed on `available` renders from `first`, one render
 /// counting as one sample: each pixel's number of renders when every block has stopped.
-/// `rays` (when not null, laid out as one float per pixel of each render) holds the rays each
-/// render's `spp` samples of each pixel traced, the cost --noise-cost rays weighs.
 std::vector<int> replay(const std::vector<float>& means, int first, int available, int w, int h,
-                        SamplingPasses passes, const std::vector<float>* rays = nullptr,
-                        int spp = 1);
+                        SamplingPasses passes);
 
 /// Uniform sampling's error at `x` (log-log between the points of `uniform`: pairs of
 /// x (spp, or a cost) and error, x increasing).

@@ -88,18 +88,6 @@ std::vector<SweepConfig> standardSweep(const std::vector<std::string>& accels,
         add(std::string("path sobol adaptive ") + decision, std::string("threshold=") + t, p);
       }
     }
-    // The stopping error weighed by the neighbours' rays per sample (--noise-cost rays).
-    p.set("noise-cost", std::string("rays"));
-    for (const char* decision : {"neighbours", "wide"}) {
-      p.set("noise-decision", std::string(decision));
-      for (const char* t : {"0.1", "0.05", "0.03", "0.02", "0.01"}) {
-        p.set("noise-threshold", std::stof(t));
-        add(std::string("path sobol adaptive ") +
-                (decision == std::string("wide") ? "wide cost" : "cost"),
-            std::string("threshold=") + t, p);
-      }
-    }
-    p.set("noise-cost", std::string("none"));
     // The error in radiance units (--noise-metric absolute: the rule then aims at RMSE).
     p.set("noise-decision", std::string("neighbours"));
     p.set("noise-metric", std::string("absolute"));

@@ -139,9 +139,7 @@ void Integrator::accumulatePixels(std::span<PixelTask> tasks, int begin, int end
                                   const std::atomic<bool>* stop) const {
   for (PixelTask& t : tasks) {
     if (stop && stop->load(std::memory_order_relaxed)) return;
-    const uint64_t before = stats.total();
     t.samples = accumulate(t.x, t.y, begin, end, t.sums, t.first, stats, t.coverage, t.aovSums);
-    t.rays = stats.total() - before;
     t.finished = true;
   }
 }

@@ -83,9 +83,6 @@ struct PixelTask {
   IdCoverage* coverage = nullptr;  ///< Cryptomatte's ids, when not null
   AovSums* aovSums = nullptr;      ///< the AOVs averaged over all samples, when not null
   uint32_t samples = 0;            ///< camera rays traced
-  /// Rays its samples traced (their share of RayStats::total()): the pixel's cost, which
-  /// adaptive sampling can weigh (--noise-cost rays, docs/adaptive-sampling.md).
-  uint64_t rays = 0;
   /// Set by accumulatePixels once all of the pixel's samples are in `sums`; a pixel left
   /// unfinished by a stop is not written (its sums hold only some samples).
   bool finished = false;
@@ -179,9 +176,9 @@ class Integrator {
   /// trace one sample at a time; a wavefront integrator asks for a tile's worth.
   virtual int pixelBatch() const { return 1; }
   /// accumulate() over samples [begin, end) of every task's pixel, setting each task's
-  /// `finished` and `rays`. The default calls it pixel by pixel; a wavefront integrator
-  /// overrides it to trace the batch's samples together, with the same sums and rays per pixel
-  /// (each sample drawing the same numbers). Once `*stop` (when not null) is true it returns early: between pixels, or
+  /// `finished`. The default calls it pixel by pixel; a wavefront integrator overrides it to
+  /// trace the batch's samples together, with the same sums per pixel (each sample drawing the
+  /// same numbers). Once `*stop` (when not null) is true it returns early: between pixels, or
   /// (wavefront) between waves, so that a signal ends a render whose batch holds hours of
   /// samples within milliseconds.
   virtual void accumulatePixels(std::span<PixelTask> tasks, int begin, int end, RayStats& stats,

@@ -30,10 +30,6 @@ const std::vector<OptionSpec>& renderOptions() {
                    "error (unbiased); max on their largest; wide on the RMS error of the 24 "
                    "others of its 5x5 (unbiased); pixel also on its own, as Cycles: lower error "
                    "where noise is local to pixels, but the image comes out 0.1-0.5% dark"),
-      choiceOption("noise-cost", "none", {"none", "rays"},
-                   "adaptive sampling: rays weighs each pixel's stopping error by the rays its "
-                   "neighbours' samples trace (sqrt(rays per sample / 4)), fewer samples where "
-                   "samples are dear; none: every sample counts the same (--noise-rule mse)"),
       intOption("min-spp", 16, 1, 1 << 20,
                 "adaptive sampling: samples every pixel takes before it may stop (at most --spp)"),
       floatOption("time-limit", 0.0f, 0.0f, 1e9f,

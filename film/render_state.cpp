@@ -65,25 +65,6 @@ const std::vector<std::string>& progressChannels() {
   return c;
 }
 
-/// The progress layer's rays, a 64-bit count as two float32 bit patterns (high word first).
-const std::vector<std::string>& raysChannels() {
-  static const std::vector<std::string> c = {"raysH", "raysL"};
-  return c;
-}
-
-void splitCount(uint64_t n, float* out) {
-  const uint32_t hi = uint32_t(n >> 32), lo = uint32_t(n);
-  std::memcpy(out, &hi, 4);
-  std::memcpy(out + 1, &lo, 4);
-}
-
-uint64_t joinCount(const float* in) {
-  uint32_t hi, lo;
-  std::memcpy(&hi, in, 4);
-  std::memcpy(&lo, in + 1, 4);
-  return uint64_t(hi) << 32 | lo;
-}
-
 void splitSums(const PixelSums& s, float* out) {
   split(s.rgb[0], out), split(s.rgb[1], out + 2), split(s.rgb[2], out + 4);
   split(s.alpha, out + 6), split(s.weight, out + 8);
@@ -124,16 +105,13 @@ void storeState(const RenderState& state, Film& film) {
     out[10] = state.done[p] ? 1.0f : 0.0f;
   }
   if (state.progress.empty() || state.pixelsDone() == n) return;
-  std::vector<std::string> channels = progressChannels();
-  channels.insert(channels.end(), raysChannels().begin(), raysChannels().end());
-  const int progress = film.addLayer(kProgressLayer, channels);
+  const int progress = film.addLayer(kProgressLayer, progressChannels());
   for (size_t p = 0; p < n; ++p) {
     float* out = film.pixel(progress, int(p % film.width()), int(p / film.width()));
     const PixelProgress& g = state.progress[p];
     splitSums(g.half, out);
     out[10] = float(g.count);  // at most 2^20 (--spp): exact
     out[11] = g.pending ? 1.0f : 0.0f;
-    splitCount(g.rays, out + 12);
   }
 }
 
@@ -162,11 +140,6 @@ RenderState loadState(const Film& film) {
                   std::to_string(in[10]) + ")");
     out.count = uint32_t(in[10]);
     out.pending = in[11] != 0.0f;
-  }
-  const std::vector<size_t> r = channelsOf(film, kProgressLayer, raysChannels(), progress);
-  for (size_t p = 0; p < n && !r.empty(); ++p) {
-    readPixel(film, progress, r, p, in);
-    state.progress[p].rays = joinCount(in);
   }
   return state;
 }

@@ -15,13 +15,11 @@ namespace tray {
 /// of its earlier look, which its error estimate compares with (render/noise_estimate.h), its
 /// samples so far (samples
 /// [begin, begin + count) of its range) and whether a step of the pass under way is still owed
-/// to it (kept by checkpoints, so that a resumed render takes the same decisions), and the
-/// rays its samples traced (PixelTask::rays: the cost --noise-cost rays weighs).
+/// to it (kept by checkpoints, so that a resumed render takes the same decisions).
 struct PixelProgress {
   PixelSums half;
   uint32_t count = 0;
   bool pending = false;
-  uint64_t rays = 0;
 };
 
 struct RenderState {
@@ -53,8 +51,7 @@ const std::vector<std::string>& stateChannels();
 PixelSums joinSums(const float* words);
 
 /// Name of the film layer holding RenderState::progress, in the same words: the earlier sums'
-/// Rh..Wl, then count and pending (numbers), then the rays as two words (raysH raysL, bit
-/// patterns; a layer without them, from before they were kept, reads as 0 rays).
+/// Rh..Wl, then count and pending (numbers).
 inline constexpr const char* kProgressLayer = "tray_progress";
 
 /// Adds (or overwrites) the state layer of `film`, and the progress layer when the state has

@@ -35,7 +35,6 @@ struct Wave {
   std::vector<PrimaryHit> primary;
   std::vector<Vec2> offsets;                  ///< pixel-sampler offset, for the filter weight
   std::vector<LightPathRadiance> lightPaths;  ///< when light-path AOVs are asked for
-  std::vector<uint32_t> pathRays;  ///< rays traced, as RayStats counts them (PixelTask::rays)
   // The queue of live paths and its rays, hits.
   std::vector<uint32_t> live, next;
   std::vector<Ray> rays;
@@ -58,9 +57,7 @@ struct Wave {
   uint32_t cameraSample[kCameraChunk];
   CameraRayLanes cameraLanes;
 
-  void clear() {
-    paths.clear(), samplers.clear(), primary.clear(), offsets.clear(), pathRays.clear();
-  }
+  void clear() { paths.clear(), samplers.clear(), primary.clear(), offsets.clear(); }
   /// A path from its camera ray; `split`: its light-path radiance, or null.
   void addPath(const Ray& ray, int x, int y, LightPathRadiance* split, const Sampler& sampler,
                const Vec2& offset) {
@@ -72,7 +69,6 @@ struct Wave {
     samplers.push_back(sampler);
     primary.emplace_back();
     offsets.push_back(offset);
-    pathRays.push_back(1);  // its camera ray
   }
 };
 
@@ -146,7 +142,7 @@ void PathWavefrontIntegrator::accumulatePixels(std::span<PixelTask> tasks, int b
                                                const std::atomic<bool>* stop) const {
   end = std::min(end, sampleCount());
   const size_t n = size_t(std::max(0, end - begin));
-  for (PixelTask& t : tasks) t.samples = uint32_t(n), t.rays = 0, t.finished = n == 0;
+  for (PixelTask& t : tasks) t.samples = uint32_t(n), t.finished = n == 0;  // none: done
   const size_t total = tasks.size() * n;
   Wave& w = scratch();
   const bool anySplit = std::any_of(tasks.begin(), tasks.end(), wantsLightPaths);
@@ -178,7 +174,6 @@ void PathWavefrontIntegrator::accumulatePixels(std::span<PixelTask> tasks, int b
       PixelTask& t = tasks[g / n];
       const size_t k = g - g0;
       if (g % n == 0) t.first = w.primary[k];
-      t.rays += w.pathRays[k];
       addSample(t.sums, t.coverage, t.aovSums, w.offsets[k], PathEstimator::result(w.paths[k]),
                 w.primary[k], wantsLightPaths(t) ? &w.lightPaths[k] : nullptr, stats);
       if (g % n == n - 1) t.finished = true;
@@ -279,11 +274,9 @@ void PathWavefrontIntegrator::bounce(Wave& w, RayStats& stats, bool cameraRays) 
         surfacesKnown ? &w.surfaces[j] : nullptr,
         drawsAhead_ ? DrawsAhead{&w.draws.first[j], &w.draws.second[j]} : DrawsAhead{},
         deferring ? &deferral : nullptr, k};
-    const uint64_t before = stats.total();  // the rays this vertex asks for: its path's cost
     const PathStep step =
         estimator_.step(w.paths[k], w.samplers[k], w.found[j] ? &w.hits[j] : nullptr,
                         w.shadows[shadowCount], wantsShadow, stats, &w.primary[k], made);
-    w.pathRays[k] += uint32_t(stats.total() - before);
     if (wantsShadow) w.shadowPath[shadowCount++] = k;
     if (step == PathStep::kContinue) w.next.push_back(k);
   }
@@ -294,12 +287,10 @@ void PathWavefrontIntegrator::bounce(Wave& w, RayStats& stats, bool cameraRays) 
     for (size_t q = 0; q < lanes.count; ++q) {
       const uint32_t k = lanes.path[q];
       bool wantsShadow = false;
-      const uint64_t before = stats.total();
       const PathStep step =
           delta ? estimator_.finishDelta(w.paths[k], w.samplers[k], lanes, q, stats)
                 : estimator_.finishDeferred(w.paths[k], w.samplers[k], lanes, q,
                                             w.shadows[shadowCount], wantsShadow, stats);
-      w.pathRays[k] += uint32_t(stats.total() - before);
       if (wantsShadow) w.shadowPath[shadowCount++] = k;
       if (step == PathStep::kContinue) w.next.push_back(k);
     }

@@ -5,8 +5,6 @@
 #include <limits>
 #include <string>
 
-#include "core/error.h"
-
 namespace tray {
 namespace {
 /// A pixel's error where there is no estimate yet: it never lets a decision stop.
@@ -27,10 +25,6 @@ std::optional<SamplingPasses> samplingPassesOf(const RenderSettings& settings) {
                     : decision == "max" ? D::kMax
                     : decision == "wide" ? D::kWide
                                          : D::kNeighbours;
-  passes.weighCost = settings.getString("noise-cost") == "rays";
-  if (passes.weighCost && passes.evenError)
-    throw Error("--noise-cost rays weighs --noise-rule mse's stopping errors; --noise-rule even "
-                "stops every pixel at the same error");
   return passes;
 }
 
@@ -63,18 +57,13 @@ int nextStep(int count, const SamplingPasses& passes) {
   return std::min(step, left);
 }
 
-float stoppingError(int count, const SamplingPasses& passes, double cost) {
+float stoppingError(int count, const SamplingPasses& passes) {
   if (passes.evenError) return passes.threshold;
-  const float limit =
-      passes.threshold * std::sqrt(float(count) / float(std::max(passes.minSamples, 1)));
-  if (!passes.weighCost || !(cost > 0)) return limit;
-  return limit * float(std::sqrt(cost / kRayCostReference));
+  return passes.threshold * std::sqrt(float(count) / float(std::max(passes.minSamples, 1)));
 }
 
 void decideBlock(std::span<const float> error, std::span<const uint32_t> count, int w, int h,
-                 const SamplingPasses& passes, std::span<uint8_t> more,
-                 std::span<const float> cost) {
-  const bool weighed = passes.weighCost && !cost.empty();
+                 const SamplingPasses& passes, std::span<uint8_t> more) {
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const int p = y * w + x;
@@ -91,8 +80,8 @@ void decideBlock(std::span<const float> error, std::span<const uint32_t> count, 
       // dark, docs/adaptive-sampling.md). Its neighbours' samples are independent of its own.
       using D = SamplingPasses::Decision;
       const int radius = passes.decision == D::kWide ? 2 : 1;
-      double sum = 0, squares = 0, largest = 0, costs = 0;
-      int n = 0, costed = 0;
+      double sum = 0, squares = 0, largest = 0;
+      int n = 0;
       for (int dy = -radius; dy <= radius; ++dy)
         for (int dx = -radius; dx <= radius; ++dx) {
           const int nx = x + dx, ny = y + dy;
@@ -101,10 +90,8 @@ void decideBlock(std::span<const float> error, std::span<const uint32_t> count, 
           const double v = std::isfinite(e) ? double(e) : double(kNoEstimate);
           sum += v, squares += v * v, largest = std::max(largest, v);
           ++n;
-          if (weighed && cost[ny * w + nx] > 0) costs += cost[ny * w + nx], ++costed;
         }
-      const float limit =
-          stoppingError(int(count[p]), passes, costed > 0 ? costs / costed : 0.0);
+      const float limit = stoppingError(int(count[p]), passes);
       if (passes.decision == D::kPixel) {
         // Cycles' and Arnold's way: the pixel's own error, and the 3x3 mean with itself.
         const float own = std::isfinite(error[p]) ? error[p] : kNoEstimate;

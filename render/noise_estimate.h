@@ -41,27 +41,14 @@ struct SamplingPasses {
     kPixel,       ///< pixel: its own error too, as Cycles and Arnold (biased dark)
   };
   Decision decision = Decision::kNeighbours;
-  /// --noise-cost rays: each pixel's stopping error weighed by the rays its neighbours'
-  /// samples trace (stoppingError), so that samples go where they lower the error most per
-  /// ray, not per sample. Only with the mse rule.
-  bool weighCost = false;
 };
-
-/// --noise-cost rays: the rays per sample at which a pixel's stopping error is the rule's
-/// own (the weight sqrt(cost / reference) is 1). A constant, not a mean taken from the
-/// render, so that regions, sample ranges and resumed renders decide as the whole render
-/// does; about what a uniform sample traces on the benchmark scenes (3.0 on the helmets, 5.0
-/// on the Cornell box: docs/bench/adaptive-cost-2026-12-07.md), so that a threshold keeps
-/// about its meaning.
-inline constexpr double kRayCostReference = 4;
 
 /// The floor of relMSE's denominator (value^2 + 0.01, bench/image_error.cpp): below a value
 /// of 0.1 an error counts as absolute, so that black pixels do not ask for endless samples.
 inline constexpr double kRelativeFloor = 1e-2;
 
 /// The passes the settings ask for: set when --noise-threshold or --time-limit is (maxSamples
-/// is left for the renderer to take from the sample range); none otherwise. Throws tray::Error
-/// for --noise-cost rays with --noise-rule even.
+/// is left for the renderer to take from the sample range); none otherwise.
 std::optional<SamplingPasses> samplingPassesOf(const RenderSettings& settings);
 
 /// The estimated relative error of `all`, the mean of a pixel's n samples, from `earlier`, the
@@ -89,11 +76,7 @@ int nextStep(int count, const SamplingPasses& passes);
 /// (threshold^2 / minSamples) is the allocation that minimises the image's summed squared
 /// error for the samples spent (n proportional to the pixel's standard deviation, not to its
 /// variance as with equal error, which over-spends on the noisiest pixels).
-/// With passes.weighCost and `cost` (rays per sample) positive, the mse limit times
-/// sqrt(cost / kRayCostReference): a sample costs c, so stopping where its gain per cost,
-/// e^2 / (count c), falls below one common value minimises the error for the rays spent
-/// (n proportional to sqrt(variance / c), the KKT solution of bench/oracle_allocation.h).
-float stoppingError(int count, const SamplingPasses& passes, double cost = 0);
+float stoppingError(int count, const SamplingPasses& passes);
 
 /// One block's decision: which of its pixels take another step. `error` and `count` hold the
 /// block's w x h pixels row by row. A pixel goes on while it has fewer than minSamples, or
@@ -106,12 +89,8 @@ float stoppingError(int count, const SamplingPasses& passes, double cost = 0);
 /// a rare bright path weighs as its squared error does in the variance). A pixel with no
 /// neighbour in the block goes on to maxSamples. With kPixel a pixel also goes on while its
 /// own error, or the 3x3 mean with itself, is at least the limit (biased:
-/// docs/adaptive-sampling.md). `more` receives 1 for those that go on. `cost` (when not empty,
-/// with passes.weighCost) holds the block's rays per sample (0: none yet); the limit is then
-/// weighed by the mean cost of the same neighbours whose errors decide (not the pixel's own:
-/// a path's length and its value are not independent), those with a cost.
+/// docs/adaptive-sampling.md). `more` receives 1 for those that go on.
 void decideBlock(std::span<const float> error, std::span<const uint32_t> count, int w, int h,
-                 const SamplingPasses& passes, std::span<uint8_t> more,
-                 std::span<const float> cost = {});
+                 const SamplingPasses& passes, std::span<uint8_t> more);
 
 }  // namespace tray

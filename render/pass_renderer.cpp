@@ -133,7 +133,7 @@ class PassRenderer {
   }
 
   struct BlockScratch {
-    std::vector<float> error, cost;
+    std::vector<float> error;
     std::vector<uint32_t> count;
     std::vector<uint8_t> more;
   };
@@ -147,7 +147,6 @@ class PassRenderer {
     const int fy1 = std::min((by + 1) * kNoiseBlock - options_.y0, film_.height());
     const int w = fx1 - fx0, h = fy1 - fy0;
     b.error.resize(size_t(w) * h), b.count.resize(b.error.size()), b.more.resize(b.error.size());
-    b.cost.resize(passes_.weighCost ? b.error.size() : 0);
     for (int j = 0; j < h; ++j)
       for (int i = 0; i < w; ++i) {
         const size_t p = size_t(fy0 + j) * film_.width() + fx0 + i;
@@ -156,9 +155,8 @@ class PassRenderer {
         b.error[j * w + i] =
             pixelError(state_.sums[p], g.half, n, earlierCount(n, passes_), passes_.absoluteError);
         b.count[j * w + i] = g.count;
-        if (passes_.weighCost) b.cost[j * w + i] = n > 0 ? float(double(g.rays) / n) : 0.0f;
       }
-    decideBlock(b.error, b.count, w, h, passes_, b.more, b.cost);
+    decideBlock(b.error, b.count, w, h, passes_, b.more);
     bool any = false;
     for (int j = 0; j < h; ++j)
       for (int i = 0; i < w; ++i) {
@@ -249,7 +247,6 @@ class PassRenderer {
       if (crypto_.active()) crypto_.write(film_, px, py, work.coverage[k]);
     }
     g.count += uint32_t(step);
-    g.rays += (a ? a->rays : 0) + b.rays;
     g.pending = false;
     if (samplesLayer_ >= 0) film_.pixel(samplesLayer_, px, py)[0] = float(g.count);
     credited_ += uint64_t(step);

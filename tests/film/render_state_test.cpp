@@ -57,50 +57,6 @@ TEST(RenderState, RoundTripsThroughExrBitForBit) {
   EXPECT_EQ(back.pixelsDone(), state.pixelsDone());
 }
 
-// The progress of a render in passes round-trips too, each pixel's rays (--noise-cost rays)
-// as two words whatever their bits; a progress layer from before the rays were kept (no raysH,
-// raysL) still resumes, with 0 rays.
-TEST(RenderState, ProgressRaysRoundTripThroughExr) {
-  const int w = 3, h = 2;
-  RenderState state = RenderState::empty(size_t(w) * h);
-  state.progress.resize(state.sums.size());
-  const uint64_t rays[] = {0, 1, 123456789, 0x7fc0000000000001ull, 0x000000017f800001ull,
-                           ~uint64_t(0)};
-  for (size_t p = 0; p < state.progress.size(); ++p) {
-    state.progress[p].count = uint32_t(16 * (p + 1));
-    state.progress[p].pending = p % 2 == 0;
-    state.progress[p].rays = rays[p];
-  }
-  Film film(w, h);
-  storeState(state, film);
-  const std::string path = (test::testDir() / "progress.exr").string();
-  writeImage(film, path);
-  const RenderState back = loadState(readExr(path).film);
-  ASSERT_EQ(back.progress.size(), state.progress.size());
-  for (size_t p = 0; p < state.progress.size(); ++p) {
-    EXPECT_EQ(back.progress[p].rays, rays[p]) << p;
-    EXPECT_EQ(back.progress[p].count, state.progress[p].count) << p;
-    EXPECT_EQ(back.progress[p].pending, state.progress[p].pending) << p;
-  }
-  // The older layer: the same channels less the rays'.
-  Film old(w, h);
-  const int from = film.findLayer(kProgressLayer);
-  std::vector<std::string> channels = film.layers()[from].channels;
-  ASSERT_EQ(channels.size(), 14u);
-  channels.resize(12);
-  const int to = old.addLayer(kProgressLayer, channels);
-  storeState(RenderState::empty(size_t(w) * h), old);  // the sums' layer
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x)
-      for (int c = 0; c < 12; ++c) old.pixel(to, x, y)[c] = film.pixel(from, x, y)[c];
-  const RenderState older = loadState(old);
-  ASSERT_EQ(older.progress.size(), state.progress.size());
-  for (size_t p = 0; p < state.progress.size(); ++p) {
-    EXPECT_EQ(older.progress[p].rays, 0u) << p;
-    EXPECT_EQ(older.progress[p].count, state.progress[p].count) << p;
-  }
-}
-
 TEST(RenderState, FilmWithoutStateIsAnError) {
   EXPECT_THROW(loadState(Film(2, 2)), Error);
 }

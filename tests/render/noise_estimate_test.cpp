@@ -3,8 +3,6 @@
 
 #include <gtest/gtest.h>
 
-#include "core/error.h"
-
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -71,12 +69,6 @@ TEST(NoiseEstimate, SettingsGiveThePasses) {
   EXPECT_EQ(samplingPassesOf(settings)->decision, SamplingPasses::Decision::kMax);
   settings.set("noise-decision", std::string("wide"));
   EXPECT_EQ(samplingPassesOf(settings)->decision, SamplingPasses::Decision::kWide);
-  EXPECT_FALSE(samplingPassesOf(settings)->weighCost);
-  // --noise-cost rays weighs the mse rule's stopping errors; even has none to weigh: refused.
-  settings.set("noise-cost", std::string("rays"));
-  EXPECT_THROW(samplingPassesOf(settings), Error);
-  settings.set("noise-rule", std::string("mse"));
-  EXPECT_TRUE(samplingPassesOf(settings)->weighCost);
 }
 
 // The earlier look of each count in the sequence: half of the first step, then the look before.
@@ -112,53 +104,6 @@ TEST(NoiseEstimate, StoppingErrorOfEachRule) {
   p.evenError = false;
   decideBlock(error, count, 2, 2, p, more);
   EXPECT_EQ(more, (std::vector<uint8_t>{0, 0, 0, 0}));
-}
-
-// --noise-cost rays: the mse limit times sqrt(cost / 4 rays per sample). A pixel of 64 samples
-// (limit 0.2) whose samples trace 16 rays stops below 0.4, one whose samples trace 1 ray below
-// 0.1: the stopping rule of n proportional to sqrt(variance / cost). The reference cost (4)
-// leaves the limit as it is; no cost known (0), or weighCost off, neither.
-TEST(NoiseEstimate, CostWeighsTheStoppingError) {
-  SamplingPasses p;
-  p.threshold = 0.1f, p.minSamples = 16, p.weighCost = true;
-  EXPECT_FLOAT_EQ(stoppingError(64, p, 16.0), 0.4f);
-  EXPECT_FLOAT_EQ(stoppingError(64, p, 1.0), 0.1f);
-  EXPECT_FLOAT_EQ(stoppingError(64, p, kRayCostReference), 0.2f);
-  EXPECT_FLOAT_EQ(stoppingError(64, p, 0.0), 0.2f);
-  EXPECT_FLOAT_EQ(stoppingError(16, p, 9.0), 0.15f);
-  p.weighCost = false;
-  EXPECT_FLOAT_EQ(stoppingError(64, p, 16.0), 0.2f);
-}
-
-// In a block the cost is that of the neighbours whose errors decide, not the pixel's own. A
-// 3x1 row at 64 samples (limit 0.2 at the reference cost), every error 0.3: without cost all go
-// on. With costs 16, 1, 16 rays per sample: the middle pixel's neighbours cost 16 (limit 0.4):
-// it stops, although its own samples are cheap; the end pixels' one neighbour costs 1 (limit
-// 0.1): they go on, although their own are dear. A neighbour with no cost yet (0) is left out
-// of the mean; none with a cost: the limit unweighed.
-TEST(NoiseEstimate, ABlockWeighsTheNeighboursCost) {
-  SamplingPasses p;
-  p.threshold = 0.1f, p.minSamples = 16, p.maxSamples = 1024, p.weighCost = true;
-  const std::vector<float> error(3, 0.3f);
-  const std::vector<uint32_t> count(3, 64);
-  std::vector<uint8_t> more(3);
-  decideBlock(error, count, 3, 1, p, more);
-  EXPECT_EQ(more, (std::vector<uint8_t>{1, 1, 1}));
-  decideBlock(error, count, 3, 1, p, more, std::vector<float>{16, 1, 16});
-  EXPECT_EQ(more, (std::vector<uint8_t>{1, 0, 1}));
-  decideBlock(error, count, 3, 1, p, more, std::vector<float>{16, 0, 0});
-  EXPECT_EQ(more, (std::vector<uint8_t>{1, 0, 1}));  // the middle: 16 (the other has none)
-  decideBlock(error, count, 3, 1, p, more, std::vector<float>{0, 0, 0});
-  EXPECT_EQ(more, (std::vector<uint8_t>{1, 1, 1}));
-  // The wide decision weighs by the same 24 (here 2) others whose errors decide.
-  p.decision = SamplingPasses::Decision::kWide;
-  decideBlock(error, count, 3, 1, p, more, std::vector<float>{16, 1, 16});
-  EXPECT_EQ(more, (std::vector<uint8_t>{1, 0, 1}));  // the ends: (1 + 16) / 2 = 8.5, 0.29
-  decideBlock(error, count, 3, 1, p, more, std::vector<float>{25, 1, 25});
-  EXPECT_EQ(more, (std::vector<uint8_t>{0, 0, 0}));  // (1 + 25) / 2 = 13, limit 0.36
-  p.weighCost = false;
-  decideBlock(error, count, 3, 1, p, more, std::vector<float>{16, 1, 16});
-  EXPECT_EQ(more, (std::vector<uint8_t>{1, 1, 1}));
 }
 
 // Two looks per doubling, every step a power of two and aligned (a run of Sobol' points),

@@ -8,7 +8,6 @@
 #include <set>
 #include <vector>
 
-#include "film/render_state.h"
 #include "gltf/gltf_loader.h"
 #include "tests/integrators/render_job.h"
 
@@ -223,56 +222,6 @@ TEST(PassRenderer, SampleRangePartsSpendTheirOwnSamples) {
     EXPECT_LE(c, 64);
   }
   EXPECT_EQ(part.stats.rays.cameraRays, part.stats.samples);
-}
-
-// --noise-cost rays: each pixel's rays are counted as the render's RayStats counts them (the
-// wavefront and path-scalar alike: the same image), and the decisions that read them keep
-// every exactness of the passes: any thread count and tile size, aligned regions, and a
-// checkpoint stored in and read back from its film layers resumes to the same bits.
-TEST(PassRenderer, CostWeighingCountsRaysPerPixelAndStaysExact) {
-  Job job = adaptiveJob(0.05f, 256);
-  job.passes->weighCost = true;
-  job.threads = 1;
-  RenderState end;
-  const Render one = render(cornell(), job, &end);
-  uint64_t rays = 0;
-  for (const PixelProgress& g : end.progress) rays += g.rays;
-  EXPECT_EQ(rays, one.stats.rays.total());
-  job.threads = 3, job.tileSize = 8;
-  EXPECT_EQ(differingValues(one.film, render(cornell(), job).film), 0u);
-  job.integrator = "path-scalar";
-  RenderState scalarEnd;
-  EXPECT_EQ(differingValues(one.film, render(cornell(), job, &scalarEnd).film), 0u);
-  for (size_t p = 0; p < end.progress.size(); ++p)
-    ASSERT_EQ(scalarEnd.progress[p].rays, end.progress[p].rays) << p;
-  job.integrator = "path";
-  // The weighing moves samples: not the counts of the unweighed rule.
-  Job blind = job;
-  blind.passes->weighCost = false;
-  EXPECT_NE(counts(render(cornell(), blind).film), counts(one.film));
-  // An aligned region decides as the whole image does.
-  Job region = job;
-  region.x0 = 8, region.y0 = 16, region.width = 16, region.height = 8;
-  const Render part = render(cornell(), region);
-  for (int y = 0; y < region.height; ++y)
-    for (int x = 0; x < region.width; ++x)
-      ASSERT_EQ(part.film.pixel(Film::kBeauty, x, y)[0],
-                one.film.pixel(Film::kBeauty, x + region.x0, y + region.y0)[0]);
-  // A mid-render checkpoint through the film's state layers resumes to the same bits.
-  std::vector<std::pair<Film, RenderState>> checkpoints;
-  job.checkpointSeconds = 1e-9;
-  job.onCheckpoint = [&](const Film& f, const RenderState& s) { checkpoints.emplace_back(f, s); };
-  render(cornell(), job);
-  ASSERT_GT(checkpoints.size(), 2u);
-  job.checkpointSeconds = 0, job.onCheckpoint = nullptr;
-  auto [film, state] = checkpoints[checkpoints.size() / 2];
-  storeState(state, film);
-  RenderState loaded = loadState(film);
-  for (size_t p = 0; p < state.progress.size(); ++p)
-    ASSERT_EQ(loaded.progress[p].rays, state.progress[p].rays) << p;
-  const Render resumed = render(cornell(), job, &loaded, &film);  // its film has the state too
-  EXPECT_EQ(resumed.film.layers()[Film::kBeauty].data, one.film.layers()[Film::kBeauty].data);
-  EXPECT_EQ(counts(resumed.film), counts(one.film));
 }
 
 }  // namespace
