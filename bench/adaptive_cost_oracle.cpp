@@ -15,8 +15,8 @@
 //                      renderer that counts rays (deterministic) can do at equal time
 // each with its trimmed relMSE gain over uniform at equal cost (uniform's error interpolated
 // log-log at the allocation's cost) and the expected gain (pool B's a and c, closed form).
-// Then TRay's threshold rules replayed on pool B (printCostReplays) with and without
-// --noise-cost rays, at equal rays.
+// (Commit 2b12d4d also replayed TRay's rules with a --noise-cost rays stopping rule, since
+// reverted: docs/bench/adaptive-cost-2026-12-07.md.)
 //
 // Usage: adaptive_cost_oracle SCENE [--resolution 320x240] [--seeds 128] [--spp 16]
 //            [--budgets 32,64,128,256] [--max-spp 1024] [--out bench-out] [--reference EXR]
