@@ -39,6 +39,7 @@
 #include "bench/cpu_time.h"
 #include "bench/image_error.h"
 #include "bench/oracle_allocation.h"
+#include "bench/oracle_pools.h"
 #include "bench/sweep.h"
 #include "core/error.h"
 #include "gltf/gltf_loader.h"
@@ -67,115 +68,6 @@ Film renderWith(const PreparedScene& prepared, ImageSize size, const RenderSetti
   opt.threads = threads;
   renderImage(*integrator, film, opt);
   return film;
-}
-
-/// Each pixel's relative variance of one sample, summed over R, G, B, from renders `first` to
-/// `last` (exclusive) of `means` (render-major, RGB per pixel, each a mean of `spp` samples).
-std::vector<double> relativeVariance(const std::vector<float>& means, size_t pixels, int first,
-                                     int last, int spp, const Film& ref) {
-  std::vector<double> a(pixels, 0.0);
-  const int w = ref.width(), k = last - first;
-  for (size_t p = 0; p < pixels; ++p)
-    for (int c = 0; c < 3; ++c) {
-      double sum = 0, squares = 0;
-      for (int j = first; j < last; ++j) {
-        const double v = means[(size_t(j) * pixels + p) * 3 + c];
-        sum += v, squares += v * v;
-      }
-      const double mean = sum / k, var = std::max(0.0, (squares - k * mean * mean) / (k - 1));
-      const double r = ref.pixel(Film::kBeauty, int(p % w), int(p / w))[c];
-      a[p] += var * spp / (r * r + 1e-2);
-    }
-  return a;
-}
-
-/// The image whose pixel p is the mean of renders first .. first + steps[p] - 1 of `means`.
-Film imageOf(const std::vector<float>& means, const std::vector<int>& steps, int first, int w,
-             int h) {
-  Film film(w, h);
-  const size_t pixels = size_t(w) * h;
-  for (size_t p = 0; p < pixels; ++p)
-    for (int c = 0; c < 3; ++c) {
-      double sum = 0;
-      for (int j = first; j < first + steps[p]; ++j)
-        sum += means[(size_t(j) * pixels + p) * 3 + c];
-      film.pixel(Film::kBeauty, int(p % w), int(p / w))[c] = float(sum / steps[p]);
-    }
-  return film;
-}
-
-/// The mean of `a` over each pixel's (2 radius + 1)^2 neighbourhood inside the image, the
-/// pixel itself left out when `self` is false (what a rule deciding from its neighbours sees).
-std::vector<double> boxAverage(const std::vector<double>& a, int w, int h, int radius, bool self) {
-  std::vector<double> out(a.size());
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      double s = 0;
-      int n = 0;
-      for (int dy = -radius; dy <= radius; ++dy)
-        for (int dx = -radius; dx <= radius; ++dx)
-          if (x + dx >= 0 && y + dy >= 0 && x + dx < w && y + dy < h && (self || dx || dy))
-            s += a[size_t(y + dy) * w + x + dx], ++n;
-      out[size_t(y) * w + x] = s / n;
-    }
-  return out;
-}
-
-/// TRay's own block decisions (render/noise_estimate.h: its steps, error estimate and
-/// decideBlock over 8x8 blocks) replayed on `available` renders from `first`, one render
-/// counting as one sample: each pixel's number of renders when every block has stopped.
-std::vector<int> replay(const std::vector<float>& means, int first, int available, int w, int h,
-                        SamplingPasses passes) {
-  const size_t pixels = size_t(w) * h;
-  passes.maxSamples = available;
-  std::vector<int> count(pixels, 0);
-  std::vector<uint8_t> pending(pixels, 1);
-  auto sums = [&](size_t p, int n) {  // the pixel's sums over its first n renders
-    PixelSums s;
-    for (int j = first; j < first + n; ++j)
-      for (int c = 0; c < 3; ++c) s.rgb[c] += means[(size_t(j) * pixels + p) * 3 + c];
-    s.weight = n;
-    return s;
-  };
-  for (bool any = true; any;) {
-    for (size_t p = 0; p < pixels; ++p)
-      if (pending[p]) count[p] += nextStep(count[p], passes);
-    any = false;
-    for (int by = 0; by < h; by += kNoiseBlock)
-      for (int bx = 0; bx < w; bx += kNoiseBlock) {
-        const int bw = std::min(kNoiseBlock, w - bx), bh = std::min(kNoiseBlock, h - by);
-        std::vector<float> error;
-        std::vector<uint32_t> n;
-        std::vector<uint8_t> more(size_t(bw) * bh);
-        for (int y = by; y < by + bh; ++y)
-          for (int x = bx; x < bx + bw; ++x) {
-            const size_t p = size_t(y) * w + x;
-            const int m = earlierCount(count[p], passes);
-            error.push_back(pixelError(sums(p, count[p]), sums(p, m), count[p], m,
-                                       passes.absoluteError));
-            n.push_back(uint32_t(count[p]));
-          }
-        decideBlock(error, n, bw, bh, passes, more);
-        for (int i = 0; i < bw * bh; ++i) {
-          pending[size_t(by + i / bw) * w + bx + i % bw] = more[i];
-          any = any || more[i];
-        }
-      }
-  }
-  return count;
-}
-
-/// Uniform sampling's trimmed relMSE at `spp` (log-log between the whole-render counts in
-/// `uniform`: pairs of spp and error, increasing).
-double uniformAt(const std::vector<std::pair<double, double>>& uniform, double spp) {
-  for (size_t i = 1; i < uniform.size(); ++i)
-    if (spp <= uniform[i].first || i + 1 == uniform.size()) {
-      const auto [x0, y0] = uniform[i - 1];
-      const auto [x1, y1] = uniform[i];
-      const double t = std::log(spp / x0) / std::log(x1 / x0);
-      return std::exp(std::log(y0) + t * std::log(y1 / y0));
-    }
-  return 0;
 }
 
 /// The replayed threshold rules against uniform at equal samples (trimmed relMSE), with their

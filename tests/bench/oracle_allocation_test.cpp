@@ -74,5 +74,50 @@ TEST(OracleAllocation, WholeStepsKeepTheBudget) {
   EXPECT_NEAR(total * 16, 188, 16);
 }
 
+TEST(OracleAllocation, CostAwareSamplesFollowSqrtOfVarianceOverCost) {
+  // a = 1, 4 with costs c = 1, 4: sqrt(a / c) = 1, 1, so at a mean cost of 5 per pixel
+  // (sum c n = 10) n = 2, 2, which is uniform's at that cost: when the variance grows as the
+  // cost, uniform sampling is already optimal (gain 1). The cost-blind n proportional to
+  // sqrt(a) = 1, 2 spends the same 10 as n = 10/9, 20/9, and loses: sum a / n = 0.9 + 1.8 =
+  // 2.7 against 2.5, a gain of 25/27.
+  const std::vector<double> a{1, 4}, c{1, 4};
+  const std::vector<double> n = costAwareAllocation(a, c, 5, 0, 1e9);
+  EXPECT_NEAR(n[0], 2, 1e-6);
+  EXPECT_NEAR(n[1], 2, 1e-6);
+  EXPECT_NEAR(gainAtEqualCost(a, c, n), 1, 1e-6);
+  EXPECT_NEAR(unboundedGainAtEqualCost(a, c), 1, 1e-12);
+  const std::vector<double> rootA{1, 2};
+  const std::vector<double> blind = weightedAllocation(rootA, c, 5, 0, 1e9);
+  EXPECT_NEAR(blind[0], 10.0 / 9, 1e-6);
+  EXPECT_NEAR(blind[1], 20.0 / 9, 1e-6);
+  EXPECT_NEAR(gainAtEqualCost(a, c, blind), 25.0 / 27, 1e-6);
+  EXPECT_NEAR(unboundedGainAtEqualCost(a, c, true), 25.0 / 27, 1e-12);
+  // Equal costs: the cost-aware allocation is the cost-blind one.
+  const std::vector<double> ones(2, 3.0);
+  const std::vector<double> same = costAwareAllocation(a, ones, 3 * 6, 0, 1e9);
+  const std::vector<double> oracle = oracleAllocation(a, 6, 0, 1e9);
+  EXPECT_NEAR(same[0], oracle[0], 1e-6);
+  EXPECT_NEAR(same[1], oracle[1], 1e-6);
+}
+
+TEST(OracleAllocation, CostAwareBeatsCostBlindAtEqualCost) {
+  // a = 4, 4 with costs 1, 9: sqrt(a / c) = 2, 2/3, so at sum c n = 20, n = 5, 5/3 (cost
+  // 5 + 15); error 4/5 + 12/5 = 3.2. Cost-blind n = 2, 2 (cost 20): error 4. Gain 1.25, and
+  // over uniform (also n = 2, 2 here) the same; unbounded: mean(a) mean(c) / mean(sqrt(ac))^2
+  // = 4 x 5 / 4^2 = 1.25.
+  const std::vector<double> a{4, 4}, c{1, 9};
+  const std::vector<double> n = costAwareAllocation(a, c, 10, 0, 1e9);
+  EXPECT_NEAR(n[0], 5, 1e-6);
+  EXPECT_NEAR(n[1], 5.0 / 3, 1e-6);
+  EXPECT_NEAR(gainAtEqualCost(a, c, n), 1.25, 1e-6);
+  EXPECT_NEAR(unboundedGainAtEqualCost(a, c), 1.25, 1e-12);
+  EXPECT_NEAR(unboundedGainAtEqualCost(a, c, true), 1, 1e-12);
+  // No budget-keeping move of samples between the two lowers its error (the optimum).
+  for (double move : {-0.5, -0.1, 0.1, 0.5}) {
+    const std::vector<double> m{n[0] + move * 9, n[1] - move};
+    EXPECT_GT(expectedRelMse(a, m), expectedRelMse(a, n));
+  }
+}
+
 }  // namespace
 }  // namespace tray
