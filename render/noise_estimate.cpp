@@ -21,10 +21,10 @@ std::optional<SamplingPasses> samplingPassesOf(const RenderSettings& settings) {
   passes.absoluteError = settings.getString("noise-metric") == "absolute";
   const std::string decision = settings.getString("noise-decision");
   using D = SamplingPasses::Decision;
-  passes.decision = decision == "pixel" ? D::kPixel
-                    : decision == "max" ? D::kMax
-                    : decision == "wide" ? D::kWide
-                                         : D::kNeighbours;
+  passes.decision = decision == "pixel"        ? D::kPixel
+                    : decision == "max"        ? D::kMax
+                    : decision == "neighbours" ? D::kNeighbours
+                                               : D::kWide;
   return passes;
 }
 
@@ -73,7 +73,7 @@ void decideBlock(std::span<const float> error, std::span<const uint32_t> count, 
         more[p] = 1;
         continue;
       }
-      // The mean error of the pixel's neighbours (no estimate: infinite), not its own: a
+      // The error of the pixel's neighbours (no estimate: infinite), not its own: a
       // decision that read the pixel's own samples would stop it more often when they came
       // out low (a rare bright path not yet found) and bias the image dark (Kirk & Arvo 1991,
       // "Unbiased sampling techniques for image synthesis"; measured: the Cornell box 0.3-0.5%

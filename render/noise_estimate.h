@@ -35,12 +35,12 @@ struct SamplingPasses {
   bool absoluteError = false;
   /// --noise-decision: what a pixel's stop is decided from (decideBlock).
   enum class Decision {
-    kNeighbours,  ///< neighbours: the mean error of its 8 neighbours (unbiased)
-    kMax,         ///< max: the largest of their errors (unbiased; goes on near any noise)
-    kWide,        ///< wide: the RMS error of the 24 others of its 5x5 (unbiased; steadier)
+    kWide,        ///< wide: the RMS error of the 24 others of its 5x5 (unbiased; the default)
+    kNeighbours,  ///< neighbours: the mean error of its 8 neighbours (dark at high thresholds)
+    kMax,         ///< max: the largest of the 8 errors (goes on near any noise)
     kPixel,       ///< pixel: its own error too, as Cycles and Arnold (biased dark)
   };
-  Decision decision = Decision::kNeighbours;
+  Decision decision = Decision::kWide;
 };
 
 /// The floor of relMSE's denominator (value^2 + 0.01, bench/image_error.cpp): below a value
@@ -80,15 +80,17 @@ float stoppingError(int count, const SamplingPasses& passes);
 
 /// One block's decision: which of its pixels take another step. `error` and `count` hold the
 /// block's w x h pixels row by row. A pixel goes on while it has fewer than minSamples, or
-/// (threshold > 0) the mean error of its neighbours inside the block (the 3x3 neighbourhood
-/// less itself) is at least its stoppingError, or (threshold 0) until maxSamples. Its own
-/// error is not read: a decision from its own samples biases its mean (Kirk & Arvo 1991);
-/// its neighbours' samples are independent of them, and a noisy pixel keeps its neighbours
-/// going. Decision::kMax reads the largest of the 8 errors instead of their mean, kWide the
-/// RMS of the 24 other errors of the 5x5 neighbourhood (more samples behind each estimate, and
-/// a rare bright path weighs as its squared error does in the variance). A pixel with no
-/// neighbour in the block goes on to maxSamples. With kPixel a pixel also goes on while its
-/// own error, or the 3x3 mean with itself, is at least the limit (biased:
+/// (threshold > 0) its neighbours' error inside the block is at least its stoppingError, or
+/// (threshold 0) until maxSamples. Its own error is not read: a decision from its own samples
+/// biases its mean (Kirk & Arvo 1991); its neighbours' samples are independent of them, and a
+/// noisy pixel keeps its neighbours going. kWide (the default) reads the RMS of the 24 other
+/// errors of the 5x5 neighbourhood (more samples behind each estimate, and a rare bright path
+/// weighs as its squared error does in the variance); kNeighbours the mean of the 3x3's 8,
+/// kMax their largest. The 8 alone still feed back: a pixel whose samples came out dark lets
+/// its neighbours stop, their errors then stay put, and it stops too, measurably dark at high
+/// thresholds (tests/render/adaptive_bias_test.cpp); 24 dilute that below the noise. A pixel
+/// with no neighbour in the block goes on to maxSamples. With kPixel a pixel also goes on while
+/// its own error, or the 3x3 mean with itself, is at least the limit (biased:
 /// docs/adaptive-sampling.md). `more` receives 1 for those that go on.
 void decideBlock(std::span<const float> error, std::span<const uint32_t> count, int w, int h,
                  const SamplingPasses& passes, std::span<uint8_t> more);

@@ -54,7 +54,7 @@ TEST(NoiseEstimate, SettingsGiveThePasses) {
   EXPECT_EQ(p->minSamples, 16);
   EXPECT_FALSE(p->evenError);
   EXPECT_FALSE(p->absoluteError);
-  EXPECT_EQ(p->decision, SamplingPasses::Decision::kNeighbours);
+  EXPECT_EQ(p->decision, SamplingPasses::Decision::kWide);  // the default
   settings.set("noise-metric", std::string("absolute"));
   settings.set("noise-decision", std::string("pixel"));
   settings.set("noise-rule", std::string("even"));
@@ -69,6 +69,8 @@ TEST(NoiseEstimate, SettingsGiveThePasses) {
   EXPECT_EQ(samplingPassesOf(settings)->decision, SamplingPasses::Decision::kMax);
   settings.set("noise-decision", std::string("wide"));
   EXPECT_EQ(samplingPassesOf(settings)->decision, SamplingPasses::Decision::kWide);
+  settings.set("noise-decision", std::string("neighbours"));
+  EXPECT_EQ(samplingPassesOf(settings)->decision, SamplingPasses::Decision::kNeighbours);
 }
 
 // The earlier look of each count in the sequence: half of the first step, then the look before.

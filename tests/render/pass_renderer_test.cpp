@@ -62,7 +62,7 @@ double channelMean(const Film& film, int c) {
 // Samples go where the noise is: some pixels stop early, some take the maximum, every count
 // is whole steps, and the samples layer says it.
 TEST(PassRenderer, NoiseThresholdStopsPixelsByTheirError) {
-  const Job job = adaptiveJob(0.05f);
+  const Job job = adaptiveJob(0.035f);
   const Render r = render(cornell(), job);
   const std::vector<int> n = counts(r.film);
   SamplingPasses p = *job.passes;
