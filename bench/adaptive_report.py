@@ -2,10 +2,11 @@
 """Uniform against noise-driven adaptive sampling at equal CPU time (issue 37), from the CSVs of
 `tray-bench sweep --threads 1 --methods "path sobol,path sobol adaptive,path sobol adaptive
 even,path sobol adaptive absolute,path sobol adaptive pixel,path sobol adaptive max,path sobol
-adaptive wide"` (one per scene): the default rule (mse), equal error (even), the default rule on
-absolute error (--noise-metric absolute), with the pixel's own error deciding (--noise-decision
-pixel), the neighbours' largest error (max) or the RMS error of the 5x5 (wide) against
-uniform. A method missing from a CSV gives an empty table.
+adaptive neighbours"` (one per scene): the default rule (mse) and decision (wide: the RMS error of
+the 5x5; before 2026-12-07's change, the 8 neighbours' mean), equal error (even), the default
+rule on absolute error (--noise-metric absolute), with the pixel's own error deciding
+(--noise-decision pixel), the neighbours' largest error (max) or their mean (neighbours) against
+uniform (CSVs of before the change have "path sobol adaptive wide" instead). A method missing from a CSV gives an empty table.
 
 For each adaptive run (one --noise-threshold), the uniform error at the same CPU time is read off
 the uniform runs' error-against-time line (piecewise linear in log-log, between the two uniform
@@ -36,7 +37,8 @@ ADAPTIVE = (("path sobol adaptive", "mse"), ("path sobol adaptive even", "even")
             ("path sobol adaptive absolute", "mse, --noise-metric absolute"),
             ("path sobol adaptive pixel", "mse, --noise-decision pixel (biased)"),
             ("path sobol adaptive max", "mse, --noise-decision max"),
-            ("path sobol adaptive wide", "mse, --noise-decision wide"))
+            ("path sobol adaptive wide", "mse, --noise-decision wide (older CSVs)"),
+            ("path sobol adaptive neighbours", "mse, --noise-decision neighbours"))
 
 
 def compare(rows, metric, method, cost="cpu_seconds"):
@@ -63,7 +65,7 @@ def chart(tables, path):
         for ax, (scene, rows) in zip(axes[row], tables):
             for method, style, label in (
                     ("path sobol", "o-", "uniform (spp 1..1024)"),
-                    ("path sobol adaptive", "s-", "adaptive, mse rule (threshold 0.1..0.01)"),
+                    ("path sobol adaptive", "s-", "adaptive, mse rule, default decision (threshold 0.1..0.01)"),
                     ("path sobol adaptive even", "^--", "adaptive, even rule (0.1..0.01)"),
                     ("path sobol adaptive absolute", "d-.",
                      "adaptive, mse, absolute error (0.02..0.003)"),
@@ -72,7 +74,9 @@ def chart(tables, path):
                     ("path sobol adaptive max", "v-",
                      "adaptive, mse, neighbours' max decides (0.1..0.01)"),
                     ("path sobol adaptive wide", "*-",
-                     "adaptive, mse, 5x5 RMS decides (0.1..0.01)")):
+                     "adaptive, mse, 5x5 RMS decides (0.1..0.01)"),
+                    ("path sobol adaptive neighbours", "+-",
+                     "adaptive, mse, 8 neighbours' mean decides (0.1..0.01)")):
                 rs = sorted((r for r in rows if r["method"] == method),
                             key=lambda r: r["cpu_seconds"])
                 ax.plot([r["cpu_seconds"] for r in rs], [r[metric] for r in rs], style,

@@ -79,9 +79,10 @@ std::vector<SweepConfig> standardSweep(const std::vector<std::string>& accels,
       p.set("noise-threshold", std::stof(t));
       add("path sobol adaptive pixel", std::string("threshold=") + t, p);
     }
-    // Other unbiased decisions: the neighbours' largest error (--noise-decision max), the RMS
-    // error of the 24 others of the 5x5 (wide).
-    for (const char* decision : {"max", "wide"}) {
+    // The other decisions from neighbours' errors: their largest (--noise-decision max), and
+    // the 8 neighbours' mean (neighbours: the default before wide, dark at high thresholds).
+    // "path sobol adaptive" above is the default (wide).
+    for (const char* decision : {"max", "neighbours"}) {
       p.set("noise-decision", std::string(decision));
       for (const char* t : {"0.1", "0.05", "0.03", "0.02", "0.01"}) {
         p.set("noise-threshold", std::stof(t));
@@ -89,7 +90,7 @@ std::vector<SweepConfig> standardSweep(const std::vector<std::string>& accels,
       }
     }
     // The error in radiance units (--noise-metric absolute: the rule then aims at RMSE).
-    p.set("noise-decision", std::string("neighbours"));
+    p.set("noise-decision", std::string("wide"));
     p.set("noise-metric", std::string("absolute"));
     for (const char* t : {"0.02", "0.01", "0.007", "0.005", "0.003"}) {
       p.set("noise-threshold", std::stof(t));
