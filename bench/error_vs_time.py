@@ -72,6 +72,8 @@ def parse_args():
     p.add_argument("--ref-cache", default=os.path.join(ROOT, "build", "error-vs-time-refs"))
     p.add_argument("--tray-relative", default="0.1,0.05,0.03,0.02")
     p.add_argument("--tray-absolute", default="0.014,0.01,0.007,0.005,0.0035")
+    p.add_argument("--noise-decision", help="TRay's --noise-decision for its adaptive runs "
+                   "(default: tray-render's own)")
     p.add_argument("--cycles-thresholds", default="0.1,0.05,0.02")
     p.add_argument("--repeats", type=int, default=2,
                    help="timed runs per point, TRay and Cycles: the least CPU time is kept (the "
@@ -119,10 +121,11 @@ def tray_points(a, tmp):
     runs = [("uniform", f"{s} spp", ["--spp", s]) for s in a.spp.split(",")]
     runs += [("uniform, area lights", f"{s} spp", ["--spp", s, "--triangle-sampling", "area"])
              for s in a.spp.split(",")]
-    runs += [("adaptive, relative", f"T {t}", ["--spp", "1024", "--noise-threshold", t])
+    decide = ["--noise-decision", a.noise_decision] if a.noise_decision else []
+    runs += [("adaptive, relative", f"T {t}", ["--spp", "1024", "--noise-threshold", t, *decide])
              for t in a.tray_relative.split(",")]
     runs += [("adaptive, absolute", f"T {t}",
-              ["--spp", "1024", "--noise-threshold", t, "--noise-metric", "absolute"])
+              ["--spp", "1024", "--noise-threshold", t, "--noise-metric", "absolute", *decide])
              for t in a.tray_absolute.split(",")]
     points = []
     for method, setting, extra in runs:
@@ -262,7 +265,8 @@ def main():
     a = parse_args()
     say(f"TRay, Mitsuba 3 and Cycles {bpy.app.version_string} on {a.scene} "
         f"({os.path.relpath(a.gltf, ROOT)}), {a.size}x{a.size}, CPU seconds (TRay and Cycles "
-        f"1 thread), measured {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())} "
+        f"1 thread; TRay's adaptive runs: --noise-decision {a.noise_decision or 'default'}), "
+        f"measured {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())} "
         f"(load {os.getloadavg()[0]:.2f})")
     with tempfile.TemporaryDirectory() as tmp:
         shared = a.scene == "cornell"
