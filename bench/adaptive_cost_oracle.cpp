@@ -38,6 +38,7 @@
 #include "bench/image_error.h"
 #include "bench/oracle_allocation.h"
 #include "bench/oracle_pools.h"
+#include "bench/oracle_setup.h"
 #include "bench/sweep.h"
 #include "core/error.h"
 #include "gltf/gltf_loader.h"
@@ -49,11 +50,7 @@ using namespace tray;
 
 namespace {
 
-struct Setup {
-  std::string scene, resolution = "320x240", out = "bench-out", reference,
-                     budgets = "32,64,128,256";
-  int seeds = 128, spp = 16, maxSpp = 1024, threads = 0;
-};
+using Setup = OracleSetup;
 
 /// The renders: means as bench/oracle_pools.h lays them out, and beside each pixel of each
 /// render the rays it traced and the CPU seconds it took (render-major).
@@ -205,13 +202,9 @@ void printAllocations(const Pools& pools, const Setup& o, const Film& ref) {
 }
 
 int run(const Setup& o) {
-  LoadOptions load;
-  load.allowAnyPath = true;  // the benchmark scenes take their assets from ../shared
-  Scene scene = loadGltf(o.scene, load);
-  scene.sourcePath = o.scene;
-  const CameraDesc camera = chooseCamera(scene, -1);
-  const ImageSize size = resolveImageSize(o.resolution, camera);
-  const PreparedScene prepared(scene, camera, size, "embree");
+  const OracleScene loaded = loadOracleScene(o);
+  const ImageSize size = loaded.size;
+  const PreparedScene prepared(loaded.scene, loaded.camera, size, "embree");
   // The sweep's cached reference (adaptive_oracle renders it when missing).
   const std::string refPath = o.reference.empty()
                                   ? referencePath(o.out, o.scene, "path", size.width, size.height)
@@ -232,26 +225,7 @@ int run(const Setup& o) {
 int main(int argc, char** argv) {
   CLI::App app{"adaptive_cost_oracle: the cost-aware unbiased oracle against the cost-blind one"};
   Setup o;
-  app.add_option("scene", o.scene, "glTF scene")->required();
-  app.add_option("--resolution", o.resolution, "image size WxH")->capture_default_str();
-  app.add_option("--seeds", o.seeds, "independent renders (half for variances, half spent)")
-      ->capture_default_str();
-  app.add_option("--spp", o.spp, "samples of each render: one step")->capture_default_str();
-  app.add_option("--budgets", o.budgets, "uniform's spp compared, multiples of --spp")
-      ->capture_default_str();
-  app.add_option("--max-spp", o.maxSpp, "most samples a pixel may take")->capture_default_str();
-  app.add_option("--out", o.out, "folder of the cached reference")->capture_default_str();
-  app.add_option("--reference", o.reference, "converged reference EXR");
-  app.add_option("--threads", o.threads, "threads (0 = all)")->capture_default_str();
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
-  }
-  try {
-    return run(o);
-  } catch (const Error& e) {
-    std::fprintf(stderr, "adaptive_cost_oracle: error: %s\n", e.what());
-    return 1;
-  }
+  addOracleOptions(app, o);
+  addOracleOutputOptions(app, o);
+  return runOracleTool(app, argc, argv, "adaptive_cost_oracle", [&] { return run(o); });
 }

@@ -40,6 +40,7 @@
 #include "bench/image_error.h"
 #include "bench/oracle_allocation.h"
 #include "bench/oracle_pools.h"
+#include "bench/oracle_setup.h"
 #include "bench/sweep.h"
 #include "core/error.h"
 #include "gltf/gltf_loader.h"
@@ -54,10 +55,8 @@ using namespace tray;
 
 namespace {
 
-struct Setup {
-  std::string scene, resolution = "320x240", out = "bench-out", reference,
-                     budgets = "32,64,128,256";
-  int seeds = 128, spp = 16, maxSpp = 1024, pilot = 2, referenceSpp = 4096, threads = 0;
+struct Setup : OracleSetup {
+  int pilot = 2, referenceSpp = 4096;
 };
 
 Film renderWith(const PreparedScene& prepared, ImageSize size, const RenderSettings& s,
@@ -197,13 +196,9 @@ void printAllocations(const std::vector<float>& means, const Setup& o, const Fil
 }
 
 int run(const Setup& o) {
-  LoadOptions load;
-  load.allowAnyPath = true;  // the benchmark scenes take their assets from ../shared
-  Scene scene = loadGltf(o.scene, load);
-  scene.sourcePath = o.scene;
-  const CameraDesc camera = chooseCamera(scene, -1);
-  const ImageSize size = resolveImageSize(o.resolution, camera);
-  const PreparedScene prepared(scene, camera, size, "embree");
+  const OracleScene loaded = loadOracleScene(o);
+  const ImageSize size = loaded.size;
+  const PreparedScene prepared(loaded.scene, loaded.camera, size, "embree");
   const int w = size.width, h = size.height;
   fs::create_directories(o.out);
   const std::string stem = fs::path(o.scene).stem().string();
@@ -235,29 +230,10 @@ int run(const Setup& o) {
 int main(int argc, char** argv) {
   CLI::App app{"adaptive_oracle: the best unbiased per-pixel allocation against uniform"};
   Setup o;
-  app.add_option("scene", o.scene, "glTF scene")->required();
-  app.add_option("--resolution", o.resolution, "image size WxH")->capture_default_str();
-  app.add_option("--seeds", o.seeds, "independent renders (half for variances, half spent)")
-      ->capture_default_str();
-  app.add_option("--spp", o.spp, "samples of each render: one step")->capture_default_str();
-  app.add_option("--budgets", o.budgets, "mean spp compared, multiples of --spp")
-      ->capture_default_str();
-  app.add_option("--max-spp", o.maxSpp, "most samples a pixel may take")->capture_default_str();
+  addOracleOptions(app, o);
   app.add_option("--pilot", o.pilot, "renders of the pilot rules")->capture_default_str();
-  app.add_option("--out", o.out, "folder of the cached reference")->capture_default_str();
-  app.add_option("--reference", o.reference, "converged reference EXR");
+  addOracleOutputOptions(app, o);
   app.add_option("--reference-spp", o.referenceSpp, "spp of a rendered reference")
       ->capture_default_str();
-  app.add_option("--threads", o.threads, "threads (0 = all)")->capture_default_str();
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
-  }
-  try {
-    return run(o);
-  } catch (const Error& e) {
-    std::fprintf(stderr, "adaptive_oracle: error: %s\n", e.what());
-    return 1;
-  }
+  return runOracleTool(app, argc, argv, "adaptive_oracle", [&] { return run(o); });
 }
