@@ -6,7 +6,8 @@ adaptive neighbours"` (one per scene): the default rule (mse) and decision (wide
 the 5x5; before 2026-12-07's change, the 8 neighbours' mean), equal error (even), the default
 rule on absolute error (--noise-metric absolute), with the pixel's own error deciding
 (--noise-decision pixel), the neighbours' largest error (max) or their mean (neighbours) against
-uniform (CSVs of before the change have "path sobol adaptive wide" instead). A method missing from a CSV gives an empty table.
+uniform (CSVs of before the change have "path sobol adaptive wide" instead). A method missing
+from a CSV gives an empty table.
 
 For each adaptive run (one --noise-threshold), the uniform error at the same CPU time is read off
 the uniform runs' error-against-time line (piecewise linear in log-log, between the two uniform
@@ -65,7 +66,8 @@ def chart(tables, path):
         for ax, (scene, rows) in zip(axes[row], tables):
             for method, style, label in (
                     ("path sobol", "o-", "uniform (spp 1..1024)"),
-                    ("path sobol adaptive", "s-", "adaptive, mse rule, default decision (threshold 0.1..0.01)"),
+                    ("path sobol adaptive", "s-",
+                     "adaptive, mse rule, default decision (threshold 0.1..0.01)"),
                     ("path sobol adaptive even", "^--", "adaptive, even rule (0.1..0.01)"),
                     ("path sobol adaptive absolute", "d-.",
                      "adaptive, mse, absolute error (0.02..0.003)"),

@@ -21,7 +21,7 @@ std::vector<double> relativeVariance(const std::vector<float>& means, size_t pix
       }
       const double mean = sum / k, var = std::max(0.0, (squares - k * mean * mean) / (k - 1));
       const double r = ref.pixel(Film::kBeauty, int(p % w), int(p / w))[c];
-      a[p] += var * spp / (r * r + 1e-2);
+      a[p] += var * spp / (r * r + kRelativeFloor);
     }
   return a;
 }
@@ -68,30 +68,16 @@ std::vector<int> replay(const std::vector<float>& means, int first, int availabl
     s.weight = n;
     return s;
   };
+  std::vector<float> error(pixels);
+  std::vector<uint32_t> n(pixels);
   for (bool any = true; any;) {
-    for (size_t p = 0; p < pixels; ++p)
+    for (size_t p = 0; p < pixels; ++p) {
       if (pending[p]) count[p] += nextStep(count[p], passes);
-    any = false;
-    for (int by = 0; by < h; by += kNoiseBlock)
-      for (int bx = 0; bx < w; bx += kNoiseBlock) {
-        const int bw = std::min(kNoiseBlock, w - bx), bh = std::min(kNoiseBlock, h - by);
-        std::vector<float> error;
-        std::vector<uint32_t> n;
-        std::vector<uint8_t> more(size_t(bw) * bh);
-        for (int y = by; y < by + bh; ++y)
-          for (int x = bx; x < bx + bw; ++x) {
-            const size_t p = size_t(y) * w + x;
-            const int m = earlierCount(count[p], passes);
-            error.push_back(pixelError(sums(p, count[p]), sums(p, m), count[p], m,
-                                       passes.absoluteError));
-            n.push_back(uint32_t(count[p]));
-          }
-        decideBlock(error, n, bw, bh, passes, more);
-        for (int i = 0; i < bw * bh; ++i) {
-          pending[size_t(by + i / bw) * w + bx + i % bw] = more[i];
-          any = any || more[i];
-        }
-      }
+      const int m = earlierCount(count[p], passes);
+      error[p] = pixelError(sums(p, count[p]), sums(p, m), count[p], m, passes.absoluteError);
+      n[p] = uint32_t(count[p]);
+    }
+    any = decideImage(error, n, w, h, passes, pending);
   }
   return count;
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 namespace tray {
 namespace {
@@ -105,6 +106,31 @@ void decideBlock(std::span<const float> error, std::span<const uint32_t> count, 
                                                               : sum / n;
       more[p] = n == 0 || !(neighbours < limit);
     }
+}
+
+bool decideImage(std::span<const float> error, std::span<const uint32_t> count, int w, int h,
+                 const SamplingPasses& passes, std::span<uint8_t> more) {
+  bool any = false;
+  std::vector<float> blockError;
+  std::vector<uint32_t> blockCount;
+  std::vector<uint8_t> blockMore;
+  for (int by = 0; by < h; by += kNoiseBlock)
+    for (int bx = 0; bx < w; bx += kNoiseBlock) {
+      const int bw = std::min(kNoiseBlock, w - bx), bh = std::min(kNoiseBlock, h - by);
+      blockError.clear(), blockCount.clear();
+      for (int y = by; y < by + bh; ++y)
+        for (int x = bx; x < bx + bw; ++x) {
+          blockError.push_back(error[size_t(y) * w + x]);
+          blockCount.push_back(count[size_t(y) * w + x]);
+        }
+      blockMore.assign(size_t(bw) * bh, 0);
+      decideBlock(blockError, blockCount, bw, bh, passes, blockMore);
+      for (int i = 0; i < bw * bh; ++i) {
+        more[size_t(by + i / bw) * w + bx + i % bw] = blockMore[i];
+        any = any || blockMore[i];
+      }
+    }
+  return any;
 }
 
 }  // namespace tray

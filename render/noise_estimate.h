@@ -95,4 +95,12 @@ float stoppingError(int count, const SamplingPasses& passes);
 void decideBlock(std::span<const float> error, std::span<const uint32_t> count, int w, int h,
                  const SamplingPasses& passes, std::span<uint8_t> more);
 
+/// decideBlock over a whole w x h image: `error`, `count` and `more` hold its pixels row by row,
+/// and each kNoiseBlock x kNoiseBlock block (aligned to the origin, clipped at the image's
+/// edges) decides from its own pixels, as the pass renderer's blocks do. Returns whether any
+/// pixel goes on. For simulations and replays of the pass loop (the renderer gathers its
+/// blocks' errors itself).
+bool decideImage(std::span<const float> error, std::span<const uint32_t> count, int w, int h,
+                 const SamplingPasses& passes, std::span<uint8_t> more);
+
 }  // namespace tray

@@ -52,28 +52,18 @@ Outcome simulate(SamplingPasses::Decision decision, uint64_t seed, float thresho
       for (int s = nextStep(n, passes); s > 0; --s)
         prefix[p].push_back(prefix[p].back() + (bright(rng[p]) ? kBright : 0.0));
     }
-    any = false;
-    for (int by = 0; by < kSide; by += kNoiseBlock)
-      for (int bx = 0; bx < kSide; bx += kNoiseBlock) {
-        std::vector<float> error;
-        std::vector<uint32_t> count;
-        std::vector<uint8_t> more(kNoiseBlock * kNoiseBlock);
-        for (int y = by; y < by + kNoiseBlock; ++y)
-          for (int x = bx; x < bx + kNoiseBlock; ++x) {
-            const std::vector<double>& sums = prefix[y * kSide + x];
-            const int n = int(sums.size()) - 1, m = earlierCount(n, passes);
-            PixelSums all, earlier;
-            all.rgb[0] = all.rgb[1] = all.rgb[2] = sums[n], all.weight = n;
-            earlier.rgb[0] = earlier.rgb[1] = earlier.rgb[2] = sums[m], earlier.weight = m;
-            error.push_back(pixelError(all, earlier, n, m));
-            count.push_back(uint32_t(n));
-          }
-        decideBlock(error, count, kNoiseBlock, kNoiseBlock, passes, more);
-        for (int i = 0; i < kNoiseBlock * kNoiseBlock; ++i) {
-          pending[(by + i / kNoiseBlock) * kSide + bx + i % kNoiseBlock] = more[i];
-          any = any || more[i];
-        }
-      }
+    std::vector<float> error(pixels);
+    std::vector<uint32_t> count(pixels);
+    for (int p = 0; p < pixels; ++p) {
+      const std::vector<double>& sums = prefix[p];
+      const int n = int(sums.size()) - 1, m = earlierCount(n, passes);
+      PixelSums all, earlier;
+      all.rgb[0] = all.rgb[1] = all.rgb[2] = sums[n], all.weight = n;
+      earlier.rgb[0] = earlier.rgb[1] = earlier.rgb[2] = sums[m], earlier.weight = m;
+      error[p] = pixelError(all, earlier, n, m);
+      count[p] = uint32_t(n);
+    }
+    any = decideImage(error, count, kSide, kSide, passes, pending);
   }
   Outcome o;
   double variance = 0;  // of the image mean: sum over pixels of var(sample) / n / pixels^2
@@ -103,7 +93,10 @@ Outcome average(SamplingPasses::Decision decision, float threshold, int runs) {
 
 const char* nameOf(SamplingPasses::Decision d) {
   using D = SamplingPasses::Decision;
-  return d == D::kWide ? "wide" : d == D::kNeighbours ? "neighbours" : d == D::kMax ? "max" : "pixel";
+  return d == D::kWide         ? "wide"
+         : d == D::kNeighbours ? "neighbours"
+         : d == D::kMax        ? "max"
+                               : "pixel";
 }
 
 void print(SamplingPasses::Decision d, float threshold, const Outcome& o) {
@@ -115,7 +108,8 @@ void print(SamplingPasses::Decision d, float threshold, const Outcome& o) {
 // many standard errors; the default, from the same samples, does not.
 TEST(AdaptiveBias, PixelDecisionDarkensDefaultDoesNot) {
   using D = SamplingPasses::Decision;
-  const Outcome own = average(D::kPixel, 0.3f, 4), byDefault = average(SamplingPasses{}.decision, 0.3f, 4);
+  const Outcome own = average(D::kPixel, 0.3f, 4);
+  const Outcome byDefault = average(SamplingPasses{}.decision, 0.3f, 4);
   print(D::kPixel, 0.3f, own);
   print(SamplingPasses{}.decision, 0.3f, byDefault);
   EXPECT_LT(own.mean, 1.0 - 6 * own.standardError);

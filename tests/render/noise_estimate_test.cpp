@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -231,6 +232,38 @@ TEST(NoiseEstimate, WideDecisionReadsTheRmsOfThe5x5) {
   const int w = Block::w, h = Block::h;
   b.decide();
   for (int i = 0; i < w * h; ++i) EXPECT_EQ(b.more[i], i % w >= 1 && i != 2 * w + 3) << i;
+}
+
+// A whole image decides block by block: each 8x8 block of an 11 x 10 image (the last ones
+// clipped) from its own pixels alone, as decideBlock on that block; a pixel on a block's edge
+// does not see the next block's noise.
+TEST(NoiseEstimate, AnImageDecidesInItsBlocks) {
+  const int w = 11, h = 10;
+  SamplingPasses passes;
+  passes.threshold = 0.1f, passes.minSamples = 16, passes.maxSamples = 256;
+  std::vector<float> error(w * h, 0.01f);
+  error[3 * w + 8] = 1.0f;  // noisy, just inside the second block column
+  error[9 * w + 2] = 1.0f;  // noisy, in the second block row
+  const std::vector<uint32_t> count(w * h, 32);
+  std::vector<uint8_t> more(w * h, 7);
+  EXPECT_TRUE(decideImage(error, count, w, h, passes, more));
+  for (int by = 0; by < h; by += kNoiseBlock)
+    for (int bx = 0; bx < w; bx += kNoiseBlock) {
+      const int bw = std::min(kNoiseBlock, w - bx), bh = std::min(kNoiseBlock, h - by);
+      std::vector<float> e;
+      std::vector<uint32_t> n;
+      for (int y = by; y < by + bh; ++y)
+        for (int x = bx; x < bx + bw; ++x) e.push_back(error[y * w + x]), n.push_back(32);
+      std::vector<uint8_t> expected(size_t(bw) * bh);
+      decideBlock(e, n, bw, bh, passes, expected);
+      for (int i = 0; i < bw * bh; ++i)
+        EXPECT_EQ(more[(by + i / bw) * w + bx + i % bw], expected[i])
+            << bx << "," << by << ":" << i;
+    }
+  EXPECT_EQ(more[3 * w + 7], 0);  // left of the noisy pixel, in the first block: it stops
+  EXPECT_EQ(more[3 * w + 9], 1);  // right of it, in its block: it goes on
+  std::fill(error.begin(), error.end(), 0.0f);
+  EXPECT_FALSE(decideImage(error, count, w, h, passes, more));
 }
 
 }  // namespace
