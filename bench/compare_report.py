@@ -33,6 +33,42 @@ def cpu_of(cmd, env=None):
     return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
+def exr_float_attribute(path, name):
+    """A float attribute of an OpenEXR file's header, or None. OpenEXR's file layout: magic,
+    version, then attributes (name, NUL, type, NUL, int32 size, value) until an empty name.
+    Plain Python: Blender's Python has no OIIO, and bpy's images hide custom attributes."""
+    import struct
+    with open(path, "rb") as f:
+        data = f.read(1 << 16)
+    if data[:4] != b"\x76\x2f\x31\x01":
+        fail(f"{path}: not an OpenEXR file")
+    at = 8
+    while at < len(data) and data[at] != 0:
+        end = data.index(b"\0", at)
+        key = data[at:end].decode()
+        kind_end = data.index(b"\0", end + 1)
+        kind = data[end + 1:kind_end].decode()
+        (size,) = struct.unpack_from("<i", data, kind_end + 1)
+        value = kind_end + 5
+        if key == name and kind == "float" and size == 4:
+            return struct.unpack_from("<f", data, value)[0]
+        at = value + size
+    return None
+
+
+def render_cpu_of(cmd, out, env=None):
+    """Runs a tray-render command writing `out`; returns the CPU seconds of its render alone
+    (tray:renderCpuSeconds: scene loading, start-up and writing left out, as Mitsuba's timing
+    leaves out its scene loading)."""
+    r = subprocess.run(cmd, capture_output=True, text=True, env=env)
+    if r.returncode != 0:
+        fail(f"{' '.join(cmd)} failed (exit {r.returncode}): {r.stderr.strip()}")
+    cpu = exr_float_attribute(out, "tray:renderCpuSeconds")
+    if cpu is None:
+        fail(f"{out}: no tray:renderCpuSeconds (a tray-render older than the render CPU time)")
+    return cpu
+
+
 def check_image(name, img, shape):
     if img.shape != shape:
         fail(f"{name}: image shape {img.shape} differs from the reference's {shape}")

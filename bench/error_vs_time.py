@@ -15,7 +15,8 @@ deadlocks it), all by process CPU seconds.
   blur) and the sky of TRAY_environment as a constant world colour.
 - TRay: `tray-render --integrator path` uniform (--spp), uniform with area light sampling
   (`--triangle-sampling area`; the default samples emitters by solid angle), adaptive with its
-  default relative error and with `--noise-metric absolute`; CPU seconds less a 1-spp run's.
+  default relative error and with `--noise-metric absolute`; the render's CPU seconds
+  (tray:renderCpuSeconds: scene loading and start-up left out).
 - Mitsuba 3 `llvm_ad_rgb` (bench/mitsuba_curve.py in the Mitsuba venv): `independent` and
   `ldsampler` (its best sampler on these scenes); CPU seconds after a warm-up (JIT excluded).
 - Cycles 5.2 (bpy): uniform and with its own adaptive sampling (adaptive_threshold); CPU
@@ -43,7 +44,7 @@ import time
 import numpy as np
 
 import cycles_compare as cc
-from compare_report import LINES, cpu_of, loglog_crossing, relmse, rmse, say
+from compare_report import LINES, loglog_crossing, relmse, render_cpu_of, rmse, say
 import bpy  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -116,8 +117,6 @@ def tray_cmd(a, out, extra, threads=1):
 
 def tray_points(a, tmp):
     out = os.path.join(tmp, "tray.exr")
-    setup = min(cpu_of(tray_cmd(a, out, ["--spp", "1"]), env=cc.TRAY_ENV)
-                for _ in range(a.repeats))
     runs = [("uniform", f"{s} spp", ["--spp", s]) for s in a.spp.split(",")]
     runs += [("uniform, area lights", f"{s} spp", ["--spp", s, "--triangle-sampling", "area"])
              for s in a.spp.split(",")]
@@ -129,8 +128,8 @@ def tray_points(a, tmp):
              for t in a.tray_absolute.split(",")]
     points = []
     for method, setting, extra in runs:
-        cpu = min(cpu_of(tray_cmd(a, out, extra), env=cc.TRAY_ENV) for _ in range(a.repeats))
-        cpu = max(cpu - setup, 1e-3)
+        cpu = min(render_cpu_of(tray_cmd(a, out, extra), out, env=cc.TRAY_ENV)
+                  for _ in range(a.repeats))
         points.append((f"TRay {method}", setting, cpu, cc.read_rgb(out)))
     return points
 

@@ -87,7 +87,8 @@ void addCliOptions(CLI::App& app, CliOptions& o) {
   tray::addRenderOptions(app, o.settings);
   const size_t declaredTo = app.get_options().size();
   app.add_option("--aa-heatmap", o.aaHeatmap, "write an image of camera rays per pixel (PNG/EXR)");
-  app.add_option("--threads", o.threads, "worker threads (0: all cores)")
+  app.add_option("--threads", o.threads,
+                 "threads for the whole job, the accelerator's build included (0: all cores)")
       ->check(CLI::Range(0, 4096))
       ->capture_default_str();
   app.add_option("--resolution", o.resolution,

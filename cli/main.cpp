@@ -20,6 +20,7 @@
 #include "core/animation_time.h"
 #include "core/error.h"
 #include "integrators/registry.h"
+#include "io/library_threads.h"
 #include "render/auto_framing.h"
 #include "render/farm.h"
 #include "render/render_job.h"
@@ -32,10 +33,10 @@ const char* gPhase = "starting";
 /// The one line a finished render prints (unless --quiet).
 void printSummary(const tray::RenderJob& job, const tray::RenderJobResult& r) {
   const tray::RenderStats& stats = r.stats;
-  std::printf("%s: %dx%d, %d spp, %s on %s: %.3f s, %.2f M rays, %.2f Mrays/s",
+  std::printf("%s: %dx%d, %d spp, %s on %s: %.3f s (%.3f CPU s), %.2f M rays, %.2f Mrays/s",
               job.scene.path.c_str(), r.width, r.height, int(job.settings.getInt("spp")),
               job.settings.getString("integrator").c_str(), job.accelerator.c_str(), stats.seconds,
-              stats.rays.total() * 1e-6, stats.mraysPerSecond());
+              stats.cpuSeconds, stats.rays.total() * 1e-6, stats.mraysPerSecond());
   if (stats.rays.nanSamples)
     std::printf(", %llu NaN/Inf samples discarded", (unsigned long long)stats.rays.nanSamples);
   if (stats.passes > 0 || stats.timeLimitReached)  // a render in passes: where samples went
@@ -137,6 +138,7 @@ int runFrames(const CliOptions& o, tray::RenderJob job) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  tray::stopIdleLibraryThreads();
   CliOptions o;
 
   CLI::App app{"TRay: offline renderer for glTF 2.0 scenes (Embree, Whitted and path tracing)"};

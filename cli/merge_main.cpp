@@ -9,8 +9,10 @@
 #include "cli/part_merge.h"
 #include "core/error.h"
 #include "io/image_output.h"
+#include "io/library_threads.h"
 
 int main(int argc, char** argv) {
+  tray::stopIdleLibraryThreads();
   std::vector<std::string> parts;
   std::string output;
   CLI::App app{"tray-merge: combine region and sample-range parts of a TRay render"};

@@ -254,7 +254,7 @@ ExrImage mergeParts(const std::vector<std::string>& paths) {
   out.options = r;
   out.options.xOffset = out.options.yOffset = 0;
   for (auto& [k, v] : out.options.floatMetadata) {
-    if (k == "tray:renderSeconds") v = float(sum("tray:renderSeconds"));
+    if (k == "tray:renderSeconds" || k == "tray:renderCpuSeconds") v = float(sum(k.c_str()));
     if (k == "tray:samplesDone") v = float(sum("tray:samplesDone"));
     if (k == "tray:pixelsDone" || k == "tray:pixelsTotal") v = float(width) * height;
     if (k == "tray:sampleBegin") v = 0;

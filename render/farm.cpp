@@ -89,7 +89,7 @@ SampleRange parseSampleRange(const std::string& text, std::optional<int> samples
 
 bool loadCheckpoint(const std::string& path, const std::string& job, const PixelRegion& region,
                     int width, int height, const SampleRange& range, Film& film, RenderState& state,
-                    double& previousSeconds) {
+                    RenderTime& previous) {
   ExrImage image = readExr(path);
   const ImageOutputOptions& o = image.options;
   const std::string theirs = metadataString(o, "tray:job");
@@ -119,7 +119,8 @@ bool loadCheckpoint(const std::string& path, const std::string& job, const Pixel
                 std::to_string(state.pixelsDone()) + " pixels done, its header " +
                 (header < 0 ? std::string("none") : std::to_string(int64_t(header))) +
                 ": edited or damaged; remove it to render from the start");
-  previousSeconds = metadataFloat(o, "tray:renderSeconds", 0);
+  previous = {metadataFloat(o, "tray:renderSeconds", 0),
+              metadataFloat(o, "tray:renderCpuSeconds", 0)};
   // The film without the state layer: it is written again only if the render stays partial.
   film = Film(image.film.width(), image.film.height());
   for (size_t l = 1; l < image.film.layers().size(); ++l) {

@@ -10,6 +10,7 @@
 #include "film/render_state.h"
 #include "io/image_output.h"
 #include "render/image_part.h"
+#include "render/render_time.h"
 
 namespace tray {
 
@@ -51,6 +52,6 @@ std::string firstExr(const std::vector<std::string>& outputs);
 /// width x height image and its sample range is `range`.
 bool loadCheckpoint(const std::string& path, const std::string& job, const PixelRegion& region,
                     int width, int height, const SampleRange& range, Film& film, RenderState& state,
-                    double& previousSeconds);
+                    RenderTime& previous);
 
 }  // namespace tray

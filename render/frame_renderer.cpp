@@ -54,7 +54,7 @@ void checkFrameRender(const Integrator& integrator, const RenderState& state,
 RenderStats renderFrames(const Integrator& integrator, Film& film, RenderState& state,
                          const RenderOptions& options, const MotionVectors* vectors) {
   checkFrameRender(integrator, state, options);
-  const auto start = std::chrono::steady_clock::now();
+  const RenderClock clock;
   const AovSet aovs(film, options.aovs, vectors);
   const Cryptomatte crypto(film, integrator.context().scene, options.aovs,
                            options.cryptomatteRanks);
@@ -92,7 +92,9 @@ RenderStats renderFrames(const Integrator& integrator, Film& film, RenderState& 
   stats.timeLimitReached = done.timeLimitReached;
   stats.pixelsDone = valid ? pixels.size() : 0;
   stats.interrupted = done.stopped;
-  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const RenderTime took = clock.elapsed();
+  stats.seconds = took.seconds;
+  stats.cpuSeconds = took.cpuSeconds;
   return stats;
 }
 

@@ -41,7 +41,7 @@ JobWriter::JobWriter(const RenderJob& job, ImageOutputOptions format, std::strin
       samplesPerPixel_(samplesPerPixel),
       part_(!job.part.region.empty() || !job.part.sampleRange.empty()) {}
 
-ImageOutputOptions JobWriter::metadataOf(const RenderState& now, double seconds) const {
+ImageOutputOptions JobWriter::metadataOf(const RenderState& now, const RenderTime& took) const {
   const size_t done = now.pixelsDone(), all = now.done.size();
   ImageOutputOptions w = format_;
   w.stringMetadata = {{"tray:version", TRAY_VERSION},
@@ -50,7 +50,8 @@ ImageOutputOptions JobWriter::metadataOf(const RenderState& now, double seconds)
                       {"tray:status", done == all ? "complete" : "partial"},
                       {"tray:job", signature_}};
   // tray:samplesPerPixel 0 says "adaptive" in the file (tray-merge reads it so).
-  w.floatMetadata = {{"tray:renderSeconds", float(seconds)},
+  w.floatMetadata = {{"tray:renderSeconds", float(took.seconds)},
+                     {"tray:renderCpuSeconds", float(took.cpuSeconds)},
                      {"tray:pixelsDone", float(done)},
                      {"tray:pixelsTotal", float(all)},
                      {"tray:sampleBegin", float(range_.begin)},
@@ -68,11 +69,11 @@ ImageOutputOptions JobWriter::metadataOf(const RenderState& now, double seconds)
   return w;
 }
 
-void JobWriter::write(Film& film, const RenderState& now, double seconds,
+void JobWriter::write(Film& film, const RenderState& now, const RenderTime& took,
                       const std::vector<std::string>& paths, bool final,
                       const RenderJobEvents& events) const {
   if (part_ || now.pixelsDone() < now.done.size()) storeState(now, film);
-  const std::vector<size_t> clamped = writeImages(film, paths, metadataOf(now, seconds));
+  const std::vector<size_t> clamped = writeImages(film, paths, metadataOf(now, took));
   for (size_t i = 0; i < paths.size(); ++i)
     if (clamped[i] && final) warn(events, halfClampWarning(paths[i], clamped[i]));
 }

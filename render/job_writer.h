@@ -32,20 +32,20 @@ class JobWriter {
 
   const std::string& signature() const { return signature_; }
 
-  /// The format and metadata a write of `now` after `seconds` of rendering carries.
-  ImageOutputOptions formatOf(const RenderState& now, double seconds) const {
-    return metadataOf(now, seconds);
+  /// The format and metadata a write of `now` after `took` of rendering carries.
+  ImageOutputOptions formatOf(const RenderState& now, const RenderTime& took) const {
+    return metadataOf(now, took);
   }
 
-  /// Writes `film` (all outputs or none) with the metadata of `now`, `seconds` of rendering in
+  /// Writes `film` (all outputs or none) with the metadata of `now`, `took` of rendering in
   /// all; the state goes with the pixels of a part or an unfinished render. `final`: the
   /// render's outputs, not a checkpoint (a half-float clamp is warned about then only).
-  void write(Film& film, const RenderState& now, double seconds,
+  void write(Film& film, const RenderState& now, const RenderTime& took,
              const std::vector<std::string>& paths, bool final,
              const RenderJobEvents& events) const;
 
  private:
-  ImageOutputOptions metadataOf(const RenderState& now, double seconds) const;
+  ImageOutputOptions metadataOf(const RenderState& now, const RenderTime& took) const;
 
   const RenderJob& job_;
   ImageOutputOptions format_;  ///< the format and the metadata every write shares

@@ -18,7 +18,6 @@
 namespace tray {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 
 /// The steps of a batch of pixels under way: `second` holds each pixel's step (a first step:
 /// its second half; `first` then its first half, which becomes its earlier mean) and, for a
@@ -50,8 +49,8 @@ class PassRenderer {
   }
 
   RenderStats run() {
-    start_ = Clock::now();
-    checkpoints_.start(start_);
+    clock_.restart();
+    checkpoints_.start(clock_.started());
     std::thread watcher([this] { watch(); });
     tbb::task_arena arena(options_.threads > 0 ? options_.threads : tbb::task_arena::automatic);
     arena.execute([&] {
@@ -94,7 +93,7 @@ class PassRenderer {
     std::unique_lock<std::mutex> lock(watchMutex_);
     while (!finished_) {
       signalled();
-      const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
+      const double elapsed = clock_.elapsed().seconds;
       if (passes_.timeLimit > 0 && firstPassDone_.load() && elapsed >= passes_.timeLimit) {
         timeUp_.store(true);
         stopNow_.store(true);
@@ -279,7 +278,9 @@ class PassRenderer {
   /// The outcome: a signal leaves every pixel undone and the progress to resume; the end of
   /// the passes or of the time drops the steps not taken and marks every pixel done.
   RenderStats finish() {
-    result_.seconds = std::chrono::duration<double>(Clock::now() - start_).count();
+    const RenderTime took = clock_.elapsed();
+    result_.seconds = took.seconds;
+    result_.cpuSeconds = took.cpuSeconds;
     for (const PixelProgress& g : state_.progress) result_.samples += g.count;
     result_.timeLimitReached = timeUp_ && !signalled_;
     if (signalled_) {
@@ -315,7 +316,7 @@ class PassRenderer {
   uint64_t credited_ = 0;  ///< samples the progress counts (settled pixels count in full)
   double fraction_ = 0;
   CheckpointClock checkpoints_{options_};
-  Clock::time_point start_;
+  RenderClock clock_;
 };
 
 }  // namespace

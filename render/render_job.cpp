@@ -1,10 +1,13 @@
 #include "render/render_job.h"
 
+#include <tbb/global_control.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "core/animation_time.h"
 #include "core/error.h"
@@ -84,7 +87,7 @@ RenderOptions renderOptionsOf(const RenderJob& job, const JobPlan& plan,
 /// --resume: the film and state of the checkpoint in the first .exr output, if there is one.
 /// Returns false when that checkpoint is this render finished (nothing to do).
 bool resume(const RenderJob& job, const JobWriter& writer, const PreparedScene& scene,
-            const JobPlan& plan, Film& film, RenderState& state, double& previousSeconds,
+            const JobPlan& plan, Film& film, RenderState& state, RenderTime& previous,
             const RenderJobEvents& events) {
   const std::string path = firstExr(job.outputs.paths);
   if (!std::filesystem::exists(path)) {
@@ -92,23 +95,23 @@ bool resume(const RenderJob& job, const JobWriter& writer, const PreparedScene& 
     return true;
   }
   return loadCheckpoint(path, writer.signature(), plan.region, scene.width(), scene.height(),
-                        plan.range, film, state, previousSeconds);
+                        plan.range, film, state, previous);
 }
 
 /// Every --checkpoint seconds, a copy of the pixels done so far goes to the first .exr output;
-/// `previousSeconds` (resumed renders) and the time since `started` make its render time.
+/// `previous` (resumed renders) and the time on `clock` make its render time.
 /// Every events.snapshotSeconds, the copy goes to events.snapshot: the renderer's one
 /// checkpoint clock runs at the shorter period, and the EXR is written when its own is due.
 void addCheckpoints(RenderOptions& options, const RenderJob& job, const JobWriter& writer,
-                    double previousSeconds, Clock::time_point started,
+                    RenderTime previous, RenderClock clock,
                     const RenderJobEvents& events) {
   const double exrSeconds = job.part.checkpointSeconds;
   const bool snapshots = events.snapshot && events.snapshotSeconds > 0;
   options.checkpointSeconds = exrSeconds > 0 && snapshots
                                   ? std::min(exrSeconds, events.snapshotSeconds)
                                   : (exrSeconds > 0 ? exrSeconds : events.snapshotSeconds);
-  auto lastExr = std::make_shared<Clock::time_point>(started);
-  options.onCheckpoint = [&job, &writer, &events, previousSeconds, started, exrSeconds, snapshots,
+  auto lastExr = std::make_shared<Clock::time_point>(clock.started());
+  options.onCheckpoint = [&job, &writer, &events, previous, clock, exrSeconds, snapshots,
                           lastExr](const Film& f, const RenderState& s) {
     if (snapshots) {  // alone, every call writes the EXR, as before snapshots existed
       events.snapshot(f, s);
@@ -118,9 +121,8 @@ void addCheckpoints(RenderOptions& options, const RenderJob& job, const JobWrite
     }
     *lastExr = Clock::now();
     Film copy = f;
-    const double elapsed = std::chrono::duration<double>(Clock::now() - started).count();
     try {  // a failed checkpoint (full disk) costs the safety net, not the render
-      writer.write(copy, s, previousSeconds + elapsed, {firstExr(job.outputs.paths)}, false,
+      writer.write(copy, s, previous + clock.elapsed(), {firstExr(job.outputs.paths)}, false,
                    events);
     } catch (const Error& e) {
       warn(events, std::string("checkpoint not written: ") + e.what());
@@ -184,6 +186,12 @@ uint64_t defaultMaxMemoryBytes() {
 RenderJobResult runRenderJob(const RenderJob& job, const RenderJobEvents& events,
                              const GltfDocument* document, KeptScene* kept) {
   checkJobOutputs(job);
+  // --threads N holds for the whole job, Embree's build included (its TBB tasks): TBB takes the
+  // least of the limits alive. Left to every core, the build's idle workers spun on into the
+  // render, 50 ms of another core's time on a one-thread render of a small scene.
+  std::optional<tbb::global_control> threadLimit;
+  if (job.threads > 0)
+    threadLimit.emplace(tbb::global_control::max_allowed_parallelism, size_t(job.threads));
   int placedCamera = -1;
   const PreparedScene scene = prepareJobScene(job, events, document, placedCamera, kept);
   enterPhase(events, "rendering");
@@ -198,16 +206,16 @@ RenderJobResult runRenderJob(const RenderJob& job, const RenderJobEvents& events
   Film film(plan.region.width(), plan.region.height());
   result.pixels = size_t(film.width()) * film.height();
   RenderState state;
-  double previousSeconds = 0;
-  if (job.part.resume && !resume(job, writer, scene, plan, film, state, previousSeconds, events)) {
+  RenderTime previous;
+  if (job.part.resume && !resume(job, writer, scene, plan, film, state, previous, events)) {
     result.outcome = RenderJobResult::Outcome::kAlreadyFinished;
     return result;
   }
   if (events.started) events.started();
   RenderOptions options = renderOptionsOf(job, plan, events);
-  const auto started = Clock::now();
+  const RenderClock clock;
   if (job.part.checkpointSeconds > 0 || (events.snapshot && events.snapshotSeconds > 0))
-    addCheckpoints(options, job, writer, previousSeconds, started, events);
+    addCheckpoints(options, job, writer, previous, clock, events);
   result.stats = renderImage(*integrator, film, state, options);
   const bool complete = !result.stats.interrupted;
   // Never a silent wrong image: samples dropped as not finite are said, even with -q.
@@ -221,13 +229,13 @@ RenderJobResult runRenderJob(const RenderJob& job, const RenderJobEvents& events
   if (events.finished) events.finished(complete);
 
   enterPhase(events, "writing images");
-  const double seconds = previousSeconds + result.stats.seconds;
+  const RenderTime took = previous + RenderTime{result.stats.seconds, result.stats.cpuSeconds};
   result.written = complete ? job.outputs.paths : interruptedOutputs(job.outputs.paths, events);
-  if (!result.written.empty()) writer.write(film, state, seconds, result.written, true, events);
+  if (!result.written.empty()) writer.write(film, state, took, result.written, true, events);
   if (!job.outputs.aaHeatmap.empty() && complete)
     writeImage(samplesHeatmap(film), job.outputs.aaHeatmap);
   if (job.outputs.keepImage)
-    result.image = RenderJobResult::Image{std::move(film), writer.formatOf(state, seconds)};
+    result.image = RenderJobResult::Image{std::move(film), writer.formatOf(state, took)};
   result.outcome =
       complete ? RenderJobResult::Outcome::kComplete : RenderJobResult::Outcome::kInterrupted;
   return result;

@@ -20,7 +20,6 @@
 namespace tray {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 
 /// A copy of the pixels published as done (acquire: their film and sums writes are visible);
 /// the others read as zero, so the copy never races with workers writing them.
@@ -119,15 +118,17 @@ class TileRenderer {
   }
 
   RenderStats run() {
-    start_ = Clock::now();
-    checkpoints_.start(start_);
+    clock_.restart();
+    checkpoints_.start(clock_.started());
     tbb::task_arena arena(options_.threads > 0 ? options_.threads : tbb::task_arena::automatic);
     arena.execute([&] { tiles_.forEach([&](int t) { renderTile(t); }); });
     const size_t pixels = state_.done.size();
     for (size_t p = 0; p < pixels; ++p) state_.done[p] = done_[p].load(std::memory_order_relaxed);
     result_.pixelsDone = state_.pixelsDone();
     result_.interrupted = result_.pixelsDone < pixels;
-    result_.seconds = std::chrono::duration<double>(Clock::now() - start_).count();
+    const RenderTime took = clock_.elapsed();
+    result_.seconds = took.seconds;
+    result_.cpuSeconds = took.cpuSeconds;
     return result_;
   }
 
@@ -255,7 +256,7 @@ class TileRenderer {
   RenderStats result_;
   int tilesDone_ = 0;
   CheckpointClock checkpoints_{options_};
-  Clock::time_point start_;
+  RenderClock clock_;
 };
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include "film/render_state.h"
 #include "render/image_part.h"
 #include "render/noise_estimate.h"
+#include "render/render_time.h"
 
 namespace tray {
 
@@ -44,7 +45,8 @@ struct RenderOptions {
 };
 
 struct RenderStats {
-  double seconds = 0;
+  double seconds = 0;     ///< wall-clock, of the render alone
+  double cpuSeconds = 0;  ///< the process's CPU time over the same span (render_time.h)
   RayStats rays;
   bool interrupted = false;  ///< stopped before every pixel was done
   size_t pixelsDone = 0;

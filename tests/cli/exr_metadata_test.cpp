@@ -100,5 +100,23 @@ TEST(ExrMetadata, RenderSettingsVersionAndColorspace) {
   EXPECT_EQ(e.channel("tray.done"), -1);
 }
 
+// tray:renderCpuSeconds is the render's CPU time alone (benchmarks compare it across
+// renderers): on one thread it cannot exceed the render's wall time, which it would if it
+// counted from the process's start (scene loading, Embree's build, OCIO's set-up).
+TEST(ExrMetadata, RenderCpuSecondsCountTheRenderAlone) {
+  const fs::path dir = testDir();
+  const std::string scene = std::string(TRAY_SOURCE_DIR) + "/scenes/whitted.gltf";
+  CliResult r = runCli(TRAY_RENDER_BIN,
+                       "'" + scene + "' --resolution 48x36 --integrator path --spp 64 --threads 1 " +
+                           "-o '" + (dir / "t.exr").string() + "'",
+                       dir);
+  ASSERT_EQ(r.exitCode, 0) << r.err;
+  const Exr e = readExrFile(dir / "t.exr");
+  const float wall = e.spec.get_float_attribute("tray:renderSeconds");
+  const float cpu = e.spec.get_float_attribute("tray:renderCpuSeconds");
+  EXPECT_GT(cpu, 0.0f);
+  EXPECT_LE(cpu, wall * 1.05f + 0.01f) << "wall " << wall;
+}
+
 }  // namespace
 }  // namespace tray::test

@@ -93,11 +93,13 @@ TEST(Farm, FourSampleRangesMergeWithinFloatRounding) {
   ASSERT_EQ(runCli(TRAY_RENDER_BIN, job + " " + out(dir, "full.exr"), dir).exitCode, 0);
   const char* ranges[] = {"0,2", "2,3", "3,7", "7,8"};
   std::string parts, reversed;
+  double cpuSeconds = 0;  // the parts' render CPU time, which the merge adds up
   for (int i = 0; i < 4; ++i) {
     const std::string name = std::string("s") + char('0' + i) + ".exr";
     CliResult r =
         runCli(TRAY_RENDER_BIN, job + " --sample-range " + ranges[i] + " " + out(dir, name), dir);
     ASSERT_EQ(r.exitCode, 0) << r.err;
+    cpuSeconds += readExrFile(dir / name).spec.get_float_attribute("tray:renderCpuSeconds");
     parts += " '" + (dir / name).string() + "'";
     reversed = " '" + (dir / name).string() + "'" + reversed;
   }
@@ -134,6 +136,8 @@ TEST(Farm, FourSampleRangesMergeWithinFloatRounding) {
   EXPECT_EQ(merged.spec.get_float_attribute("tray:samplesDone"), 37.0f * 29.0f * 8.0f);
   EXPECT_EQ(merged.spec.get_float_attribute("tray:samplesDone"),
             full.spec.get_float_attribute("tray:samplesDone"));
+  EXPECT_GT(cpuSeconds, 0.0);
+  EXPECT_FLOAT_EQ(merged.spec.get_float_attribute("tray:renderCpuSeconds"), float(cpuSeconds));
   EXPECT_GT(double(exact) / values, 0.99);
   std::printf("sample-range merge: %zu of %zu beauty values bit-identical, worst %d ulp\n", exact,
               values, worst);
