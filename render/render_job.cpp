@@ -186,9 +186,9 @@ uint64_t defaultMaxMemoryBytes() {
 RenderJobResult runRenderJob(const RenderJob& job, const RenderJobEvents& events,
                              const GltfDocument* document, KeptScene* kept) {
   checkJobOutputs(job);
-  // --threads N holds for the whole job, Embree's build included (its TBB tasks): TBB takes the
-  // least of the limits alive. Left to every core, the build's idle workers spun on into the
-  // render, 50 ms of another core's time on a one-thread render of a small scene.
+  // --threads N holds for the whole job, Embree's build included (its TBB tasks), as a user
+  // sharing a machine expects: TBB takes the least of the global limits alive (Embree sets its
+  // own, every core).
   std::optional<tbb::global_control> threadLimit;
   if (job.threads > 0)
     threadLimit.emplace(tbb::global_control::max_allowed_parallelism, size_t(job.threads));
