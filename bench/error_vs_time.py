@@ -27,7 +27,8 @@ reference is Mitsuba's converged render for all three (they agree on it within a
 on the asset scenes each renderer's error is against its OWN converged render (--ref-spp,
 cached in --ref-cache), since their material models differ slightly. For each TRay method the
 time to the other renderers' error at the middle spp count is read off its line (log-log
-between its two runs around it); above 1, TRay is faster.
+between its two runs around it); above 1, TRay is faster. The uniform runs also give the CPU
+time per sample: each other renderer's over TRay's at the same spp.
 
 Usage (the bpy venv of ../shared/notes/cycles5.md; the Mitsuba venv of tools/setup-mitsuba.sh):
   build/cycles5-venv/bin/python bench/error_vs_time.py --scene cornell|helmets|sun-helmets
@@ -260,6 +261,17 @@ def crossings(a, rows, key):
         say(f"  {key}: time to equal error, other / {tray}: " + ", ".join(cells))
 
 
+def per_sample(rows):
+    """Each other renderer's uniform CPU time over TRay uniform's at the same spp (above 1: TRay
+    takes less per sample)."""
+    tray = {r["setting"]: r["cpu"] for r in rows if r["method"] == "TRay uniform"}
+    for method in ("Mitsuba independent", "Mitsuba ldsampler", "Cycles uniform"):
+        cells = [f"{r['setting']} {r['cpu'] / tray[r['setting']]:.2f}x" for r in rows
+                 if r["method"] == method and r["setting"] in tray]
+        if cells:
+            say(f"  per sample, {method} / TRay uniform: " + ", ".join(cells))
+
+
 def main():
     a = parse_args()
     say(f"TRay, Mitsuba 3 and Cycles {bpy.app.version_string} on {a.scene} "
@@ -294,6 +306,7 @@ def main():
             f"  mean {r['mean'] * 100:+.3f}%")
     for key, _ in METRICS:
         crossings(a, rows, key)
+    per_sample(rows)
     chart(a, rows)
     say(f"  chart: {os.path.relpath(a.chart, ROOT)}")
     if a.report:
