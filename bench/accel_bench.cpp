@@ -15,7 +15,6 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
-#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -24,6 +23,7 @@
 #include "accel/registry.h"
 #include "bench/bench_meshes.h"
 #include "bench/bench_rays.h"
+#include "bench/cpu_time.h"
 #include "core/accelerator.h"
 #include "core/camera.h"
 #include "core/sampling.h"
@@ -34,13 +34,6 @@ using namespace tray;
 using Clock = std::chrono::steady_clock;
 
 namespace {
-
-/// CPU time of this process (all threads), in seconds.
-double cpuSeconds() {
-  timespec ts;
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
 
 /// The 1, 5 and 15 minute load averages (Linux), to show how busy a shared machine was.
 std::string loadAverage() {

@@ -206,10 +206,7 @@ int run(const Setup& o) {
   const ImageSize size = loaded.size;
   const PreparedScene prepared(loaded.scene, loaded.camera, size, "embree");
   // The sweep's cached reference (adaptive_oracle renders it when missing).
-  const std::string refPath = o.reference.empty()
-                                  ? referencePath(o.out, o.scene, "path", size.width, size.height)
-                                  : o.reference;
-  const Film ref = readReferenceOfSize(refPath, size.width, size.height);
+  const Film ref = readReferenceOfSize(oracleReferencePath(o, size), size.width, size.height);
   const double cpu0 = cpuSeconds();
   const Pools pools = renderPools(prepared, o);
   std::printf("%s, %dx%d: %d renders of %d spp, each pixel on its own by path-scalar (%.1f CPU s "

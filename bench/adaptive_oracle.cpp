@@ -203,8 +203,7 @@ int run(const Setup& o) {
   fs::create_directories(o.out);
   const std::string stem = fs::path(o.scene).stem().string();
   // The sweep's cached reference, so that one render serves both.
-  const std::string refPath =
-      o.reference.empty() ? referencePath(o.out, o.scene, "path", w, h) : o.reference;
+  const std::string refPath = oracleReferencePath(o, size);
   if (!fs::exists(refPath)) {
     std::fprintf(stderr, "adaptive_oracle: rendering the reference to %s\n", refPath.c_str());
     ImageOutputOptions io;

@@ -60,9 +60,7 @@ def render_cpu_of(cmd, out, env=None):
     """Runs a tray-render command writing `out`; returns the CPU seconds of its render alone
     (tray:renderCpuSeconds: scene loading, start-up and writing left out, as Mitsuba's timing
     leaves out its scene loading)."""
-    r = subprocess.run(cmd, capture_output=True, text=True, env=env)
-    if r.returncode != 0:
-        fail(f"{' '.join(cmd)} failed (exit {r.returncode}): {r.stderr.strip()}")
+    cpu_of(cmd, env)  # runs it, failing with its message; the whole process's time unused
     cpu = exr_float_attribute(out, "tray:renderCpuSeconds")
     if cpu is None:
         fail(f"{out}: no tray:renderCpuSeconds (a tray-render older than the render CPU time)")

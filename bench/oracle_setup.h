@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "gltf/gltf_loader.h"
 #include "render/render_setup.h"
+#include "bench/sweep.h"
 
 namespace tray {
 
@@ -34,6 +35,13 @@ inline OracleScene loadOracleScene(const OracleSetup& o) {
   s.camera = chooseCamera(s.scene, -1);
   s.size = resolveImageSize(o.resolution, s.camera);
   return s;
+}
+
+/// The reference both oracle benches measure against: --reference, else the sweep's cached
+/// path reference of the scene at this size in --out (adaptive_oracle renders it if missing).
+inline std::string oracleReferencePath(const OracleSetup& o, const ImageSize& size) {
+  return o.reference.empty() ? referencePath(o.out, o.scene, "path", size.width, size.height)
+                             : o.reference;
 }
 
 /// The options of OracleSetup's fields, in the order both tools list them (--out, --reference

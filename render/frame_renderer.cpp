@@ -92,9 +92,7 @@ RenderStats renderFrames(const Integrator& integrator, Film& film, RenderState& 
   stats.timeLimitReached = done.timeLimitReached;
   stats.pixelsDone = valid ? pixels.size() : 0;
   stats.interrupted = done.stopped;
-  const RenderTime took = clock.elapsed();
-  stats.seconds = took.seconds;
-  stats.cpuSeconds = took.cpuSeconds;
+  stats.setTime(clock.elapsed());
   return stats;
 }
 

@@ -278,9 +278,7 @@ class PassRenderer {
   /// The outcome: a signal leaves every pixel undone and the progress to resume; the end of
   /// the passes or of the time drops the steps not taken and marks every pixel done.
   RenderStats finish() {
-    const RenderTime took = clock_.elapsed();
-    result_.seconds = took.seconds;
-    result_.cpuSeconds = took.cpuSeconds;
+    result_.setTime(clock_.elapsed());
     for (const PixelProgress& g : state_.progress) result_.samples += g.count;
     result_.timeLimitReached = timeUp_ && !signalled_;
     if (signalled_) {

@@ -229,7 +229,7 @@ RenderJobResult runRenderJob(const RenderJob& job, const RenderJobEvents& events
   if (events.finished) events.finished(complete);
 
   enterPhase(events, "writing images");
-  const RenderTime took = previous + RenderTime{result.stats.seconds, result.stats.cpuSeconds};
+  const RenderTime took = previous + result.stats.time();
   result.written = complete ? job.outputs.paths : interruptedOutputs(job.outputs.paths, events);
   if (!result.written.empty()) writer.write(film, state, took, result.written, true, events);
   if (!job.outputs.aaHeatmap.empty() && complete)

@@ -126,9 +126,7 @@ class TileRenderer {
     for (size_t p = 0; p < pixels; ++p) state_.done[p] = done_[p].load(std::memory_order_relaxed);
     result_.pixelsDone = state_.pixelsDone();
     result_.interrupted = result_.pixelsDone < pixels;
-    const RenderTime took = clock_.elapsed();
-    result_.seconds = took.seconds;
-    result_.cpuSeconds = took.cpuSeconds;
+    result_.setTime(clock_.elapsed());
     return result_;
   }
 

@@ -56,6 +56,8 @@ struct RenderStats {
   uint64_t samples = 0;
   bool timeLimitReached = false;
   double mraysPerSecond() const { return seconds > 0 ? rays.total() / seconds * 1e-6 : 0; }
+  RenderTime time() const { return {seconds, cpuSeconds}; }
+  void setTime(const RenderTime& t) { seconds = t.seconds, cpuSeconds = t.cpuSeconds; }
 };
 
 /// Renders every pixel of the film with the integrator, tiles in parallel (TBB). Each pixel is
