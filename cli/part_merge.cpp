@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <limits>
 #include <numeric>
 #include <system_error>
 
@@ -19,7 +20,8 @@ using Layout = std::vector<std::pair<std::string, std::vector<std::string>>>;
 struct Part {
   std::string path;
   ExrHeader header;
-  int begin = 0, end = 0;  ///< sample range
+  int samplesPerPixel = 0;  ///< of the job (0: the integrator places its own samples)
+  int begin = 0, end = 0;   ///< sample range
   int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
 };
 
@@ -55,22 +57,32 @@ bool overlap(int a0, int a1, int b0, int b1) {
 Part loadHeader(const std::string& path) {
   Part p{path, readExrHeader(path)};
   const ImageOutputOptions& o = p.header.options;
-  if (metadataFloat(o, "tray:samplesPerPixel", -1) < 0)
-    throw Error(path + ": not a TRay part (no tray:samplesPerPixel)");
+  // Every number of the header that is used is checked first (a hostile or damaged part: the
+  // ranges and counts below would be undefined conversions; the sums would be NaN metadata).
+  constexpr int64_t kMaxInt = std::numeric_limits<int>::max();
+  const int64_t spp = metadataCount(o, "tray:samplesPerPixel", -1, path, kMaxInt);
+  if (spp < 0) throw Error(path + ": not a TRay part (no tray:samplesPerPixel)");
+  p.samplesPerPixel = int(spp);
+  metadataCount(o, "tray:samplesDone", 0, path);
+  metadataAmount(o, "tray:renderSeconds", 0, path);
+  metadataAmount(o, "tray:renderCpuSeconds", 0, path);
   const auto layers = p.header.layers();
   if (std::none_of(layers.begin(), layers.end(), [](auto& l) { return l.first == kStateLayer; }))
     throw Error(path +
                 ": no render state (layer 'tray'): not a part (render it with --region or "
                 "--sample-range)");
-  const float done = metadataFloat(o, "tray:pixelsDone", -1);
-  const float total = metadataFloat(o, "tray:pixelsTotal", -2);
+  const int64_t done = metadataCount(o, "tray:pixelsDone", -1, path);
+  const int64_t total = metadataCount(o, "tray:pixelsTotal", -2, path);
   if (done != total || metadataString(o, "tray:status") != "complete")
-    throw Error(path + ": unfinished part (" + std::to_string(int64_t(done)) + " of " +
-                std::to_string(int64_t(total)) + " pixels): finish it with --resume");
+    throw Error(path + ": unfinished part (" + std::to_string(done) + " of " +
+                std::to_string(total) + " pixels): finish it with --resume");
   // Integrators that place their own samples (adaptive) have one whole "range" per pixel.
-  const bool counted = metadataFloat(o, "tray:samplesPerPixel", 0) > 0;
-  p.begin = counted ? int(metadataFloat(o, "tray:sampleBegin", 0)) : 0;
-  p.end = counted ? int(metadataFloat(o, "tray:sampleEnd", 0)) : 1;
+  const bool counted = spp > 0;
+  p.begin = counted ? int(metadataCount(o, "tray:sampleBegin", 0, path, spp)) : 0;
+  p.end = counted ? int(metadataCount(o, "tray:sampleEnd", 0, path, spp)) : 1;
+  if (p.begin >= p.end)
+    throw Error(path + ": its header's sample range " + std::to_string(p.begin) + ".." +
+                std::to_string(p.end) + " holds no sample: an edited or damaged file");
   p.x0 = o.xOffset, p.y0 = o.yOffset;
   p.x1 = p.x0 + p.header.width, p.y1 = p.y0 + p.header.height;
   return p;
@@ -94,6 +106,9 @@ void checkParts(const std::vector<Part>& parts) {
                   std::to_string(height) + " image of " + ref.path);
     if (layout(p.header) != layout(ref.header))
       throw Error(p.path + ": its layers differ from those of " + ref.path);
+    if (p.samplesPerPixel != ref.samplesPerPixel)
+      throw Error(p.path + ": " + std::to_string(p.samplesPerPixel) + " samples per pixel, " +
+                  ref.path + " " + std::to_string(ref.samplesPerPixel));
   }
   for (size_t i = 0; i < parts.size(); ++i)
     for (size_t j = i + 1; j < parts.size(); ++j) {
@@ -102,8 +117,7 @@ void checkParts(const std::vector<Part>& parts) {
           overlap(a.begin, a.end, b.begin, b.end))
         throw Error(b.path + ": renders pixels and samples that " + a.path + " renders too");
     }
-  const int n = int(metadataFloat(r, "tray:samplesPerPixel", 0));
-  const int samples = n ? n : 1;
+  const int samples = ref.samplesPerPixel ? ref.samplesPerPixel : 1;
   std::vector<int> covered(size_t(width) * height, 0);
   for (const Part& p : parts)
     for (int y = p.y0; y < p.y1; ++y)
@@ -125,7 +139,9 @@ void addPart(const Part& p, int samples, Film& out, std::vector<PixelSums>& tota
   ExrRowReader reader(p.path);
   const std::vector<std::string>& names = reader.header().channels;
   auto channel = [&](const std::string& name) {
-    return size_t(std::find(names.begin(), names.end(), name) - names.begin());
+    const auto at = std::find(names.begin(), names.end(), name);
+    if (at == names.end()) throw Error(p.path + ": no channel " + name + ": a damaged part");
+    return size_t(at - names.begin());
   };
   std::vector<size_t> state;  // file channel of each state word, then of `done`
   for (const std::string& c : stateChannels())
@@ -160,11 +176,18 @@ void addPart(const Part& p, int samples, Film& out, std::vector<PixelSums>& tota
         float words[11];
         for (size_t w = 0; w < state.size(); ++w) words[w] = src[state[w]];
         const int x = p.x0 + px, y = p.y0 + row + r;
-        if (words[10] == 0.0f)
-          throw Error(p.path + ": pixel (" + std::to_string(x) + ", " + std::to_string(y) +
-                      ") is not done although the part says it is complete");
+        const auto pixel = [&] {
+          return p.path + ": pixel (" + std::to_string(x) + ", " + std::to_string(y) + ")";
+        };
+        PixelSums sums;
+        bool done;
+        try {
+          sums = checkedSums(words), done = checkedFlag(words[10], "done");
+        } catch (const Error& e) {
+          throw Error(pixel() + " holds " + e.what() + ": a damaged part");
+        }
+        if (!done) throw Error(pixel() + " is not done although the part says it is complete");
         const size_t at = size_t(y) * width + x;
-        const PixelSums sums = joinSums(words);
         total[at] += sums;
         if (ranged) means.ranged[at] = 1;
         for (const Copy& c : copies) {
@@ -214,7 +237,7 @@ ExrImage mergeParts(const std::vector<std::string>& paths) {
   for (const auto& [name, channels] : layout(parts.front().header))
     if (!name.empty()) out.film.addLayer(name, channels);
   std::vector<PixelSums> total(size_t(width) * height);
-  const int n = int(metadataFloat(r, "tray:samplesPerPixel", 0));
+  const int n = parts.front().samplesPerPixel;
   const size_t pixels = size_t(width) * height, layers = out.film.layers().size();
   LayerMeans means{std::vector<std::vector<double>>(layers),
                    std::vector<std::vector<double>>(layers), std::vector<uint8_t>(pixels, 0)};

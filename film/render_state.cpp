@@ -1,8 +1,12 @@
 #include "film/render_state.h"
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstring>
+#include <iterator>
+#include <sstream>
+#include <string>
 
 #include "core/error.h"
 
@@ -41,6 +45,28 @@ PixelSums joinSums(const float* in) {
   s.rgb[0] = join(in), s.rgb[1] = join(in + 2), s.rgb[2] = join(in + 4);
   s.alpha = join(in + 6), s.weight = join(in + 8);
   return s;
+}
+
+PixelSums checkedSums(const float* words) {
+  const PixelSums s = joinSums(words);
+  // What a render can sum: float samples (at most FLT_MAX, filter weights at most about 1) over
+  // at most 2^32 samples. A float NaN or infinity written into a high word is a finite double
+  // of about 2^1020, so the bound catches those edits too.
+  constexpr double kMostARenderSums = double(FLT_MAX) * 4294967296.0;
+  const double all[] = {s.rgb[0], s.rgb[1], s.rgb[2], s.alpha, s.weight};
+  if (!std::all_of(std::begin(all), std::end(all),
+                   [](double d) { return std::abs(d) <= kMostARenderSums; }))
+    throw Error("sums that no render makes (not finite, or beyond 2^32 times the largest float)");
+  return s;
+}
+
+bool checkedFlag(float word, const char* name) {
+  if (word != 0.0f && word != 1.0f) {
+    std::ostringstream shown;
+    shown << name << " " << word << ", neither 0 nor 1";
+    throw Error(shown.str());
+  }
+  return word == 1.0f;
 }
 
 RenderState RenderState::empty(size_t pixels) {
@@ -122,10 +148,19 @@ RenderState loadState(const Film& film) {
   const size_t n = size_t(film.width()) * film.height();
   RenderState state = RenderState::empty(n);
   float in[12];
+  // Which pixel holds a damaged word (the caller names the file).
+  const auto where = [&](size_t p) {
+    return "pixel (" + std::to_string(p % film.width()) + ", " + std::to_string(p / film.width()) +
+           ") holds ";
+  };
   for (size_t p = 0; p < n; ++p) {
     readPixel(film, layer, at, p, in);
-    state.sums[p] = joinSums(in);
-    state.done[p] = in[10] != 0.0f;
+    try {
+      state.sums[p] = checkedSums(in);
+      state.done[p] = checkedFlag(in[10], "done");
+    } catch (const Error& e) {
+      throw Error(where(p) + e.what());
+    }
   }
   int progress = -1;
   const std::vector<size_t> g = channelsOf(film, kProgressLayer, progressChannels(), progress);
@@ -134,12 +169,16 @@ RenderState loadState(const Film& film) {
   for (size_t p = 0; p < n; ++p) {
     readPixel(film, progress, g, p, in);
     PixelProgress& out = state.progress[p];
-    out.half = joinSums(in);
     if (!(in[10] >= 0 && in[10] <= float(1 << 20)) || in[10] != std::floor(in[10]))
       throw Error("the progress layer holds a sample count that is not one (" +
                   std::to_string(in[10]) + ")");
     out.count = uint32_t(in[10]);
-    out.pending = in[11] != 0.0f;
+    try {
+      out.half = checkedSums(in);
+      out.pending = checkedFlag(in[11], "pending");
+    } catch (const Error& e) {
+      throw Error(where(p) + "in the progress layer " + e.what());
+    }
   }
   return state;
 }

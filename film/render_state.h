@@ -49,6 +49,11 @@ inline constexpr const char* kStateLayer = "tray";
 const std::vector<std::string>& stateChannels();
 /// The sums held by the ten words Rh..Wl (in stateChannels() order), bit for bit.
 PixelSums joinSums(const float* words);
+/// joinSums, checked: a damaged or edited file may hold any bits in those words, so sums that
+/// are not finite numbers throw tray::Error (what is wrong, for the caller to say where).
+PixelSums checkedSums(const float* words);
+/// A stored flag (`done`, `pending`): 0 or 1, or tray::Error naming `name` and what it holds.
+bool checkedFlag(float word, const char* name);
 
 /// Name of the film layer holding RenderState::progress, in the same words: the earlier sums'
 /// Rh..Wl, then count and pending (numbers).

@@ -3,6 +3,8 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <cmath>
+#include <sstream>
 
 #include "core/error.h"
 
@@ -138,10 +140,49 @@ ExrImage readExr(const std::string& path) {
   return image;
 }
 
-float metadataFloat(const ImageOutputOptions& o, const std::string& key, float fallback) {
+namespace {
+
+const float* findFloat(const ImageOutputOptions& o, const std::string& key) {
   for (const auto& [k, v] : o.floatMetadata)
-    if (k == key) return v;
-  return fallback;
+    if (k == key) return &v;
+  return nullptr;
+}
+
+std::string shown(float v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+}  // namespace
+
+float metadataFloat(const ImageOutputOptions& o, const std::string& key, float fallback) {
+  const float* v = findFloat(o, key);
+  return v ? *v : fallback;
+}
+
+int64_t metadataCount(const ImageOutputOptions& o, const std::string& key, int64_t fallback,
+                      const std::string& path, int64_t max) {
+  const float* v = findFloat(o, key);
+  if (!v) return fallback;
+  // The comparisons are false for NaN; max as a double is exact up to 2^53.
+  if (!(*v >= 0 && double(*v) <= double(max)) || *v != std::floor(*v))
+    throw Error(path + ": its header's " + key + " is " + shown(*v) +
+                    ", not a whole number from 0 to " + std::to_string(max) +
+                    ": an edited or damaged file",
+                Error::Kind::kInput);
+  return int64_t(*v);
+}
+
+double metadataAmount(const ImageOutputOptions& o, const std::string& key, double fallback,
+                      const std::string& path) {
+  const float* v = findFloat(o, key);
+  if (!v) return fallback;
+  if (!(*v >= 0 && std::isfinite(*v)))
+    throw Error(path + ": its header's " + key + " is " + shown(*v) +
+                    ", not a finite number of at least 0: an edited or damaged file",
+                Error::Kind::kInput);
+  return *v;
 }
 
 std::string metadataString(const ImageOutputOptions& o, const std::string& key,

@@ -1,5 +1,6 @@
 #pragma once
 // Reading TRay's own EXR files back: checkpoints to resume and parts to merge (docs/farm.md).
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -58,5 +59,15 @@ class ExrRowReader {
 float metadataFloat(const ImageOutputOptions& o, const std::string& key, float fallback);
 std::string metadataString(const ImageOutputOptions& o, const std::string& key,
                            const std::string& fallback = "");
+/// A float attribute that counts something (pixels, samples, a sample index): a whole number in
+/// 0..max, or `fallback` when absent. Anything else (NaN, an infinity, a fraction, a negative or
+/// a huge number: an edited or damaged header) throws tray::Error naming `path`, the attribute
+/// and its value, before it can become an undefined conversion or a nonsense message.
+int64_t metadataCount(const ImageOutputOptions& o, const std::string& key, int64_t fallback,
+                      const std::string& path, int64_t max = int64_t(1) << 53);
+/// A float attribute that measures something (seconds): finite and at least 0, or `fallback`
+/// when absent; throws as metadataCount does.
+double metadataAmount(const ImageOutputOptions& o, const std::string& key, double fallback,
+                      const std::string& path);
 
 }  // namespace tray

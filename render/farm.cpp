@@ -113,14 +113,14 @@ bool loadCheckpoint(const std::string& path, const std::string& job, const Pixel
   // The done channel against the header written with it (issue 40: a channel edited to mark
   // pixels done that were never rendered resumed, and the image was labelled complete). Both
   // counts as the writer stored them: float(done).
-  const float header = metadataFloat(o, "tray:pixelsDone", -1);
-  if (float(state.pixelsDone()) != header)
+  const int64_t header = metadataCount(o, "tray:pixelsDone", -1, path);
+  if (float(state.pixelsDone()) != float(header))
     throw Error(path + ": the checkpoint's tray.done channel marks " +
                 std::to_string(state.pixelsDone()) + " pixels done, its header " +
-                (header < 0 ? std::string("none") : std::to_string(int64_t(header))) +
+                (header < 0 ? std::string("none") : std::to_string(header)) +
                 ": edited or damaged; remove it to render from the start");
-  previous = {metadataFloat(o, "tray:renderSeconds", 0),
-              metadataFloat(o, "tray:renderCpuSeconds", 0)};
+  previous = {metadataAmount(o, "tray:renderSeconds", 0, path),
+              metadataAmount(o, "tray:renderCpuSeconds", 0, path)};
   // The film without the state layer: it is written again only if the render stays partial.
   film = Film(image.film.width(), image.film.height());
   for (size_t l = 1; l < image.film.layers().size(); ++l) {

@@ -6,6 +6,8 @@
 
 #include <cstring>
 #include <filesystem>
+#include <limits>
+#include <string>
 #include <random>
 
 #include "io/image_input.h"
@@ -55,6 +57,48 @@ TEST(RenderState, RoundTripsThroughExrBitForBit) {
     EXPECT_EQ(back.done[p], state.done[p]);
   }
   EXPECT_EQ(back.pixelsDone(), state.pixelsDone());
+}
+
+/// The message loadState throws for `film`, or "" when it loads.
+std::string loadError(const Film& film) {
+  try {
+    loadState(film);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(RenderState, DamagedWordsAreRefusedNamingThePixel) {
+  RenderState state = RenderState::empty(6);
+  for (PixelSums& s : state.sums) s.rgb[0] = 2.5, s.alpha = 1, s.weight = 1;
+  state.done.assign(6, 1);
+  Film film(3, 2);
+  storeState(state, film);
+  EXPECT_EQ(loadError(film), "");
+  const int layer = film.findLayer(kStateLayer);
+  // A float NaN written into a sum's high word: as a double, about 2^1020 (finite).
+  float* px = film.pixel(layer, 1, 1);
+  const float saved = px[0];
+  px[0] = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_NE(loadError(film).find("pixel (1, 1) holds sums that no render makes"),
+            std::string::npos)
+      << loadError(film);
+  px[0] = saved;
+  px[10] = 0.5f;  // done
+  EXPECT_NE(loadError(film).find("pixel (1, 1) holds done 0.5, neither 0 nor 1"),
+            std::string::npos)
+      << loadError(film);
+  // What a render can make is kept: a negative weight (Mitchell's lobes), -0, a large sum.
+  const float words[11] = {};
+  EXPECT_NO_THROW(checkedSums(words));
+  PixelSums big;
+  big.rgb[1] = 1e45, big.weight = -3;
+  RenderState one = RenderState::empty(1);
+  one.sums[0] = big;
+  Film single(1, 1);
+  storeState(one, single);
+  EXPECT_EQ(loadError(single), "");
 }
 
 TEST(RenderState, FilmWithoutStateIsAnError) {
