@@ -64,6 +64,8 @@ struct PathEstimator::VertexDraws {
 PathEstimator::PathEstimator(const RenderContext& ctx)
     : ctx_(ctx),
       maxDepth_(ctx.settings.getInt("max-depth")),
+      rouletteDepth_(ctx.settings.getInt("rr-depth")),
+      sqrtSurvival_(ctx.settings.getString("rr-survival") == "sqrt"),
       clampIndirect_(ctx.settings.getFloat("clamp-indirect")),
       debugNan_(ctx.settings.getBool("debug-nan")),
       absorbingMedia_(std::any_of(ctx.scene.materials.begin(), ctx.scene.materials.end(),

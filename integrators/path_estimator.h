@@ -236,16 +236,22 @@ class PathEstimator {
     ++st.depth;
     return roulette(st, sampler);
   }
-  /// Russian roulette after a scattering (Arvo & Kirk 1990) with Mitsuba's survival
-  /// probability, from the kRouletteDepth-th segment on.
+  /// Russian roulette after a scattering (Arvo & Kirk 1990), after the first --rr-depth
+  /// segments (docs/bench/cornell-variance-2026-12-07.md measures both options).
   PathStep roulette(PathState& st, Sampler& sampler) const {
-    if (st.depth > kRouletteDepth) {
-      float q = std::min(maxComponent(st.beta) * st.etaFactor, 0.95f);
+    if (st.depth > rouletteDepth_) {
+      const float q = survival(maxComponent(st.beta) * st.etaFactor);
       if (!(sampler.next1D() < q)) return PathStep::kDone;
       st.beta /= q;
     }
     return PathStep::kContinue;
   }
+  /// The probability that a path of throughput `t` (its largest component, radiance scaling
+  /// by refraction undone) goes on: by default (--rr-survival sqrt) Cycles' min(1, sqrt(t))
+  /// (integrator/path_state.h, path_state_continuation_probability) capped at Mitsuba's 0.95,
+  /// which keeps more of the dim paths whose survivors would otherwise weigh 1/t each; or
+  /// Mitsuba's min(0.95, t) (--rr-survival throughput).
+  float survival(float t) const { return std::min(sqrtSurvival_ ? std::sqrt(t) : t, 0.95f); }
   /// Adds `c` to the path's radiance (clamped when indirect) and returns what was added.
   /// Firefly clamping (--clamp-indirect): light that reached the camera path after scattering
   /// off a diffuse or glossy vertex earlier than the one gathering it (caustics,
@@ -280,13 +286,15 @@ class PathEstimator {
   /// KHR_materials_dispersion: picks the path's wavelength at its first dispersive surface.
   static void chooseWavelength(PathState& st, const Sampler& sampler);
   static constexpr int kMaxNanReports = 10;
-  /// Mitsuba's default: Russian roulette from the fifth segment on.
-  static constexpr int kRouletteDepth = 5;
+  /// A walk in a scattering medium plays Russian roulette after this many events too.
+  static constexpr int kRouletteMediumEvents = 5;
   /// A random walk in a scattering medium ends after this many events (Cycles stops its
   /// random-walk subsurface at 256): a bias only for media far denser than their size.
   static constexpr int kMaxMediumEvents = 1024;
   const RenderContext& ctx_;
   int maxDepth_;
+  int rouletteDepth_;  ///< --rr-depth
+  bool sqrtSurvival_;  ///< --rr-survival sqrt
   float clampIndirect_;
   bool debugNan_;
   bool absorbingMedia_;  ///< some material absorbs (KHR_materials_volume): NEE looks it up

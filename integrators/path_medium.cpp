@@ -50,10 +50,10 @@ bool PathEstimator::mediumEvent(PathState& st, Sampler& sampler, const Hit* hit,
   st.indirectNee = true;
   st.prevPdf = pdf;
   ++stats.secondaryRays;
-  // Russian roulette as after a surface (roulette()), from the kRouletteDepth-th event on too:
-  // a walk in a bright medium would otherwise run to kMaxMediumEvents.
-  if (st.depth > kRouletteDepth || st.mediumEvents > kRouletteDepth) {
-    const float q = std::min(maxComponent(st.beta) * st.etaFactor, 0.95f);
+  // Russian roulette as after a surface (roulette()), and after kRouletteMediumEvents events
+  // too: a walk in a bright medium would otherwise run to kMaxMediumEvents.
+  if (st.depth > rouletteDepth_ || st.mediumEvents > kRouletteMediumEvents) {
+    const float q = survival(maxComponent(st.beta) * st.etaFactor);
     if (!(sampler.next1D() < q)) return true;
     st.beta /= q;
   }
