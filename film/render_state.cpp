@@ -169,11 +169,10 @@ RenderState loadState(const Film& film) {
   for (size_t p = 0; p < n; ++p) {
     readPixel(film, progress, g, p, in);
     PixelProgress& out = state.progress[p];
-    if (!(in[10] >= 0 && in[10] <= float(1 << 20)) || in[10] != std::floor(in[10]))
-      throw Error("the progress layer holds a sample count that is not one (" +
-                  std::to_string(in[10]) + ")");
-    out.count = uint32_t(in[10]);
     try {
+      if (!(in[10] >= 0 && in[10] <= float(1 << 20)) || in[10] != std::floor(in[10]))
+        throw Error("a sample count that is not one (" + std::to_string(in[10]) + ")");
+      out.count = uint32_t(in[10]);
       out.half = checkedSums(in);
       out.pending = checkedFlag(in[11], "pending");
     } catch (const Error& e) {

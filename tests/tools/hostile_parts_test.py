@@ -13,8 +13,11 @@ film/render_state.h (checkedSums, checkedFlag):
     (-9223372036854775808 of 320 pixels)", a begin of 4.5 taken as 4 and merged;
   - a float NaN or infinity written into a sum's high word (a finite double near 2^1020)
     merged into an image of 65504s with exit 0, a done flag of 0.5 or NaN counted as done,
-    and NaN seconds were summed into the merged header.
-The unedited parts merge and the unedited checkpoint resumes (exit 0): the edits decide.
+    and NaN seconds were summed into the merged header; in an adaptive checkpoint's progress
+    layer such sums resumed, and a pending flag of 0.5 counted as pending.
+All 164 merge and path-checkpoint cases fail on the code before those checks (the adaptive
+checkpoint's sample counts were already checked). The unedited parts merge and the unedited
+checkpoints resume (exit 0): the edits decide.
 
 Usage: hostile_parts_test.py BIN_DIR SHARED_DIR WORK_DIR"""
 
@@ -35,6 +38,10 @@ PART_JOB = [CORNELL, "--integrator", "path", "--spp", "8", "--filter", "tent", "
 # Long enough that the first progress line comes well before the end (about 3 s on 1 thread).
 CHECKPOINT_JOB = [CORNELL, "--integrator", "path", "--spp", "384", "--resolution", "101x93",
                   "--seed", "7", "--threads", "1"]
+# Adaptive sampling in passes (about 2.5 s): its checkpoint has the progress layer too
+# ('tray_progress': each pixel's earlier sums, its sample count and whether a step is owed).
+ADAPTIVE_JOB = [CORNELL, "--integrator", "path", "--spp", "4096", "--noise-threshold", "0.004",
+                "--resolution", "101x93", "--seed", "7", "--threads", "1"]
 ENV = dict(os.environ, OPENBLAS_NUM_THREADS="1")
 NAN, INF = float("nan"), float("inf")
 failures = []
@@ -158,9 +165,9 @@ def merge_cases():
     return len(cases) * 2
 
 
-def checkpoint():
-    """A checkpoint: the render interrupted (SIGINT) after its first progress line."""
-    p = subprocess.Popen([RENDER, *CHECKPOINT_JOB, "--progress", "plain", "--progress-step", "1",
+def checkpoint(job):
+    """A checkpoint of `job`: interrupted (SIGINT) after its first progress line."""
+    p = subprocess.Popen([RENDER, *job, "--progress", "plain", "--progress-step", "1",
                           "-o", "checkpoint.exr"], stderr=subprocess.PIPE, text=True, env=ENV)
     for line in p.stderr:
         if line.startswith("progress"):
@@ -172,18 +179,31 @@ def checkpoint():
     assert spec.getattribute("tray:status") != "complete"
 
 
-def resume_cases():
-    checkpoint()
+def progress_cases():
+    """The progress layer's words: sums as the state layer's, a count, a pending flag."""
+    cases = [(f"tray_progress.{w} = {v}", channel(f"tray_progress.{w}", v),
+              "in the progress layer sums that no render makes")
+             for w in ("Rh", "Wh") for v in (NAN, 1e30)]
+    cases += [(f"tray_progress.count = {v}", channel("tray_progress.count", v),
+               "sample count that is not one") for v in (NAN, -1.0, 4.5, 1e30)]
+    cases += [(f"tray_progress.pending = {v}", channel("tray_progress.pending", v),
+               "pending") for v in (NAN, 0.5, 2.0)]
+    return cases
+
+
+def resume_cases(job, adaptive):
+    checkpoint(job)
     names = list(load("checkpoint.exr")[0].channelnames)
+    assert adaptive == ("tray_progress.count" in names), names
     cases = header_cases(["tray:pixelsDone"], ["tray:renderSeconds", "tray:renderCpuSeconds"])
-    cases += state_cases(names)
+    cases += state_cases(names) + (progress_cases() if adaptive else [])
     for case, edit, says in cases:
         edited("checkpoint.exr", "bad.exr", edit)
         before = open("bad.exr", "rb").read()
-        expect_refusal(f"resume: {case}", [RENDER, *CHECKPOINT_JOB, "-o", "bad.exr", "--resume"],
-                       says, ("bad.exr", before))
+        expect_refusal(f"resume{' adaptive' if adaptive else ''}: {case}",
+                       [RENDER, *job, "-o", "bad.exr", "--resume"], says, ("bad.exr", before))
     shutil.copy("checkpoint.exr", "good.exr")
-    r = run([RENDER, *CHECKPOINT_JOB, "-o", "good.exr", "--resume"])
+    r = run([RENDER, *job, "-o", "good.exr", "--resume"])
     if r.returncode != 0 or load("good.exr")[0].getattribute("tray:status") != "complete":
         failures.append(f"the unedited checkpoint does not resume: {r.stderr.strip()}")
     return len(cases)
@@ -192,7 +212,7 @@ def resume_cases():
 def main():
     shutil.rmtree(WORK, ignore_errors=True)
     os.makedirs(WORK)
-    count = merge_cases() + resume_cases()
+    count = merge_cases() + resume_cases(CHECKPOINT_JOB, False) + resume_cases(ADAPTIVE_JOB, True)
     print(f"{count} hostile cases")
     for f in failures:
         print("FAIL", f)
