@@ -110,6 +110,32 @@ void validateOptions(const RenderSettings& settings) {
   }
 }
 
+std::vector<std::string> unusedOptionWarnings(const RenderSettings& settings) {
+  const RenderSettings bound = withIntegratorOptions(settings);
+  // The integrators that render: "whitted", or "adaptive --inner path".
+  std::string chosen = bound.getString("integrator");
+  const IntegratorEntry* e = &findIntegrator(chosen);
+  for (int depth = 0; depth < 8 && !e->innerOption.empty(); ++depth) {  // as withIntegratorOptions
+    const std::string inner = bound.getString(e->innerOption);
+    chosen += " --" + e->innerOption + " " + inner;
+    e = &findIntegrator(inner);
+  }
+  std::vector<std::string> warnings;
+  for (const auto& given : settings.given()) {
+    const std::string& name = given.first;
+    if (bound.find(name)) continue;  // render-wide or read by the chosen integrators
+    std::string takers;
+    for (const auto& e : integratorRegistry())
+      if (std::any_of(e.options.begin(), e.options.end(),
+                      [&](const OptionSpec& s) { return s.name == name; }))
+        takers += (takers.empty() ? "" : ", ") + e.name;
+    if (takers.empty()) continue;  // not an integrator's option (validateOptions says so)
+    warnings.push_back("--" + name + " has no effect with --integrator " + chosen +
+                       " (an option of " + takers + ")");
+  }
+  return warnings;
+}
+
 std::unique_ptr<Integrator> makeIntegrator(const RenderContext& ctx, const std::string& name) {
   const IntegratorEntry& e =
       findIntegrator(name.empty() ? ctx.settings.getString("integrator") : name);

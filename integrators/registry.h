@@ -51,6 +51,12 @@ RenderSettings withIntegratorOptions(const RenderSettings& settings, const std::
 /// "--aa-depth 13: expected 0..12", or "unknown option --name" for a name nobody declares.
 void validateOptions(const RenderSettings& settings);
 
+/// One warning per option set in `settings` that its render does not read: declared only by
+/// integrators other than the chosen one and those it wraps ("--clamp-indirect has no effect
+/// with --integrator whitted (an option of path, path-scalar, path-wavefront)"). Not an error:
+/// a farm or a script may pass one set of options to every integrator.
+std::vector<std::string> unusedOptionWarnings(const RenderSettings& settings);
+
 /// Creates the integrator named ctx.settings "integrator" (or `name` if given) with its options
 /// declared and validated; throws tray::Error for an unknown name or an invalid value.
 std::unique_ptr<Integrator> makeIntegrator(const RenderContext& ctx, const std::string& name = "");

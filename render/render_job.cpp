@@ -15,6 +15,7 @@
 #include "film/cryptomatte.h"
 #include "gltf/scene_hash.h"
 #include "integrators/adaptive.h"
+#include "integrators/registry.h"
 #include "io/image_output.h"
 #include "render/farm.h"
 #include "render/job_scene.h"
@@ -186,6 +187,7 @@ uint64_t defaultMaxMemoryBytes() {
 RenderJobResult runRenderJob(const RenderJob& job, const RenderJobEvents& events,
                              const GltfDocument* document, KeptScene* kept) {
   checkJobOutputs(job);
+  for (const std::string& w : unusedOptionWarnings(job.settings)) warn(events, w);
   // --threads N holds for the whole job, Embree's build included (its TBB tasks), as a user
   // sharing a machine expects: TBB takes the least of the global limits alive (Embree sets its
   // own, every core).

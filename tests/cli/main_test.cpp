@@ -125,6 +125,33 @@ TEST(CliOptions, AFlagWithAnUnknownValueIsOneLineNotACrash) {
   }
 }
 
+TEST(CliOptions, AnOptionTheIntegratorDoesNotReadIsSaidNotSilentlyIgnored) {
+  // A farm may pass one set of options to every integrator: a warning, not an error. Before,
+  // --clamp-indirect or --rr-depth with whitted rendered without a word.
+  const fs::path dir = testDir();
+  struct Case {
+    std::string args, warning;  // warning: "" for none
+  } cases[] = {
+      {"--integrator whitted --clamp-indirect 3",
+       "warning: --clamp-indirect has no effect with --integrator whitted (an option of path, "
+       "path-scalar, path-wavefront)\n"},
+      {"--integrator adaptive --rr-depth 3",
+       "warning: --rr-depth has no effect with --integrator adaptive --inner whitted (an option "
+       "of path, path-scalar, path-wavefront)\n"},
+      {"--integrator path --rr-depth 3 --max-depth 4", ""},
+      {"--integrator adaptive --inner path --rr-depth 3", ""},
+      {"--integrator whitted --max-depth 3 --spp 2", ""},  // whitted's own --max-depth
+  };
+  for (const Case& c : cases) {
+    CliResult r = runCli(TRAY_RENDER_BIN,
+                         kScene + " -q --resolution 8x6 " + c.args + " -o " +
+                             quoted(dir / "unread.exr"),
+                         dir);
+    EXPECT_EQ(r.exitCode, 0) << c.args << ": " << r.err;
+    EXPECT_EQ(r.err, c.warning) << c.args;
+  }
+}
+
 TEST(CliOptions, RequiredExtensionExits2UnlessIgnored) {
   const fs::path dir = testDir();
   const fs::path scene = dir / "required.gltf";
