@@ -5,10 +5,10 @@
 #include <cmath>
 #include <cstring>
 #include <iterator>
-#include <sstream>
 #include <string>
 
 #include "core/error.h"
+#include "core/options.h"
 
 namespace tray {
 namespace {
@@ -20,6 +20,11 @@ void split(double d, float* out) {
   const uint32_t hi = uint32_t(bits >> 32), lo = uint32_t(bits);
   std::memcpy(out, &hi, 4);
   std::memcpy(out + 1, &lo, 4);
+}
+
+/// A stored number as a user reads it (4.5, nan, inf, 1e+30): the options' shortest text.
+std::string shown(float v) {
+  return formatOptionValue(OptionValue(v));
 }
 
 double join(const float* in) {
@@ -61,11 +66,8 @@ PixelSums checkedSums(const float* words) {
 }
 
 bool checkedFlag(float word, const char* name) {
-  if (word != 0.0f && word != 1.0f) {
-    std::ostringstream shown;
-    shown << name << " " << word << ", neither 0 nor 1";
-    throw Error(shown.str());
-  }
+  if (word != 0.0f && word != 1.0f)
+    throw Error(std::string(name) + " " + shown(word) + ", neither 0 nor 1");
   return word == 1.0f;
 }
 
@@ -171,7 +173,7 @@ RenderState loadState(const Film& film) {
     PixelProgress& out = state.progress[p];
     try {
       if (!(in[10] >= 0 && in[10] <= float(1 << 20)) || in[10] != std::floor(in[10]))
-        throw Error("a sample count that is not one (" + std::to_string(in[10]) + ")");
+        throw Error("a sample count that is not one (" + shown(in[10]) + ")");
       out.count = uint32_t(in[10]);
       out.half = checkedSums(in);
       out.pending = checkedFlag(in[11], "pending");

@@ -4,12 +4,23 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 #include "core/error.h"
+#include "core/options.h"
 
 namespace tray {
 namespace {
+
+const float* findFloat(const ImageOutputOptions& o, const std::string& key) {
+  for (const auto& [k, v] : o.floatMetadata)
+    if (k == key) return &v;
+  return nullptr;
+}
+
+/// A stored number as a user reads it (4.5, nan, inf, 1e+30): the options' shortest text.
+std::string shown(float v) {
+  return formatOptionValue(OptionValue(v));
+}
 
 std::string oneLine(std::string s) {
   while (!s.empty() && (s.back() == '\n' || s.back() == ' ')) s.pop_back();
@@ -139,22 +150,6 @@ ExrImage readExr(const std::string& path) {
   image.options = header.options;
   return image;
 }
-
-namespace {
-
-const float* findFloat(const ImageOutputOptions& o, const std::string& key) {
-  for (const auto& [k, v] : o.floatMetadata)
-    if (k == key) return &v;
-  return nullptr;
-}
-
-std::string shown(float v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
-}  // namespace
 
 float metadataFloat(const ImageOutputOptions& o, const std::string& key, float fallback) {
   const float* v = findFloat(o, key);
