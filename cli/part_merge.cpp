@@ -1,6 +1,7 @@
 #include "cli/part_merge.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <limits>
 #include <numeric>
@@ -118,6 +119,20 @@ void checkParts(const std::vector<Part>& parts) {
         throw Error(b.path + ": renders pixels and samples that " + a.path + " renders too");
     }
   const int samples = ref.samplesPerPixel ? ref.samplesPerPixel : 1;
+  // The parts' windows must add up to the image before anything of its size is allocated: a
+  // header that claims a 200000x200000 image for 40x8 parts is refused here, not by the
+  // memory (overlaps are refused above, so each pixel sample counts once). In doubles: exact
+  // below 2^53, and a forged window times a forged range may go beyond 2^63.
+  double held = 0;
+  for (const Part& p : parts)
+    held += double(p.x1 - p.x0) * double(p.y1 - p.y0) * double(p.end - p.begin);
+  const double needed = double(width) * double(height) * double(samples);
+  if (held < needed) {
+    char counts[96];
+    std::snprintf(counts, sizeof counts, "%.0f of the %dx%d image's %.0f", held, width, height,
+                  needed);
+    throw Error(std::string("the parts hold ") + counts + " pixel samples: a part is missing");
+  }
   std::vector<int> covered(size_t(width) * height, 0);
   for (const Part& p : parts)
     for (int y = p.y0; y < p.y1; ++y)

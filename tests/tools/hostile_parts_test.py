@@ -22,6 +22,7 @@ checkpoints resume (exit 0): the edits decide.
 Usage: hostile_parts_test.py BIN_DIR SHARED_DIR WORK_DIR"""
 
 import os
+import resource
 import shutil
 import signal
 import subprocess
@@ -47,8 +48,12 @@ NAN, INF = float("nan"), float("inf")
 failures = []
 
 
-def run(cmd):
-    return subprocess.run(cmd, capture_output=True, text=True, timeout=300, env=ENV)
+def run(cmd, memory_limit=None):
+    """`memory_limit`: bytes of address space the child may have (a refusal must not need more)."""
+    def limit():
+        resource.setrlimit(resource.RLIMIT_AS, (memory_limit, memory_limit))
+    return subprocess.run(cmd, capture_output=True, text=True, timeout=300, env=ENV,
+                          preexec_fn=limit if memory_limit else None)
 
 
 def load(path):
@@ -81,6 +86,13 @@ def channel(name, value):
     return edit
 
 
+def full_size(width, height):
+    def edit(spec, pixels, names):
+        spec.full_width, spec.full_height = width, height
+        return spec, pixels
+    return edit
+
+
 def without(name):
     def edit(spec, pixels, names):
         keep = [i for i, n in enumerate(names) if n != name]
@@ -96,17 +108,18 @@ def edited(source, target, edit):
     save(target, spec, pixels)
 
 
-def expect_refusal(case, cmd, says, untouched=None):
-    """Exit 2, one line naming the file and saying `says`; `untouched`: (path, its bytes)."""
+def expect_refusal(case, cmd, says, untouched=None, names="bad.exr", memory_limit=None):
+    """Exit 2, one line naming `names` (if not empty) and saying `says`; `untouched`: (path, its
+    bytes)."""
     if os.path.exists("merged.exr"):
         os.remove("merged.exr")
-    r = run(cmd)
+    r = run(cmd, memory_limit)
     lines = r.stderr.strip().splitlines()
     problems = []
     if r.returncode != 2:
         problems.append(f"exit {r.returncode}")
-    if len(lines) != 1 or "bad.exr" not in lines[0] or says not in lines[0]:
-        problems.append(f"stderr {lines!r}, expected one line naming bad.exr with {says!r}")
+    if len(lines) != 1 or names not in lines[0] or says not in lines[0]:
+        problems.append(f"stderr {lines!r}, expected one line naming {names} with {says!r}")
     if untouched and open(untouched[0], "rb").read() != untouched[1]:
         problems.append(f"{untouched[0]} was written")
     if os.path.exists("merged.exr"):
@@ -157,10 +170,18 @@ def merge_cases():
             # Refused in either order: the checks are each part's own, not the first part's.
             expect_refusal(f"merge {' '.join(order)}: {case}",
                            [MERGE, *order, "-o", "merged.exr"], says)
+    # Both parts claiming a 200000x200000 image: refused from their windows, in a few MB (before,
+    # the merge sized a 160 GB coverage array by the header: out of memory, exit 1, or the OOM
+    # killer).
+    for source, target in (("p0.exr", "big0.exr"), ("p4.exr", "big4.exr")):
+        edited(source, target, full_size(200000, 200000))
+    expect_refusal("merge: parts claiming a 200000x200000 image",
+                   [MERGE, "big0.exr", "big4.exr", "-o", "merged.exr"], "a part is missing",
+                   names="", memory_limit=4 << 30)
     r = run([MERGE, "p0.exr", "p4.exr", "-o", "merged.exr"])
     if r.returncode != 0:
         failures.append(f"the unedited parts do not merge: {r.stderr.strip()}")
-    return len(cases) * 2
+    return len(cases) * 2 + 1
 
 
 def checkpoint(job):
