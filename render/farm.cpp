@@ -90,15 +90,20 @@ SampleRange parseSampleRange(const std::string& text, std::optional<int> samples
 bool loadCheckpoint(const std::string& path, const std::string& job, const PixelRegion& region,
                     int width, int height, const SampleRange& range, Film& film, RenderState& state,
                     RenderTime& previous) {
-  ExrImage image = readExr(path);
-  const ImageOutputOptions& o = image.options;
-  const std::string theirs = metadataString(o, "tray:job");
+  // The header first: a checkpoint of another job, size or region is refused before its pixels
+  // are read (a forged data window would size them).
+  const ExrHeader head = readExrHeader(path);
+  const ImageOutputOptions& h = head.options;
+  const std::string theirs = metadataString(h, "tray:job");
   if (const std::string d = jobDifference(job, theirs); !d.empty())
     throw Error(path + ": the checkpoint is of another render (tray:job: " + d + ")");
-  if (o.fullWidth != width || o.fullHeight != height || o.xOffset != region.x0 ||
-      o.yOffset != region.y0 || image.film.width() != region.width() ||
-      image.film.height() != region.height())
+  if (h.fullWidth != width || h.fullHeight != height || h.xOffset != region.x0 ||
+      h.yOffset != region.y0 || head.width != region.width() || head.height != region.height())
     throw Error(path + ": the checkpoint covers another region or image size");
+  ExrImage image = readExr(path);
+  const ImageOutputOptions& o = image.options;
+  if (image.film.width() != region.width() || image.film.height() != region.height())
+    throw Error(path + ": the checkpoint changed while it was read");
   if (metadataFloat(o, "tray:sampleBegin", -1) != float(range.begin) ||
       metadataFloat(o, "tray:sampleEnd", -1) != float(range.end))
     throw Error(path + ": the checkpoint renders another sample range");

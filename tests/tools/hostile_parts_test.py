@@ -25,6 +25,7 @@ import os
 import resource
 import shutil
 import signal
+import struct
 import subprocess
 import sys
 
@@ -221,11 +222,23 @@ def resume_cases(job, adaptive):
         before = open("bad.exr", "rb").read()
         expect_refusal(f"resume{' adaptive' if adaptive else ''}: {case}",
                        [RENDER, *job, "-o", "bad.exr", "--resume"], says, ("bad.exr", before))
+    # A data window of 200000x200000 written into the header: refused in one line within the
+    # memory limit, by OpenEXR (its offset table runs past the file's end) or by TRay's size
+    # check. Before, a checkpoint large enough to open had its pixels sized first: "out of
+    # memory while rendering", exit 1.
+    forged = bytearray(open("checkpoint.exr", "rb").read())
+    at = forged.find(b"dataWindow\0box2i\0") + len(b"dataWindow\0box2i\0") + 4
+    forged[at:at + 16] = struct.pack("<4i", 0, 0, 199999, 199999)
+    open("bad.exr", "wb").write(forged)
+    expect_refusal("resume: a forged 200000x200000 data window",
+                   [RENDER, *job, "-o", "bad.exr", "--resume"],
+                   "", ("bad.exr", bytes(forged)),
+                   memory_limit=4 << 30)
     shutil.copy("checkpoint.exr", "good.exr")
     r = run([RENDER, *job, "-o", "good.exr", "--resume"])
     if r.returncode != 0 or load("good.exr")[0].getattribute("tray:status") != "complete":
         failures.append(f"the unedited checkpoint does not resume: {r.stderr.strip()}")
-    return len(cases)
+    return len(cases) + 1
 
 
 def main():
