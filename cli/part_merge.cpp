@@ -296,7 +296,7 @@ ExrImage mergeParts(const std::vector<std::string>& paths) {
     if (k == "tray:samplesDone") v = float(sum("tray:samplesDone"));
     if (k == "tray:pixelsDone" || k == "tray:pixelsTotal") v = float(width) * height;
     if (k == "tray:sampleBegin") v = 0;
-    if (k == "tray:sampleEnd") v = metadataFloat(r, "tray:samplesPerPixel", 0);
+    if (k == "tray:sampleEnd") v = float(parts.front().samplesPerPixel);
   }
   for (auto& [k, v] : out.options.stringMetadata)
     if (k == "tray:status") v = "complete";

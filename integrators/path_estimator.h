@@ -237,14 +237,19 @@ class PathEstimator {
     return roulette(st, sampler);
   }
   /// Russian roulette after a scattering (Arvo & Kirk 1990), after the first --rr-depth
-  /// segments (docs/bench/cornell-variance-2026-12-07.md measures both options).
+  /// segments (docs/bench/roulette-2026-12-07.md measures both options).
   PathStep roulette(PathState& st, Sampler& sampler) const {
-    if (st.depth > rouletteDepth_) {
-      const float q = survival(maxComponent(st.beta) * st.etaFactor);
-      if (!(sampler.next1D() < q)) return PathStep::kDone;
-      st.beta /= q;
-    }
+    if (st.depth > rouletteDepth_ && !survivesRoulette(st, sampler)) return PathStep::kDone;
     return PathStep::kContinue;
+  }
+  /// One roulette draw: false ends the path; a survivor's throughput is divided by its
+  /// probability of surviving, which keeps the estimate unbiased (roulette() and a medium's
+  /// events, integrators/path_medium.cpp).
+  bool survivesRoulette(PathState& st, Sampler& sampler) const {
+    const float q = survival(maxComponent(st.beta) * st.etaFactor);
+    if (!(sampler.next1D() < q)) return false;
+    st.beta /= q;
+    return true;
   }
   /// The probability that a path of throughput `t` (its largest component, radiance scaling
   /// by refraction undone) goes on: by default (--rr-survival sqrt) Cycles' min(1, sqrt(t))

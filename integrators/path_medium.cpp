@@ -52,11 +52,9 @@ bool PathEstimator::mediumEvent(PathState& st, Sampler& sampler, const Hit* hit,
   ++stats.secondaryRays;
   // Russian roulette as after a surface (roulette()), and after kRouletteMediumEvents events
   // too: a walk in a bright medium would otherwise run to kMaxMediumEvents.
-  if (st.depth > rouletteDepth_ || st.mediumEvents > kRouletteMediumEvents) {
-    const float q = survival(maxComponent(st.beta) * st.etaFactor);
-    if (!(sampler.next1D() < q)) return true;
-    st.beta /= q;
-  }
+  if ((st.depth > rouletteDepth_ || st.mediumEvents > kRouletteMediumEvents) &&
+      !survivesRoulette(st, sampler))
+    return true;
   next = PathStep::kContinue;
   return true;
 }

@@ -63,15 +63,23 @@ const IntegratorEntry& findIntegrator(const std::string& name) {
   throw Error("unknown integrator '" + name + "' (known: " + known + ")");
 }
 
+namespace {
+
+/// The integrators that render, outermost first ("adaptive", "whitted"), read from `bound`
+/// (withIntegratorOptions: the inner options' defaults declared); at most 8 deep.
+std::vector<const IntegratorEntry*> chainOf(const RenderSettings& bound) {
+  std::vector<const IntegratorEntry*> chain{&findIntegrator(bound.getString("integrator"))};
+  while (chain.size() < 8 && !chain.back()->innerOption.empty())
+    chain.push_back(&findIntegrator(bound.getString(chain.back()->innerOption)));
+  return chain;
+}
+
+}  // namespace
+
 bool unlitSurfacesLight(const RenderSettings& settings) {
-  const RenderSettings bound = withIntegratorOptions(settings);
-  std::string name = bound.getString("integrator");
-  for (int depth = 0; depth < 8; ++depth) {  // a wrapper's inner integrator decides
-    const IntegratorEntry& e = findIntegrator(name);
-    if (e.innerOption.empty()) return e.unlitSurfacesLight;
-    name = bound.getString(e.innerOption);
-  }
-  return false;
+  const IntegratorEntry& innermost = *chainOf(withIntegratorOptions(settings)).back();
+  // A wrapper's inner integrator decides (none: a chain deeper than 8).
+  return innermost.innerOption.empty() && innermost.unlitSurfacesLight;
 }
 
 RenderSettings withIntegratorOptions(const RenderSettings& settings, const std::string& name) {
@@ -112,14 +120,12 @@ void validateOptions(const RenderSettings& settings) {
 
 std::vector<std::string> unusedOptionWarnings(const RenderSettings& settings) {
   const RenderSettings bound = withIntegratorOptions(settings);
-  // The integrators that render: "whitted", or "adaptive --inner path".
-  std::string chosen = bound.getString("integrator");
-  const IntegratorEntry* e = &findIntegrator(chosen);
-  for (int depth = 0; depth < 8 && !e->innerOption.empty(); ++depth) {  // as withIntegratorOptions
-    const std::string inner = bound.getString(e->innerOption);
-    chosen += " --" + e->innerOption + " " + inner;
-    e = &findIntegrator(inner);
-  }
+  // The integrators that render, as the command line names them: "whitted", or
+  // "adaptive --inner path".
+  const std::vector<const IntegratorEntry*> chain = chainOf(bound);
+  std::string chosen = chain.front()->name;
+  for (size_t i = 1; i < chain.size(); ++i)
+    chosen += " --" + chain[i - 1]->innerOption + " " + chain[i]->name;
   std::vector<std::string> warnings;
   for (const auto& given : settings.given()) {
     const std::string& name = given.first;
